@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Shared set-up for run.sh and test.sh: install missing Debian 12 packages, then configure and
+# build (Release) in build/. Safe to run again: installed packages and a configured build are reused.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+
+packages=(build-essential cmake pkg-config libsundials-dev libsuitesparse-dev libeigen3-dev
+          libhdf5-dev libgtest-dev libbenchmark-dev libtomlplusplus-dev libcli11-dev
+          nlohmann-json3-dev python3-matplotlib python3-h5py)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing ${missing[*]}" >&2
+  sudo_cmd=""
+  [ "$(id -u)" -ne 0 ] && sudo_cmd="sudo"
+  $sudo_cmd apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
+fi
+
+cmake -S "$root" -B "$root/build" -DCMAKE_BUILD_TYPE=Release >&2
+cmake --build "$root/build" -j "$(nproc)" >&2

@@ -1,0 +1,31 @@
+#pragma once
+// Contact conductance laws (contract section 2). Walls enter with infinite radius (1/R = 0).
+#include <limits>
+#include <string_view>
+#include <vector>
+
+namespace tmdem::thermal {
+
+// One side of a contact: what the Hertz law needs to know about a body.
+struct ContactBody {
+  double radius_m = std::numeric_limits<double>::infinity();  // infinity for a wall
+  double conductivity_W_per_mK = 0.0;
+  double young_modulus_Pa = 0.0;
+  double poisson_ratio = 0.0;
+};
+
+// Hertz contact radius a = (3 F R* / (4 E*))^(1/3), m; 1/R* = 1/R1 + 1/R2,
+// 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2. A non-positive force gives a = 0.
+double hertz_contact_radius_m(const ContactBody& b1, const ContactBody& b2, double normal_force_N);
+
+// H = 2 k a with k the harmonic mean 2 k1 k2 / (k1 + k2), W/K.
+double hertz_conductance_W_per_K(const ContactBody& b1, const ContactBody& b2,
+                                 double normal_force_N);
+
+enum class ConductanceLawKind { Hertz, Constant };
+
+// Run-time selection by name; an unknown name throws std::invalid_argument listing the valid names.
+ConductanceLawKind conductance_law_from_name(std::string_view name);
+const std::vector<std::string_view>& conductance_law_names();
+
+}  // namespace tmdem::thermal

@@ -1,0 +1,31 @@
+// Imposed heat sources: q_i += P_i (W). Constant in T, so nothing enters the Jacobian.
+#include <memory>
+
+#include "thermal/HeatTransferMode.h"
+
+namespace tmdem::thermal {
+namespace {
+
+class HeatSourceMode final : public HeatTransferMode {
+ public:
+  std::string_view name() const override { return "heat_source"; }
+
+  bool add_heat_flow(const ThermalNetwork& net, std::span<const double>,
+                     std::span<double> q, double& boundary_W) const override {
+    for (std::size_t i = 0; i < net.node_count(); ++i) {
+      q[i] += net.heat_source_W[i];
+      if (!net.held[i]) boundary_W += net.heat_source_W[i];
+    }
+    return true;
+  }
+
+  void add_jacobian(const ThermalNetwork&, std::span<const double>, JacobianView) const override {}
+};
+
+}  // namespace
+
+std::unique_ptr<HeatTransferMode> make_heat_source_mode(const ModeSettings&) {
+  return std::make_unique<HeatSourceMode>();
+}
+
+}  // namespace tmdem::thermal

@@ -1,0 +1,43 @@
+#pragma once
+// A heat-transfer mode adds its heat flow to each particle and its entries to the Jacobian.
+// Modes are built by name (ModeRegistry) only when the scene switches them on, so a mode that is
+// off is never constructed nor called.
+#include <span>
+#include <string_view>
+
+#include "thermal/ThermalNetwork.h"
+
+namespace tmdem::thermal {
+
+// Where a mode writes d q / d T. A nonlinear mode gives its linearisation at T (OpenFOAM-style
+// split: the flow it adds is the constant part, the diagonal entry the implicit part).
+struct JacobianView {
+  std::span<double> diagonal_W_per_K;  // d q_i / d T_i, one per node
+  std::span<double> edge_W_per_K;      // d q_a / d T_b = d q_b / d T_a, one per network edge
+};
+
+// Settings that modes read; each mode takes what it needs.
+struct ModeSettings {
+  double convection_coefficient_W_per_m2K = 0.0;
+  double fluid_temperature_K = 293.15;
+  double ambient_temperature_K = 293.15;
+};
+
+class HeatTransferMode {
+ public:
+  virtual ~HeatTransferMode() = default;
+  virtual std::string_view name() const = 0;
+
+  // Adds the heat flow into each node (W) to q_W, and to boundary_W the power that enters the
+  // free (not held) particles from outside them: walls, fluid, surroundings, sources, held
+  // particles. Returns false when T lies outside the mode's domain (e.g. T <= 0 K for
+  // radiation); the integrator then treats the evaluation as a recoverable failure.
+  virtual bool add_heat_flow(const ThermalNetwork& network, std::span<const double> T_K,
+                             std::span<double> q_W, double& boundary_W) const = 0;
+
+  // Adds d q / d T at T into the view.
+  virtual void add_jacobian(const ThermalNetwork& network, std::span<const double> T_K,
+                            JacobianView jacobian) const = 0;
+};
+
+}  // namespace tmdem::thermal

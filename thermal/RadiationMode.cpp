@@ -1,0 +1,54 @@
+// Radiation to the surroundings: q_i += eps_i sigma A_i (T_amb^4 - T_i^4). Split OpenFOAM-style
+// into the flow (constant part at the current T) and the exact linearisation
+// d q_i / d T_i = -4 eps_i sigma A_i T_i^3 for the Jacobian.
+#include <memory>
+
+#include "thermal/HeatTransferMode.h"
+
+namespace tmdem::thermal {
+namespace {
+
+constexpr double kStefanBoltzmann_W_per_m2K4 = 5.670374419e-8;
+
+class RadiationMode final : public HeatTransferMode {
+ public:
+  explicit RadiationMode(const ModeSettings& s) : ambient_K_(s.ambient_temperature_K) {}
+
+  std::string_view name() const override { return "radiation"; }
+
+  bool add_heat_flow(const ThermalNetwork& net, std::span<const double> T,
+                     std::span<double> q, double& boundary_W) const override {
+    const double ambient4 = ambient_K_ * ambient_K_ * ambient_K_ * ambient_K_;
+    for (std::size_t i = 0; i < net.node_count(); ++i) {
+      // A trial step may overshoot below 0 K; T^4 would then pump heat the wrong way. Refuse
+      // so the integrator retries with a smaller step instead of producing nonsense or NaN.
+      if (!(T[i] > 0.0)) return false;
+      const double t2 = T[i] * T[i];
+      const double flow =
+          net.emissivity[i] * kStefanBoltzmann_W_per_m2K4 * net.surface_area_m2[i] * (ambient4 - t2 * t2);
+      q[i] += flow;
+      if (!net.held[i]) boundary_W += flow;
+    }
+    return true;
+  }
+
+  void add_jacobian(const ThermalNetwork& net, std::span<const double> T,
+                    JacobianView J) const override {
+    for (std::size_t i = 0; i < net.node_count(); ++i) {
+      const double t = T[i] > 0.0 ? T[i] : 0.0;
+      J.diagonal_W_per_K[i] -=
+          4.0 * net.emissivity[i] * kStefanBoltzmann_W_per_m2K4 * net.surface_area_m2[i] * t * t * t;
+    }
+  }
+
+ private:
+  double ambient_K_;
+};
+
+}  // namespace
+
+std::unique_ptr<HeatTransferMode> make_radiation_mode(const ModeSettings& s) {
+  return std::make_unique<RadiationMode>(s);
+}
+
+}  // namespace tmdem::thermal

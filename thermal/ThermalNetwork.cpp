@@ -1,0 +1,76 @@
+#include "thermal/ThermalNetwork.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace tmdem::thermal {
+
+void ThermalNetwork::resize_nodes(std::size_t n) {
+  heat_capacity_J_per_K.assign(n, 0.0);
+  surface_area_m2.assign(n, 0.0);
+  emissivity.assign(n, 0.0);
+  heat_source_W.assign(n, 0.0);
+  held.assign(n, 0);
+}
+
+void ThermalNetwork::clear_edges() {
+  edge_a.clear();
+  edge_b.clear();
+  edge_conductance_W_per_K.clear();
+  wall_node.clear();
+  wall_temperature_K.clear();
+  wall_conductance_W_per_K.clear();
+}
+
+void ThermalNetwork::add_edge(std::int32_t a, std::int32_t b, double conductance_W_per_K) {
+  edge_a.push_back(a);
+  edge_b.push_back(b);
+  edge_conductance_W_per_K.push_back(conductance_W_per_K);
+}
+
+void ThermalNetwork::add_wall_edge(std::int32_t node, double temperature_K,
+                                   double conductance_W_per_K) {
+  wall_node.push_back(node);
+  wall_temperature_K.push_back(temperature_K);
+  wall_conductance_W_per_K.push_back(conductance_W_per_K);
+}
+
+void ThermalNetwork::validate() const {
+  const std::size_t n = node_count();
+  auto fail = [](const std::string& what) { throw std::invalid_argument("thermal network: " + what); };
+  if (surface_area_m2.size() != n || emissivity.size() != n || heat_source_W.size() != n ||
+      held.size() != n)
+    fail("node arrays have different sizes");
+  for (std::size_t i = 0; i < n; ++i)
+    if (!(heat_capacity_J_per_K[i] > 0.0) || !std::isfinite(heat_capacity_J_per_K[i]))
+      fail("node " + std::to_string(i) + " has heat capacity " +
+           std::to_string(heat_capacity_J_per_K[i]) + " J/K (must be positive and finite)");
+  if (edge_b.size() != edge_a.size() || edge_conductance_W_per_K.size() != edge_a.size())
+    fail("edge arrays have different sizes");
+  for (std::size_t e = 0; e < edge_a.size(); ++e) {
+    const auto a = edge_a[e], b = edge_b[e];
+    if (a < 0 || b < 0 || std::size_t(a) >= n || std::size_t(b) >= n || a == b)
+      fail("edge " + std::to_string(e) + " joins nodes " + std::to_string(a) + " and " +
+           std::to_string(b) + " (need two distinct nodes below " + std::to_string(n) + ")");
+    const double h = edge_conductance_W_per_K[e];
+    if (!(h >= 0.0) || !std::isfinite(h))
+      fail("edge " + std::to_string(e) + " has conductance " + std::to_string(h) + " W/K");
+  }
+  if (wall_temperature_K.size() != wall_node.size() ||
+      wall_conductance_W_per_K.size() != wall_node.size())
+    fail("wall edge arrays have different sizes");
+  for (std::size_t w = 0; w < wall_node.size(); ++w) {
+    if (wall_node[w] < 0 || std::size_t(wall_node[w]) >= n)
+      fail("wall edge " + std::to_string(w) + " names node " + std::to_string(wall_node[w]));
+    const double h = wall_conductance_W_per_K[w];
+    if (!(h >= 0.0) || !std::isfinite(h))
+      fail("wall edge " + std::to_string(w) + " has conductance " + std::to_string(h) + " W/K");
+  }
+}
+
+bool ThermalNetwork::same_edges_as(const ThermalNetwork& other) const {
+  return edge_a == other.edge_a && edge_b == other.edge_b && wall_node == other.wall_node;
+}
+
+}  // namespace tmdem::thermal

@@ -1,0 +1,44 @@
+#pragma once
+// The thermal network: one node per particle, edges for particle-particle contacts and for
+// particle-wall contacts with isothermal walls. Independent of mechanics: coupling fills it.
+// Structure-of-arrays so the right-hand side and the Jacobian run over flat vectors.
+#include <cstdint>
+#include <vector>
+
+namespace tmdem::thermal {
+
+struct ThermalNetwork {
+  // Nodes.
+  std::vector<double> heat_capacity_J_per_K;   // C_i = m_i c_i
+  std::vector<double> surface_area_m2;         // 4 pi r^2, for convection and radiation
+  std::vector<double> emissivity;              // 0..1
+  std::vector<double> heat_source_W;           // imposed power P_i
+  std::vector<std::uint8_t> held;              // 1: temperature held for the whole run
+
+  // Particle-particle edges (a != b; each unordered pair at most once).
+  std::vector<std::int32_t> edge_a, edge_b;
+  std::vector<double> edge_conductance_W_per_K;
+
+  // Particle-wall edges, isothermal walls only (adiabatic walls carry no heat, so no edge).
+  std::vector<std::int32_t> wall_node;
+  std::vector<double> wall_temperature_K;
+  std::vector<double> wall_conductance_W_per_K;
+
+  std::size_t node_count() const { return heat_capacity_J_per_K.size(); }
+  std::size_t edge_count() const { return edge_a.size(); }
+  std::size_t wall_edge_count() const { return wall_node.size(); }
+
+  // Sizes every node array for n nodes (zero sources, emissivity, nothing held).
+  void resize_nodes(std::size_t n);
+  void clear_edges();
+  void add_edge(std::int32_t a, std::int32_t b, double conductance_W_per_K);
+  void add_wall_edge(std::int32_t node, double wall_temperature_K, double conductance_W_per_K);
+  // Throws std::invalid_argument naming the first inconsistency (sizes, ids, non-finite or
+  // negative conductance, non-positive heat capacity).
+  void validate() const;
+  // True when the particle-particle edges are the same pairs, in the same order, as other's:
+  // then only values changed and the sparsity pattern can be kept.
+  bool same_edges_as(const ThermalNetwork& other) const;
+};
+
+}  // namespace tmdem::thermal

@@ -1,0 +1,126 @@
+#include "thermal/ThermalSystem.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace tmdem::thermal {
+
+ThermalSystem::ThermalSystem(ThermalNetwork network,
+                             std::vector<std::unique_ptr<HeatTransferMode>> modes)
+    : network_(std::move(network)), modes_(std::move(modes)) {
+  network_.validate();
+  pattern_.build(network_);
+  diagonal_W_per_K_.assign(network_.node_count(), 0.0);
+  edge_W_per_K_.assign(network_.edge_count(), 0.0);
+}
+
+void ThermalSystem::replace_edges(const ThermalNetwork& edges) {
+  const bool same_shape = network_.same_edges_as(edges);
+  network_.edge_a = edges.edge_a;
+  network_.edge_b = edges.edge_b;
+  network_.edge_conductance_W_per_K = edges.edge_conductance_W_per_K;
+  network_.wall_node = edges.wall_node;
+  network_.wall_temperature_K = edges.wall_temperature_K;
+  network_.wall_conductance_W_per_K = edges.wall_conductance_W_per_K;
+  network_.validate();
+  if (same_shape) {
+    ++values_version_;
+  } else {
+    pattern_.build(network_);
+    edge_W_per_K_.assign(network_.edge_count(), 0.0);
+    ++topology_version_;
+    ++values_version_;
+  }
+}
+
+bool ThermalSystem::heat_flow(std::span<const double> T, std::span<double> q,
+                              double& boundary_W) const {
+  std::fill(q.begin(), q.end(), 0.0);
+  boundary_W = 0.0;
+  for (const auto& mode : modes_)
+    if (!mode->add_heat_flow(network_, T, q, boundary_W)) return false;
+  return true;
+}
+
+bool ThermalSystem::time_derivative(std::span<const double> T, std::span<double> dTdt,
+                                    double& boundary_W) const {
+  if (!heat_flow(T, dTdt, boundary_W)) return false;
+  const auto& C = network_.heat_capacity_J_per_K;
+  const auto& held = network_.held;
+  for (std::size_t i = 0; i < dTdt.size(); ++i) dTdt[i] = held[i] ? 0.0 : dTdt[i] / C[i];
+  return true;
+}
+
+void ThermalSystem::prepare_jacobian(std::span<const double> T) const {
+  std::fill(diagonal_W_per_K_.begin(), diagonal_W_per_K_.end(), 0.0);
+  std::fill(edge_W_per_K_.begin(), edge_W_per_K_.end(), 0.0);
+  for (const auto& mode : modes_)
+    mode->add_jacobian(network_, T, JacobianView{diagonal_W_per_K_, edge_W_per_K_});
+}
+
+void ThermalSystem::jacobian_values(std::span<double> values, std::span<const double> scale) const {
+  const auto& C = network_.heat_capacity_J_per_K;
+  const auto& held = network_.held;
+  std::fill(values.begin(), values.end(), 0.0);
+  for (std::size_t i = 0; i < size(); ++i)
+    if (!held[i]) values[pattern_.diagonal_slot[i]] += diagonal_W_per_K_[i] / C[i];
+  for (std::size_t e = 0; e < network_.edge_count(); ++e) {
+    const auto a = network_.edge_a[e], b = network_.edge_b[e];
+    if (held[a] || held[b]) continue;
+    const double h = edge_W_per_K_[e];
+    const double sab = scale.empty() ? 1.0 : scale[a] / scale[b];
+    values[pattern_.slot_ab[e]] += h / C[a] * sab;
+    values[pattern_.slot_ba[e]] += h / C[b] / sab;
+  }
+}
+
+void ThermalSystem::jacobian_times(std::span<const double> v, std::span<double> Jv,
+                                   std::span<const double> scale) const {
+  const auto& C = network_.heat_capacity_J_per_K;
+  const auto& held = network_.held;
+  // Work in unscaled variables: u = S^-1 v, w = J u, Jv = S w.
+  for (std::size_t i = 0; i < size(); ++i) {
+    const double u = scale.empty() ? v[i] : v[i] / scale[i];
+    Jv[i] = held[i] ? 0.0 : diagonal_W_per_K_[i] * u;
+  }
+  for (std::size_t e = 0; e < network_.edge_count(); ++e) {
+    const auto a = network_.edge_a[e], b = network_.edge_b[e];
+    if (held[a] || held[b]) continue;
+    const double ua = scale.empty() ? v[a] : v[a] / scale[a];
+    const double ub = scale.empty() ? v[b] : v[b] / scale[b];
+    Jv[a] += edge_W_per_K_[e] * ub;
+    Jv[b] += edge_W_per_K_[e] * ua;
+  }
+  for (std::size_t i = 0; i < size(); ++i) Jv[i] *= (scale.empty() ? 1.0 : scale[i]) / C[i];
+}
+
+void ThermalSystem::jacobian_diagonal(std::span<double> diagonal) const {
+  const auto& C = network_.heat_capacity_J_per_K;
+  for (std::size_t i = 0; i < size(); ++i)
+    diagonal[i] = network_.held[i] ? 0.0 : diagonal_W_per_K_[i] / C[i];
+}
+
+double ThermalSystem::explicit_stability_bound_s(double T_max_K) const {
+  const std::vector<double> T(size(), T_max_K);
+  prepare_jacobian(T);
+  std::vector<double> row_sum(size(), 0.0);  // sum_j |J_ij| C_i, W/K
+  for (std::size_t i = 0; i < size(); ++i) row_sum[i] = std::abs(diagonal_W_per_K_[i]);
+  for (std::size_t e = 0; e < network_.edge_count(); ++e) {
+    row_sum[network_.edge_a[e]] += std::abs(edge_W_per_K_[e]);
+    row_sum[network_.edge_b[e]] += std::abs(edge_W_per_K_[e]);
+  }
+  double lambda_max = 0.0;
+  for (std::size_t i = 0; i < size(); ++i)
+    if (!network_.held[i])
+      lambda_max = std::max(lambda_max, row_sum[i] / network_.heat_capacity_J_per_K[i]);
+  return lambda_max > 0.0 ? 2.0 / lambda_max : std::numeric_limits<double>::infinity();
+}
+
+double ThermalSystem::thermal_energy_J(std::span<const double> T) const {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < size(); ++i) sum += network_.heat_capacity_J_per_K[i] * T[i];
+  return sum;
+}
+
+}  // namespace tmdem::thermal

@@ -1,0 +1,72 @@
+#pragma once
+// The thermal ODE C_i dT_i/dt = q_i(T): a network plus the heat-transfer modes a scene switched
+// on. Integrators see only this class: the right-hand side, the Jacobian (as a CSC matrix or as
+// a matrix-free product), and the stability bound of the explicit update.
+//
+// Held particles keep their temperature: their rows are zero (dT/dt = 0) and, in the Jacobian,
+// so are their columns. The solution is unchanged by the latter (a held unknown never receives
+// a Newton correction) and it keeps the Jacobian symmetric under sqrt(C) scaling, which the
+// conjugate-gradient solver needs.
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "thermal/HeatTransferMode.h"
+#include "thermal/JacobianPattern.h"
+#include "thermal/ThermalNetwork.h"
+
+namespace tmdem::thermal {
+
+class ThermalSystem {
+ public:
+  ThermalSystem(ThermalNetwork network, std::vector<std::unique_ptr<HeatTransferMode>> modes);
+
+  const ThermalNetwork& network() const { return network_; }
+  std::size_t size() const { return network_.node_count(); }
+  const std::vector<std::unique_ptr<HeatTransferMode>>& modes() const { return modes_; }
+
+  // Takes the edges (particle-particle and particle-wall) of `edges`; node data is untouched.
+  // Same pairs in the same order: a values-only change. Otherwise the contact graph changed
+  // shape and the pattern is rebuilt.
+  void replace_edges(const ThermalNetwork& edges);
+  std::uint64_t topology_version() const { return topology_version_; }
+  std::uint64_t values_version() const { return values_version_; }
+
+  // Heat flow into every node, W (held nodes included), and the boundary power into the free
+  // particles, W. False: T is outside some mode's domain (recoverable).
+  bool heat_flow(std::span<const double> T_K, std::span<double> q_W, double& boundary_W) const;
+  // dT/dt = q / C, zero for held nodes.
+  bool time_derivative(std::span<const double> T_K, std::span<double> dTdt_K_per_s,
+                       double& boundary_W) const;
+
+  const JacobianPattern& pattern() const { return pattern_; }
+  // Evaluates d q / d T of every mode at T and keeps it for the calls below.
+  void prepare_jacobian(std::span<const double> T_K) const;
+  // Values of J = d(dT/dt)/dT in pattern order, scaled as S J S^-1 with S = diag(scale)
+  // (empty scale: none). Uses the last prepare_jacobian.
+  void jacobian_values(std::span<double> values, std::span<const double> scale = {}) const;
+  // Jv = S J S^-1 v, matrix-free, from the last prepare_jacobian.
+  void jacobian_times(std::span<const double> v, std::span<double> Jv,
+                      std::span<const double> scale = {}) const;
+  // Diagonal of J (1/s), from the last prepare_jacobian; zero for held nodes.
+  void jacobian_diagonal(std::span<double> diagonal) const;
+
+  // Largest stable forward-Euler step, s: 2 / lambda_max with lambda_max bounded by Gershgorin
+  // row sums of J evaluated at T = T_max everywhere (T_max bounds the run's temperatures: the
+  // nonlinear radiation term is largest there). Infinity when nothing couples or exchanges heat.
+  double explicit_stability_bound_s(double T_max_K) const;
+
+  double thermal_energy_J(std::span<const double> T_K) const;
+
+ private:
+  ThermalNetwork network_;
+  std::vector<std::unique_ptr<HeatTransferMode>> modes_;
+  JacobianPattern pattern_;
+  std::uint64_t topology_version_ = 0;
+  std::uint64_t values_version_ = 0;
+  mutable std::vector<double> diagonal_W_per_K_;  // from prepare_jacobian
+  mutable std::vector<double> edge_W_per_K_;
+};
+
+}  // namespace tmdem::thermal

@@ -1,0 +1,38 @@
+// Particle-wall contact conduction with isothermal walls: q_i += H_iw (T_w - T_i).
+// Adiabatic walls have no edge in the network, so they exchange nothing.
+#include <memory>
+
+#include "thermal/HeatTransferMode.h"
+
+namespace tmdem::thermal {
+namespace {
+
+class WallConductionMode final : public HeatTransferMode {
+ public:
+  std::string_view name() const override { return "wall_conduction"; }
+
+  bool add_heat_flow(const ThermalNetwork& net, std::span<const double> T,
+                     std::span<double> q, double& boundary_W) const override {
+    for (std::size_t w = 0; w < net.wall_edge_count(); ++w) {
+      const auto i = net.wall_node[w];
+      const double flow = net.wall_conductance_W_per_K[w] * (net.wall_temperature_K[w] - T[i]);
+      q[i] += flow;
+      if (!net.held[i]) boundary_W += flow;
+    }
+    return true;
+  }
+
+  void add_jacobian(const ThermalNetwork& net, std::span<const double>,
+                    JacobianView J) const override {
+    for (std::size_t w = 0; w < net.wall_edge_count(); ++w)
+      J.diagonal_W_per_K[net.wall_node[w]] -= net.wall_conductance_W_per_K[w];
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<HeatTransferMode> make_wall_conduction_mode(const ModeSettings&) {
+  return std::make_unique<WallConductionMode>();
+}
+
+}  // namespace tmdem::thermal

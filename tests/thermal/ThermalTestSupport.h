@@ -5,8 +5,14 @@
 #include <Eigen/Dense>
 #include <unsupported/Eigen/MatrixFunctions>
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <memory>
+#include <numbers>
+#include <span>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "thermal/IntegratorRegistry.h"
@@ -104,6 +110,94 @@ inline RunResult run(ThermalSystem& system, const std::string& integrator, Integ
   integ->advance_to(t_end_s);
   auto T = integ->temperatures_K();
   return {std::vector<double>(T.begin(), T.end()), integ->boundary_heat_J(), integ->stats()};
+}
+
+// ---- energy balance ----------------------------------------------------------------------
+
+// The contract's figure: |E_final - E_initial - Q| / max(|E_initial|, |Q|), E = sum C_i T_i over
+// every particle (held ones included: their term is constant).
+inline double balance_error_rel(double E_initial_J, double E_final_J, double boundary_heat_J) {
+  const double scale = std::max(std::abs(E_initial_J), std::abs(boundary_heat_J));
+  return std::abs(E_final_J - E_initial_J - boundary_heat_J) / scale;
+}
+
+inline double balance_error_rel(const ThermalSystem& system, std::span<const double> T0_K,
+                                const ThermalIntegrator& integrator) {
+  return balance_error_rel(system.thermal_energy_J(T0_K),
+                           system.thermal_energy_J(integrator.temperatures_K()),
+                           integrator.boundary_heat_J());
+}
+
+// Every integrator / linear-solver pair (the explicit update ignores the linear solver).
+using IntegratorCase = std::tuple<std::string, std::string>;
+inline std::vector<IntegratorCase> all_integrator_cases() {
+  return {{"cvode", "klu"}, {"cvode", "pcg"}, {"ida", "klu"}, {"ida", "pcg"}, {"explicit", "klu"}};
+}
+inline std::string case_name(const IntegratorCase& c) {
+  return std::get<0>(c) == "explicit" ? "explicit" : std::get<0>(c) + "_" + std::get<1>(c);
+}
+
+// Tight tolerances for exact-answer and balance checks.
+inline IntegratorSettings tight_settings(const std::string& linear_solver, double tol = 1e-10) {
+  IntegratorSettings s;
+  s.linear_solver = linear_solver;
+  s.relative_tolerance = tol;
+  s.absolute_tolerance_K = tol;
+  return s;
+}
+
+// ---- single particle -----------------------------------------------------------------------
+
+inline ThermalNetwork single_particle(double C_J_per_K, double area_m2, double emissivity = 0.0) {
+  ThermalNetwork net;
+  net.resize_nodes(1);
+  net.heat_capacity_J_per_K[0] = C_J_per_K;
+  net.surface_area_m2[0] = area_m2;
+  net.emissivity[0] = emissivity;
+  return net;
+}
+
+inline double sphere_area(double radius_m) { return 4.0 * std::numbers::pi * radius_m * radius_m; }
+
+// ---- radiation of one particle: dT/dt = -k (T^4 - Ta^4), k = eps sigma A / C -----------------
+//
+// 1/(T^4 - a^4) = (1/(2a^2)) [1/(T^2 - a^2) - 1/(T^2 + a^2)], so
+//   int dT / (T^4 - a^4) = (1/(4a^3)) [ln|(T - a)/(T + a)| - 2 atan(T/a)] =: -G(T) / (4a^3),
+//   G(T) = ln|(T + a)/(T - a)| + 2 atan(T/a),  G'(T) = -4a^3 / (T^4 - a^4),
+// and k t = int_T^T0 dT' / (T'^4 - a^4) gives
+//   t(T) = [G(T) - G(T0)] / (4 k a^3).
+// Valid for cooling (T0 > T > a) and heating (T0 < T < a) alike. For a = 0:
+//   1/T^3 = 1/T0^3 + 3 k t.
+
+constexpr double kStefanBoltzmann = 5.670374419e-8;
+
+inline double radiation_time_to_reach(double T0, double T, double k, double Ta) {
+  if (Ta == 0.0) return (1.0 / (T * T * T) - 1.0 / (T0 * T0 * T0)) / (3.0 * k);
+  auto G = [Ta](double x) { return std::log(std::abs((x + Ta) / (x - Ta))) + 2.0 * std::atan(x / Ta); };
+  return (G(T) - G(T0)) / (4.0 * k * Ta * Ta * Ta);
+}
+
+// T(t) from the implicit closed form above, by bisection on the monotone t(T) between T0 and
+// the ambient temperature (closed form for Ta = 0).
+inline double radiation_temperature(double T0, double t, double k, double Ta) {
+  if (Ta == 0.0) return std::cbrt(1.0 / (1.0 / (T0 * T0 * T0) + 3.0 * k * t));
+  if (t <= 0.0 || T0 == Ta) return T0;
+  double near = T0, far = Ta;  // t(near) <= t, t(far) = infinity
+  for (int it = 0; it < 200; ++it) {
+    const double mid = 0.5 * (near + far);
+    if (mid == near || mid == far) break;
+    (radiation_time_to_reach(T0, mid, k, Ta) <= t ? near : far) = mid;
+  }
+  return 0.5 * (near + far);
+}
+
+// t(T) = int_T^T0 dT' / (k (T'^4 - a^4)) by composite Simpson: checks the closed form itself.
+inline double radiation_time_by_quadrature(double T0, double T, double k, double Ta, int intervals) {
+  auto f = [&](double x) { return 1.0 / (k * (x * x * x * x - Ta * Ta * Ta * Ta)); };
+  const double h = (T0 - T) / intervals;
+  double sum = f(T) + f(T0);
+  for (int i = 1; i < intervals; ++i) sum += (i % 2 ? 4.0 : 2.0) * f(T + i * h);
+  return sum * h / 3.0;
 }
 
 }  // namespace tmdem::thermal::testing

@@ -1,0 +1,104 @@
+#pragma once
+// The resolved scene: everything from the TOML file after generation and [[assign]], validated.
+// Field names follow contract section 2; units are SI and stated per field.
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace tmdem::coupling {
+
+using Vec3 = std::array<double, 3>;
+
+enum class MechanicsMode { Off, Settle, Dynamic };
+
+struct Material {
+  std::string name;
+  double density_kg_per_m3 = 0.0;
+  double young_modulus_Pa = 0.0;
+  double poisson_ratio = 0.0;
+  double friction = 0.0;                 // Coulomb coefficient
+  double conductivity_W_per_mK = 0.0;
+  double heat_capacity_J_per_kgK = 0.0;  // specific heat c
+  double emissivity = 0.0;               // 0..1
+};
+
+struct Particle {
+  Vec3 position_m{};
+  double radius_m = 0.0;
+  int material = 0;                 // index into Scene::materials
+  double temperature_K = 293.15;
+  bool fixed_temperature = false;   // held at temperature_K for the whole run
+  double heat_source_W = 0.0;
+  bool fixed = false;               // does not move
+};
+
+struct Wall {
+  Vec3 point_m{};
+  Vec3 normal{};                    // unit, points into the domain
+  int material = 0;
+  std::optional<double> temperature_K;  // set: isothermal; unset: adiabatic
+};
+
+struct Effects {
+  MechanicsMode mechanics = MechanicsMode::Settle;
+  bool conduction = true;
+  bool convection = false;
+  bool radiation = false;
+};
+
+struct ConvectionSettings {
+  double coefficient_W_per_m2K = 10.0;
+  double fluid_temperature_K = 293.15;
+};
+
+struct RadiationSettings {
+  double ambient_temperature_K = 293.15;
+};
+
+struct MechanicsSettings {
+  double time_step_s = 1.0e-3;
+  double theta = 0.5;
+  double tolerance = 1.0e-6;
+  int max_iterations = 10000;
+  double settle_time_s = 5.0;
+  double settle_velocity_m_per_s = 1.0e-4;
+};
+
+struct ThermalSettings {
+  std::string integrator = "cvode";    // cvode | ida | explicit
+  std::string linear_solver = "klu";   // klu | pcg
+  double relative_tolerance = 1.0e-6;
+  double absolute_tolerance_K = 1.0e-6;
+  double explicit_step_s = 0.0;        // 0 = largest stable step
+  std::string conductance = "hertz";   // hertz | constant
+  double constant_conductance_W_per_K = 1.0e-4;
+};
+
+struct OutputSettings {
+  std::string file = "result.h5";
+  double interval_s = 0.1;
+  bool contacts = true;
+  double checkpoint_interval_s = 0.0;
+};
+
+struct Scene {
+  double duration_s = 0.0;
+  int dimension = 3;
+  Vec3 gravity_m_per_s2{0.0, 0.0, 0.0};
+  std::uint64_t seed = 1;
+  Effects effects;
+  std::vector<Material> materials;
+  std::vector<Particle> particles;  // ids: explicit [[particle]] first, then each [[generate]]
+  std::vector<Wall> walls;
+  ConvectionSettings convection;
+  RadiationSettings radiation;
+  MechanicsSettings mechanics;
+  ThermalSettings thermal;
+  OutputSettings output;
+  std::string resolved_toml;        // the scene as TOML text after --set overrides
+  std::string source;               // file path, or "<default scene>"
+};
+
+}  // namespace tmdem::coupling

@@ -1,0 +1,15 @@
+#pragma once
+// Writes a TOML table as readable text: numbers in their shortest exact form (1e-06, -9.81
+// rather than toml++'s 17-digit 9.9999999999999995e-07), plain values of a table first, then its
+// sub-tables as [a.b] sections and its arrays of tables as [[a]] entries; tables inside an
+// array-of-tables entry or an array are written inline. Reading the text back gives the same
+// table. Used for Scene::resolved_toml.
+#include <string>
+
+#include <toml++/toml.h>
+
+namespace tmdem::coupling {
+
+std::string write_toml(const toml::table& root);
+
+}  // namespace tmdem::coupling

@@ -1,0 +1,103 @@
+// The tmdem program: contract section 1.
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "coupling/CoupledRun.h"
+#include "coupling/DefaultScene.h"
+#include "coupling/OutputError.h"
+#include "coupling/SceneCheck.h"
+#include "coupling/SceneError.h"
+#include "coupling/SceneLoader.h"
+
+using namespace tmdem::coupling;
+
+namespace {
+
+constexpr int kExitOk = 0, kExitInvalid = 2, kExitIo = 4;
+
+Scene load(const std::string& path, const std::vector<std::string>& sets) {
+  return path.empty() ? load_default_scene(sets) : load_scene_file(path, sets);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"tmdem: heat flow through granular packings (NSCD mechanics, implicit thermal "
+               "network)"};
+  app.set_version_flag("--version", std::string("tmdem ") + TMDEM_VERSION);
+  app.require_subcommand(1);
+
+  std::string scene_path, output, summary, restart;
+  std::vector<std::string> sets;
+  bool quiet = false;
+  auto* run = app.add_subcommand("run", "run a scene (default: the built-in paper bed)");
+  run->add_option("scene", scene_path, "scene file (TOML)");
+  run->add_option("-o,--output", output, "result file (overrides output.file)");
+  run->add_option("--set", sets, "override one scene value, KEY=VALUE (TOML value)")
+      ->take_all()->allow_extra_args(false);
+  run->add_option("--summary", summary, "write the run summary (JSON) here");
+  run->add_option("--restart", restart, "continue from a checkpoint file");
+  run->add_flag("--quiet", quiet, "no progress on stderr");
+
+  std::string check_path;
+  auto* check = app.add_subcommand("check", "validate a scene; print its contents and stiffness");
+  check->add_option("scene", check_path, "scene file (TOML)")->required();
+  check->add_option("--set", sets, "override one scene value, KEY=VALUE")->allow_extra_args(false);
+
+  auto* study = app.add_subcommand("study", "numerical studies");
+  std::string study_path, csv;
+  auto* accuracy = study->add_subcommand("accuracy", "work-precision study of the thermal integrators");
+  accuracy->add_option("scene", study_path, "scene file (TOML)")->required();
+  accuracy->add_option("--csv", csv, "write the table as CSV here");
+  study->require_subcommand(1);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? kExitOk : kExitInvalid;
+  }
+
+  try {
+    if (*run) {
+      const Scene scene = load(scene_path, sets);
+      RunOptions options;
+      options.output_path = output.empty()
+                                ? (scene_path.empty() && scene.output.file.empty() ? "tmdem-default.h5"
+                                                                                   : scene.output.file)
+                                : output;
+      options.summary_path = summary;
+      options.restart_path = restart;
+      options.quiet = quiet;
+      options.terminal = isatty(STDERR_FILENO);
+      const auto outcome = run_scene(scene, options, std::cerr);
+      if (outcome.exit_code == 0 && !quiet)
+        std::cerr << "wrote " << options.output_path << " (" << outcome.summary.wall_time_s
+                  << " s wall time, energy balance error "
+                  << outcome.summary.energy.balance_error_rel << ")" << std::endl;
+      return outcome.exit_code;
+    }
+    if (*check) {
+      const Scene scene = load(check_path, sets);
+      check_scene(scene, std::cout);
+      std::cout << "scene is valid" << std::endl;
+      return kExitOk;
+    }
+    if (*accuracy) {
+      std::cerr << "error: tmdem study accuracy is not available yet" << std::endl;
+      return kExitInvalid;
+    }
+  } catch (const SceneError& e) {
+    std::cerr << "error: " << e.what() << std::endl;
+    return kExitInvalid;
+  } catch (const OutputError& e) {
+    std::cerr << "error: " << e.what() << std::endl;
+    return kExitIo;
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << std::endl;
+    return 3;
+  }
+  return kExitOk;
+}

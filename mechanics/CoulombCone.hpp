@@ -1,0 +1,38 @@
+#pragma once
+// The bipotential contact law of De Saxce & Feng [SAX 98] for one frictional contact.
+//
+// Local coordinates: component 0 is along the normal n (from body j to body i), components
+// 1 and 2 along two tangents. u is the relative velocity of i with respect to j at the
+// contact point (m/s), r the reaction impulse of j on i (N s).
+//
+// The law: r lies in the Coulomb cone K_mu = { |r_t| <= mu r_n }, and the "modified
+// velocity" u~ = u_t + (u_n + mu |u_t|) n satisfies -u~ in N_K(r). Written as a fixed point
+// for any rho > 0: r = proj_K( r - rho u~ ), which gives the predictor-corrector
+//   predictor  tau = r - rho (u_t + (u_n + mu |u_t|) n)
+//   corrector  r   = proj(tau, K_mu)   (stick, slip or no contact)
+// This single relation covers unilateral contact and Coulomb friction together.
+
+#include <Eigen/Core>
+
+namespace tmdem::mechanics {
+
+// Euclidean projection of tau (local coordinates) onto K_mu:
+//   tau in K_mu                         -> tau               (stick)
+//   tau in the polar cone mu|t| <= -n   -> 0                 (no contact)
+//   otherwise                           -> nearest point of the cone surface (slip)
+Eigen::Vector3d project_onto_coulomb_cone(const Eigen::Vector3d& tau, double mu);
+
+// One contact with every other reaction frozen: u = u0 + W r with the Delassus block
+// W = diag(w_n, w_t, w_t) (diagonal for spheres: the contact point lies on the line of
+// centres, so normal and tangential impulses do not couple). u0[0] already holds the
+// position (gap) term of the Signorini condition.
+//
+// Solved by the bipotential predictor-corrector. rho is chosen from the block itself: the
+// iteration runs in the scaled variables r' = W^(1/2) r, u' = W^(-1/2) u, where the block
+// is the identity and rho = 1 is the natural step (the law keeps its form, with
+// mu' = mu sqrt(w_t / w_n); see the .cpp). Starts from r (warm start), returns the number
+// of predictor-corrector passes; stops when the change is below relative_tolerance.
+int solve_contact_bipotential(const Eigen::Vector3d& u0, double w_n, double w_t, double mu,
+                              Eigen::Vector3d& r, double relative_tolerance, int max_passes);
+
+}  // namespace tmdem::mechanics

@@ -1,0 +1,15 @@
+#include "mechanics/StepReport.hpp"
+
+#include <algorithm>
+
+namespace tmdem::mechanics {
+
+void MechanicsStats::add(const StepReport& report) {
+  ++steps;
+  total_sweeps += report.sweeps;
+  max_sweeps = std::max(max_sweeps, report.sweeps);
+  if (!report.converged) ++unconverged_steps;
+  max_penetration_m = std::max(max_penetration_m, report.max_penetration_m);
+}
+
+}  // namespace tmdem::mechanics

@@ -1,0 +1,32 @@
+#pragma once
+// What one mechanics step did, and the totals over a run (summary "mechanics" block).
+
+#include <cstddef>
+#include <cstdint>
+
+namespace tmdem::mechanics {
+
+struct StepReport {
+  int sweeps = 0;                  // Gauss-Seidel sweeps used
+  double residual = 0.0;           // sum |dr| / sum |r| of the last sweep
+  bool converged = true;           // residual <= tolerance within max_iterations
+  double max_penetration_m = 0.0;  // largest overlap after the step, >= 0
+  std::size_t candidates = 0;      // contacts handed to the solver
+  std::size_t active_contacts = 0; // contacts with r_n > 0
+  bool rebuilt_candidates = false; // the candidate table was rebuilt this step
+};
+
+struct MechanicsStats {
+  std::int64_t steps = 0;
+  std::int64_t total_sweeps = 0;
+  int max_sweeps = 0;                  // "max_iterations" in the run summary
+  std::int64_t unconverged_steps = 0;
+  double max_penetration_m = 0.0;
+
+  double mean_sweeps() const {         // "mean_iterations" in the run summary
+    return steps > 0 ? static_cast<double>(total_sweeps) / static_cast<double>(steps) : 0.0;
+  }
+  void add(const StepReport& report);
+};
+
+}  // namespace tmdem::mechanics

@@ -1,0 +1,444 @@
+// One test per validation rule of contract section 2: loading throws SceneError and the message
+// names the key path (and the allowed values or range).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "tests/coupling/SceneTestUtil.h"
+
+namespace tmdem::coupling::test {
+namespace {
+
+std::string replaced(std::string text, std::string_view from, std::string_view to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+TEST(SceneRules, BaseSceneLoads) {
+  const Scene scene = load_scene_text(kBaseScene, "test.toml");
+  EXPECT_EQ(scene.particles.size(), 2u);
+  EXPECT_EQ(scene.materials.size(), 2u);
+  EXPECT_EQ(scene.walls.size(), 1u);
+  EXPECT_EQ(scene.source, "test.toml");
+}
+
+TEST(SceneRules, UnknownTopLevelKey) {
+  expect_scene_error(kBaseScene + "\nfoo = 1\n", {"foo", "unknown key", "valid keys here:"});
+}
+
+TEST(SceneRules, UnknownKeyInSectionSuggestsAndListsValidKeys) {
+  expect_scene_error(kBaseScene + "\n[thermal]\nintegratr = \"ida\"\n",
+                     {"test.toml:", "thermal.integratr", "did you mean integrator",
+                      "integrator, linear_solver, relative_tolerance"});
+}
+
+TEST(SceneRules, UnknownKeyInArrayOfTables) {
+  expect_scene_error(replaced(kBaseScene, "emissivity = 0.9", "emissivity = 0.9\ncolour = 1"),
+                     {"material[1].colour", "unknown key"});
+}
+
+TEST(SceneRules, UnknownKeyInInlineTable) {
+  expect_scene_error(kBaseScene + "\n[[assign]]\nbox = { min = [0,0,0], max = [1,1,1], "
+                                  "maxx = 3 }\ntemperature = 300.0\n",
+                     {"assign[0].box.maxx", "unknown key", "min, max"});
+}
+
+TEST(SceneRules, WrongTypeNumber) {
+  expect_scene_error(replaced(kBaseScene, "duration = 10", "duration = \"ten\""),
+                     {"test.toml:4:", "simulation.duration", "expected a number, got a string"});
+}
+
+TEST(SceneRules, WrongTypeBoolean) {
+  expect_scene_error(kBaseScene, {"effects.conduction=1"},
+                     {"effects.conduction", "expected a boolean"});
+}
+
+TEST(SceneRules, WrongTypeString) {
+  expect_scene_error(kBaseScene, {"thermal.integrator=3"},
+                     {"thermal.integrator", "expected a string, got an integer"});
+}
+
+TEST(SceneRules, WrongTypeTable) {
+  expect_scene_error("thermal = 3\n" + kBaseScene, {"test.toml:1:11: thermal", "expected a table"});
+}
+
+TEST(SceneRules, WrongTypeArrayOfTables) {
+  expect_scene_error("format = \"tmdem-scene-1\"\nmaterial = 5\n[simulation]\nduration = 1\n",
+                     {"material", "expected an array of tables ([[material]])"});
+}
+
+TEST(SceneRules, WrongTypeInteger) {
+  expect_scene_error(kBaseScene, {"simulation.dimension=3.0"},
+                     {"simulation.dimension", "expected an integer"});
+}
+
+TEST(SceneRules, FormatRequired) {
+  expect_scene_error(replaced(kBaseScene, "format = \"tmdem-scene-1\"", ""),
+                     {"format", "required", "tmdem-scene-1"});
+}
+
+TEST(SceneRules, FormatMustMatch) {
+  expect_scene_error(kBaseScene, {"format=\"tmdem-scene-2\""},
+                     {"format", "must be \"tmdem-scene-1\"", "tmdem-scene-2"});
+}
+
+TEST(SceneRules, DurationRequired) {
+  expect_scene_error(replaced(kBaseScene, "duration = 10", ""),
+                     {"simulation.duration", "required key is missing"});
+  expect_scene_error(replaced(kBaseScene, "[simulation]\nduration = 10", ""),
+                     {"simulation.duration", "required key is missing"});
+}
+
+TEST(SceneRules, DurationPositive) {
+  expect_scene_error(kBaseScene, {"simulation.duration=0"},
+                     {"simulation.duration", "must be > 0", "got 0"});
+}
+
+TEST(SceneRules, NaNRefused) {
+  expect_scene_error(kBaseScene, {"material[0].density=nan"},
+                     {"material[0].density", "finite", "nan"});
+}
+
+TEST(SceneRules, InfinityRefused) {
+  expect_scene_error(kBaseScene, {"simulation.duration=inf"}, {"simulation.duration", "finite"});
+  expect_scene_error(kBaseScene, {"simulation.gravity=[0, -inf, 0]"},
+                     {"simulation.gravity[1]", "finite"});
+}
+
+TEST(SceneRules, RadiusPositive) {
+  expect_scene_error(kBaseScene, {"particle[1].radius=0"}, {"particle[1].radius", "must be > 0"});
+  expect_scene_error(kBaseScene, {"particle[0].radius=-0.001"},
+                     {"particle[0].radius", "must be > 0"});
+}
+
+TEST(SceneRules, MaterialPropertiesPositive) {
+  for (const char* key : {"density", "young_modulus", "conductivity", "heat_capacity"}) {
+    SCOPED_TRACE(key);
+    const std::string path = std::string("material[1].") + key;
+    expect_scene_error(kBaseScene, {path + "=-5"}, {path, "must be > 0", "got -5"});
+    expect_scene_error(kBaseScene, {path + "=0"}, {path, "must be > 0"});
+  }
+}
+
+TEST(SceneRules, MaterialRequiredKeys) {
+  for (const char* key :
+       {"name", "density", "young_modulus", "poisson_ratio", "conductivity", "heat_capacity"}) {
+    SCOPED_TRACE(key);
+    const std::string text = R"(format = "tmdem-scene-1"
+[simulation]
+duration = 1
+[[material]]
+)" + std::string(key == std::string("name") ? "" : "name = \"m\"\n") +
+                             (key == std::string("density") ? "" : "density = 1.0\n") +
+                             (key == std::string("young_modulus") ? "" : "young_modulus = 1.0\n") +
+                             (key == std::string("poisson_ratio") ? "" : "poisson_ratio = 0.1\n") +
+                             (key == std::string("conductivity") ? "" : "conductivity = 1.0\n") +
+                             (key == std::string("heat_capacity") ? "" : "heat_capacity = 1.0\n") +
+                             "[[particle]]\nposition = [0,0,0]\nradius = 1.0\nmaterial = \"m\"\n";
+    expect_scene_error(text, {std::string("material[0].") + key, "required key is missing"});
+  }
+}
+
+TEST(SceneRules, PoissonRatioOpenInterval) {
+  expect_scene_error(kBaseScene, {"material[1].poisson_ratio=0.5"},
+                     {"material[1].poisson_ratio", "must be in (-1, 0.5)", "got 0.5"});
+  expect_scene_error(kBaseScene, {"material[0].poisson_ratio=-1"},
+                     {"material[0].poisson_ratio", "(-1, 0.5)"});
+  EXPECT_NO_THROW(load_scene_text(kBaseScene, "t", {"material[0].poisson_ratio=-0.99"}));
+}
+
+TEST(SceneRules, EmissivityClosedInterval) {
+  expect_scene_error(kBaseScene, {"material[1].emissivity=1.5"},
+                     {"material[1].emissivity", "must be in [0, 1]", "got 1.5"});
+  expect_scene_error(kBaseScene, {"material[1].emissivity=-0.1"},
+                     {"material[1].emissivity", "[0, 1]"});
+  EXPECT_NO_THROW(load_scene_text(kBaseScene, "t", {"material[1].emissivity=1"}));
+}
+
+TEST(SceneRules, FrictionNonNegative) {
+  expect_scene_error(kBaseScene, {"material[1].friction=-0.1"},
+                     {"material[1].friction", "must be >= 0"});
+  EXPECT_NO_THROW(load_scene_text(kBaseScene, "t", {"material[1].friction=0"}));
+}
+
+TEST(SceneRules, DuplicateMaterialName) {
+  expect_scene_error(kBaseScene, {"material[1].name=\"steel\""},
+                     {"material[1].name", "duplicate", "material[0]"});
+}
+
+TEST(SceneRules, UnknownMaterialName) {
+  expect_scene_error(kBaseScene, {"particle[0].material=\"stel\""},
+                     {"particle[0].material", "unknown material \"stel\"", "\"steel\", \"glass\""});
+  expect_scene_error(kBaseScene, {"wall[0].material=\"wood\""}, {"wall[0].material", "wood"});
+}
+
+TEST(SceneRules, OverlappingParticlesNamed) {
+  expect_scene_error(kBaseScene, {"particle[1].position=[0.0015, 0.001, 0.0]"},
+                     {"particles 0 and 1 overlap", "particle[0]", "particle[1]"});
+}
+
+TEST(SceneRules, TouchingParticlesAreNotOverlapping) {
+  // Gap of -0.5e-9 of the radius is within the tolerance.
+  EXPECT_NO_THROW(load_scene_text(kBaseScene, "t", {"particle[1].position=[0.0019999999995, 0.001, 0]"}));
+}
+
+TEST(SceneRules, ParticleBehindWall) {
+  expect_scene_error(kBaseScene, {"particle[1].position=[0.002, 0.0005, 0.0]"},
+                     {"particle 1", "wall[0]", "overlap"});
+}
+
+TEST(SceneRules, DimensionTwoOrThree) {
+  expect_scene_error(kBaseScene, {"simulation.dimension=4"},
+                     {"simulation.dimension", "must be 2 or 3", "got 4"});
+}
+
+TEST(SceneRules, GravityZInTwoDimensions) {
+  expect_scene_error(kBaseScene, {"simulation.dimension=2", "simulation.gravity=[0, -9.81, 1]"},
+                     {"simulation.gravity", "z component must be 0"});
+}
+
+TEST(SceneRules, SeedNonNegative) {
+  expect_scene_error(kBaseScene, {"simulation.seed=-1"}, {"simulation.seed", ">= 0"});
+}
+
+TEST(SceneRules, IntegratorChoice) {
+  expect_scene_error(kBaseScene, {"thermal.integrator=rk4"},
+                     {"thermal.integrator", "must be one of \"cvode\", \"ida\", \"explicit\"",
+                      "got \"rk4\""});
+}
+
+TEST(SceneRules, LinearSolverChoice) {
+  expect_scene_error(kBaseScene, {"thermal.linear_solver=gmres"},
+                     {"thermal.linear_solver", "\"klu\", \"pcg\""});
+}
+
+TEST(SceneRules, ConductanceChoice) {
+  expect_scene_error(kBaseScene, {"thermal.conductance=linear"},
+                     {"thermal.conductance", "\"hertz\", \"constant\""});
+}
+
+TEST(SceneRules, MechanicsChoice) {
+  expect_scene_error(kBaseScene, {"effects.mechanics=on"},
+                     {"effects.mechanics", "\"dynamic\", \"settle\", \"off\""});
+}
+
+TEST(SceneRules, TolerancesPositive) {
+  for (const char* key :
+       {"thermal.relative_tolerance", "thermal.absolute_tolerance", "mechanics.tolerance"}) {
+    SCOPED_TRACE(key);
+    expect_scene_error(kBaseScene, {std::string(key) + "=0"}, {key, "must be > 0"});
+    expect_scene_error(kBaseScene, {std::string(key) + "=-1e-6"}, {key, "must be > 0"});
+  }
+}
+
+TEST(SceneRules, ExplicitStepNonNegative) {
+  expect_scene_error(kBaseScene, {"thermal.explicit_step=-1e-3"},
+                     {"thermal.explicit_step", "must be >= 0"});
+  EXPECT_NO_THROW(load_scene_text(kBaseScene, "t", {"thermal.explicit_step=0"}));
+}
+
+TEST(SceneRules, OutputIntervalPositive) {
+  expect_scene_error(kBaseScene, {"output.interval=0"}, {"output.interval", "must be > 0"});
+}
+
+TEST(SceneRules, CheckpointIntervalNonNegative) {
+  expect_scene_error(kBaseScene, {"output.checkpoint_interval=-1"},
+                     {"output.checkpoint_interval", "must be >= 0"});
+}
+
+TEST(SceneRules, TimeStepPositive) {
+  expect_scene_error(kBaseScene, {"mechanics.time_step=0"}, {"mechanics.time_step", "must be > 0"});
+}
+
+TEST(SceneRules, ThetaInZeroOne) {
+  expect_scene_error(kBaseScene, {"mechanics.theta=0"}, {"mechanics.theta", "must be in (0, 1]"});
+  expect_scene_error(kBaseScene, {"mechanics.theta=1.5"}, {"mechanics.theta", "(0, 1]"});
+  EXPECT_NO_THROW(load_scene_text(kBaseScene, "t", {"mechanics.theta=1"}));
+}
+
+TEST(SceneRules, MaxIterationsAtLeastOne) {
+  expect_scene_error(kBaseScene, {"mechanics.max_iterations=0"},
+                     {"mechanics.max_iterations", ">= 1"});
+}
+
+TEST(SceneRules, WallNormalNonZeroAndNormalized) {
+  expect_scene_error(kBaseScene, {"wall[0].normal=[0, 0, 0]"}, {"wall[0].normal", "non-zero"});
+  const Scene scene = load_scene_text(kBaseScene, "t", {"wall[0].normal=[0, 2, 0]"});
+  EXPECT_DOUBLE_EQ(scene.walls[0].normal[1], 1.0);
+}
+
+TEST(SceneRules, WallTemperaturePositive) {
+  expect_scene_error(kBaseScene, {"wall[0].temperature=-3"}, {"wall[0].temperature", "> 0"});
+  const Scene scene = load_scene_text(kBaseScene, "t", {"wall[0].temperature=350"});
+  ASSERT_TRUE(scene.walls[0].temperature_K.has_value());
+  EXPECT_DOUBLE_EQ(*scene.walls[0].temperature_K, 350.0);
+  EXPECT_FALSE(load_scene_text(kBaseScene, "t").walls[0].temperature_K.has_value());
+}
+
+TEST(SceneRules, ParticleTemperaturePositive) {
+  expect_scene_error(kBaseScene, {"particle[1].temperature=0"},
+                     {"particle[1].temperature", "must be > 0"});
+}
+
+TEST(SceneRules, MechanicsOffWithHertzConductance) {
+  expect_scene_error(kBaseScene, {"effects.mechanics=off", "thermal.conductance=hertz"},
+                     {"thermal.conductance", "\"hertz\"", "effects.mechanics = \"off\""});
+  // Without an explicit conductance the default "hertz" is meant: name effects.mechanics.
+  expect_scene_error(kBaseScene, {"effects.mechanics=off"},
+                     {"effects.mechanics", "thermal.conductance = \"constant\""});
+  EXPECT_NO_THROW(load_scene_text(kBaseScene, "t",
+                                  {"effects.mechanics=off", "thermal.conductance=constant"}));
+}
+
+TEST(SceneRules, IntegerWhereFloatExpected) {
+  const Scene scene = load_scene_text(kBaseScene, "t", {"mechanics.theta=1"});
+  EXPECT_DOUBLE_EQ(scene.duration_s, 10.0);
+  EXPECT_DOUBLE_EQ(scene.mechanics.theta, 1.0);
+}
+
+TEST(SceneRules, SwitchedOffSectionAcceptedAndIgnored) {
+  const std::string text = kBaseScene +
+                           "\n[convection]\ncoefficient = -5.0\n[radiation]\n"
+                           "ambient_temperature = -1.0\n";
+  EXPECT_NO_THROW(load_scene_text(text, "t"));
+  expect_scene_error(text, {"effects.convection=true"}, {"convection.coefficient", ">= 0"});
+  expect_scene_error(text, {"effects.radiation=true"},
+                     {"radiation.ambient_temperature", ">= 0"});
+  // Still checked for unknown keys and types.
+  expect_scene_error(kBaseScene + "\n[convection]\ncoeficient = 5.0\n",
+                     {"convection.coeficient", "unknown key"});
+  expect_scene_error(kBaseScene + "\n[convection]\ncoefficient = \"high\"\n",
+                     {"convection.coefficient", "expected a number"});
+  // [mechanics] is ignored when mechanics is off.
+  EXPECT_NO_THROW(load_scene_text(kBaseScene, "t",
+                                  {"effects.mechanics=off", "thermal.conductance=constant",
+                                   "mechanics.time_step=-1"}));
+}
+
+TEST(SceneRules, ConvectionValuesWhenOn) {
+  const Scene scene = load_scene_text(kBaseScene + "\n[effects]\nconvection = true\n"
+                                                   "[convection]\ncoefficient = 25.0\n"
+                                                   "fluid_temperature = 310.0\n",
+                                      "t");
+  EXPECT_TRUE(scene.effects.convection);
+  EXPECT_DOUBLE_EQ(scene.convection.coefficient_W_per_m2K, 25.0);
+  EXPECT_DOUBLE_EQ(scene.convection.fluid_temperature_K, 310.0);
+}
+
+TEST(SceneRules, NoParticles) {
+  const std::string text = "format = \"tmdem-scene-1\"\n[simulation]\nduration = 1\n";
+  expect_scene_error(text, {"no particles"});
+}
+
+TEST(SceneRules, ParticleRequiredKeys) {
+  expect_scene_error(replaced(kBaseScene, "position = [0.0, 0.001, 0.0]\n", ""),
+                     {"particle[0].position", "required key is missing"});
+  expect_scene_error(replaced(kBaseScene, "radius = 0.001\nmaterial = \"glass\"",
+                              "material = \"glass\""),
+                     {"particle[1].radius", "required key is missing"});
+  expect_scene_error(replaced(kBaseScene, "radius = 0.001\nmaterial = \"glass\"", "radius = 0.001"),
+                     {"particle[1].material", "required key is missing"});
+}
+
+TEST(SceneRules, VectorShape) {
+  expect_scene_error(kBaseScene, {"particle[0].position=[0, 1]"},
+                     {"particle[0].position", "3 numbers", "2 elements"});
+  expect_scene_error(kBaseScene, {"particle[0].position=[0, \"a\", 1]"},
+                     {"particle[0].position[1]", "expected a number"});
+  // In 2D two components are enough (z = 0).
+  const Scene scene = load_scene_text(kBaseScene, "t",
+                                      {"simulation.dimension=2", "particle[0].position=[0, 0.001]"});
+  EXPECT_EQ(scene.particles[0].position_m[2], 0.0);
+}
+
+TEST(SceneRules, GeneratorErrors) {
+  const std::string triangle = kBaseScene + R"(
+[[generate]]
+kind = "triangular"
+rows = [3, 2]
+radius = 0.001
+origin = [0.0, 0.01, 0.0]
+material = "steel"
+)";
+  EXPECT_NO_THROW(load_scene_text(triangle, "t"));
+  expect_scene_error(triangle, {"generate[0].rows=[3, 0]"}, {"generate[0].rows[1]", "must be in [1, 10000000] (got 0)"});
+  expect_scene_error(triangle, {"generate[0].radius=0"}, {"generate[0].radius", "> 0"});
+  expect_scene_error(triangle, {"generate[0].kind=hexagonal"},
+                     {"generate[0].kind", "\"triangular\", \"column\", \"lattice\", \"random\""});
+  expect_scene_error(triangle, {"generate[0].kind=column"},
+                     {"generate[0].rows", "not a key of kind = \"column\"", "count, radius"});
+  expect_scene_error(triangle, {"generate[0].material=\"wood\""},
+                     {"generate[0].material", "unknown material"});
+  expect_scene_error(replaced(triangle, "kind = \"triangular\"\n", ""),
+                     {"generate[0].kind", "required"});
+  expect_scene_error(triangle, {"generate[0].origin=[0.0, 0.001, 0.0]"},
+                     {"particles 0 and 2 overlap", "generate[0]"});
+}
+
+TEST(SceneRules, LatticeSpacingBelowDiameter) {
+  const std::string lattice = kBaseScene + R"(
+[[generate]]
+kind = "lattice"
+counts = [2, 2, 2]
+spacing = 0.002
+radius = 0.001
+origin = [0.0, 0.01, 0.0]
+material = "steel"
+)";
+  EXPECT_NO_THROW(load_scene_text(lattice, "t"));
+  expect_scene_error(lattice, {"generate[0].spacing=0.0019"},
+                     {"generate[0].spacing", "must be >= 2 * radius"});
+  expect_scene_error(lattice, {"generate[0].counts=[2, 2]"},
+                     {"generate[0].counts", "3 integers"});
+  expect_scene_error(lattice, {"simulation.dimension=2"}, {"generate[0].counts", "nz must be 1"});
+}
+
+TEST(SceneRules, RandomGeneratorKeys) {
+  const std::string random = kBaseScene + R"(
+[[generate]]
+kind = "random"
+count = 10
+box = { min = [0.0, 0.01, 0.0], max = [0.01, 0.02, 0.01] }
+radii = [0.0005, 0.001]
+fractions = [0.5, 0.5]
+material = "steel"
+)";
+  expect_scene_error(random, {"generate[0].fractions=[0.5, 0.4]"},
+                     {"generate[0].fractions", "sum to 1"});
+  expect_scene_error(random, {"generate[0].fractions=[1.0]"},
+                     {"generate[0].fractions", "as many entries as radii"});
+  expect_scene_error(random, {"generate[0].radius=0.001"}, {"generate[0]", "either radius or radii"});
+  expect_scene_error(random, {"generate[0].radii=[0.001, -0.001]"}, {"generate[0].radii[1]", "> 0"});
+  expect_scene_error(random, {"generate[0].count=0"}, {"generate[0].count", "must be an integer in [1, 10000000] (got 0)"});
+  expect_scene_error(random, {"generate[0].box.max=[0.01, 0.0, 0.01]"},
+                     {"generate[0].box.max", "must be >= min"});
+  expect_scene_error(replaced(random, "box = { min = [0.0, 0.01, 0.0], max = [0.01, 0.02, 0.01] }\n", ""),
+                     {"generate[0].box", "required"});
+}
+
+TEST(SceneRules, AssignErrors) {
+  const std::string base = kBaseScene + "\n[[assign]]\nids = [1]\ntemperature = 350.0\n";
+  EXPECT_NO_THROW(load_scene_text(base, "t"));
+  expect_scene_error(base, {"assign[0].ids=[0, 2]"},
+                     {"assign[0].ids[1]", "particle id 2 does not exist", "2 particles"});
+  expect_scene_error(base, {"assign[0].ids=[-1]"}, {"assign[0].ids[0]", ">= 0"});
+  expect_scene_error(base, {"assign[0].nearest={ point = [0,0,0], count = 1 }"},
+                     {"assign[0]", "exactly one selector"});
+  expect_scene_error(kBaseScene + "\n[[assign]]\ntemperature = 350.0\n",
+                     {"assign[0]", "exactly one selector"});
+  expect_scene_error(kBaseScene + "\n[[assign]]\nids = [0]\n", {"assign[0]", "sets nothing"});
+  expect_scene_error(base, {"assign[0].material=\"wood\""}, {"assign[0].material", "wood"});
+  expect_scene_error(base, {"assign[0].temperature=-1"}, {"assign[0].temperature", "> 0"});
+  expect_scene_error(kBaseScene + "\n[[assign]]\nnearest = { point = [0,0,0], count = 3 }\n"
+                                  "fixed = true\n",
+                     {"assign[0].nearest.count", "at most the number of particles, 2"});
+  expect_scene_error(kBaseScene + "\n[[assign]]\nbox = { min = [5,5,5], max = [6,6,6] }\n"
+                                  "fixed = true\n",
+                     {"assign[0].box", "selects no particle"});
+}
+
+}  // namespace
+}  // namespace tmdem::coupling::test

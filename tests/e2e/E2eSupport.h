@@ -1,0 +1,78 @@
+#pragma once
+// Runs the tmdem program and reads its HDF5 output back for end-to-end checks.
+#include <H5Cpp.h>
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace tmdem::e2e {
+
+struct ProgramResult {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr together
+};
+
+inline ProgramResult run_tmdem(const std::string& args, const std::string& workdir) {
+  const std::string log = workdir + "/tmdem.log";
+  const std::string cmd = "cd '" + workdir + "' && '" + TMDEM_BINARY + "' " + args + " > '" + log + "' 2>&1";
+  const int status = std::system(cmd.c_str());
+  ProgramResult r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream in(log);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  r.output = ss.str();
+  return r;
+}
+
+// A fresh empty folder per test.
+inline std::string scratch_dir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("tmdem_e2e_" + name + "_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir.string();
+}
+
+inline void write_file(const std::string& path, const std::string& text) {
+  std::ofstream(path) << text;
+}
+
+inline std::vector<double> read_doubles(const H5::H5File& f, const std::string& name,
+                                        std::vector<hsize_t>* dims = nullptr) {
+  H5::DataSet ds = f.openDataSet(name);
+  H5::DataSpace sp = ds.getSpace();
+  std::vector<hsize_t> d(std::size_t(sp.getSimpleExtentNdims()));
+  sp.getSimpleExtentDims(d.data());
+  hsize_t n = 1;
+  for (auto x : d) n *= x;
+  std::vector<double> out(n);
+  if (n) ds.read(out.data(), H5::PredType::NATIVE_DOUBLE);
+  if (dims) *dims = d;
+  return out;
+}
+
+inline std::vector<long long> read_ints(const H5::H5File& f, const std::string& name) {
+  H5::DataSet ds = f.openDataSet(name);
+  H5::DataSpace sp = ds.getSpace();
+  std::vector<hsize_t> d(std::size_t(sp.getSimpleExtentNdims()));
+  sp.getSimpleExtentDims(d.data());
+  hsize_t n = 1;
+  for (auto x : d) n *= x;
+  std::vector<long long> out(n);
+  if (n) ds.read(out.data(), H5::PredType::NATIVE_LLONG);
+  return out;
+}
+
+inline std::string read_string_attribute(const H5::H5Object& obj, const std::string& name) {
+  H5::Attribute a = obj.openAttribute(name);
+  std::string value;
+  a.read(a.getStrType(), value);
+  return value;
+}
+
+}  // namespace tmdem::e2e

@@ -17,6 +17,7 @@
 #include "coupling/SceneToMechanics.h"
 #include "coupling/ThermalDiagnostics.h"
 #include "coupling/ThermalNetworkBuilder.h"
+#include "coupling/ThermalProblem.h"
 #include "mechanics/NscdIntegrator.hpp"
 #include "mechanics/TouchingPairs.hpp"
 #include "thermal/IntegratorRegistry.h"
@@ -52,7 +53,6 @@ class CoupledRun {
   void restore_checkpoint();
   void prepare_mechanics();
   void settle();
-  void gather_contacts();
   void prepare_thermal();
   void run_static();
   void run_dynamic();
@@ -144,87 +144,21 @@ void CoupledRun::prepare_mechanics() {
 }
 
 void CoupledRun::settle() {
-  const double h = scene_.mechanics.time_step_s;
-  const double t_max = scene_.mechanics.settle_time_s;
-  double t = 0.0;
-  bool at_rest = false;
-  while (t < t_max - 0.5 * h) {
-    const auto report = nscd_->step(h);
-    t += h;
-    if (!report.converged && !options_.quiet && nscd_->stats().unconverged_steps <= 10) {
-      std::ostringstream msg;
-      msg << "warning: settle step at t = " << t << " s: Gauss-Seidel did not converge in "
-          << report.sweeps << " sweeps (residual " << report.residual << ", tolerance "
-          << scene_.mechanics.tolerance << ")";
-      progress_.message(msg.str());
-    }
-    const double speed = nscd_->max_speed();
-    std::ostringstream extra;
-    extra << "max speed " << speed << " m/s, " << report.active_contacts << " contacts";
-    progress_.update("settle", t, t_max, extra.str());
-    if (speed < scene_.mechanics.settle_velocity_m_per_s) {
-      at_rest = true;
-      break;
-    }
-  }
-  progress_.done();
-  if (!at_rest && !options_.quiet) {
-    std::ostringstream msg;
-    msg << "warning: not at rest after mechanics.settle_time = " << t_max
-        << " s: largest speed " << nscd_->max_speed() << " m/s (settle_velocity "
-        << scene_.mechanics.settle_velocity_m_per_s << " m/s); freezing the packing as it is";
-    progress_.message(msg.str());
-  } else if (!options_.quiet) {
-    std::ostringstream msg;
-    msg << "settle: at rest after " << t << " s (" << nscd_->stats().steps << " steps, "
-        << nscd_->contacts().size() << " contacts, max penetration "
-        << nscd_->stats().max_penetration_m << " m)";
-    progress_.message(msg.str());
-  }
-  gather_contacts();
+  settle_packing(*nscd_, scene_, progress_);
+  gather_contacts(nscd_->contacts(), contacts_);
   particles_ = nscd_->particles();
 }
 
-void CoupledRun::gather_contacts() {
-  // Canonical (i, j) order: the same graph gives the same edge list, so the thermal side can
-  // tell a values-only change from a new shape.
-  const auto& forces = nscd_->contacts();
-  std::vector<std::size_t> order(forces.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return std::pair(forces[a].i, forces[a].j) < std::pair(forces[b].i, forces[b].j);
-  });
-  contacts_.clear();
-  for (auto k : order) contacts_.add(forces[k].i, forces[k].j, forces[k].normal_force_N);
-}
-
 double CoupledRun::max_temperature_K() const {
-  double T_max = 0.0;
-  for (const auto& p : scene_.particles) T_max = std::max(T_max, p.temperature_K);
-  for (double T : T0_) T_max = std::max(T_max, T);
-  for (const auto& w : scene_.walls)
-    if (w.temperature_K) T_max = std::max(T_max, *w.temperature_K);
-  if (scene_.effects.convection) T_max = std::max(T_max, scene_.convection.fluid_temperature_K);
-  if (scene_.effects.radiation) T_max = std::max(T_max, scene_.radiation.ambient_temperature_K);
+  double T_max = max_scene_temperature_K(scene_);
+  for (double T : T0_) T_max = std::max(T_max, T);  // a restart may start elsewhere
   return T_max;
 }
 
 void CoupledRun::prepare_thermal() {
-  auto network = builder_.nodes();
-  builder_.build_edges(contacts_, network);
-  std::vector<std::unique_ptr<thermal::HeatTransferMode>> modes;
-  const auto settings = builder_.mode_settings();
-  for (const auto& name : builder_.mode_names())
-    modes.push_back(thermal::make_heat_transfer_mode(name, settings));
-  system_ = std::make_unique<thermal::ThermalSystem>(std::move(network), std::move(modes));
-
-  thermal::IntegratorSettings s;
-  s.linear_solver = scene_.thermal.linear_solver;
-  s.relative_tolerance = scene_.thermal.relative_tolerance;
-  s.absolute_tolerance_K = scene_.thermal.absolute_tolerance_K;
-  s.explicit_step_s = scene_.thermal.explicit_step_s;
+  system_ = build_thermal_system(scene_, contacts_);
+  auto s = integrator_settings(scene_);
   s.max_temperature_K = max_temperature_K();
-  s.stop_at_each_time = !frozen_;
   try {
     integrator_ = thermal::make_thermal_integrator(scene_.thermal.integrator, *system_, s);
     if (T0_.empty())
@@ -342,7 +276,7 @@ void CoupledRun::run_dynamic() {
           << report.sweeps << " sweeps (residual " << report.residual << ")";
       progress_.message(msg.str());
     }
-    gather_contacts();
+    gather_contacts(nscd_->contacts(), contacts_);
     builder_.build_edges(contacts_, edges_);
     system_->replace_edges(edges_);
     integrator_->advance_to(t_next);

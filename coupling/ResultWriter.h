@@ -16,7 +16,11 @@
 // file read-only at any time with default settings and sees every complete frame. The frame
 // count is len(/frames/time) (written last in each frame). A reader that opens the file in the
 // middle of a write_frame() may get an HDF5 error; reopen then. Readers that keep the file open
-// do not see later frames: reopen to refresh.
+// may see stale metadata, not the later frames: reopen to refresh. Inside the writing process itself, a second
+// H5Fopen of the file while the writer holds it must also switch file locking off
+// (H5Pset_file_locking(fapl, false, true)), else HDF5 refuses: "file locking flag values don't
+// match". HDF5 older than 1.10.7 cannot switch the lock off per file: readers then need the
+// environment variable HDF5_USE_FILE_LOCKING=FALSE.
 //
 // RESULT.xdmf is rewritten (atomically: temporary file then rename) after each of the first 1024
 // frames, then whenever the frame count has grown by 1/32 since the last rewrite, and always in
@@ -76,8 +80,9 @@ class ResultWriter {
 
   // Appends one frame and flushes. Span sizes must match N (std::invalid_argument otherwise);
   // contacts are ignored when store_contacts is false (contact_offset then stays 0). On an
-  // HDF5 failure the datasets are cut back to the previous frame and OutputError is thrown.
-  // std::logic_error after finish().
+  // HDF5 failure the datasets are cut back to the previous frame and OutputError is thrown;
+  // OutputError also when RESULT.xdmf cannot be rewritten (the frame is then in the .h5).
+  // std::logic_error after finish(). Not thread-safe (serial HDF5): one writing thread.
   void write_frame(const FrameView& frame);
 
   // status is "ok" or "failed" (std::invalid_argument otherwise). Sets the root attribute,

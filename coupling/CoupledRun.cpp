@@ -278,7 +278,11 @@ void CoupledRun::run_dynamic() {
     }
     gather_contacts(nscd_->contacts(), contacts_);
     builder_.build_edges(contacts_, edges_);
+    const auto shape_before = system_->topology_version();
     system_->replace_edges(edges_);
+    // A new shape re-initialises inside advance_to anyway; "restart" also does it otherwise.
+    if (scene_.thermal.coupling == "restart" && system_->topology_version() == shape_before)
+      integrator_->restart();
     integrator_->advance_to(t_next);
     t = t_next;
     if (next_frame < times.size() && t >= times[next_frame] - 0.5 * h) {

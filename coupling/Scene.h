@@ -74,6 +74,10 @@ struct ThermalSettings {
   double explicit_step_s = 0.0;        // 0 = largest stable step
   std::string conductance = "hertz";   // hertz | constant
   double constant_conductance_W_per_K = 1.0e-4;
+  // Dynamic runs (extension): how the implicit integrators follow the moving packing.
+  // "continue": keep the step history while contacts only change force, re-initialise when
+  //             contacts appear or vanish; "restart": re-initialise every mechanical step.
+  std::string coupling = "continue";
 };
 
 struct OutputSettings {

@@ -454,6 +454,7 @@ class SceneBuilder {
       th.conductance = t.choice("conductance", th.conductance, {"hertz", "constant"});
       th.constant_conductance_W_per_K = t.number(
           "constant_conductance", th.constant_conductance_W_per_K, Range::greater(0.0));
+      th.coupling = t.choice("coupling", th.coupling, {"continue", "restart"});
       if (scene_.effects.conduction && !mechanics_on && th.conductance == "hertz") {
         if (t.has("conductance"))
           t.fail("conductance",

@@ -89,7 +89,8 @@ const std::map<std::string_view, std::vector<Key>>& schema_map() {
         {"absolute_tolerance"},
         {"explicit_step"},
         {"conductance"},
-        {"constant_conductance"}}},
+        {"constant_conductance"},
+        {"coupling"}}},
       {"output", {{"file"}, {"interval"}, {"contacts"}, {"checkpoint_interval"}}},
   };
   return schema;

@@ -114,7 +114,6 @@ void CvodeIntegrator::initialize(double t0_s, std::span<const double> T0_K, doub
   check(CVodeSetUserData(mem_, this), "CVodeSetUserData");
   check(CVodeSVtolerances(mem_, settings_.relative_tolerance, abstol_), "CVodeSVtolerances");
   check(CVodeSetMaxNumSteps(mem_, settings_.max_steps_per_call), "CVodeSetMaxNumSteps");
-  if (const char* c = std::getenv("XNLS")) check(CVodeSetNonlinConvCoef(mem_, std::atof(c)/3.3), "x");
   // The boundary heat rides along as a quadrature: same steps, no say in step-size control.
   check(CVodeQuadInit(mem_, &CvodeIntegrator::boundary_rhs, yQ_), "CVodeQuadInit");
   check(CVodeSetQuadErrCon(mem_, SUNFALSE), "CVodeSetQuadErrCon");

@@ -128,7 +128,6 @@ void IdaIntegrator::initialize(double t0_s, std::span<const double> T0_K, double
   check(IDASetId(mem_, id_), "IDASetId");
   // Held values are exact by construction; keep them out of the local error test.
   check(IDASetSuppressAlg(mem_, SUNTRUE), "IDASetSuppressAlg");
-  if (const char* c = std::getenv("XNLS")) check(IDASetNonlinConvCoef(mem_, std::atof(c)), "x");
   check(IDAQuadInit(mem_, &IdaIntegrator::boundary_rhs, yQ_), "IDAQuadInit");
   check(IDASetQuadErrCon(mem_, SUNFALSE), "IDASetQuadErrCon");
 

@@ -1,0 +1,176 @@
+// Cost of advancing the thermal network of a simple-cubic lattice (6-neighbour contacts, equal
+// conductances and capacities) over a fixed simulated time, per integrator:
+//   cvode/klu (BDF + sparse direct), cvode/pcg (BDF + Jacobi-preconditioned CG, matrix-free)
+//   and explicit (forward Euler at 0.9 of its stability bound).
+// Lattices of 10^3, 22^3, 46^3 and 100^3 nodes (1e3 .. 1e6). The x = 0 face touches an
+// isothermal wall at 400 K, the x = L-1 face one at 300 K; the lattice starts at 300 K, so a
+// front diffuses in from one side (a smooth transient, as in a heated packing).
+//
+// Counters:
+//   nodes, steps (integrator steps of one run), rhs_evals, jac_evals, lin_iters (CG),
+//   ns_per_node_step   wall time of one run / (nodes * steps),
+//   peak_rss_MB        peak resident-set growth during one run (VmHWM after the run minus VmRSS
+//                      before it; VmHWM reset through /proc/self/clear_refs), i.e. everything the
+//                      integrator allocates (SUNDIALS vectors, KLU factors, CG work vectors),
+//   model_MB           bytes of the main arrays owned by the system: network + CSC pattern.
+// Runs that would take far too long (KLU fill-in on the 1e6 3D lattice) are skipped with the
+// reason in the table.
+#include <benchmark/benchmark.h>
+#include <malloc.h>
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "thermal/IntegratorRegistry.h"
+#include "thermal/ModeRegistry.h"
+#include "thermal/ThermalSystem.h"
+
+namespace {
+
+using namespace tmdem::thermal;
+
+constexpr double kC_J_per_K = 1e-3;     // every node
+constexpr double kH_W_per_K = 1e-4;     // every contact and wall contact: H / C = 0.1 1/s
+constexpr double kSimulatedTime_s = 1000.0;
+
+ThermalNetwork lattice(int L) {
+  ThermalNetwork net;
+  const std::size_t n = std::size_t(L) * L * L;
+  net.resize_nodes(n);
+  std::fill(net.heat_capacity_J_per_K.begin(), net.heat_capacity_J_per_K.end(), kC_J_per_K);
+  auto id = [L](int x, int y, int z) { return std::int32_t((std::int64_t(z) * L + y) * L + x); };
+  net.edge_a.reserve(3 * n);
+  net.edge_b.reserve(3 * n);
+  net.edge_conductance_W_per_K.reserve(3 * n);
+  for (int z = 0; z < L; ++z)
+    for (int y = 0; y < L; ++y)
+      for (int x = 0; x < L; ++x) {
+        if (x + 1 < L) net.add_edge(id(x, y, z), id(x + 1, y, z), kH_W_per_K);
+        if (y + 1 < L) net.add_edge(id(x, y, z), id(x, y + 1, z), kH_W_per_K);
+        if (z + 1 < L) net.add_edge(id(x, y, z), id(x, y, z + 1), kH_W_per_K);
+      }
+  for (int z = 0; z < L; ++z)
+    for (int y = 0; y < L; ++y) {
+      net.add_wall_edge(id(0, y, z), 400.0, kH_W_per_K);
+      net.add_wall_edge(id(L - 1, y, z), 300.0, kH_W_per_K);
+    }
+  return net;
+}
+
+template <class T>
+double bytes(const std::vector<T>& v) {
+  return double(v.capacity() * sizeof(T));
+}
+
+double model_bytes(const ThermalSystem& sys) {
+  const auto& n = sys.network();
+  const auto& p = sys.pattern();
+  return bytes(n.heat_capacity_J_per_K) + bytes(n.surface_area_m2) + bytes(n.emissivity) +
+         bytes(n.heat_source_W) + bytes(n.held) + bytes(n.edge_a) + bytes(n.edge_b) +
+         bytes(n.edge_conductance_W_per_K) + bytes(n.wall_node) + bytes(n.wall_temperature_K) +
+         bytes(n.wall_conductance_W_per_K) + bytes(p.column_start) + bytes(p.row_index) +
+         bytes(p.diagonal_slot) + bytes(p.slot_ab) + bytes(p.slot_ba);
+}
+
+// kB from a line of /proc/self/status ("VmRSS:", "VmHWM:").
+double status_kB(const char* key) {
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  const std::string k(key);
+  while (std::getline(in, line))
+    if (line.compare(0, k.size(), k) == 0) return std::stod(line.substr(k.size()));
+  return 0.0;
+}
+
+bool reset_peak_rss() {
+  std::ofstream out("/proc/self/clear_refs");
+  out << "5";
+  return bool(out);
+}
+
+struct Method {
+  const char* integrator;
+  const char* solver;
+};
+constexpr Method kMethods[] = {{"cvode", "klu"}, {"cvode", "pcg"}, {"explicit", "klu"}};
+
+// Cases known to take far too long on a 2-core machine, with the reason (measured growth).
+const char* skip_reason(int method, int L) {
+  if (method == 0 && L >= 100)
+    return "skipped: KLU fill-in on a 3D lattice grows ~n^2 in factor time (46^3 already takes "
+           "seconds per factorization); 100^3 would take hours and GBs";
+  return nullptr;
+}
+
+void BM_Lattice(benchmark::State& state) {
+  const int method = int(state.range(0));
+  const int L = int(state.range(1));
+  if (const char* why = skip_reason(method, L)) {
+    state.SkipWithError(why);
+    for (auto _ : state) {
+    }
+    return;
+  }
+  const auto& m = kMethods[method];
+  std::vector<std::unique_ptr<HeatTransferMode>> modes;
+  modes.push_back(make_heat_transfer_mode("contact_conduction", {}));
+  modes.push_back(make_heat_transfer_mode("wall_conduction", {}));
+  ThermalSystem sys(lattice(L), std::move(modes));
+  const std::size_t n = sys.size();
+  const std::vector<double> T0(n, 300.0);
+  IntegratorSettings settings;  // default tolerances (1e-6), explicit at 0.9 of its bound
+  settings.linear_solver = m.solver;
+
+  double seconds = 0.0, peak_MB = 0.0;
+  IntegratorStats stats;
+  for (auto _ : state) {
+    malloc_trim(0);
+    const double rss_before_kB = status_kB("VmRSS:");
+    const bool peak_ok = reset_peak_rss();
+    const auto start = std::chrono::steady_clock::now();
+    auto integ = make_thermal_integrator(m.integrator, sys, settings);
+    integ->initialize(0.0, T0, 0.0);
+    integ->advance_to(kSimulatedTime_s);
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    stats = integ->stats();
+    benchmark::DoNotOptimize(integ->temperatures_K().data());
+    if (peak_ok) peak_MB = std::max(peak_MB, (status_kB("VmHWM:") - rss_before_kB) / 1024.0);
+  }
+  const double runs = double(state.iterations());
+  state.counters["nodes"] = double(n);
+  state.counters["steps"] = double(stats.steps);
+  state.counters["rhs_evals"] = double(stats.rhs_evals);
+  state.counters["jac_evals"] = double(stats.jacobian_evals);
+  state.counters["lin_iters"] = double(stats.linear_iterations);
+  state.counters["ns_per_node_step"] = seconds / runs * 1e9 / (double(n) * double(stats.steps));
+  state.counters["peak_rss_MB"] = peak_MB;
+  state.counters["model_MB"] = model_bytes(sys) / 1e6;
+  state.SetLabel(std::string(m.integrator) + "/" + m.solver);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // One run of a large case is already seconds of work: a fixed number of runs per case (more
+  // for the small ones, whose times are short) instead of Google Benchmark's 0.5 s minimum.
+  for (int method = 0; method < 3; ++method)
+    for (int L : {10, 22, 46, 100}) {
+      const auto& m = kMethods[method];
+      const std::string name = std::string("lattice/") + m.integrator +
+                               (method == 2 ? "" : std::string("_") + m.solver) +
+                               "/n=" + std::to_string(L * L * L);
+      benchmark::RegisterBenchmark(name.c_str(), BM_Lattice)
+          ->Args({method, L})
+          ->Unit(benchmark::kMillisecond)
+          ->Iterations(L <= 10 ? 20 : L <= 22 ? 5 : 1);
+    }
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -106,9 +106,7 @@ const char* skip_reason(int method, int L) {
   return nullptr;
 }
 
-void BM_Lattice(benchmark::State& state) {
-  const int method = int(state.range(0));
-  const int L = int(state.range(1));
+void BM_Lattice(benchmark::State& state, int method, int L) {
   if (const char* why = skip_reason(method, L)) {
     state.SkipWithError(why);
     for (auto _ : state) {
@@ -163,8 +161,7 @@ int main(int argc, char** argv) {
       const std::string name = std::string("lattice/") + m.integrator +
                                (method == 2 ? "" : std::string("_") + m.solver) +
                                "/n=" + std::to_string(L * L * L);
-      benchmark::RegisterBenchmark(name.c_str(), BM_Lattice)
-          ->Args({method, L})
+      benchmark::RegisterBenchmark(name.c_str(), BM_Lattice, method, L)
           ->Unit(benchmark::kMillisecond)
           ->Iterations(L <= 10 ? 20 : L <= 22 ? 5 : 1);
     }

@@ -11,6 +11,7 @@
 
 #include "coupling/Checkpoint.h"
 #include "coupling/ContactList.h"
+#include "coupling/ContactPattern.h"
 #include "coupling/OutputError.h"
 #include "coupling/ProgressReporter.h"
 #include "coupling/ResultWriter.h"
@@ -56,6 +57,7 @@ class CoupledRun {
   void prepare_thermal();
   void run_static();
   void run_dynamic();
+  void copy_active_conductances();
   void write_frame(double t_s);
   void maybe_checkpoint(double t_s);
   void fill_summary();
@@ -76,6 +78,9 @@ class CoupledRun {
   bool frozen_ = true;                                // positions no longer change
   std::vector<double> zero_velocity_;
   ContactList contacts_;
+  ContactPattern pattern_;               // dynamic runs: edges kept while contacts flicker
+  ContactList pattern_contacts_;
+  std::vector<std::uint8_t> pattern_active_;
   thermal::ThermalNetwork edges_;
   std::unique_ptr<thermal::ThermalSystem> system_;
   std::unique_ptr<thermal::ThermalIntegrator> integrator_;
@@ -277,7 +282,9 @@ void CoupledRun::run_dynamic() {
       progress_.message(msg.str());
     }
     gather_contacts(nscd_->contacts(), contacts_);
-    builder_.build_edges(contacts_, edges_);
+    pattern_.update(contacts_, pattern_contacts_, pattern_active_);
+    builder_.build_edges(pattern_contacts_, edges_, &pattern_active_);
+    copy_active_conductances();
     const auto shape_before = system_->topology_version();
     system_->replace_edges(edges_);
     // A new shape re-initialises inside advance_to anyway; "restart" also does it otherwise.
@@ -292,6 +299,17 @@ void CoupledRun::run_dynamic() {
     maybe_checkpoint(t);
     progress_.update("run", t, scene_.duration_s,
                      std::to_string(contacts_.size()) + " contacts");
+  }
+}
+
+void CoupledRun::copy_active_conductances() {
+  // The output lists the active contacts only; their conductances come from the pattern list
+  // (both are sorted by pair).
+  std::size_t p = 0;
+  for (std::size_t c = 0; c < contacts_.size(); ++c) {
+    const std::pair key(contacts_.pair[2 * c], contacts_.pair[2 * c + 1]);
+    while (std::pair(pattern_contacts_.pair[2 * p], pattern_contacts_.pair[2 * p + 1]) != key) ++p;
+    contacts_.conductance_W_per_K[c] = pattern_contacts_.conductance_W_per_K[p];
   }
 }
 

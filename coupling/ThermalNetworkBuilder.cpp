@@ -50,14 +50,17 @@ double ThermalNetworkBuilder::conductance_W_per_K(std::int64_t i, std::int64_t j
   return thermal::hertz_conductance_W_per_K(body(i), body(j), normal_force_N);
 }
 
-void ThermalNetworkBuilder::build_edges(ContactList& contacts, thermal::ThermalNetwork& edges) const {
+void ThermalNetworkBuilder::build_edges(ContactList& contacts, thermal::ThermalNetwork& edges,
+                                        const std::vector<std::uint8_t>* is_active) const {
   edges.clear_edges();
   const bool conduction = scene_.effects.conduction;
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     const auto i = contacts.pair[2 * c], j = contacts.pair[2 * c + 1];
     const bool isothermal_wall = j < 0 && scene_.walls[std::size_t(-1 - j)].temperature_K.has_value();
     const bool carries_heat = conduction && (j >= 0 || isothermal_wall);
-    const double H = carries_heat ? conductance_W_per_K(i, j, contacts.normal_force_N[c]) : 0.0;
+    const bool open = is_active && !(*is_active)[c];
+    const double H =
+        carries_heat && !open ? conductance_W_per_K(i, j, contacts.normal_force_N[c]) : 0.0;
     contacts.conductance_W_per_K[c] = H;
     if (!carries_heat) continue;
     if (j >= 0)

@@ -22,7 +22,10 @@ class ThermalNetworkBuilder {
   // Fills contacts.conductance_W_per_K and writes the edge arrays of `edges` (node arrays are
   // left alone). A wall contact becomes an edge only for an isothermal wall; with conduction
   // off, no contact carries heat and every conductance is 0.
-  void build_edges(ContactList& contacts, thermal::ThermalNetwork& edges) const;
+  // is_active (optional, one per contact): 0 marks a pattern-only pair, an edge of zero
+  // conductance that keeps the sparsity pattern while the contact is open.
+  void build_edges(ContactList& contacts, thermal::ThermalNetwork& edges,
+                   const std::vector<std::uint8_t>* is_active = nullptr) const;
   // Conductance of one contact by the scene's law, W/K.
   double conductance_W_per_K(std::int64_t i, std::int64_t j, double normal_force_N) const;
 

@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "coupling/AccuracyStudy.h"
 #include "coupling/CoupledRun.h"
 #include "coupling/DefaultScene.h"
 #include "coupling/OutputError.h"
@@ -47,10 +48,21 @@ int main(int argc, char** argv) {
   check->add_option("--set", sets, "override one scene value, KEY=VALUE")->allow_extra_args(false);
 
   auto* study = app.add_subcommand("study", "numerical studies");
-  std::string study_path, csv;
+  std::string study_path;
   auto* accuracy = study->add_subcommand("accuracy", "work-precision study of the thermal integrators");
   accuracy->add_option("scene", study_path, "scene file (TOML)")->required();
-  accuracy->add_option("--csv", csv, "write the table as CSV here");
+  AccuracyCommandOptions study_options;
+  accuracy->add_option("--csv", study_options.csv_path, "write the table as CSV here");
+  accuracy->add_option("--set", sets, "override one scene value, KEY=VALUE (TOML value)")
+      ->take_all()->allow_extra_args(false);
+  accuracy->add_flag("--quiet", study_options.quiet, "no progress on stderr");
+  accuracy->add_option("--explicit-rungs", study_options.study.explicit_rungs,
+                       "explicit steps: 0.9 x the stability bound, then / 4 per rung (default 8)")
+      ->check(CLI::Range(0, 30));
+  accuracy->add_option("--explicit-budget", study_options.study.explicit_work_budget,
+                       "skip explicit rungs whose steps x (particles + edges) exceed this "
+                       "(default 2e9, a few seconds)")
+      ->check(CLI::PositiveNumber);
   study->require_subcommand(1);
 
   try {
@@ -86,8 +98,9 @@ int main(int argc, char** argv) {
       return kExitOk;
     }
     if (*accuracy) {
-      std::cerr << "error: tmdem study accuracy is not available yet" << std::endl;
-      return kExitInvalid;
+      const Scene scene = load_scene_file(study_path, sets);
+      study_options.terminal = isatty(STDERR_FILENO);
+      return run_accuracy_command(scene, study_options, std::cout, std::cerr);
     }
   } catch (const SceneError& e) {
     std::cerr << "error: " << e.what() << std::endl;

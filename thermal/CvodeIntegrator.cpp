@@ -153,8 +153,8 @@ void CvodeIntegrator::reanalyse() {
 void CvodeIntegrator::reinit_at_current_state() {
   before_reinit_ = stats();
   before_reinit_.reinitializations = 0;
-  sunrealtype tq = t_;
-  if (CVodeGetQuad(mem_, &tq, yQ_) < 0) NV_Ith_S(yQ_, 0) = boundary_heat_J() - boundary_heat0_J_;
+  // yQ_ already holds the boundary heat at t_ (read after every advance); asking SUNDIALS
+  // again before its first step would interpolate with h = 0.
   check(CVodeReInit(mem_, t_, y_), "CVodeReInit");
   check(CVodeQuadReInit(mem_, yQ_), "CVodeQuadReInit");
   ++reinitializations_;

@@ -153,8 +153,8 @@ void IdaIntegrator::initialize(double t0_s, std::span<const double> T0_K, double
 void IdaIntegrator::reinit_at_current_state() {
   before_reinit_ = stats();
   before_reinit_.reinitializations = 0;
-  sunrealtype tq = t_;
-  if (IDAGetQuad(mem_, &tq, yQ_) < 0) NV_Ith_S(yQ_, 0) = boundary_heat_J() - boundary_heat0_J_;
+  // yQ_ already holds the boundary heat at t_ (read after every advance); asking SUNDIALS
+  // again before its first step would interpolate with h = 0.
   consistent_derivative();
   check(IDAReInit(mem_, t_, y_, yp_), "IDAReInit");
   check(IDAQuadReInit(mem_, yQ_), "IDAQuadReInit");

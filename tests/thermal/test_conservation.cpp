@@ -111,6 +111,7 @@ TEST(Pattern, ShapeChangeIsReanalysedAndValuesOnlyChangeIsNot) {
   sys->replace_edges(edges);
   integ->advance_to(3.0);
   EXPECT_EQ(integ->stats().reinitializations, 1);
+  EXPECT_EQ(integ->boundary_heat_J(), 0.0);  // regression: was NaN after a re-initialisation
   integ->advance_to(50.0);
   EXPECT_EQ(integ->stats().reinitializations, 1);
   EXPECT_NEAR(sys->thermal_energy_J(integ->temperatures_K()), sys->thermal_energy_J(T0), 1e-12 * 2);

@@ -1,0 +1,260 @@
+#include "coupling/AccuracyStudy.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include "coupling/AccuracyReport.h"
+#include "coupling/ExactThermalReference.h"
+#include "coupling/ProgressReporter.h"
+#include "coupling/ThermalNetworkBuilder.h"
+#include "coupling/ThermalProblem.h"
+#include "thermal/IntegratorRegistry.h"
+
+namespace tmdem::coupling {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+double max_abs_difference(std::span<const double> T, std::span<const double> ref) {
+  double e = 0.0;
+  for (std::size_t i = 0; i < T.size(); ++i) {
+    const double d = std::abs(T[i] - ref[i]);
+    if (!std::isfinite(d)) return std::numeric_limits<double>::infinity();
+    e = std::max(e, d);
+  }
+  return e;
+}
+
+thermal::IntegratorSettings implicit_settings(const thermal::IntegratorSettings& base,
+                                              const std::string& linear_solver, double rtol) {
+  auto s = base;
+  s.linear_solver = linear_solver;
+  s.relative_tolerance = rtol;
+  s.absolute_tolerance_K = rtol;
+  s.stop_at_each_time = false;
+  return s;
+}
+
+}  // namespace
+
+AccuracyRun timed_accuracy_run(thermal::ThermalSystem& system, const std::string& method,
+                               const thermal::IntegratorSettings& settings,
+                               std::span<const double> T0_K, double end_time_s,
+                               std::span<const double> reference_T_K,
+                               const AccuracyStudyOptions& options) {
+  AccuracyRun run;
+  run.method = method;
+  run.linear_solver = method == "explicit" ? "none" : settings.linear_solver;
+  run.parameter = method == "explicit" ? settings.explicit_step_s : settings.relative_tolerance;
+  run.wall_time_s = std::numeric_limits<double>::infinity();
+  try {
+    while (run.timings < std::max(1, options.max_timings)) {
+      auto integrator = thermal::make_thermal_integrator(method, system, settings);
+      const auto start = Clock::now();
+      integrator->initialize(0.0, T0_K, 0.0);
+      integrator->advance_to(end_time_s);
+      const double wall = seconds_since(start);
+      if (run.timings == 0) {
+        const auto st = integrator->stats();
+        run.steps = st.steps;
+        run.rhs_evals = st.rhs_evals;
+        run.max_error_K = max_abs_difference(integrator->temperatures_K(), reference_T_K);
+        if (!std::isfinite(run.max_error_K)) {
+          run.ok = false;
+          run.message = "non-finite temperature at the end time";
+        }
+      }
+      ++run.timings;
+      run.wall_time_s = std::min(run.wall_time_s, wall);
+      if (!run.ok || wall >= options.repeat_below_s) break;
+    }
+  } catch (const std::exception& e) {
+    run.ok = false;
+    run.message = e.what();
+    if (!std::isfinite(run.wall_time_s)) run.wall_time_s = 0.0;
+  }
+  return run;
+}
+
+AccuracyReference accuracy_reference(thermal::ThermalSystem& system, std::span<const double> T0_K,
+                                     double end_time_s, const thermal::IntegratorSettings& base,
+                                     const thermal::ModeSettings& modes,
+                                     const AccuracyStudyOptions& options) {
+  AccuracyReference ref;
+  const auto start = Clock::now();
+  std::optional<AffineThermalSystem> affine;
+  std::string why_not;
+  if (system.size() > options.exact_reference_max_nodes) {
+    why_not = std::to_string(system.size()) + " particles, more than " +
+              std::to_string(options.exact_reference_max_nodes) + " for a dense exponential";
+  } else {
+    affine = affine_thermal_system(system, modes);
+    if (!affine) why_not = "the network is nonlinear (radiation)";
+  }
+  if (affine) {
+    try {
+      ref.T_K = exact_affine_temperatures(*affine, T0_K, end_time_s);
+    } catch (const std::exception& e) {
+      throw ReferenceError(std::string("the exact reference failed: ") + e.what());
+    }
+    ref.exact = true;
+    ref.description = "exact matrix exponential of the affine system dT/dt = A T + b (" +
+                      std::to_string(system.size()) + " particles, Eigen MatrixFunctions)";
+  } else {
+    auto s = implicit_settings(base, "klu", options.reference_tolerance);
+    s.max_steps_per_call = std::max(s.max_steps_per_call, 100000000L);
+    try {
+      auto integrator = thermal::make_thermal_integrator("cvode", system, s);
+      integrator->initialize(0.0, T0_K, 0.0);
+      integrator->advance_to(end_time_s);
+      const auto T = integrator->temperatures_K();
+      ref.T_K.assign(T.begin(), T.end());
+    } catch (const std::exception& e) {
+      throw ReferenceError(std::string("the reference run (cvode/klu, rtol = atol = ") +
+                           shortest_number(options.reference_tolerance) + ") failed: " + e.what());
+    }
+    for (double T : ref.T_K)
+      if (!std::isfinite(T))
+        throw ReferenceError("the reference run (cvode/klu) gave a non-finite temperature");
+    ref.description = "cvode/klu at rtol = atol = " + shortest_number(options.reference_tolerance) +
+                      " (no exact reference: " + why_not + ")";
+  }
+  ref.wall_time_s = seconds_since(start);
+  return ref;
+}
+
+AccuracyStudyResult run_accuracy_study(thermal::ThermalSystem& system,
+                                       std::span<const double> T0_K, double end_time_s,
+                                       const thermal::IntegratorSettings& base,
+                                       const thermal::ModeSettings& modes,
+                                       const AccuracyStudyOptions& options, std::ostream* log) {
+  AccuracyStudyResult result;
+  result.end_time_s = end_time_s;
+  const auto& net = system.network();
+  result.nodes = net.node_count();
+  result.edges = net.edge_count();
+  result.wall_edges = net.wall_edge_count();
+  result.stability_bound_s = system.explicit_stability_bound_s(base.max_temperature_K);
+
+  if (log) *log << "study: computing the reference..." << std::endl;
+  result.reference = accuracy_reference(system, T0_K, end_time_s, base, modes, options);
+  if (log)
+    *log << "study: reference: " << result.reference.description << ", "
+         << result.reference.wall_time_s << " s" << std::endl;
+
+  auto report = [&](const AccuracyRun& r) {
+    if (!log) return;
+    *log << "study: " << r.label() << " "
+         << (r.method == "explicit" ? "h = " + shortest_number(r.parameter) + " s"
+                                    : "rtol = " + shortest_number(r.parameter));
+    if (r.ok)
+      *log << ": max error " << r.max_error_K << " K, " << r.wall_time_s << " s, " << r.steps
+           << " steps" << std::endl;
+    else
+      *log << ": FAILED: " << r.message << std::endl;
+  };
+
+  // Explicit ladder.
+  const double work_per_step = double(result.nodes + result.edges + result.wall_edges);
+  double h = std::isfinite(result.stability_bound_s)
+                 ? options.explicit_first_fraction * result.stability_bound_s
+                 : end_time_s;
+  for (int k = 0; k < options.explicit_rungs; ++k, h /= options.explicit_rung_factor) {
+    const double work = std::ceil(end_time_s / h) * work_per_step;
+    if (work > options.explicit_work_budget) {
+      result.skipped.push_back({h, work});
+      continue;
+    }
+    auto s = base;
+    s.explicit_step_s = h;
+    s.stop_at_each_time = false;
+    result.runs.push_back(
+        timed_accuracy_run(system, "explicit", s, T0_K, end_time_s, result.reference.T_K, options));
+    report(result.runs.back());
+  }
+  // Implicit methods at each tolerance.
+  for (const auto& [method, solver] : options.implicit_methods)
+    for (double rtol : options.relative_tolerances) {
+      result.runs.push_back(timed_accuracy_run(system, method, implicit_settings(base, solver, rtol),
+                                               T0_K, end_time_s, result.reference.T_K, options));
+      report(result.runs.back());
+    }
+  return result;
+}
+
+int run_accuracy_command(const Scene& scene, const AccuracyCommandOptions& options,
+                         std::ostream& out, std::ostream& log) {
+  if (scene.effects.mechanics == MechanicsMode::Dynamic) {
+    log << "error: " << scene.source
+        << ": effects.mechanics = \"dynamic\": the accuracy study needs a frozen contact graph "
+           "(mechanics = \"off\" or \"settle\"); a dynamic scene's thermal problem changes every "
+           "mechanical step"
+        << std::endl;
+    return 2;
+  }
+  // Open the CSV first: an unwritable path should fail before minutes of computation.
+  std::ofstream csv;
+  if (!options.csv_path.empty()) {
+    csv.open(options.csv_path);
+    if (!csv) {
+      log << "error: cannot write CSV file '" << options.csv_path << "'" << std::endl;
+      return 4;
+    }
+  }
+  auto discard_csv = [&] {
+    if (options.csv_path.empty()) return;
+    csv.close();
+    std::error_code ec;
+    std::filesystem::remove(options.csv_path, ec);
+  };
+
+  AccuracyStudyResult result;
+  try {
+    ProgressReporter progress(log, options.quiet, options.terminal);
+    auto problem = build_frozen_thermal_problem(scene, progress);
+    const auto base = integrator_settings(scene);
+    const auto modes = ThermalNetworkBuilder(scene).mode_settings();
+    result = run_accuracy_study(*problem.system, problem.T0_K, scene.duration_s, base, modes,
+                                options.study, options.quiet ? nullptr : &log);
+  } catch (const ReferenceError& e) {
+    log << "error: " << e.what() << std::endl;
+    discard_csv();
+    return 3;
+  } catch (...) {
+    discard_csv();
+    throw;
+  }
+  for (const auto& r : result.runs)
+    if (!r.ok)
+      log << "warning: " << r.label() << " "
+          << (r.method == "explicit" ? "h = " : "rtol = ") << shortest_number(r.parameter)
+          << " failed (left out of the CSV): " << r.message << std::endl;
+
+  out << "accuracy study: " << scene.source << "\n";
+  print_accuracy_report(out, result, options.study);
+  out.flush();
+
+  if (!options.csv_path.empty()) {
+    write_accuracy_csv(csv, result.runs);
+    csv.close();
+    if (!csv) {
+      log << "error: writing CSV file '" << options.csv_path << "' failed" << std::endl;
+      return 4;
+    }
+    if (!options.quiet) log << "wrote " << options.csv_path << std::endl;
+  }
+  return 0;
+}
+
+}  // namespace tmdem::coupling

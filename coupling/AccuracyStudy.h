@@ -1,0 +1,128 @@
+#pragma once
+// `tmdem study accuracy` (contract section 5): a work-precision study of the thermal integrators
+// on a scene's frozen thermal problem.
+//
+// Runs, all from the scene's initial temperatures to simulation.duration:
+//   explicit   forward Euler at h = 0.9 x the stability bound (2 / lambda_max, Gershgorin), then
+//              h / 4, h / 16, ... (explicit_rungs rungs); a rung whose projected work
+//              ceil(duration / h) x (nodes + edges + wall edges) exceeds explicit_work_budget
+//              is skipped and listed as such (2e9 is a few seconds of wall time).
+//   cvode, ida with klu and pcg, at relative tolerances 1e-2, 1e-4, 1e-6, 1e-8, 1e-10 and the
+//              absolute tolerance equal to the relative one, read in kelvin (atol = rtol K).
+// Reference: for a linear network (no radiation) of at most exact_reference_max_nodes
+// particles, the exact matrix exponential (coupling/ExactThermalReference.h); otherwise
+// CVODE/KLU at rtol = atol = 1e-12.
+// Each run: wall time of the integrator's initialize + advance_to only (steady_clock; runs
+// under repeat_below_s are repeated up to max_timings times and the least time kept), the
+// largest |T_i - T_ref,i| over all particles at the end time, steps and right-hand-side
+// evaluations. A run that fails (solver error, non-finite temperature) is kept with ok = false
+// and its message: it is printed, never written to the CSV.
+#include <cstddef>
+#include <ostream>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "coupling/Scene.h"
+#include "thermal/HeatTransferMode.h"
+#include "thermal/ThermalIntegrator.h"
+#include "thermal/ThermalSystem.h"
+
+namespace tmdem::coupling {
+
+struct AccuracyStudyOptions {
+  std::vector<double> relative_tolerances{1e-2, 1e-4, 1e-6, 1e-8, 1e-10};
+  std::vector<std::pair<std::string, std::string>> implicit_methods{
+      {"cvode", "klu"}, {"cvode", "pcg"}, {"ida", "klu"}, {"ida", "pcg"}};
+  int explicit_rungs = 8;
+  double explicit_first_fraction = 0.9;      // of the stability bound
+  double explicit_rung_factor = 4.0;         // each rung's step is the previous one / this
+  double explicit_work_budget = 2.0e9;       // steps x (nodes + edges + wall edges)
+  double repeat_below_s = 0.05;
+  int max_timings = 10;
+  std::size_t exact_reference_max_nodes = 2000;
+  double reference_tolerance = 1e-12;        // CVODE/KLU reference: rtol = atol (K)
+};
+
+struct AccuracyRun {
+  std::string method;          // explicit | cvode | ida
+  std::string linear_solver;   // klu | pcg; "none" for explicit
+  double parameter = 0.0;      // explicit: step, s; otherwise the relative tolerance
+  double max_error_K = 0.0;
+  double wall_time_s = 0.0;    // least over the timings
+  long steps = 0;
+  long rhs_evals = 0;
+  int timings = 0;             // how many times it was run and timed
+  bool ok = true;
+  std::string message;         // why it failed
+
+  // "explicit", "cvode/klu", ...
+  std::string label() const { return method == "explicit" ? method : method + "/" + linear_solver; }
+};
+
+struct SkippedRung {
+  double step_s = 0.0;
+  double projected_work = 0.0;
+};
+
+struct AccuracyReference {
+  bool exact = false;
+  std::string description;     // what was used and why
+  std::vector<double> T_K;     // at the end time
+  double wall_time_s = 0.0;
+};
+
+struct AccuracyStudyResult {
+  double end_time_s = 0.0;
+  std::size_t nodes = 0, edges = 0, wall_edges = 0;
+  double stability_bound_s = 0.0;
+  AccuracyReference reference;
+  std::vector<AccuracyRun> runs;        // explicit rungs first, then each implicit method
+  std::vector<SkippedRung> skipped;     // explicit rungs over the work budget
+};
+
+// The reference could not be computed (exit code 3).
+struct ReferenceError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// The study on `system` from T0_K over [0, end_time_s]. `base` gives what is common to every
+// run (max_temperature_K for the explicit bound); tolerances, step and linear solver are set
+// per run. `modes` are the settings the exact reference reads. Progress lines go to `log`
+// (nothing if null). Throws ReferenceError when the reference fails.
+AccuracyStudyResult run_accuracy_study(thermal::ThermalSystem& system,
+                                       std::span<const double> T0_K, double end_time_s,
+                                       const thermal::IntegratorSettings& base,
+                                       const thermal::ModeSettings& modes,
+                                       const AccuracyStudyOptions& options, std::ostream* log);
+
+// One timed run of `method` with `settings` against `reference_T_K` (the study's building block,
+// also used by the benchmark). Never throws for solver failures: they give ok = false.
+AccuracyRun timed_accuracy_run(thermal::ThermalSystem& system, const std::string& method,
+                               const thermal::IntegratorSettings& settings,
+                               std::span<const double> T0_K, double end_time_s,
+                               std::span<const double> reference_T_K,
+                               const AccuracyStudyOptions& options);
+
+// The study's reference alone (as in run_accuracy_study). Throws ReferenceError.
+AccuracyReference accuracy_reference(thermal::ThermalSystem& system, std::span<const double> T0_K,
+                                     double end_time_s, const thermal::IntegratorSettings& base,
+                                     const thermal::ModeSettings& modes,
+                                     const AccuracyStudyOptions& options);
+
+// The whole subcommand on a loaded scene: frozen problem (mechanics off or settle), study,
+// CSV (csv_path empty: none), report on `out`, progress and errors on `log`. Returns the exit
+// code: 0 ok, 2 a dynamic scene (no frozen contact graph), 3 the reference failed, 4 the CSV
+// cannot be written.
+struct AccuracyCommandOptions {
+  std::string csv_path;
+  bool quiet = false;
+  bool terminal = false;
+  AccuracyStudyOptions study;
+};
+int run_accuracy_command(const Scene& scene, const AccuracyCommandOptions& options,
+                         std::ostream& out, std::ostream& log);
+
+}  // namespace tmdem::coupling

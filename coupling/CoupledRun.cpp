@@ -92,6 +92,7 @@ class CoupledRun {
   double boundary_heat0_J_ = 0.0;
   double initial_energy_J_ = 0.0;
   double next_checkpoint_s_ = 0.0;
+  double thermal_seconds_ = 0.0;        // wall time inside the thermal side
   RunSummary summary_;
 };
 
@@ -254,7 +255,9 @@ void CoupledRun::run_static() {
   for (double t : times) {
     if (t < t0_ - 1e-12) continue;
     if (t > t0_ + 1e-12 || !restart_) {
+      const auto thermal_start = std::chrono::steady_clock::now();
       integrator_->advance_to(t);
+      thermal_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - thermal_start).count();
       write_frame(t);
     }
     maybe_checkpoint(t);
@@ -282,6 +285,7 @@ void CoupledRun::run_dynamic() {
       progress_.message(msg.str());
     }
     gather_contacts(nscd_->contacts(), contacts_);
+    const auto thermal_start = std::chrono::steady_clock::now();
     pattern_.update(contacts_, pattern_contacts_, pattern_active_);
     builder_.build_edges(pattern_contacts_, edges_, &pattern_active_);
     copy_active_conductances();
@@ -291,6 +295,7 @@ void CoupledRun::run_dynamic() {
     if (scene_.thermal.coupling == "restart" && system_->topology_version() == shape_before)
       integrator_->restart();
     integrator_->advance_to(t_next);
+    thermal_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - thermal_start).count();
     t = t_next;
     if (next_frame < times.size() && t >= times[next_frame] - 0.5 * h) {
       write_frame(t);
@@ -336,6 +341,8 @@ void CoupledRun::fill_summary() {
     summary_.thermal.error_test_failures = st.error_test_failures;
     summary_.thermal.convergence_failures = st.convergence_failures;
     summary_.thermal.reinitializations = st.reinitializations;
+    summary_.thermal.wall_time_s = thermal_seconds_;
+    if (!frozen_) summary_.thermal.coupling = scene_.thermal.coupling;
     summary_.simulated_time_s = integrator_->time_s();
     summary_.energy.initial_J = initial_energy_J_;
     summary_.energy.final_J = system_->thermal_energy_J(integrator_->temperatures_K());
@@ -372,6 +379,10 @@ RunOutcome CoupledRun::run() {
     }
     outcome.exit_code = code;
     outcome.summary = summary_;
+    if (integrator_) {
+      const auto T = integrator_->temperatures_K();
+      outcome.final_temperature_K.assign(T.begin(), T.end());
+    }
     return outcome;
   };
 

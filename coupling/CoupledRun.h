@@ -10,6 +10,7 @@
 //                          thermal side advances over that step (see thermal.coupling).
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "coupling/RunSummary.h"
 #include "coupling/Scene.h"
@@ -27,6 +28,7 @@ struct RunOptions {
 struct RunOutcome {
   int exit_code = 0;            // 0 ok, 2 invalid settings found at start, 3 solver, 4 I/O
   RunSummary summary;
+  std::vector<double> final_temperature_K;  // at the last time reached
 };
 
 // Never throws for solver or output failures: they become exit codes with the message on `log`

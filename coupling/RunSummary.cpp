@@ -46,6 +46,8 @@ nlohmann::json RunSummary::to_json() const {
                       {"convergence_failures", thermal.convergence_failures},
                       {"reinitializations", thermal.reinitializations}};
   if (!thermal.linear_solver.empty()) t["linear_solver"] = thermal.linear_solver;
+  t["wall_time_s"] = thermal.wall_time_s;
+  if (!thermal.coupling.empty()) t["coupling"] = thermal.coupling;
   nlohmann::json e = {{"initial_J", energy.initial_J},
                       {"final_J", energy.final_J},
                       {"boundary_heat_J", energy.boundary_heat_J},

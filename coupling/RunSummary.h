@@ -29,6 +29,8 @@ struct ThermalSummary {
   std::int64_t error_test_failures = 0;
   std::int64_t convergence_failures = 0;
   std::int64_t reinitializations = 0;
+  double wall_time_s = 0.0;          // extra: time spent in the thermal side alone
+  std::string coupling;              // extra: thermal.coupling of a dynamic run; omitted when empty
 };
 
 struct EnergySummary {

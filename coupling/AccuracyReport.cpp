@@ -30,8 +30,8 @@ std::string parameter_text(const AccuracyRun& r) {
 std::string ratio_text(double slow_s, double fast_s) {
   if (!(fast_s > 0.0) || !(slow_s > 0.0)) return "";
   const double r = slow_s / fast_s;
-  return r >= 1.0 ? fmt("%.3g", r) + "x faster than explicit"
-                  : fmt("%.3g", 1.0 / r) + "x slower than explicit";
+  auto times = [](double x) { return fmt(x >= 100.0 ? "%.0f" : "%.3g", x) + "x"; };
+  return r >= 1.0 ? times(r) + " faster than explicit" : times(1.0 / r) + " slower than explicit";
 }
 
 // Method labels in the order they first appear.
@@ -107,9 +107,11 @@ void print_accuracy_report(std::ostream& out, const AccuracyStudyResult& res,
       << " s), then / " << opt.explicit_rung_factor << " per rung, " << opt.explicit_rungs
       << " rungs; work budget " << fmt("%.3g", opt.explicit_work_budget)
       << " = ceil(duration / h) x (particles + edges + wall edges) per run (a few seconds)\n";
-  for (const auto& s : res.skipped)
-    out << "  skipped (over the work budget): h = " << fmt("%.3e", s.step_s)
-        << " s, projected work " << fmt("%.3g", s.projected_work) << "\n";
+  if (!res.skipped.empty()) {
+    out << "  skipped, over the work budget: h =";
+    for (const auto& s : res.skipped) out << " " << fmt("%.3e", s.step_s);
+    out << " s (projected work from " << fmt("%.3g", res.skipped.front().projected_work) << ")\n";
+  }
   out << "implicit: relative tolerances";
   for (double t : opt.relative_tolerances) out << " " << fmt("%.0e", t);
   out << ", absolute tolerance = relative tolerance (K)\n";

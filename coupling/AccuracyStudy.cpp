@@ -155,9 +155,8 @@ AccuracyStudyResult run_accuracy_study(thermal::ThermalSystem& system,
 
   auto report = [&](const AccuracyRun& r) {
     if (!log) return;
-    *log << "study: " << r.label() << " "
-         << (r.method == "explicit" ? "h = " + shortest_number(r.parameter) + " s"
-                                    : "rtol = " + shortest_number(r.parameter));
+    *log << "study: " << r.label() << (r.method == "explicit" ? " h = " : " rtol = ")
+         << r.parameter << (r.method == "explicit" ? " s" : "");
     if (r.ok)
       *log << ": max error " << r.max_error_K << " K, " << r.wall_time_s << " s, " << r.steps
            << " steps" << std::endl;

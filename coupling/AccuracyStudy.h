@@ -4,7 +4,7 @@
 //
 // Runs, all from the scene's initial temperatures to simulation.duration:
 //   explicit   forward Euler at h = 0.9 x the stability bound (2 / lambda_max, Gershgorin), then
-//              h / 4, h / 16, ... (explicit_rungs rungs); a rung whose projected work
+//              h / 4, h / 16, ... (explicit_rungs = 12 rungs); a rung whose projected work
 //              ceil(duration / h) x (nodes + edges + wall edges) exceeds explicit_work_budget
 //              is skipped and listed as such (2e9 is a few seconds of wall time).
 //   cvode, ida with klu and pcg, at relative tolerances 1e-2, 1e-4, 1e-6, 1e-8, 1e-10 and the
@@ -36,7 +36,7 @@ struct AccuracyStudyOptions {
   std::vector<double> relative_tolerances{1e-2, 1e-4, 1e-6, 1e-8, 1e-10};
   std::vector<std::pair<std::string, std::string>> implicit_methods{
       {"cvode", "klu"}, {"cvode", "pcg"}, {"ida", "klu"}, {"ida", "pcg"}};
-  int explicit_rungs = 8;
+  int explicit_rungs = 12;
   double explicit_first_fraction = 0.9;      // of the stability bound
   double explicit_rung_factor = 4.0;         // each rung's step is the previous one / this
   double explicit_work_budget = 2.0e9;       // steps x (nodes + edges + wall edges)

@@ -48,10 +48,12 @@ std::optional<AffineThermalSystem> affine_thermal_system(const thermal::ThermalN
   if (has(mode_names, "heat_source"))
     for (Eigen::Index i = 0; i < n; ++i) f(i) += net.heat_source_W[std::size_t(i)];
 
-  AffineThermalSystem out{Eigen::MatrixXd::Zero(n, n), Eigen::VectorXd::Zero(n)};
+  AffineThermalSystem out{Eigen::MatrixXd::Zero(n, n), Eigen::VectorXd::Zero(n),
+                          Eigen::VectorXd::Zero(n)};
   for (Eigen::Index i = 0; i < n; ++i) {
-    if (net.held[std::size_t(i)]) continue;
     const double C = net.heat_capacity_J_per_K[std::size_t(i)];
+    out.scale(i) = std::sqrt(C);
+    if (net.held[std::size_t(i)]) continue;
     out.A.row(i) = K.row(i) / C;
     out.b(i) = f(i) / C;
   }
@@ -69,14 +71,16 @@ std::vector<double> exact_affine_temperatures(const AffineThermalSystem& sys,
                                               std::span<const double> T0_K, double t_s) {
   const auto n = Eigen::Index(T0_K.size());
   if (sys.A.rows() != n) throw std::invalid_argument("exact reference: T0 has the wrong size");
+  const Eigen::VectorXd s = sys.scale.size() == n ? sys.scale : Eigen::VectorXd::Ones(n);
+  // y = S T: dy/dt = (S A S^-1) y + S b.
   Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n + 1, n + 1);
-  M.topLeftCorner(n, n) = sys.A * t_s;
-  M.topRightCorner(n, 1) = sys.b * t_s;
+  M.topLeftCorner(n, n) = s.asDiagonal() * sys.A * s.cwiseInverse().asDiagonal() * t_s;
+  M.topRightCorner(n, 1) = s.cwiseProduct(sys.b) * t_s;
   Eigen::VectorXd x(n + 1);
-  for (Eigen::Index i = 0; i < n; ++i) x(i) = T0_K[std::size_t(i)];
+  for (Eigen::Index i = 0; i < n; ++i) x(i) = s(i) * T0_K[std::size_t(i)];
   x(n) = 1.0;
   const Eigen::MatrixXd E = M.exp();
-  const Eigen::VectorXd T = (E * x).head(n);
+  const Eigen::VectorXd T = (E * x).head(n).cwiseQuotient(s);
   if (!T.allFinite())
     throw std::runtime_error("exact reference: the matrix exponential is not finite");
   return {T.data(), T.data() + n};

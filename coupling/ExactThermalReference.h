@@ -3,7 +3,8 @@
 //
 // With only linear modes (contact and wall conduction, convection, sources) the thermal ODE is
 // affine, dT/dt = A T + b, and T(t) = exp(t M) [T0; 1] with M = [[A, b], [0, 0]] (dense matrix
-// exponential, Eigen MatrixFunctions: Pade 13 with scaling and squaring). A and b are assembled
+// exponential, Eigen MatrixFunctions: Pade 13 with scaling and squaring, applied to the
+// symmetrised system in y = sqrt(C) T). A and b are assembled
 // here from the network arrays and the mode settings alone, independently of ThermalSystem's
 // own right-hand side and Jacobian, so that the study measures the integrators against an
 // answer they did not help compute. Held particles have zero rows (dT/dt = 0).
@@ -21,8 +22,12 @@
 namespace tmdem::coupling {
 
 struct AffineThermalSystem {
-  Eigen::MatrixXd A;  // 1/s
-  Eigen::VectorXd b;  // K/s
+  Eigen::MatrixXd A;      // 1/s
+  Eigen::VectorXd b;      // K/s
+  // sqrt(C_i): the exponential is taken of S A S^-1 (S = diag(scale)), which is symmetric on the
+  // free particles, instead of the far from normal A of a bed whose heat capacities differ by
+  // orders of magnitude; scaling and squaring loses much less there. Empty: no scaling.
+  Eigen::VectorXd scale;
 };
 
 // A and b for the network with the named modes switched on (registry names, see

@@ -1,5 +1,6 @@
 #include "coupling/ThermalNetworkBuilder.h"
 
+#include <cstdlib>
 #include <limits>
 #include <numbers>
 
@@ -87,6 +88,7 @@ std::vector<std::string> ThermalNetworkBuilder::mode_names() const {
       names.push_back("heat_source");
       break;
     }
+  if (std::getenv("TMDEM_FAULT_AFTER_RHS_EVALS")) names.push_back("fault_injection");
   return names;
 }
 
@@ -95,6 +97,7 @@ thermal::ModeSettings ThermalNetworkBuilder::mode_settings() const {
   s.convection_coefficient_W_per_m2K = scene_.convection.coefficient_W_per_m2K;
   s.fluid_temperature_K = scene_.convection.fluid_temperature_K;
   s.ambient_temperature_K = scene_.radiation.ambient_temperature_K;
+  if (const char* n = std::getenv("TMDEM_FAULT_AFTER_RHS_EVALS")) s.fault_after_evaluations = std::atol(n);
   return s;
 }
 

@@ -57,7 +57,7 @@ int main(int argc, char** argv) {
       ->take_all()->allow_extra_args(false);
   accuracy->add_flag("--quiet", study_options.quiet, "no progress on stderr");
   accuracy->add_option("--explicit-rungs", study_options.study.explicit_rungs,
-                       "explicit steps: 0.9 x the stability bound, then / 4 per rung (default 8)")
+                       "explicit steps: 0.9 x the stability bound, then / 4 per rung (default 12)")
       ->check(CLI::Range(0, 30));
   accuracy->add_option("--explicit-budget", study_options.study.explicit_work_budget,
                        "skip explicit rungs whose steps x (particles + edges) exceed this "

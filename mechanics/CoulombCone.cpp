@@ -7,7 +7,7 @@ namespace tmdem::mechanics {
 Eigen::Vector3d project_onto_coulomb_cone(const Eigen::Vector3d& tau, double mu) {
   const double tn = tau[0];
   const double tt = std::hypot(tau[1], tau[2]);
-  if (tt <= mu * tn) return tau;                         // inside the cone: stick
+  if (tn >= 0.0 && tt <= mu * tn) return tau;           // inside the cone: stick
   if (mu * tt <= -tn) return Eigen::Vector3d::Zero();    // polar cone: no contact
   // Slip: nearest point on the cone surface, r_n = (tau_n + mu |tau_t|) / (1 + mu^2),
   // r_t = mu r_n tau_t / |tau_t| (tt > 0 here, else one of the cases above held).

@@ -53,6 +53,8 @@ NscdIntegrator::NscdIntegrator(ParticleSet particles, std::vector<Material> mate
   require(parameters_.tolerance > 0.0, "tolerance must be positive");
   require(parameters_.max_iterations >= 1, "max_iterations must be at least 1");
   require(parameters_.local_passes >= 1, "local_passes must be at least 1");
+  require(parameters_.relaxation > 0.0 && parameters_.relaxation < 2.0,
+          "relaxation must be in (0, 2)");
   for (std::size_t m = 0; m < materials_.size(); ++m) {
     require(materials_[m].friction >= 0.0 && std::isfinite(materials_[m].friction),
             "material " + std::to_string(m) + ": friction must be >= 0");
@@ -218,6 +220,7 @@ int NscdIntegrator::gauss_seidel(double& residual, bool& converged) {
   // count measures the coupling between contacts rather than the local iteration.
   const double local_tolerance = 1e-2 * tolerance;
   const bool planar = dimension_ == 2;
+  const double relaxation = parameters_.relaxation;
   int sweep = 0;
   converged = false;
   residual = 0.0;
@@ -239,6 +242,7 @@ int NscdIntegrator::gauss_seidel(double& residual, bool& converged) {
       Eigen::Vector3d r = c.r;
       solve_contact_bipotential(u0, c.w_n, c.w_t, c.mu, r, local_tolerance,
                                 parameters_.local_passes);
+      if (relaxation != 1.0) r = project_onto_coulomb_cone(c.r + relaxation * (r - c.r), c.mu);
       if (planar) r[2] = 0.0;
       const Eigen::Vector3d dr = r - c.r;
       if (dr[0] != 0.0 || dr[1] != 0.0 || dr[2] != 0.0) {
@@ -338,8 +342,7 @@ double NscdIntegrator::max_speed() const {
   double speed = 0.0;
   for (std::size_t i = 0; i < particles_.size(); ++i) {
     if (inverse_mass_[i] == 0.0) continue;
-    speed = std::max(speed, particles_.velocity[i].norm() +
-                                particles_.radius[i] * particles_.angular_velocity[i].norm());
+    speed = std::max(speed, particles_.velocity[i].norm());
   }
   return speed;
 }

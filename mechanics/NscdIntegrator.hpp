@@ -58,8 +58,9 @@ class NscdIntegrator {
 
   double kinetic_energy() const;    // J, translation + rotation of moving particles
   double potential_energy() const;  // J, -sum m g.x (zero at the origin), moving particles
-  // Largest speed of any material point of a moving particle, |v| + r |omega| (m/s); the
-  // "settle" phase ends when it drops below settle_velocity.
+  // Largest centre speed |v| of a moving particle, m/s; the "settle" phase ends when it
+  // drops below settle_velocity. Spin is left out on purpose: a sphere spinning about its
+  // contact normal is at rest as far as the packing goes, and point contacts never stop it.
   double max_speed() const;
 
   const ParticleSet& particles() const { return particles_; }

@@ -21,6 +21,7 @@ struct ModeSettings {
   double convection_coefficient_W_per_m2K = 0.0;
   double fluid_temperature_K = 293.15;
   double ambient_temperature_K = 293.15;
+  long fault_after_evaluations = 0;  // fault_injection (testing aid) only
 };
 
 class HeatTransferMode {

@@ -77,7 +77,8 @@ TEST(ExactThermalReference, RadiationHasNoExactReference) {
   EXPECT_FALSE(affine_thermal_system(two_nodes(1.0, 1.0, 1.0), {"something_new"}, {}));
 }
 
-// A stiff pair (capacities 1e6 apart) over a long time: scaling and squaring stays accurate.
+// A stiff pair (capacities 1e6 apart) over a long time, |A| t up to 1e5: scaling and squaring
+// loses about |A t| eps relative (observed 2e-12, 5e-10 K), far below the study's 1e-6 K target.
 TEST(ExactThermalReference, StiffPairOverLongTime) {
   const double C1 = 1e-5, C2 = 10.0, H = 1e-3, T10 = 400.0, T20 = 300.0;
   const auto sys = affine_thermal_system(two_nodes(C1, C2, H), {"contact_conduction"}, {});
@@ -86,8 +87,8 @@ TEST(ExactThermalReference, StiffPairOverLongTime) {
   for (double t : {1e-3, 0.05, 1e3}) {
     const auto T = exact_affine_temperatures(*sys, std::vector<double>{T10, T20}, t);
     const double d = (T10 - T20) * std::exp(-rate * t);
-    EXPECT_NEAR(T[0], Tm + C2 / (C1 + C2) * d, 1e-10) << "t = " << t;
-    EXPECT_NEAR(T[1], Tm - C1 / (C1 + C2) * d, 1e-10) << "t = " << t;
+    EXPECT_NEAR(T[0], Tm + C2 / (C1 + C2) * d, 2e-9) << "t = " << t;
+    EXPECT_NEAR(T[1], Tm - C1 / (C1 + C2) * d, 2e-9) << "t = " << t;
   }
 }
 

@@ -24,7 +24,9 @@ TEST(CoulombCone, ProjectionStatuses) {
   // The slip result is the nearest cone point: tau - r is normal to the cone at r.
   const Vector3d d = Vector3d(1.0, 3.0, 4.0) - slip;
   EXPECT_NEAR(d.dot(slip), 0.0, 1e-14);
-  // Frictionless cone: the normal part only.
+  // Frictionless cone: the normal part only, and nothing for a pulling tau.
+  EXPECT_EQ(project_onto_coulomb_cone(Vector3d(-1.0, 0.0, 0.0), 0.0), Vector3d::Zero());
+  EXPECT_EQ(project_onto_coulomb_cone(Vector3d(-1.0, 0.0, 0.0), 0.5), Vector3d::Zero());
   EXPECT_EQ(project_onto_coulomb_cone(Vector3d(1.0, 3.0, 4.0), 0.0), Vector3d(1.0, 0.0, 0.0));
 }
 

@@ -1,0 +1,119 @@
+// Mechanics benchmarks: contact detection against N (expect O(N)), and the Gauss-Seidel
+// contact solver on piles at rest (cost per contact per sweep, sweeps to tolerance).
+//
+// Piles: a simple-cubic lattice of touching spheres (R = 1 mm, steel, mu = 0.3) standing on
+// a floor under gravity, 10 layers high and n x n wide, so that N = 1e3, 1e4, 1e5 have the
+// same depth; it is at rest from the first step, so no settling run is needed. "cold" is
+// the first step (reactions start from zero), the timed steps are warm-started.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+
+#include "mechanics/ContactDetector.hpp"
+#include "mechanics/NscdIntegrator.hpp"
+#include "mechanics/TouchingPairs.hpp"
+
+using namespace tmdem::mechanics;
+using Eigen::Vector3d;
+
+namespace {
+
+constexpr double kRadius = 1e-3;
+
+// nx * nx * layers spheres on a simple cubic lattice of spacing 2R resting on y = 0.
+ParticleSet lattice(int nx, int layers, double spacing_factor = 1.0) {
+  ParticleSet set;
+  const double m = sphere_mass(kRadius, 7800.0);
+  const double d = 2.0 * kRadius * spacing_factor;
+  set.reserve(static_cast<std::size_t>(nx) * nx * layers);
+  for (int y = 0; y < layers; ++y) {
+    for (int z = 0; z < nx; ++z) {
+      for (int x = 0; x < nx; ++x) {
+        set.add(Vector3d(kRadius + x * d, kRadius + y * d, kRadius + z * d), kRadius, m, 0);
+      }
+    }
+  }
+  return set;
+}
+
+int width_for(std::int64_t count, int layers) {
+  return static_cast<int>(std::lround(std::sqrt(static_cast<double>(count) / layers)));
+}
+
+// Candidate-table rebuild (grid + pair list + sort + warm-start map) for a dense packing.
+void BM_DetectionRebuild(benchmark::State& state) {
+  const ParticleSet set = lattice(width_for(state.range(0), 10), 10);
+  const std::vector<Wall> walls = {Wall::through({0, 0, 0}, {0, 1, 0}, 0)};
+  ContactDetector detector(0.1 * kRadius, 2.0 * kRadius);
+  for (auto _ : state) {
+    detector.invalidate();
+    detector.update(set, walls, {});
+    benchmark::DoNotOptimize(detector.pairs().data());
+  }
+  state.counters["particles"] = static_cast<double>(set.size());
+  state.counters["pairs"] = static_cast<double>(detector.pairs().size());
+  state.counters["ns_per_particle"] = benchmark::Counter(
+      static_cast<double>(set.size()), benchmark::Counter::kIsIterationInvariantRate |
+                                           benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_DetectionRebuild)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
+
+// The per-step check when nothing moved (what a step costs when no rebuild is needed).
+void BM_DetectionCheck(benchmark::State& state) {
+  const ParticleSet set = lattice(width_for(state.range(0), 10), 10);
+  ContactDetector detector(0.1 * kRadius, 2.0 * kRadius);
+  detector.update(set, {}, {});
+  for (auto _ : state) benchmark::DoNotOptimize(detector.update(set, {}, {}));
+  state.counters["particles"] = static_cast<double>(set.size());
+}
+BENCHMARK(BM_DetectionCheck)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMicrosecond);
+
+// Geometry-only search used by mechanics = "off" (allocates its result each call).
+void BM_FindTouchingPairs(benchmark::State& state) {
+  const ParticleSet set = lattice(width_for(state.range(0), 10), 10);
+  const std::vector<Wall> walls = {Wall::through({0, 0, 0}, {0, 1, 0}, 0)};
+  std::size_t pairs = 0;
+  for (auto _ : state) {
+    const auto found = find_touching_pairs(set, walls);
+    pairs = found.size();
+    benchmark::DoNotOptimize(found.data());
+  }
+  state.counters["particles"] = static_cast<double>(set.size());
+  state.counters["pairs"] = static_cast<double>(pairs);
+}
+BENCHMARK(BM_FindTouchingPairs)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
+
+// One NSCD step of a pile at rest; counters give sweeps and ns per contact per sweep.
+void BM_NscdStepAtRest(benchmark::State& state) {
+  NscdParameters parameters;  // tolerance 1e-6, theta 0.5, h = 1e-3
+  parameters.max_iterations = 100000;
+  const int nx = width_for(state.range(0), 10);
+  NscdIntegrator sim(lattice(nx, 10), {Material{7800.0, 2.1e11, 0.3, 0.3}},
+                     {Wall::through({0, 0, 0}, {0, 1, 0}, 0)}, Vector3d(0, -9.81, 0), 3,
+                     parameters);
+  const StepReport cold = sim.step();
+  for (int warm = 0; warm < 5; ++warm) sim.step();
+  std::int64_t sweeps = 0, contact_sweeps = 0, steps = 0;
+  for (auto _ : state) {
+    const StepReport report = sim.step();
+    sweeps += report.sweeps;
+    contact_sweeps += static_cast<std::int64_t>(report.sweeps) * report.candidates;
+    ++steps;
+  }
+  state.counters["particles"] = static_cast<double>(sim.particles().size());
+  state.counters["candidates"] = static_cast<double>(sim.detector().pairs().size());
+  state.counters["active"] = static_cast<double>(sim.contacts().size());
+  state.counters["cold_sweeps"] = cold.sweeps;
+  state.counters["cold_converged"] = cold.converged ? 1 : 0;
+  state.counters["warm_sweeps"] = static_cast<double>(sweeps) / static_cast<double>(steps);
+  state.counters["ns_per_contact_sweep"] = benchmark::Counter(
+      static_cast<double>(contact_sweeps) / static_cast<double>(steps),
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.counters["max_penetration_m"] = sim.stats().max_penetration_m;
+}
+BENCHMARK(BM_NscdStepAtRest)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond)
+    ->Iterations(5);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,166 @@
+// End to end: `tmdem study accuracy` (contract section 5) on a small mechanics-off lattice.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "E2eSupport.h"
+
+using namespace tmdem::e2e;
+
+namespace {
+
+// 3 x 3 x 2 lattice of touching spheres on a heated floor, constant conductance, one hot
+// particle and one held cold one: linear and small, so the reference is the exact exponential.
+const char* kLattice = R"(format = "tmdem-scene-1"
+[simulation]
+duration = 1000.0
+[effects]
+mechanics = "off"
+[[material]]
+name = "steel"
+density = 7800.0
+young_modulus = 2.1e11
+poisson_ratio = 0.3
+conductivity = 50.0
+heat_capacity = 460.0
+[[generate]]
+kind = "lattice"
+counts = [3, 3, 2]
+spacing = 0.002
+radius = 0.001
+origin = [0.001, 0.001, 0.001]
+material = "steel"
+temperature = 293.15
+[[assign]]
+ids = [0]
+temperature = 373.15
+[[assign]]
+ids = [17]
+temperature = 283.15
+fixed_temperature = true
+[[wall]]
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 1.0, 0.0]
+material = "steel"
+temperature = 353.15
+[thermal]
+conductance = "constant"
+constant_conductance = 1.0e-3
+)";
+
+struct Row {
+  std::string method, solver;
+  double parameter, error, wall;
+  long steps, rhs;
+};
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> out;
+  std::stringstream ss(line);
+  std::string cell;
+  while (std::getline(ss, cell, ',')) out.push_back(cell);
+  return out;
+}
+
+}  // namespace
+
+TEST(EndToEndStudy, AccuracyStudyCsvAndConvergence) {
+  const auto dir = scratch_dir("study");
+  write_file(dir + "/lattice.toml", kLattice);
+  // 7 explicit rungs keep the test short (the smallest step is 0.9 bound / 4^6).
+  const auto r = run_tmdem("study accuracy lattice.toml --csv out.csv --explicit-rungs 7 "
+                           "--set simulation.duration=20.0",
+                           dir);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("exact matrix exponential"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("end time (simulation.duration) 20 s"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("max error <= 1e-03 K"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("max error <= 1e-06 K"), std::string::npos) << r.output;
+
+  std::ifstream in(dir + "/out.csv");
+  std::string line;
+  ASSERT_TRUE(std::getline(in, line));
+  EXPECT_EQ(line, "method,linear_solver,parameter,max_error_K,wall_time_s,steps,rhs_evals");
+  std::vector<Row> rows;
+  while (std::getline(in, line)) {
+    const auto c = split(line);
+    ASSERT_EQ(c.size(), 7u) << line;
+    rows.push_back({c[0], c[1], std::stod(c[2]), std::stod(c[3]), std::stod(c[4]),
+                    std::stol(c[5]), std::stol(c[6])});
+    EXPECT_TRUE(std::isfinite(rows.back().error)) << line;
+    EXPECT_GE(rows.back().wall, 0.0) << line;
+  }
+  std::map<std::string, int> count;
+  for (const auto& row : rows) ++count[row.method + "/" + row.solver];
+  EXPECT_EQ(count["explicit/none"], 7);
+  EXPECT_EQ(count["cvode/klu"], 5);
+  EXPECT_EQ(count["cvode/pcg"], 5);
+  EXPECT_EQ(count["ida/klu"], 5);
+  EXPECT_EQ(count["ida/pcg"], 5);
+
+  // Explicit: each rung a quarter of the step before, and first order in the asymptotic range
+  // (the last three ratios): error / 4 within 20%.
+  std::vector<Row> ex;
+  for (const auto& row : rows)
+    if (row.method == "explicit") ex.push_back(row);
+  ASSERT_EQ(ex.size(), 7u);
+  for (std::size_t k = 1; k < ex.size(); ++k) {
+    EXPECT_NEAR(ex[k - 1].parameter / ex[k].parameter, 4.0, 1e-9);
+    EXPECT_GT(ex[k].steps, ex[k - 1].steps);
+  }
+  for (std::size_t k = ex.size() - 3; k < ex.size(); ++k) {
+    const double ratio = ex[k - 1].error / ex[k].error;
+    EXPECT_GT(ratio, 3.2) << "rung " << k;
+    EXPECT_LT(ratio, 4.8) << "rung " << k;
+  }
+
+  // CVODE at rtol = atol = 1e-10 is within 1e-6 K of the exact answer; errors fall with rtol.
+  int tight = 0;
+  for (const auto& row : rows) {
+    if (row.method == "cvode" && row.parameter == 1e-10) {
+      EXPECT_LT(row.error, 1e-6) << row.solver;
+      ++tight;
+    }
+    if (row.method == "cvode" && row.solver == "klu" && row.parameter == 1e-2) {
+      EXPECT_GT(row.error, 1e-4);
+    }
+  }
+  EXPECT_EQ(tight, 2);
+}
+
+TEST(EndToEndStudy, ExitCodes) {
+  const auto dir = scratch_dir("study_exit");
+  write_file(dir + "/lattice.toml", kLattice);
+  // Missing scene: 2, naming it.
+  auto r = run_tmdem("study accuracy missing.toml --csv out.csv", dir);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("missing.toml"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out.csv"));
+  // Bad arguments: 2.
+  r = run_tmdem("study accuracy lattice.toml --no-such-option", dir);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  r = run_tmdem("study accuracy", dir);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  // Invalid --set: 2.
+  r = run_tmdem("study accuracy lattice.toml --set thermal.integratr=ida", dir);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  // A dynamic scene has no frozen contact graph: 2, saying so, nothing written.
+  std::string dynamic = kLattice;
+  dynamic.replace(dynamic.find("mechanics = \"off\""), 17, "mechanics = \"dynamic\"");
+  write_file(dir + "/dynamic.toml", dynamic);
+  r = run_tmdem("study accuracy dynamic.toml --csv out.csv", dir);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("frozen contact graph"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out.csv"));
+  // CSV not writable: 4, naming the file.
+  r = run_tmdem("study accuracy lattice.toml --csv no/such/folder/out.csv", dir);
+  EXPECT_EQ(r.exit_code, 4) << r.output;
+  EXPECT_NE(r.output.find("no/such/folder/out.csv"), std::string::npos) << r.output;
+}

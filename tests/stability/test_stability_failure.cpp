@@ -1,0 +1,79 @@
+// Stability suite: an injected right-hand-side failure stops the run cleanly.
+#include <gtest/gtest.h>
+
+#include <H5Cpp.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+TEST(StabilityFailure, InjectedRhsFailureExitsThreeKeepsFramesAndMarksFailed) {
+  const auto dir = std::filesystem::temp_directory_path() / ("tmdem_fault_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream(dir / "s.toml") << R"(format = "tmdem-scene-1"
+[simulation]
+duration = 50.0
+[effects]
+mechanics = "off"
+[[material]]
+name = "steel"
+density = 7800.0
+young_modulus = 2.1e11
+poisson_ratio = 0.3
+conductivity = 50.0
+heat_capacity = 460.0
+[[generate]]
+kind = "column"
+count = 4
+radius = 0.001
+origin = [0.0, 0.001, 0.0]
+material = "steel"
+temperature = 293.15
+[[assign]]
+ids = [0]
+temperature = 373.15
+[thermal]
+conductance = "constant"
+constant_conductance = 1.0e-3
+[output]
+file = "out.h5"
+interval = 0.5
+)";
+  }
+  const std::string cmd = "cd '" + dir.string() + "' && TMDEM_FAULT_AFTER_RHS_EVALS=40 '" +
+                          TMDEM_BINARY + "' run s.toml --summary s.json > log.txt 2>&1";
+  const int status = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 3);
+  std::stringstream log;
+  log << std::ifstream(dir / "log.txt").rdbuf();
+  EXPECT_NE(log.str().find("CV_REPTD_RHSFUNC_ERR"), std::string::npos) << log.str();
+  EXPECT_NE(log.str().find("right-hand side"), std::string::npos) << log.str();
+
+  H5::H5File f((dir / "out.h5").string(), H5F_ACC_RDONLY);
+  H5::Attribute a = f.openAttribute("status");
+  std::string st;
+  a.read(a.getStrType(), st);
+  EXPECT_EQ(st, "failed");
+  H5::DataSet time = f.openDataSet("/frames/time");
+  hsize_t frames = 0;
+  time.getSpace().getSimpleExtentDims(&frames);
+  EXPECT_GE(frames, 2u);    // frames written before the failure are kept
+  EXPECT_LT(frames, 101u);  // and the run did stop
+  std::vector<double> T(frames * 4);
+  f.openDataSet("/frames/temperature").read(T.data(), H5::PredType::NATIVE_DOUBLE);
+  for (double x : T) {
+    EXPECT_TRUE(std::isfinite(x));
+    EXPECT_GE(x, 293.15 - 1e-9);
+    EXPECT_LE(x, 373.15 + 1e-9);
+  }
+  std::stringstream summary;
+  summary << std::ifstream(dir / "s.json").rdbuf();
+  EXPECT_NE(summary.str().find("\"status\": \"failed\""), std::string::npos) << summary.str();
+  std::filesystem::remove_all(dir);
+}

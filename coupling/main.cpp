@@ -6,6 +6,7 @@
 
 #include "coupling/AccuracyStudy.h"
 #include "coupling/CoupledRun.h"
+#include "coupling/CouplingStudy.h"
 #include "coupling/DefaultScene.h"
 #include "coupling/OutputError.h"
 #include "coupling/SceneCheck.h"
@@ -63,6 +64,13 @@ int main(int argc, char** argv) {
                        "skip explicit rungs whose steps x (particles + edges) exceed this "
                        "(default 2e9, a few seconds)")
       ->check(CLI::PositiveNumber);
+  std::string coupling_path, coupling_csv;
+  auto* coupling = study->add_subcommand(
+      "coupling", "compare how the thermal side follows a dynamic packing (continue, restart, explicit)");
+  coupling->add_option("scene", coupling_path, "scene file (TOML) with effects.mechanics = \"dynamic\"")
+      ->required();
+  coupling->add_option("--csv", coupling_csv, "write the table as CSV here");
+  coupling->add_option("--set", sets, "override one scene value, KEY=VALUE")->allow_extra_args(false);
   study->require_subcommand(1);
 
   try {
@@ -96,6 +104,10 @@ int main(int argc, char** argv) {
       check_scene(scene, std::cout);
       std::cout << "scene is valid" << std::endl;
       return kExitOk;
+    }
+    if (*coupling) {
+      const Scene scene = load_scene_file(coupling_path, sets);
+      return run_coupling_study(scene, coupling_csv, std::cout, std::cerr);
     }
     if (*accuracy) {
       const Scene scene = load_scene_file(study_path, sets);

@@ -117,18 +117,19 @@ void print_accuracy_report(std::ostream& out, const AccuracyStudyResult& res,
   out << ", absolute tolerance = relative tolerance (K)\n";
   out << "timing: the integrator's initialize + advance only (steady_clock); runs under "
       << opt.repeat_below_s * 1e3 << " ms are repeated up to " << opt.max_timings
-      << " times and the least time kept\n\n";
+      << " times and the least time kept (cpu_time_s: thread CPU time of that run; well below "
+         "the wall time means the machine was busy)\n\n";
 
   char line[512];
-  std::snprintf(line, sizeof line, "%-9s %-6s %-18s %12s %12s %10s %10s %7s\n", "method",
+  std::snprintf(line, sizeof line, "%-9s %-6s %-18s %12s %12s %10s %10s %7s %10s\n", "method",
                 "solver", "parameter", "max_error_K", "wall_time_s", "steps", "rhs_evals",
-                "timings");
+                "timings", "cpu_time_s");
   out << line;
   for (const auto& r : res.runs) {
     if (r.ok)
-      std::snprintf(line, sizeof line, "%-9s %-6s %-18s %12.3e %12.3e %10ld %10ld %7d\n",
+      std::snprintf(line, sizeof line, "%-9s %-6s %-18s %12.3e %12.3e %10ld %10ld %7d %10.3e\n",
                     r.method.c_str(), r.linear_solver.c_str(), parameter_text(r).c_str(),
-                    r.max_error_K, r.wall_time_s, r.steps, r.rhs_evals, r.timings);
+                    r.max_error_K, r.wall_time_s, r.steps, r.rhs_evals, r.timings, r.cpu_time_s);
     else
       std::snprintf(line, sizeof line, "%-9s %-6s %-18s FAILED: %.300s\n", r.method.c_str(),
                     r.linear_solver.c_str(), parameter_text(r).c_str(), r.message.c_str());

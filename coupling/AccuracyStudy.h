@@ -13,7 +13,8 @@
 // particles, the exact matrix exponential (coupling/ExactThermalReference.h); otherwise
 // CVODE/KLU at rtol = atol = 1e-12.
 // Each run: wall time of the integrator's initialize + advance_to only (steady_clock; runs
-// under repeat_below_s are repeated up to max_timings times and the least time kept), the
+// under repeat_below_s are repeated up to max_timings times and the least time kept; the
+// thread CPU time of that timing is kept too), the
 // largest |T_i - T_ref,i| over all particles at the end time, steps and right-hand-side
 // evaluations. A run that fails (solver error, non-finite temperature) is kept with ok = false
 // and its message: it is printed, never written to the CSV.
@@ -52,6 +53,8 @@ struct AccuracyRun {
   double parameter = 0.0;      // explicit: step, s; otherwise the relative tolerance
   double max_error_K = 0.0;
   double wall_time_s = 0.0;    // least over the timings
+  double cpu_time_s = 0.0;     // thread CPU time of the same run (not in the CSV): close to the
+                               // wall time unless the machine is busy with other work
   long steps = 0;
   long rhs_evals = 0;
   int timings = 0;             // how many times it was run and timed

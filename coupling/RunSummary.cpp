@@ -88,6 +88,8 @@ RunSummary RunSummary::from_json(const nlohmann::json& j) {
   s.thermal.error_test_failures = integer(t, "error_test_failures", 0);
   s.thermal.convergence_failures = integer(t, "convergence_failures", 0);
   s.thermal.reinitializations = integer(t, "reinitializations", 0);
+  s.thermal.wall_time_s = number(t, "wall_time_s", 0.0);
+  s.thermal.coupling = text(t, "coupling", "");
 
   const nlohmann::json& e = section(j, "energy");
   s.energy.initial_J = number(e, "initial_J", 0.0);

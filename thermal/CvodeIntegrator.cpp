@@ -135,6 +135,10 @@ void CvodeIntegrator::initialize(double t0_s, std::span<const double> T0_K, doub
     A_ = SUNSparseMatrix(sunindextype(n), sunindextype(n), nnz, CSC_MAT, ctx_);
     LS_ = SUNLinSol_KLU(y_, A_, ctx_);
     if (!A_ || !LS_) throw ThermalSolverError("SUNSparseMatrix/SUNLinSol_KLU failed");
+    // The Newton matrix has the symmetric pattern of the conductance Laplacian: AMD, not the
+    // SUNDIALS default COLAMD (meant for unsymmetric patterns). On a 22^3 lattice it cuts the
+    // factor time 5x and the memory 2x (bench/bench_thermal.cpp).
+    check(SUNLinSol_KLUSetOrdering(LS_, 0), "SUNLinSol_KLUSetOrdering");
     check(CVodeSetLinearSolver(mem_, LS_, A_), "CVodeSetLinearSolver");
     check(CVodeSetJacFn(mem_, &CvodeIntegrator::jacobian), "CVodeSetJacFn");
   }

@@ -21,8 +21,13 @@ void* operator new(std::size_t size) {
   if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
   throw std::bad_alloc();
 }
+// The replaced operator new uses malloc, so free is the matching release (GCC cannot see
+// the replacement and warns otherwise).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
 void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }  // NOLINT
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+#pragma GCC diagnostic pop
 
 // The properties below do not depend on how tightly each step is solved, so most tests use
 // a loose tolerance to stay fast; the energy test needs a tight one (see there).

@@ -363,9 +363,10 @@ TEST(ModeRegistry, ModesTheSceneLeavesOffAreNeverConstructed) {
 
 TEST(ModeRegistry, NamesAndUnknownNameMessage) {
   const auto names = heat_transfer_mode_names();
-  const std::vector<std::string_view> expected{"contact_conduction", "wall_conduction",
-                                               "convection", "radiation", "heat_source"};
-  EXPECT_EQ(names, expected);
+  // The five physical modes are registered (testing modes such as fault_injection may follow).
+  for (std::string_view m : {"contact_conduction", "wall_conduction", "convection", "radiation",
+                             "heat_source"})
+    EXPECT_NE(std::find(names.begin(), names.end(), m), names.end()) << m;
   for (auto n : names) EXPECT_EQ(make_heat_transfer_mode(n, {})->name(), n);
   const int before = heat_transfer_mode_constructions("radiation");
   try {

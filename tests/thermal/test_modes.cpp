@@ -412,9 +412,11 @@ TEST(RadiationDomain, TrialTemperatureAtOrBelowZeroIsRefusedWithoutNaN) {
 }
 
 TEST_P(ModeTest, RadiationFrom3000KWithTinyCapacityStaysAboveAmbient) {
-  // C = 1e-9 J/K: k T0^3 ~ 2e7 1/s, k Ta^3 ~ 2e4 1/s, so a first trial step easily overshoots
-  // below 0 K. The refusal must make the integrator retry, and the result must follow the
-  // closed form: finite, between the ambient and the start, falling.
+  // C = 1e-9 J/K: k T0^3 ~ 2e7 1/s, k Ta^3 ~ 2e4 1/s. The result must follow the closed form:
+  // finite, between the ambient and the start, falling. (Measured with a counting wrapper: the
+  // BDF step control of CVODE and IDA keeps every trial temperature positive here, even at
+  // rtol 1e-2 or C = 1e-12, so the refusal -> retry path itself is exercised by the mode-level
+  // test below and by the stability suite's fault_injection mode.)
   const auto [integrator, solver] = GetParam();
   const double C = 1e-9, A = sphere_area(1e-3), Ta = 300.0, T0 = 3000.0;
   const double k = kStefanBoltzmann * A / C;
@@ -425,10 +427,9 @@ TEST_P(ModeTest, RadiationFrom3000KWithTinyCapacityStaysAboveAmbient) {
   auto integ = make_thermal_integrator(integrator, *sys, tight_settings(solver));
   integ->initialize(0.0, T0v, 0.0);
   double previous = T0;
+  // Explicit: 0.9 of the bound at 3000 K is 2.3e-8 s, 4.3e4 steps to 1e-3 s. The relaxation
+  // time near the ambient, 1/(4 k Ta^3), is 1.3e-5 s.
   for (double t : {1e-9, 1e-8, 1e-7, 1e-6, 1e-5, 1e-4, 1e-3}) {
-    // Explicit: 0.9 of the bound at 3000 K is 2.3e-11 s; stop at 1e-4 s (4e6 steps), 8
-    // relaxation times 1/(4 k Ta^3) = 1.3e-5 s from the ambient temperature.
-    if (integrator == "explicit" && t > 1e-4) break;
     integ->advance_to(t);
     const double T = integ->temperatures_K()[0];
     const double exact = radiation_temperature(T0, t, k, Ta);

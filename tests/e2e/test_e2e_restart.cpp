@@ -1,0 +1,78 @@
+// End to end: a run stopped at a checkpoint and restarted with --restart ends where an
+// uninterrupted run ends, and its result file holds the same frames.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "E2eSupport.h"
+
+using namespace tmdem::e2e;
+
+namespace {
+const char* kScene = R"(format = "tmdem-scene-1"
+[simulation]
+duration = 20.0
+[effects]
+mechanics = "off"
+[[material]]
+name = "steel"
+density = 7800.0
+young_modulus = 2.1e11
+poisson_ratio = 0.3
+conductivity = 50.0
+heat_capacity = 460.0
+[[generate]]
+kind = "lattice"
+counts = [3, 2, 2]
+spacing = 0.002
+radius = 0.001
+origin = [0.001, 0.001, 0.001]
+material = "steel"
+temperature = 293.15
+[[assign]]
+ids = [0]
+temperature = 373.15
+[[wall]]
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 1.0, 0.0]
+material = "steel"
+temperature = 350.0
+[thermal]
+conductance = "constant"
+constant_conductance = 1.0e-3
+relative_tolerance = 1.0e-10
+absolute_tolerance = 1.0e-10
+[output]
+file = "out.h5"
+interval = 2.0
+checkpoint_interval = 10.0
+)";
+}  // namespace
+
+TEST(EndToEndRestart, RestartFromCheckpointMatchesUninterruptedRun) {
+  const auto full = scratch_dir("restart_full");
+  const auto part = scratch_dir("restart_part");
+  write_file(full + "/s.toml", kScene);
+  write_file(part + "/s.toml", kScene);
+  ASSERT_EQ(run_tmdem("run s.toml --quiet --summary s.json", full).exit_code, 0);
+  // Stop at t = 10 s (the checkpoint), then continue to 20 s from it.
+  auto r = run_tmdem("run s.toml --quiet --set simulation.duration=10.0", part);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  ASSERT_TRUE(std::filesystem::exists(part + "/out.checkpoint.h5"));
+  r = run_tmdem("run s.toml --quiet --restart out.checkpoint.h5 --summary s.json", part);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+
+  H5::H5File a(full + "/out.h5", H5F_ACC_RDONLY), b(part + "/out.h5", H5F_ACC_RDONLY);
+  EXPECT_EQ(read_string_attribute(b, "status"), "ok");
+  const auto ta = read_doubles(a, "/frames/time"), tb = read_doubles(b, "/frames/time");
+  ASSERT_EQ(ta, tb);
+  const auto Ta = read_doubles(a, "/frames/temperature"), Tb = read_doubles(b, "/frames/temperature");
+  ASSERT_EQ(Ta.size(), Tb.size());
+  for (std::size_t i = 0; i < Ta.size(); ++i) EXPECT_NEAR(Ta[i], Tb[i], 1e-6) << i;
+  const auto Qa = read_doubles(a, "/frames/boundary_heat"), Qb = read_doubles(b, "/frames/boundary_heat");
+  for (std::size_t i = 0; i < Qa.size(); ++i) EXPECT_NEAR(Qa[i], Qb[i], 1e-8 + 1e-6 * std::abs(Qa[i]));
+  EXPECT_EQ(read_ints(a, "/frames/contact_offset"), read_ints(b, "/frames/contact_offset"));
+  std::ifstream in(part + "/s.json");
+  const auto s = nlohmann::json::parse(in);
+  EXPECT_LT(s["energy"]["balance_error_rel"].get<double>(), 1e-8);
+}

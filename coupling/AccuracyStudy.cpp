@@ -210,7 +210,7 @@ int run_accuracy_command(const Scene& scene, const AccuracyCommandOptions& optio
     log << "error: " << scene.source
         << ": effects.mechanics = \"dynamic\": the accuracy study needs a frozen contact graph "
            "(mechanics = \"off\" or \"settle\"); a dynamic scene's thermal problem changes every "
-           "mechanical step"
+           "mechanical step (`tmdem study coupling` compares integrators on dynamic scenes)"
         << std::endl;
     return 2;
   }

@@ -1,16 +1,18 @@
 // Heat-transfer modes against exact answers, for every integrator: convection and radiation of
 // one particle (closed forms), a chain between two isothermal walls (steady profile), a chain
 // with a held particle and a source (matrix exponential), a field at equilibrium with every
-// mode on, the mode registry, and radiation outside its domain (T <= 0 K). Every run also
-// checks that the energy balance closes (contract formula, below 1e-8 at tolerance 1e-10).
+// mode on, the mode registry, radiation outside its domain (T <= 0 K) and refused evaluations
+// being retried. Every run also checks that the energy balance closes (contract formula, below
+// 1e-8 at tolerance 1e-10).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 
 #include "ThermalTestSupport.h"
-#include "thermal/ExplicitIntegrator.h"
+#include "thermal/ThermalSolverError.h"
 
 using namespace tmdem::thermal;
 using namespace tmdem::thermal::testing;
@@ -416,7 +418,7 @@ TEST_P(ModeTest, RadiationFrom3000KWithTinyCapacityStaysAboveAmbient) {
   // finite, between the ambient and the start, falling. (Measured with a counting wrapper: the
   // BDF step control of CVODE and IDA keeps every trial temperature positive here, even at
   // rtol 1e-2 or C = 1e-12, so the refusal -> retry path itself is exercised by the mode-level
-  // test below and by the stability suite's fault_injection mode.)
+  // test above and by the stability suite's fault_injection mode.)
   const auto [integrator, solver] = GetParam();
   const double C = 1e-9, A = sphere_area(1e-3), Ta = 300.0, T0 = 3000.0;
   const double k = kStefanBoltzmann * A / C;
@@ -451,4 +453,67 @@ TEST_P(ModeTest, RadiationFrom3000KWithTinyCapacityStaysAboveAmbient) {
     expect_balance(*sys, T0v, *integ, test_name());
   }
   EXPECT_LT(previous, 301.0);
+}
+
+namespace {
+
+// Passes every call on to a mode but refuses the heat-flow evaluations whose call numbers are
+// listed, as a mode whose domain a trial state left would: a recoverable failure the
+// integrator must retry.
+class FlakyMode final : public HeatTransferMode {
+ public:
+  FlakyMode(std::unique_ptr<HeatTransferMode> inner, std::vector<long> refuse)
+      : inner_(std::move(inner)), refuse_(std::move(refuse)) {}
+  std::string_view name() const override { return inner_->name(); }
+  bool add_heat_flow(const ThermalNetwork& net, std::span<const double> T, std::span<double> q,
+                     double& boundary_W) const override {
+    if (std::find(refuse_.begin(), refuse_.end(), ++calls) != refuse_.end()) {
+      ++refused;
+      return false;
+    }
+    return inner_->add_heat_flow(net, T, q, boundary_W);
+  }
+  void add_jacobian(const ThermalNetwork& net, std::span<const double> T,
+                    JacobianView J) const override {
+    inner_->add_jacobian(net, T, J);
+  }
+  mutable long calls = 0, refused = 0;
+
+ private:
+  std::unique_ptr<HeatTransferMode> inner_;
+  std::vector<long> refuse_;
+};
+
+}  // namespace
+
+TEST_P(ModeTest, RefusedEvaluationsAreRetriedWithoutChangingTheAnswer) {
+  // Evaluations 3, 40, 41, 200-202 and 400 of the convection flow are refused (early, during
+  // the start-up, twice and three times in a row, whichever of right-hand side or boundary-heat
+  // quadrature asks): CVODE and IDA must cut the step and retry, and still give the exponential
+  // and a closed balance. The explicit update cannot retry: it stops with ThermalSolverError.
+  // (Refusing a fixed fraction of all calls instead, e.g. every 7th, drives the step of CVODE
+  // to nothing: each refusal cuts it 4x and steps need several evaluations.)
+  const auto [integrator, solver] = GetParam();
+  const double C = 0.015, A = sphere_area(1e-3), h = 100.0, Tf = 293.15, T0 = 573.15;
+  ModeSettings ms;
+  ms.convection_coefficient_W_per_m2K = h;
+  ms.fluid_temperature_K = Tf;
+  auto flaky = std::make_unique<FlakyMode>(make_heat_transfer_mode("convection", ms),
+                                           std::vector<long>{3, 40, 41, 200, 201, 202, 400});
+  const auto* counter = flaky.get();
+  std::vector<std::unique_ptr<HeatTransferMode>> modes;
+  modes.push_back(std::move(flaky));
+  ThermalSystem sys(single_particle(C, A), std::move(modes));
+  const std::vector<double> T0v{T0};
+  auto integ = make_thermal_integrator(integrator, sys, tight_settings(solver));
+  integ->initialize(0.0, T0v, 0.0);
+  if (integrator == "explicit") {
+    EXPECT_THROW(integ->advance_to(60.0), ThermalSolverError);
+    return;
+  }
+  integ->advance_to(60.0);
+  EXPECT_NEAR(integ->temperatures_K()[0], Tf + (T0 - Tf) * std::exp(-h * A / C * 60.0), 1e-6);
+  EXPECT_EQ(counter->refused, 7);
+  EXPECT_GT(integ->stats().convergence_failures, 0);
+  expect_balance(sys, T0v, *integ, test_name());
 }

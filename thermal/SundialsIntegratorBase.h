@@ -1,0 +1,83 @@
+#pragma once
+// What the CVODES and IDAS integrators share: the state vectors (y = sqrt(C) T with "pcg",
+// y = T with "klu"), the linear solver objects, the boundary-heat quadrature, error capture and
+// statistics across re-initialisations. Each derived class adds its solver's memory and
+// trampolines.
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_linearsolver.h>
+#include <sundials/sundials_matrix.h>
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include "thermal/SundialsContext.h"
+#include "thermal/ThermalIntegrator.h"
+#include "thermal/ThermalSystem.h"
+
+namespace tmdem::thermal {
+
+inline std::span<double> nvector_view(N_Vector v) {
+  return {N_VGetArrayPointer(v), std::size_t(N_VGetLength(v))};
+}
+
+class SundialsIntegratorBase : public ThermalIntegrator {
+ public:
+  double time_s() const override { return t_; }
+  std::span<const double> temperatures_K() const override { return T_out_; }
+  double boundary_heat_J() const override;
+
+ protected:
+  SundialsIntegratorBase(ThermalSystem& system, const IntegratorSettings& settings);
+  ~SundialsIntegratorBase() override;  // the derived class frees its solver memory first
+  SundialsIntegratorBase(const SundialsIntegratorBase&) = delete;
+  SundialsIntegratorBase& operator=(const SundialsIntegratorBase&) = delete;
+
+  // Resets the run state and fills y = s T0, abstol = s atol, quadrature 0. Returns false when
+  // there are no particles (nothing to integrate).
+  bool begin(double t0_s, std::span<const double> T0_K, double boundary_heat0_J);
+  // KLU on a CSC matrix of the system's pattern, or CG with at most kMaxPcgIterations.
+  void create_linear_solver();
+  // After a contact-graph shape change: KLU gets a new pattern size and a fresh symbolic
+  // factorization. Returns true when the derived class must re-initialise its solver.
+  bool pattern_changed();
+  // T_work_ = y / scale.
+  void unscale(N_Vector y);
+  // Writes the system's pattern and J = d(dT/dt)/dT (scaled) at y into the sparse matrix.
+  bool fill_jacobian(N_Vector y, SUNMatrix J);
+  void record_reinitialization(const IntegratorStats& current);
+  IntegratorStats with_history(IntegratorStats current) const;
+
+  // "<solver> failed in <call> with <flag name> (<flag>) at t = ... s, step size ... s after
+  // ... steps: <last SUNDIALS message>".
+  [[noreturn]] void throw_failure(const char* solver, char* flag_name, int flag, const char* call,
+                                  double step_s, long steps) const;
+  // SUNDIALS error handler (same signature for CVODES and IDAS): keeps the message for the
+  // exception instead of printing it.
+  static void error_handler(int code, const char* module, const char* function, char* msg,
+                            void* self);
+
+  static constexpr int kMaxPcgIterations = 200;
+  // CG stops on an absolute residual; at SUNDIALS' default (0.05) a near-equilibrium state
+  // drifts by ~1e-8 relative (measured), so the linear tolerance factor is tighter.
+  static constexpr double kPcgEpsLin = 1e-4;
+
+  ThermalSystem& system_;
+  IntegratorSettings settings_;
+  bool pcg_ = false;
+  SundialsContext ctx_;
+  N_Vector y_ = nullptr, yQ_ = nullptr, abstol_ = nullptr;
+  SUNMatrix A_ = nullptr;
+  SUNLinearSolver LS_ = nullptr;
+  std::vector<double> scale_;  // sqrt(C) for pcg, empty for klu
+  std::vector<double> T_work_, dT_work_, precond_diag_;
+  std::vector<double> T_out_;
+  double t_ = 0.0;
+  double boundary_heat0_J_ = 0.0;
+  std::uint64_t topology_seen_ = 0;
+  IntegratorStats before_reinit_;  // counters of the runs before the last re-initialisation
+  long reinitializations_ = 0;
+  std::string last_error_;
+};
+
+}  // namespace tmdem::thermal

@@ -13,8 +13,10 @@
 #include "coupling/AccuracyReport.h"
 #include "coupling/ExactThermalReference.h"
 #include "coupling/ProgressReporter.h"
+#include "coupling/ContactRecording.h"
 #include "coupling/ThermalNetworkBuilder.h"
 #include "coupling/ThermalProblem.h"
+#include "coupling/ThermalReplay.h"
 #include "thermal/IntegratorRegistry.h"
 
 namespace tmdem::coupling {
@@ -49,8 +51,7 @@ thermal::IntegratorSettings implicit_settings(const thermal::IntegratorSettings&
   s.linear_solver = linear_solver;
   s.relative_tolerance = rtol;
   s.absolute_tolerance_K = rtol;
-  s.stop_at_each_time = false;
-  return s;
+  return s;  // stop_at_each_time from base: true when a dynamic replay changes the network
 }
 
 }  // namespace
@@ -59,7 +60,7 @@ AccuracyRun timed_accuracy_run(thermal::ThermalSystem& system, const std::string
                                const thermal::IntegratorSettings& settings,
                                std::span<const double> T0_K, double end_time_s,
                                std::span<const double> reference_T_K,
-                               const AccuracyStudyOptions& options) {
+                               const AccuracyStudyOptions& options, const ThermalDriver& driver) {
   AccuracyRun run;
   run.method = method;
   run.linear_solver = method == "explicit" ? "none" : settings.linear_solver;
@@ -70,8 +71,12 @@ AccuracyRun timed_accuracy_run(thermal::ThermalSystem& system, const std::string
       auto integrator = thermal::make_thermal_integrator(method, system, settings);
       const double cpu_start = thread_cpu_seconds();
       const auto start = Clock::now();
-      integrator->initialize(0.0, T0_K, 0.0);
-      integrator->advance_to(end_time_s);
+      if (driver) {
+        driver(*integrator, T0_K, end_time_s, "continue");
+      } else {
+        integrator->initialize(0.0, T0_K, 0.0);
+        integrator->advance_to(end_time_s);
+      }
       const double wall = seconds_since(start);
       const double cpu = thread_cpu_seconds() - cpu_start;
       if (run.timings == 0) {
@@ -102,12 +107,15 @@ AccuracyRun timed_accuracy_run(thermal::ThermalSystem& system, const std::string
 AccuracyReference accuracy_reference(thermal::ThermalSystem& system, std::span<const double> T0_K,
                                      double end_time_s, const thermal::IntegratorSettings& base,
                                      const thermal::ModeSettings& modes,
-                                     const AccuracyStudyOptions& options) {
+                                     const AccuracyStudyOptions& options,
+                                     const ThermalDriver& driver) {
   AccuracyReference ref;
   const auto start = Clock::now();
   std::optional<AffineThermalSystem> affine;
   std::string why_not;
-  if (system.size() > options.exact_reference_max_nodes) {
+  if (driver) {
+    why_not = "the contact graph changes every mechanical step";
+  } else if (system.size() > options.exact_reference_max_nodes) {
     why_not = std::to_string(system.size()) + " particles, more than " +
               std::to_string(options.exact_reference_max_nodes) + " for a dense exponential";
   } else {
@@ -128,8 +136,12 @@ AccuracyReference accuracy_reference(thermal::ThermalSystem& system, std::span<c
     s.max_steps_per_call = std::max(s.max_steps_per_call, 100000000L);
     try {
       auto integrator = thermal::make_thermal_integrator("cvode", system, s);
-      integrator->initialize(0.0, T0_K, 0.0);
-      integrator->advance_to(end_time_s);
+      if (driver) {
+        driver(*integrator, T0_K, end_time_s, "restart");
+      } else {
+        integrator->initialize(0.0, T0_K, 0.0);
+        integrator->advance_to(end_time_s);
+      }
       const auto T = integrator->temperatures_K();
       ref.T_K.assign(T.begin(), T.end());
     } catch (const std::exception& e) {
@@ -139,7 +151,8 @@ AccuracyReference accuracy_reference(thermal::ThermalSystem& system, std::span<c
     for (double T : ref.T_K)
       if (!std::isfinite(T))
         throw ReferenceError("the reference run (cvode/klu) gave a non-finite temperature");
-    ref.description = "cvode/klu at rtol = atol = " + shortest_number(options.reference_tolerance) +
+    ref.description = std::string("cvode/klu") + (driver ? " restarted every mechanical step" : "") +
+                      " at rtol = atol = " + shortest_number(options.reference_tolerance) +
                       " (no exact reference: " + why_not + ")";
   }
   ref.wall_time_s = seconds_since(start);
@@ -150,17 +163,20 @@ AccuracyStudyResult run_accuracy_study(thermal::ThermalSystem& system,
                                        std::span<const double> T0_K, double end_time_s,
                                        const thermal::IntegratorSettings& base,
                                        const thermal::ModeSettings& modes,
-                                       const AccuracyStudyOptions& options, std::ostream* log) {
+                                       const AccuracyStudyOptions& options, std::ostream* log,
+                                       const ThermalDriver& driver) {
   AccuracyStudyResult result;
   result.end_time_s = end_time_s;
   const auto& net = system.network();
   result.nodes = net.node_count();
   result.edges = net.edge_count();
   result.wall_edges = net.wall_edge_count();
-  result.stability_bound_s = system.explicit_stability_bound_s(base.max_temperature_K);
+  result.stability_bound_s = options.stability_bound_s > 0.0
+                                 ? options.stability_bound_s
+                                 : system.explicit_stability_bound_s(base.max_temperature_K);
 
   if (log) *log << "study: computing the reference..." << std::endl;
-  result.reference = accuracy_reference(system, T0_K, end_time_s, base, modes, options);
+  result.reference = accuracy_reference(system, T0_K, end_time_s, base, modes, options, driver);
   if (log)
     *log << "study: reference: " << result.reference.description << ", "
          << result.reference.wall_time_s << " s" << std::endl;
@@ -181,6 +197,7 @@ AccuracyStudyResult run_accuracy_study(thermal::ThermalSystem& system,
   double h = std::isfinite(result.stability_bound_s)
                  ? options.explicit_first_fraction * result.stability_bound_s
                  : end_time_s;
+  if (options.max_explicit_step_s > 0.0) h = std::min(h, options.max_explicit_step_s);
   for (int k = 0; k < options.explicit_rungs; ++k, h /= options.explicit_rung_factor) {
     const double work = std::ceil(end_time_s / h) * work_per_step;
     if (work > options.explicit_work_budget) {
@@ -189,16 +206,16 @@ AccuracyStudyResult run_accuracy_study(thermal::ThermalSystem& system,
     }
     auto s = base;
     s.explicit_step_s = h;
-    s.stop_at_each_time = false;
-    result.runs.push_back(
-        timed_accuracy_run(system, "explicit", s, T0_K, end_time_s, result.reference.T_K, options));
+    result.runs.push_back(timed_accuracy_run(system, "explicit", s, T0_K, end_time_s,
+                                             result.reference.T_K, options, driver));
     report(result.runs.back());
   }
   // Implicit methods at each tolerance.
   for (const auto& [method, solver] : options.implicit_methods)
     for (double rtol : options.relative_tolerances) {
       result.runs.push_back(timed_accuracy_run(system, method, implicit_settings(base, solver, rtol),
-                                               T0_K, end_time_s, result.reference.T_K, options));
+                                               T0_K, end_time_s, result.reference.T_K, options,
+                                               driver));
       report(result.runs.back());
     }
   return result;
@@ -206,14 +223,6 @@ AccuracyStudyResult run_accuracy_study(thermal::ThermalSystem& system,
 
 int run_accuracy_command(const Scene& scene, const AccuracyCommandOptions& options,
                          std::ostream& out, std::ostream& log) {
-  if (scene.effects.mechanics == MechanicsMode::Dynamic) {
-    log << "error: " << scene.source
-        << ": effects.mechanics = \"dynamic\": the accuracy study needs a frozen contact graph "
-           "(mechanics = \"off\" or \"settle\"); a dynamic scene's thermal problem changes every "
-           "mechanical step (`tmdem study coupling` compares integrators on dynamic scenes)"
-        << std::endl;
-    return 2;
-  }
   // Open the CSV first: an unwritable path should fail before minutes of computation.
   std::ofstream csv;
   if (!options.csv_path.empty()) {
@@ -233,11 +242,30 @@ int run_accuracy_command(const Scene& scene, const AccuracyCommandOptions& optio
   AccuracyStudyResult result;
   try {
     ProgressReporter progress(log, options.quiet, options.terminal);
-    auto problem = build_frozen_thermal_problem(scene, progress);
     const auto base = integrator_settings(scene);
     const auto modes = ThermalNetworkBuilder(scene).mode_settings();
-    result = run_accuracy_study(*problem.system, problem.T0_K, scene.duration_s, base, modes,
-                                options.study, options.quiet ? nullptr : &log);
+    if (scene.effects.mechanics == MechanicsMode::Dynamic) {
+      // Record the mechanics once; every run replays the same contact graph.
+      const auto recording = record_contacts(scene, progress);
+      ContactList no_contacts;
+      auto system = build_thermal_system(scene, no_contacts);
+      std::vector<double> T0;
+      for (const auto& p : scene.particles) T0.push_back(p.temperature_K);
+      ThermalReplay replay(scene, recording, *system);
+      auto study = options.study;
+      study.stability_bound_s = replay.min_stability_bound_s(base.max_temperature_K);
+      study.max_explicit_step_s = scene.mechanics.time_step_s;
+      const ThermalDriver driver = [&](thermal::ThermalIntegrator& integ, std::span<const double> T,
+                                       double, const std::string& coupling) {
+        replay.run(integ, T, coupling);
+      };
+      result = run_accuracy_study(*system, T0, scene.duration_s, base, modes, study,
+                                  options.quiet ? nullptr : &log, driver);
+    } else {
+      auto problem = build_frozen_thermal_problem(scene, progress);
+      result = run_accuracy_study(*problem.system, problem.T0_K, scene.duration_s, base, modes,
+                                  options.study, options.quiet ? nullptr : &log);
+    }
   } catch (const ReferenceError& e) {
     log << "error: " << e.what() << std::endl;
     discard_csv();

@@ -19,6 +19,7 @@
 // evaluations. A run that fails (solver error, non-finite temperature) is kept with ok = false
 // and its message: it is printed, never written to the CSV.
 #include <cstddef>
+#include <functional>
 #include <ostream>
 #include <span>
 #include <stdexcept>
@@ -45,7 +46,18 @@ struct AccuracyStudyOptions {
   int max_timings = 10;
   std::size_t exact_reference_max_nodes = 2000;
   double reference_tolerance = 1e-12;        // CVODE/KLU reference: rtol = atol (K)
+  // Explicit ladder start: 0 takes the bound of the system's current network; a dynamic
+  // scene passes the smallest bound over its recorded steps.
+  double stability_bound_s = 0.0;
+  // Largest explicit step (a dynamic scene: the mechanical step); 0 = none.
+  double max_explicit_step_s = 0.0;
 };
+
+// How one run gets from t = 0 to the end time. Empty: initialize, then one advance on the
+// frozen network. A dynamic scene replays its recorded contact graph (ThermalReplay) with the
+// given coupling strategy ("continue" for the runs, "restart" for the reference).
+using ThermalDriver = std::function<void(thermal::ThermalIntegrator&, std::span<const double> T0_K,
+                                         double end_time_s, const std::string& coupling)>;
 
 struct AccuracyRun {
   std::string method;          // explicit | cvode | ida
@@ -99,7 +111,8 @@ AccuracyStudyResult run_accuracy_study(thermal::ThermalSystem& system,
                                        std::span<const double> T0_K, double end_time_s,
                                        const thermal::IntegratorSettings& base,
                                        const thermal::ModeSettings& modes,
-                                       const AccuracyStudyOptions& options, std::ostream* log);
+                                       const AccuracyStudyOptions& options, std::ostream* log,
+                                       const ThermalDriver& driver = {});
 
 // One timed run of `method` with `settings` against `reference_T_K` (the study's building block,
 // also used by the benchmark). Never throws for solver failures: they give ok = false.
@@ -107,18 +120,21 @@ AccuracyRun timed_accuracy_run(thermal::ThermalSystem& system, const std::string
                                const thermal::IntegratorSettings& settings,
                                std::span<const double> T0_K, double end_time_s,
                                std::span<const double> reference_T_K,
-                               const AccuracyStudyOptions& options);
+                               const AccuracyStudyOptions& options,
+                               const ThermalDriver& driver = {});
 
 // The study's reference alone (as in run_accuracy_study). Throws ReferenceError.
 AccuracyReference accuracy_reference(thermal::ThermalSystem& system, std::span<const double> T0_K,
                                      double end_time_s, const thermal::IntegratorSettings& base,
                                      const thermal::ModeSettings& modes,
-                                     const AccuracyStudyOptions& options);
+                                     const AccuracyStudyOptions& options,
+                                     const ThermalDriver& driver = {});
 
-// The whole subcommand on a loaded scene: frozen problem (mechanics off or settle), study,
-// CSV (csv_path empty: none), report on `out`, progress and errors on `log`. Returns the exit
-// code: 0 ok, 2 a dynamic scene (no frozen contact graph), 3 the reference failed, 4 the CSV
-// cannot be written.
+// The whole subcommand on a loaded scene: frozen problem (mechanics off or settle) or, for a
+// dynamic scene, the recorded contact graph replayed for every run (reference: CVODE/KLU
+// restarted every mechanical step at rtol 1e-12); then the study, the CSV (csv_path empty:
+// none), the report on `out`, progress and errors on `log`. Returns the exit code: 0 ok,
+// 3 the reference failed, 4 the CSV cannot be written.
 struct AccuracyCommandOptions {
   std::string csv_path;
   bool quiet = false;

@@ -1,16 +1,17 @@
 #include "coupling/CouplingStudy.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
-#include <unistd.h>
-
-#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
 #include <vector>
 
-#include "coupling/CoupledRun.h"
+#include "coupling/ContactRecording.h"
+#include "coupling/ThermalProblem.h"
+#include "coupling/ThermalReplay.h"
+#include "thermal/IntegratorRegistry.h"
 
 namespace tmdem::coupling {
 
@@ -24,25 +25,38 @@ struct Variant {
 
 struct Row {
   Variant v;
-  RunOutcome outcome;
   double max_error_K = 0.0;
+  double thermal_wall_s = 0.0;
+  thermal::IntegratorStats stats;
+  std::vector<double> T;
+  std::string failure;
 };
 
-RunOutcome run_variant(const Scene& base, const Variant& v, const std::string& dir, std::ostream& log) {
-  Scene s = base;
-  s.thermal.integrator = v.integrator;
-  s.thermal.linear_solver = "klu";
+Row run_variant(const Scene& scene, thermal::ThermalSystem& system, ThermalReplay& replay,
+                const std::vector<double>& T0, const Variant& v) {
+  auto s = integrator_settings(scene);
+  s.linear_solver = "klu";
+  s.stop_at_each_time = true;
   if (v.integrator == "explicit") {
-    s.thermal.explicit_step_s = v.parameter;
+    s.explicit_step_s = v.parameter;
   } else {
-    s.thermal.coupling = v.strategy;
-    s.thermal.relative_tolerance = v.parameter;
-    s.thermal.absolute_tolerance_K = v.parameter;
+    s.relative_tolerance = v.parameter;
+    s.absolute_tolerance_K = v.parameter;
   }
-  RunOptions o;
-  o.output_path = dir + "/" + v.strategy + ".h5";
-  o.quiet = true;
-  return run_scene(s, o, log);
+  Row row;
+  row.v = v;
+  try {
+    auto integrator = thermal::make_thermal_integrator(v.integrator, system, s);
+    const auto start = std::chrono::steady_clock::now();
+    replay.run(*integrator, T0, v.strategy);
+    row.thermal_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    row.stats = integrator->stats();
+    const auto T = integrator->temperatures_K();
+    row.T.assign(T.begin(), T.end());
+  } catch (const std::exception& e) {
+    row.failure = e.what();
+  }
+  return row;
 }
 
 }  // namespace
@@ -53,57 +67,52 @@ int run_coupling_study(const Scene& scene, const std::string& csv_path, std::ost
     log << "error: tmdem study coupling needs a scene with effects.mechanics = \"dynamic\"\n";
     return 2;
   }
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("tmdem_coupling_study_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
   const double h = scene.mechanics.time_step_s;
-  out << "coupling study: " << scene.source << ", " << scene.particles.size()
-      << " particles, " << scene.duration_s << " s at mechanical step " << h << " s\n";
+  ProgressReporter progress(log, false, false);
+  const auto recording = record_contacts(scene, progress);
+  out << "coupling study: " << scene.source << ", " << scene.particles.size() << " particles, "
+      << scene.duration_s << " s at mechanical step " << h << " s (mechanics recorded once, "
+      << recording.mechanics_wall_time_s << " s, and replayed for every variant)\n";
 
-  Scene ref_scene = scene;
-  ref_scene.thermal.coupling = "restart";
-  auto ref = run_variant(ref_scene, {"restart", "cvode", 1e-12}, dir.string(), log);
-  if (ref.exit_code != 0) {
-    log << "error: the reference run failed: " << ref.summary.message << "\n";
+  ContactList no_contacts;
+  auto system = build_thermal_system(scene, no_contacts);
+  std::vector<double> T0;
+  for (const auto& p : scene.particles) T0.push_back(p.temperature_K);
+  ThermalReplay replay(scene, recording, *system);
+
+  const auto ref = run_variant(scene, *system, replay, T0, {"restart", "cvode", 1e-12});
+  if (!ref.failure.empty()) {
+    log << "error: the reference run failed: " << ref.failure << "\n";
     return 3;
   }
   out << "reference: cvode/klu restarted every mechanical step, rtol = atol = 1e-12 ("
-      << ref.summary.thermal.steps << " thermal steps, " << ref.summary.thermal.wall_time_s
-      << " s thermal wall time)\n";
+      << ref.stats.steps << " thermal steps, " << ref.thermal_wall_s << " s)\n";
 
   const std::vector<Variant> variants{{"continue", "cvode", 1e-4}, {"continue", "cvode", 1e-6},
                                       {"continue", "cvode", 1e-8}, {"restart", "cvode", 1e-4},
                                       {"restart", "cvode", 1e-6},  {"restart", "cvode", 1e-8},
                                       {"explicit", "explicit", h}};
-  std::vector<Row> rows;
-  for (const auto& v : variants) {
-    Row row{v, run_variant(scene, v, dir.string(), log)};
-    if (row.outcome.exit_code != 0) {
-      log << "warning: " << v.strategy << " (" << v.parameter << ") failed: "
-          << row.outcome.summary.message << "\n";
-      continue;
-    }
-    for (std::size_t i = 0; i < ref.final_temperature_K.size(); ++i)
-      row.max_error_K = std::max(row.max_error_K,
-                                 std::abs(row.outcome.final_temperature_K[i] - ref.final_temperature_K[i]));
-    rows.push_back(std::move(row));
-  }
-  std::filesystem::remove_all(dir);
-
   std::ostringstream csv;
-  csv << "strategy,integrator,parameter,max_error_K,wall_time_s,thermal_wall_time_s,thermal_steps,"
+  csv << "strategy,integrator,parameter,max_error_K,thermal_wall_time_s,thermal_steps,"
          "reinitializations\n";
   out << std::left << std::setw(10) << "strategy" << std::setw(10) << "integ" << std::setw(11)
       << "parameter" << std::setw(13) << "max_error_K" << std::setw(12) << "thermal_s"
       << std::setw(10) << "steps" << "reinits\n";
-  for (const auto& r : rows) {
-    const auto& t = r.outcome.summary.thermal;
-    csv << r.v.strategy << "," << r.v.integrator << "," << r.v.parameter << "," << r.max_error_K
-        << "," << r.outcome.summary.wall_time_s << "," << t.wall_time_s << "," << t.steps << ","
-        << t.reinitializations << "\n";
-    out << std::left << std::setw(10) << r.v.strategy << std::setw(10) << r.v.integrator
-        << std::setw(11) << r.v.parameter << std::setw(13) << r.max_error_K << std::setw(12)
-        << t.wall_time_s << std::setw(10) << t.steps << t.reinitializations << "\n";
+  for (const auto& v : variants) {
+    auto row = run_variant(scene, *system, replay, T0, v);
+    if (!row.failure.empty()) {
+      log << "warning: " << v.strategy << " (" << v.parameter << ") failed: " << row.failure << "\n";
+      out << std::left << std::setw(10) << v.strategy << std::setw(10) << v.integrator
+          << std::setw(11) << v.parameter << "FAILED (left out of the CSV)\n";
+      continue;
+    }
+    for (std::size_t i = 0; i < ref.T.size(); ++i)
+      row.max_error_K = std::max(row.max_error_K, std::abs(row.T[i] - ref.T[i]));
+    csv << v.strategy << "," << v.integrator << "," << v.parameter << "," << row.max_error_K << ","
+        << row.thermal_wall_s << "," << row.stats.steps << "," << row.stats.reinitializations << "\n";
+    out << std::left << std::setw(10) << v.strategy << std::setw(10) << v.integrator << std::setw(11)
+        << v.parameter << std::setw(13) << row.max_error_K << std::setw(12) << row.thermal_wall_s
+        << std::setw(10) << row.stats.steps << row.stats.reinitializations << "\n";
   }
   if (!csv_path.empty()) {
     std::ofstream f(csv_path);

@@ -6,8 +6,8 @@
 //             symbolic factorization) only when a new contact closes;
 //   restart   CVODE re-initialised at every mechanical step;
 //   explicit  forward Euler at the mechanical step (the MULTICOR way).
-// The mechanics is identical in every run (it does not depend on temperatures), so the
-// differences are the thermal side's alone; thermal wall time is reported apart.
+// The mechanics does not depend on the temperatures: it is run once, recorded, and replayed for
+// every variant (ThermalReplay), so the differences and the times are the thermal side's alone.
 #include <ostream>
 #include <string>
 
@@ -15,8 +15,8 @@
 
 namespace tmdem::coupling {
 
-// CSV header: strategy,integrator,parameter,max_error_K,wall_time_s,thermal_wall_time_s,
-// thermal_steps,reinitializations. Returns an exit code (0, 2 not a dynamic scene, 3 the
+// CSV header: strategy,integrator,parameter,max_error_K,thermal_wall_time_s,thermal_steps,
+// reinitializations. Returns an exit code (0, 2 not a dynamic scene, 3 the
 // reference failed, 4 I/O).
 int run_coupling_study(const Scene& scene, const std::string& csv_path, std::ostream& out,
                        std::ostream& log);

@@ -11,7 +11,7 @@
 
 #include "coupling/Checkpoint.h"
 #include "coupling/ContactList.h"
-#include "coupling/ContactPattern.h"
+#include "coupling/DynamicNetwork.h"
 #include "coupling/OutputError.h"
 #include "coupling/ProgressReporter.h"
 #include "coupling/ResultWriter.h"
@@ -46,7 +46,7 @@ class CoupledRun {
  public:
   CoupledRun(const Scene& scene, const RunOptions& options, std::ostream& log)
       : scene_(scene), options_(options), log_(log),
-        progress_(log, options.quiet, options.terminal), builder_(scene) {}
+        progress_(log, options.quiet, options.terminal) {}
 
   RunOutcome run();
 
@@ -57,7 +57,6 @@ class CoupledRun {
   void prepare_thermal();
   void run_static();
   void run_dynamic();
-  void copy_active_conductances();
   void write_frame(double t_s);
   void maybe_checkpoint(double t_s);
   void fill_summary();
@@ -70,7 +69,6 @@ class CoupledRun {
   RunOptions options_;
   std::ostream& log_;
   ProgressReporter progress_;
-  ThermalNetworkBuilder builder_;
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 
   mechanics::ParticleSet particles_;                  // used when mechanics is off or settled
@@ -78,10 +76,7 @@ class CoupledRun {
   bool frozen_ = true;                                // positions no longer change
   std::vector<double> zero_velocity_;
   ContactList contacts_;
-  ContactPattern pattern_;               // dynamic runs: edges kept while contacts flicker
-  ContactList pattern_contacts_;
-  std::vector<std::uint8_t> pattern_active_;
-  thermal::ThermalNetwork edges_;
+  std::unique_ptr<DynamicNetwork> dynamic_network_;  // dynamic runs only
   std::unique_ptr<thermal::ThermalSystem> system_;
   std::unique_ptr<thermal::ThermalIntegrator> integrator_;
   std::optional<ResultWriter> writer_;
@@ -163,6 +158,7 @@ double CoupledRun::max_temperature_K() const {
 
 void CoupledRun::prepare_thermal() {
   system_ = build_thermal_system(scene_, contacts_);
+  if (!frozen_) dynamic_network_ = std::make_unique<DynamicNetwork>(scene_, *system_);
   auto s = integrator_settings(scene_);
   s.max_temperature_K = max_temperature_K();
   try {
@@ -286,14 +282,7 @@ void CoupledRun::run_dynamic() {
     }
     gather_contacts(nscd_->contacts(), contacts_);
     const auto thermal_start = std::chrono::steady_clock::now();
-    pattern_.update(contacts_, pattern_contacts_, pattern_active_);
-    builder_.build_edges(pattern_contacts_, edges_, &pattern_active_);
-    copy_active_conductances();
-    const auto shape_before = system_->topology_version();
-    system_->replace_edges(edges_);
-    // A new shape re-initialises inside advance_to anyway; "restart" also does it otherwise.
-    if (scene_.thermal.coupling == "restart" && system_->topology_version() == shape_before)
-      integrator_->restart();
+    dynamic_network_->update(contacts_, *integrator_, scene_.thermal.coupling);
     integrator_->advance_to(t_next);
     thermal_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - thermal_start).count();
     t = t_next;
@@ -304,17 +293,6 @@ void CoupledRun::run_dynamic() {
     maybe_checkpoint(t);
     progress_.update("run", t, scene_.duration_s,
                      std::to_string(contacts_.size()) + " contacts");
-  }
-}
-
-void CoupledRun::copy_active_conductances() {
-  // The output lists the active contacts only; their conductances come from the pattern list
-  // (both are sorted by pair).
-  std::size_t p = 0;
-  for (std::size_t c = 0; c < contacts_.size(); ++c) {
-    const std::pair key(contacts_.pair[2 * c], contacts_.pair[2 * c + 1]);
-    while (std::pair(pattern_contacts_.pair[2 * p], pattern_contacts_.pair[2 * p + 1]) != key) ++p;
-    contacts_.conductance_W_per_K[c] = pattern_contacts_.conductance_W_per_K[p];
   }
 }
 

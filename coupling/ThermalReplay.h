@@ -1,14 +1,11 @@
 #pragma once
-// Replays a recorded dynamic contact graph through a thermal integrator, exactly as `tmdem run`
-// follows a dynamic packing: per mechanical step, the sticky contact pattern, the conductances
-// of that step, and an advance to the step's end (restarting the integrator every step with the
-// "restart" strategy).
+// Replays a recorded dynamic contact graph through a thermal integrator exactly as `tmdem run`
+// follows a dynamic packing (DynamicNetwork), advancing to the end of each mechanical step.
 #include <span>
 #include <string>
 
-#include "coupling/ContactPattern.h"
 #include "coupling/ContactRecording.h"
-#include "coupling/ThermalNetworkBuilder.h"
+#include "coupling/DynamicNetwork.h"
 #include "thermal/ThermalIntegrator.h"
 #include "thermal/ThermalSystem.h"
 
@@ -19,8 +16,8 @@ class ThermalReplay {
   // `system` must have been built for `scene`; its edges are replaced during the replay.
   ThermalReplay(const Scene& scene, const ContactRecording& recording, thermal::ThermalSystem& system);
 
-  // Clears the system's edges (t = 0: no contact yet), then steps through the recording.
-  // `integrator` must be built on the same system and not yet initialized.
+  // From t = 0 (no contact) through every recorded step. `integrator` must be built on the
+  // same system; it is initialized here.
   void run(thermal::ThermalIntegrator& integrator, std::span<const double> T0_K,
            const std::string& coupling);
 
@@ -29,15 +26,10 @@ class ThermalReplay {
   double min_stability_bound_s(double max_temperature_K);
 
  private:
-  void load_step(std::size_t k);
-
   const ContactRecording& recording_;
   thermal::ThermalSystem& system_;
-  ThermalNetworkBuilder builder_;
-  ContactPattern pattern_;
-  ContactList pattern_contacts_;
-  std::vector<std::uint8_t> pattern_active_;
-  thermal::ThermalNetwork edges_;
+  DynamicNetwork network_;
+  ContactList step_contacts_;
 };
 
 }  // namespace tmdem::coupling

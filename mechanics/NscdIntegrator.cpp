@@ -52,7 +52,6 @@ NscdIntegrator::NscdIntegrator(ParticleSet particles, std::vector<Material> mate
   require(parameters_.theta > 0.0 && parameters_.theta <= 1.0, "theta must be in (0, 1]");
   require(parameters_.tolerance > 0.0, "tolerance must be positive");
   require(parameters_.max_iterations >= 1, "max_iterations must be at least 1");
-  require(parameters_.local_passes >= 1, "local_passes must be at least 1");
   require(parameters_.relaxation > 0.0 && parameters_.relaxation < 2.0,
           "relaxation must be in (0, 2)");
   for (std::size_t m = 0; m < materials_.size(); ++m) {
@@ -216,9 +215,6 @@ void NscdIntegrator::setup_contacts(double h) {
 
 int NscdIntegrator::gauss_seidel(double& residual, bool& converged) {
   const double tolerance = parameters_.tolerance;
-  // Each contact is solved to a small fraction of the global tolerance, so the sweep
-  // count measures the coupling between contacts rather than the local iteration.
-  const double local_tolerance = 1e-2 * tolerance;
   const bool planar = dimension_ == 2;
   const double relaxation = parameters_.relaxation;
   int sweep = 0;
@@ -239,9 +235,9 @@ int NscdIntegrator::gauss_seidel(double& residual, bool& converged) {
       // Local velocity without this contact's own reaction: u0 = u - W r.
       Eigen::Vector3d u0(u.dot(c.n) + c.bias - c.w_n * c.r[0], u.dot(c.t1) - c.w_t * c.r[1],
                          planar ? 0.0 : u.dot(c.t2) - c.w_t * c.r[2]);
-      Eigen::Vector3d r = c.r;
-      solve_contact_bipotential(u0, c.w_n, c.w_t, c.mu, r, local_tolerance,
-                                parameters_.local_passes);
+      // Exact local solve (closed form of the bipotential fixed point, CoulombCone.hpp).
+      Eigen::Vector3d r;
+      solve_contact_bipotential(u0, c.w_n, c.w_t, c.mu, r);
       if (relaxation != 1.0) r = project_onto_coulomb_cone(c.r + relaxation * (r - c.r), c.mu);
       if (planar) r[2] = 0.0;
       const Eigen::Vector3d dr = r - c.r;

@@ -8,7 +8,7 @@
 //   3. for each candidate: local frame (n from j to i, tangents), Delassus block
 //      W = H^T M^-1 H, and the position term of the Signorini condition (below);
 //   4. Gauss-Seidel sweeps: each contact solves its own law with the others frozen
-//      (CoulombCone.hpp) and updates the two bodies' velocities at once, warm-started from
+//      (CoulombCone.hpp: exact, in closed form) and updates the two bodies' velocities at once, warm-started from
 //      the previous step's forces of the same pair; stop when sum|dr| / sum|r| < tolerance;
 //   5. q_{n+1} = q_n + h (theta v_{n+1} + (1 - theta) v_n).
 //

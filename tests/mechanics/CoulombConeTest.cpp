@@ -48,13 +48,21 @@ TEST(CoulombCone, LocalSolverMatchesClosedForm) {
     const double wn = uniform(0.1, 10.0), wt = wn * uniform(1.0, 4.0), mu = uniform(0.0, 1.2);
     const Vector3d u0(uniform(-1, 0.3), uniform(-1, 1), uniform(-1, 1));
     const Vector3d expected = exact_single_contact(u0, wn, wt, mu);
-    Vector3d r(uniform(0, 1), uniform(-1, 1), uniform(-1, 1));  // arbitrary warm start
-    solve_contact_bipotential(u0, wn, wt, mu, r, 1e-14, 5000);
+    const Vector3d warm(uniform(0, 1), uniform(-1, 1), uniform(-1, 1));  // arbitrary warm start
+    Vector3d r = warm;
+    solve_contact_bipotential_iterative(u0, wn, wt, mu, r, 1e-14, 5000);
     const double scale = std::max(1.0, expected.norm());
     EXPECT_LT((r - expected).norm(), 1e-9 * scale) << "trial " << trial;
     // Reaction in the cone.
     EXPECT_GE(r[0], 0.0);
     EXPECT_LE(std::hypot(r[1], r[2]), mu * r[0] * (1 + 1e-12) + 1e-15);
+    // The closed form used by the integrator: the same fixed point, to round-off, in one pass.
+    Vector3d exact = warm;
+    EXPECT_EQ(solve_contact_bipotential(u0, wn, wt, mu, exact), 1);
+    EXPECT_LT((exact - expected).norm(), 1e-14 * scale) << "trial " << trial;
+    EXPECT_LT((exact - r).norm(), 1e-9 * scale) << "trial " << trial;
+    EXPECT_GE(exact[0], 0.0);
+    EXPECT_LE(std::hypot(exact[1], exact[2]), mu * exact[0] * (1 + 1e-12) + 1e-15);
     const int status = expected[0] == 0.0 ? 0 : (std::hypot(expected[1], expected[2]) < mu * expected[0] * (1 - 1e-12) ? 1 : 2);
     ++counts[status];
   }

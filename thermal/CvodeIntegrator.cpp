@@ -159,23 +159,16 @@ int CvodeIntegrator::jtimes(N_Vector v, N_Vector Jv, sunrealtype, N_Vector, N_Ve
 }
 
 int CvodeIntegrator::precond_setup(sunrealtype, N_Vector y, N_Vector, sunbooleantype jok,
-                                   sunbooleantype* jcur, sunrealtype, void* self) {
+                                   sunbooleantype* jcur, sunrealtype gamma, void* self) {
   auto* me = static_cast<CvodeIntegrator*>(self);
-  if (!jok) {
-    me->unscale(y);
-    me->system_.prepare_jacobian(me->T_work_);
-  }
   *jcur = jok ? SUNFALSE : SUNTRUE;
-  me->system_.jacobian_diagonal(me->precond_diag_);  // the diagonal is unchanged by scaling
-  return 0;
+  // M = I - gamma J; a breakdown is recoverable (CVODE retries with a smaller step).
+  return me->setup_preconditioner(y, jok, -gamma, 1.0, 1.0) ? 0 : 1;
 }
 
 int CvodeIntegrator::precond_solve(sunrealtype, N_Vector, N_Vector, N_Vector r, N_Vector z,
-                                   sunrealtype gamma, sunrealtype, int, void* self) {
-  // Jacobi: z = r / diag(I - gamma J).
-  auto* me = static_cast<CvodeIntegrator*>(self);
-  auto rr = nvector_view(r), zz = nvector_view(z);
-  for (std::size_t i = 0; i < rr.size(); ++i) zz[i] = rr[i] / (1.0 - gamma * me->precond_diag_[i]);
+                                   sunrealtype, sunrealtype, int, void* self) {
+  static_cast<CvodeIntegrator*>(self)->apply_preconditioner(r, z);
   return 0;
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // BDF with Newton through CVODES: sparse analytic Jacobian with KLU (symbolic factorization kept
-// while the contact graph keeps its shape), or matrix-free Jacobian products with Jacobi-
-// preconditioned CG. The boundary heat is a CVODES quadrature, integrated with the same steps.
+// while the contact graph keeps its shape), or matrix-free Jacobian products with CG
+// preconditioned by an incomplete Cholesky factor (IncompleteCholesky). The boundary heat is a
+// CVODES quadrature, integrated with the same steps.
 //
 // CG needs a symmetric Newton matrix; I - gamma C^-1 K is not (C varies), but its similarity
 // transform in y = sqrt(C) T is. So with "pcg" the state is y = sqrt(C) T, with "klu" y = T.

@@ -201,21 +201,13 @@ int IdaIntegrator::jtimes(sunrealtype, N_Vector, N_Vector, N_Vector, N_Vector v,
 
 int IdaIntegrator::precond_setup(sunrealtype, N_Vector y, N_Vector, N_Vector, sunrealtype cj,
                                  void* self) {
-  auto* me = static_cast<IdaIntegrator*>(self);
-  me->unscale(y);
-  me->system_.prepare_jacobian(me->T_work_);
-  me->system_.jacobian_diagonal(me->precond_diag_);
-  const auto& held = me->system_.network().held;
-  for (std::size_t i = 0; i < held.size(); ++i)
-    me->precond_diag_[i] = held[i] ? 1.0 : cj - me->precond_diag_[i];
-  return 0;
+  // M = cj I - J for free particles, the identity row for held ones.
+  return static_cast<IdaIntegrator*>(self)->setup_preconditioner(y, false, -1.0, cj, 1.0) ? 0 : 1;
 }
 
 int IdaIntegrator::precond_solve(sunrealtype, N_Vector, N_Vector, N_Vector, N_Vector rv, N_Vector z,
                                  sunrealtype, sunrealtype, void* self) {
-  auto* me = static_cast<IdaIntegrator*>(self);
-  auto r = nvector_view(rv), zz = nvector_view(z);
-  for (std::size_t i = 0; i < r.size(); ++i) zz[i] = r[i] / me->precond_diag_[i];
+  static_cast<IdaIntegrator*>(self)->apply_preconditioner(rv, z);
   return 0;
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 // Variable-order BDF through IDAS on the DAE form: F = y' - f(y) = 0 for free particles and
 // F = y - y_held = 0 (algebraic) for held ones. Same linear solvers and scaling as
-// CvodeIntegrator (KLU on the sparse Jacobian cj I - J, or Jacobi-preconditioned CG in
+// CvodeIntegrator (KLU on the sparse Jacobian cj I - J, or IC(0)-preconditioned CG in
 // y = sqrt(C) T); the boundary heat is an IDAS quadrature. Initial conditions are consistent by
 // construction (y' = f(y), held y' = 0), so IDACalcIC is not needed.
 #include "thermal/SundialsIntegratorBase.h"

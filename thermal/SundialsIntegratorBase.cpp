@@ -42,7 +42,7 @@ bool SundialsIntegratorBase::begin(double t0_s, std::span<const double> T0_K,
   T_out_.assign(T0_K.begin(), T0_K.end());
   T_work_.assign(n, 0.0);
   dT_work_.assign(n, 0.0);
-  precond_diag_.assign(n, 0.0);
+  preconditioner_topology_ = ~std::uint64_t{0};
   topology_seen_ = system_.topology_version();
   before_reinit_ = {};
   reinitializations_ = 0;
@@ -109,6 +109,34 @@ bool SundialsIntegratorBase::fill_jacobian(N_Vector y, SUNMatrix J) {
   std::copy(p.row_index.begin(), p.row_index.end(), SM_INDEXVALS_S(J));
   system_.jacobian_values({SM_DATA_S(J), p.nonzeros()}, scale_);
   return true;
+}
+
+bool SundialsIntegratorBase::setup_preconditioner(N_Vector y, bool reuse_jacobian,
+                                                  double jacobian_factor, double diagonal_free,
+                                                  double diagonal_held) {
+  const auto& p = system_.pattern();
+  if (preconditioner_topology_ != system_.topology_version()) {
+    preconditioner_.analyse(p);
+    jacobian_values_.assign(p.nonzeros(), 0.0);
+    newton_values_.assign(p.nonzeros(), 0.0);
+    preconditioner_topology_ = system_.topology_version();
+    reuse_jacobian = false;
+  }
+  if (!reuse_jacobian) {
+    unscale(y);
+    system_.prepare_jacobian(T_work_);
+    system_.jacobian_values(jacobian_values_, scale_);
+  }
+  for (std::size_t k = 0; k < newton_values_.size(); ++k)
+    newton_values_[k] = jacobian_factor * jacobian_values_[k];
+  const auto& held = system_.network().held;
+  for (std::size_t i = 0; i < held.size(); ++i)
+    newton_values_[std::size_t(p.diagonal_slot[i])] += held[i] ? diagonal_held : diagonal_free;
+  return preconditioner_.factor(newton_values_);
+}
+
+void SundialsIntegratorBase::apply_preconditioner(N_Vector r, N_Vector z) const {
+  preconditioner_.solve(nvector_view(r), nvector_view(z));
 }
 
 double SundialsIntegratorBase::boundary_heat_J() const {

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "thermal/IncompleteCholesky.h"
 #include "thermal/SundialsContext.h"
 #include "thermal/ThermalIntegrator.h"
 #include "thermal/ThermalSystem.h"
@@ -45,6 +46,13 @@ class SundialsIntegratorBase : public ThermalIntegrator {
   void unscale(N_Vector y);
   // Writes the system's pattern and J = d(dT/dt)/dT (scaled) at y into the sparse matrix.
   bool fill_jacobian(N_Vector y, SUNMatrix J);
+  // "pcg" preconditioner: IC(0) of the Newton matrix
+  //   M = jacobian_factor * J + diag(free particles: diagonal_free, held: diagonal_held)
+  // (CVODES: -gamma, 1, 1; IDAS: -1, cj, 1). reuse_jacobian: keep the J values of the last
+  // setup (only the shift changed). Returns false if the factorization broke down.
+  bool setup_preconditioner(N_Vector y, bool reuse_jacobian, double jacobian_factor,
+                            double diagonal_free, double diagonal_held);
+  void apply_preconditioner(N_Vector r, N_Vector z) const;
   void record_reinitialization(const IntegratorStats& current);
   IntegratorStats with_history(IntegratorStats current) const;
 
@@ -70,7 +78,10 @@ class SundialsIntegratorBase : public ThermalIntegrator {
   SUNMatrix A_ = nullptr;
   SUNLinearSolver LS_ = nullptr;
   std::vector<double> scale_;  // sqrt(C) for pcg, empty for klu
-  std::vector<double> T_work_, dT_work_, precond_diag_;
+  std::vector<double> T_work_, dT_work_;
+  IncompleteCholesky preconditioner_;
+  std::vector<double> jacobian_values_, newton_values_;  // pattern order, scaled
+  std::uint64_t preconditioner_topology_ = ~std::uint64_t{0};
   std::vector<double> T_out_;
   double t_ = 0.0;
   double boundary_heat0_J_ = 0.0;

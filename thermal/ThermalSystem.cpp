@@ -95,12 +95,6 @@ void ThermalSystem::jacobian_times(std::span<const double> v, std::span<double> 
   for (std::size_t i = 0; i < size(); ++i) Jv[i] *= (scale.empty() ? 1.0 : scale[i]) / C[i];
 }
 
-void ThermalSystem::jacobian_diagonal(std::span<double> diagonal) const {
-  const auto& C = network_.heat_capacity_J_per_K;
-  for (std::size_t i = 0; i < size(); ++i)
-    diagonal[i] = network_.held[i] ? 0.0 : diagonal_W_per_K_[i] / C[i];
-}
-
 double ThermalSystem::explicit_stability_bound_s(double T_max_K) const {
   const std::vector<double> T(size(), T_max_K);
   prepare_jacobian(T);

@@ -49,8 +49,6 @@ class ThermalSystem {
   // Jv = S J S^-1 v, matrix-free, from the last prepare_jacobian.
   void jacobian_times(std::span<const double> v, std::span<double> Jv,
                       std::span<const double> scale = {}) const;
-  // Diagonal of J (1/s), from the last prepare_jacobian; zero for held nodes.
-  void jacobian_diagonal(std::span<double> diagonal) const;
 
   // Largest stable forward-Euler step, s: 2 / lambda_max with lambda_max bounded by Gershgorin
   // row sums of J evaluated at T = T_max everywhere (T_max bounds the run's temperatures: the

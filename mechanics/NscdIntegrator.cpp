@@ -1,8 +1,6 @@
 #include "mechanics/NscdIntegrator.hpp"
 
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -251,45 +249,6 @@ int NscdIntegrator::gauss_seidel(double& residual, bool& converged) {
       total += r.norm();
     }
     residual = total > 0.0 ? change / total : 0.0;
-    // DIAG (temporary)
-    static const bool trace = std::getenv("TMDEM_GS_TRACE") != nullptr;
-    static std::vector<Eigen::Vector3d> prev_r, prev2_r, prev3_r;
-    static std::string buffer;
-    if (trace) {
-      if (sweep == 1) { buffer.clear(); prev_r.assign(count, Eigen::Vector3d::Zero()); prev2_r = prev_r; prev3_r = prev_r; }
-      bool record = sweep == 2 || sweep == 10 || sweep == 30 || sweep == 100 || sweep == 300 || sweep == 1000 || sweep % 2000 == 0 || change <= tolerance * total || sweep == parameters_.max_iterations;
-      if (record && sweep >= 3) {
-        double lr = 0, lv_sum = 0, lv_max = 0, d2 = 0, d1 = 0, wr = 0, wr_max = 0;
-        for (std::size_t k = 0; k < count; ++k) {
-          const ContactRow& c = rows_[k];
-          if (!c.solved) continue;
-          const Eigen::Vector3d u = relative_velocity(c);
-          Eigen::Vector3d u0(u.dot(c.n) + c.bias - c.w_n * c.r[0], u.dot(c.t1) - c.w_t * c.r[1],
-                             planar ? 0.0 : u.dot(c.t2) - c.w_t * c.r[2]);
-          Eigen::Vector3d rl; solve_contact_bipotential(u0, c.w_n, c.w_t, c.mu, rl);
-          if (planar) rl[2] = 0;
-          Eigen::Vector3d e = rl - c.r;
-          lr += e.norm();
-          const double v = Eigen::Vector3d(c.w_n * e[0], c.w_t * e[1], c.w_t * e[2]).norm();
-          lv_sum += v; lv_max = std::max(lv_max, v);
-          const double wrv = Eigen::Vector3d(c.w_n * c.r[0], c.w_t * c.r[1], c.w_t * c.r[2]).norm();
-          wr += wrv; wr_max = std::max(wr_max, wrv);
-          // two-sweep differences (symmetric GS period 2)
-          const Eigen::Vector3d a = c.r - prev2_r[k];
-          const Eigen::Vector3d b = prev_r[k] - prev3_r[k];
-          d1 += a.norm(); d2 += (a - b).norm();
-        }
-        char line[400];
-        std::snprintf(line, sizeof line, "  sw %5d chg %.2e law_r %.2e law_v_sum/sumWr %.2e law_v_max %.2e m/s  max|Wr| %.2e  drift2 %.2e accel/drift %.2e\n",
-                      sweep, residual, total > 0 ? lr / total : 0.0, wr > 0 ? lv_sum / wr : 0.0, lv_max, wr_max, total > 0 ? d1 / total : 0.0, d1 > 0 ? d2 / d1 : 0.0);
-        buffer += line;
-      }
-      // shift history: prev3 <- r(k-2), prev2 <- r(k-1)... keep r two sweeps back
-      for (std::size_t k = 0; k < count; ++k) { prev3_r[k] = prev2_r[k]; prev2_r[k] = prev_r[k]; prev_r[k] = rows_[k].r; }
-      if (change <= tolerance * total || sweep == parameters_.max_iterations) {
-        if (sweep == parameters_.max_iterations || std::getenv("TMDEM_GS_TRACE_ALL")) std::fprintf(stderr, "STEP sweeps %d contacts %zu\n%s", sweep, count, buffer.c_str());
-      }
-    }
     if (change <= tolerance * total) {
       converged = true;
       break;

@@ -8,7 +8,7 @@ namespace tmdem::mechanics {
 
 struct StepReport {
   int sweeps = 0;                  // Gauss-Seidel sweeps used
-  double residual = 0.0;           // sum |dr| / sum |r| of the last sweep
+  double residual = 0.0;           // sum |dr| / sum |r| of the last sweep (see NscdParameters)
   bool converged = true;           // residual <= tolerance within max_iterations
   double max_penetration_m = 0.0;  // largest overlap after the step, >= 0
   std::size_t candidates = 0;      // contacts handed to the solver

@@ -1,6 +1,7 @@
 #pragma once
 // Runs the tmdem program and reads its HDF5 output back for end-to-end checks.
 #include <H5Cpp.h>
+#include <nlohmann/json.hpp>
 #include <sys/wait.h>
 
 #include <cstdlib>
@@ -40,6 +41,21 @@ inline std::string scratch_dir(const std::string& name) {
 
 inline void write_file(const std::string& path, const std::string& text) {
   std::ofstream(path) << text;
+}
+
+// The steel of every test scene, as a [[material]] TOML block.
+inline const std::string kSteelMaterial = R"([[material]]
+name = "steel"
+density = 7800.0
+young_modulus = 2.1e11
+poisson_ratio = 0.3
+conductivity = 50.0
+heat_capacity = 460.0
+)";
+
+inline nlohmann::json read_summary(const std::string& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
 }
 
 inline std::vector<double> read_doubles(const H5::H5File& f, const std::string& name,

@@ -53,8 +53,7 @@ interval = 0.02
 )");
   const auto r = run_tmdem("run drop.toml --quiet --summary s.json", dir);
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  std::ifstream in(dir + "/s.json");
-  const auto s = nlohmann::json::parse(in);
+  const auto s = read_summary(dir + "/s.json");
   EXPECT_EQ(s["mechanics"]["steps"], 400);
   EXPECT_LT(s["energy"]["balance_error_rel"].get<double>(), 1e-8);
   EXPECT_GT(s["energy"]["boundary_heat_J"].get<double>(), 0.0);

@@ -18,14 +18,7 @@ dimension = 3
 gravity = [0.0, -9.81, 0.0]
 [effects]
 mechanics = "settle"
-[[material]]
-name = "steel"
-density = 7800.0
-young_modulus = 2.1e11
-poisson_ratio = 0.3
-conductivity = 50.0
-heat_capacity = 460.0
-[[generate]]
+)" + kSteelMaterial + R"([[generate]]
 kind = "column"
 count = 2
 radius = 0.001

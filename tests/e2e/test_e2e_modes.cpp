@@ -56,8 +56,7 @@ interval = 20.0
 }
 
 nlohmann::json summary_of(const std::string& dir) {
-  std::ifstream in(dir + "/s.json");
-  return nlohmann::json::parse(in);
+  return read_summary(dir + "/s.json");
 }
 
 std::vector<double> final_temperatures(const std::string& dir) {

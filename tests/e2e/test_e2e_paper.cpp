@@ -46,8 +46,7 @@ void check_heated_packing(const std::string& dir, const std::string& file, std::
       EXPECT_EQ(H[c], 0.0);  // the walls are adiabatic
     }
   }
-  std::ifstream in(dir + "/s.json");
-  const auto s = nlohmann::json::parse(in);
+  const auto s = read_summary(dir + "/s.json");
   EXPECT_LT(s["mechanics"]["max_penetration_m"].get<double>(), max_penetration_m);
   EXPECT_LT(s["energy"]["balance_error_rel"].get<double>(), 1e-10);
 }

@@ -9,19 +9,12 @@
 using namespace tmdem::e2e;
 
 namespace {
-const char* kScene = R"(format = "tmdem-scene-1"
+const std::string kScene = R"(format = "tmdem-scene-1"
 [simulation]
 duration = 20.0
 [effects]
 mechanics = "off"
-[[material]]
-name = "steel"
-density = 7800.0
-young_modulus = 2.1e11
-poisson_ratio = 0.3
-conductivity = 50.0
-heat_capacity = 460.0
-[[generate]]
+)" + kSteelMaterial + R"([[generate]]
 kind = "lattice"
 counts = [3, 2, 2]
 spacing = 0.002
@@ -72,7 +65,6 @@ TEST(EndToEndRestart, RestartFromCheckpointMatchesUninterruptedRun) {
   const auto Qa = read_doubles(a, "/frames/boundary_heat"), Qb = read_doubles(b, "/frames/boundary_heat");
   for (std::size_t i = 0; i < Qa.size(); ++i) EXPECT_NEAR(Qa[i], Qb[i], 1e-8 + 1e-6 * std::abs(Qa[i]));
   EXPECT_EQ(read_ints(a, "/frames/contact_offset"), read_ints(b, "/frames/contact_offset"));
-  std::ifstream in(part + "/s.json");
-  const auto s = nlohmann::json::parse(in);
+  const auto s = read_summary(part + "/s.json");
   EXPECT_LT(s["energy"]["balance_error_rel"].get<double>(), 1e-8);
 }

@@ -18,19 +18,12 @@ namespace {
 
 // 3 x 3 x 2 lattice of touching spheres on a heated floor, constant conductance, one hot
 // particle and one held cold one: linear and small, so the reference is the exact exponential.
-const char* kLattice = R"(format = "tmdem-scene-1"
+const std::string kLattice = R"(format = "tmdem-scene-1"
 [simulation]
 duration = 1000.0
 [effects]
 mechanics = "off"
-[[material]]
-name = "steel"
-density = 7800.0
-young_modulus = 2.1e11
-poisson_ratio = 0.3
-conductivity = 50.0
-heat_capacity = 460.0
-[[generate]]
+)" + kSteelMaterial + R"([[generate]]
 kind = "lattice"
 counts = [3, 3, 2]
 spacing = 0.002

@@ -16,19 +16,12 @@ namespace {
 
 // 3 x 3 x 2 lattice of touching spheres, constant conductance, one hot corner, one held cold
 // particle: small enough for a dense matrix exponential.
-const char* kLattice = R"(format = "tmdem-scene-1"
+const std::string kLattice = R"(format = "tmdem-scene-1"
 [simulation]
 duration = 20.0
 [effects]
 mechanics = "off"
-[[material]]
-name = "steel"
-density = 7800.0
-young_modulus = 2.1e11
-poisson_ratio = 0.3
-conductivity = 50.0
-heat_capacity = 460.0
-[[generate]]
+)" + kSteelMaterial + R"([[generate]]
 kind = "lattice"
 counts = [3, 3, 2]
 spacing = 0.002
@@ -128,8 +121,7 @@ TEST(EndToEnd, LatticeMatchesMatrixExponentialAndContractLayout) {
   const auto energy = read_doubles(f, "/frames/thermal_energy");
   for (double e : energy) EXPECT_NEAR(e, energy[0], 1e-12 * energy[0]);
 
-  std::ifstream in(dir + "/summary.json");
-  const auto summary = nlohmann::json::parse(in);
+  const auto summary = read_summary(dir + "/summary.json");
   EXPECT_EQ(summary["status"], "ok");
   EXPECT_EQ(summary["particles"], 18);
   EXPECT_EQ(summary["thermal"]["integrator"], "cvode");

@@ -1,3 +1,4 @@
+#include "coupling/Hdf5ErrorSilence.h"
 #include "coupling/Checkpoint.h"
 
 #include <H5Cpp.h>
@@ -17,21 +18,7 @@ namespace {
 
 constexpr const char* kFormat = "tmdem-checkpoint-1";
 
-// Keeps HDF5 from printing its error stack to stderr; errors are reported by exceptions.
-class ScopedSilence {
- public:
-  ScopedSilence() {
-    H5Eget_auto2(H5E_DEFAULT, &function_, &data_);
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  }
-  ~ScopedSilence() { H5Eset_auto2(H5E_DEFAULT, function_, data_); }
-  ScopedSilence(const ScopedSilence&) = delete;
-  ScopedSilence& operator=(const ScopedSilence&) = delete;
-
- private:
-  H5E_auto2_t function_ = nullptr;
-  void* data_ = nullptr;
-};
+using ScopedSilence = Hdf5ErrorSilence;
 
 // A checkpoint problem found by this file (not by HDF5).
 struct Invalid : std::runtime_error {

@@ -9,11 +9,8 @@ namespace tmdem::coupling {
 
 ContactRecording record_contacts(const Scene& scene, ProgressReporter& progress) {
   const auto start = std::chrono::steady_clock::now();
-  mechanics::NscdIntegrator nscd(
-      make_particle_set(scene), make_mechanics_materials(scene), make_mechanics_walls(scene),
-      Eigen::Vector3d(scene.gravity_m_per_s2[0], scene.gravity_m_per_s2[1],
-                      scene.gravity_m_per_s2[2]),
-      scene.dimension, make_nscd_parameters(scene));
+  auto nscd_ptr = make_nscd_integrator(scene, make_particle_set(scene));
+  auto& nscd = *nscd_ptr;
   ContactRecording rec;
   const double h = scene.mechanics.time_step_s;
   double t = 0.0;

@@ -123,11 +123,7 @@ void CoupledRun::prepare_mechanics() {
       contacts_.add(p.i, p.j, 0.0);
     return;
   }
-  nscd_ = std::make_unique<mechanics::NscdIntegrator>(
-      particles_, make_mechanics_materials(scene_), make_mechanics_walls(scene_),
-      Eigen::Vector3d(scene_.gravity_m_per_s2[0], scene_.gravity_m_per_s2[1],
-                      scene_.gravity_m_per_s2[2]),
-      scene_.dimension, make_nscd_parameters(scene_));
+  nscd_ = make_nscd_integrator(scene_, particles_);
   if (mode == MechanicsMode::Dynamic) {
     frozen_ = false;
     return;

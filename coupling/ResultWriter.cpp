@@ -1,3 +1,4 @@
+#include "coupling/Hdf5ErrorSilence.h"
 #include "coupling/ResultWriter.h"
 
 #include <hdf5.h>
@@ -51,21 +52,7 @@ void check_ok(herr_t status, const std::string& what) {
   if (status < 0) fail(what);
 }
 
-// Keeps HDF5 from printing its error stack to stderr; errors are reported by exceptions.
-class ScopedSilence {
- public:
-  ScopedSilence() {
-    H5Eget_auto2(H5E_DEFAULT, &function_, &data_);
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  }
-  ~ScopedSilence() { H5Eset_auto2(H5E_DEFAULT, function_, data_); }
-  ScopedSilence(const ScopedSilence&) = delete;
-  ScopedSilence& operator=(const ScopedSilence&) = delete;
-
- private:
-  H5E_auto2_t function_ = nullptr;
-  void* data_ = nullptr;
-};
+using ScopedSilence = Hdf5ErrorSilence;
 
 // Owns one HDF5 identifier.
 class Handle {

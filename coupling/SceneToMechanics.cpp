@@ -44,3 +44,15 @@ mechanics::NscdParameters make_nscd_parameters(const Scene& scene) {
 }
 
 }  // namespace tmdem::coupling
+
+namespace tmdem::coupling {
+
+std::unique_ptr<mechanics::NscdIntegrator> make_nscd_integrator(const Scene& scene,
+                                                                mechanics::ParticleSet particles) {
+  const auto& g = scene.gravity_m_per_s2;
+  return std::make_unique<mechanics::NscdIntegrator>(
+      std::move(particles), make_mechanics_materials(scene), make_mechanics_walls(scene),
+      Eigen::Vector3d(g[0], g[1], g[2]), scene.dimension, make_nscd_parameters(scene));
+}
+
+}  // namespace tmdem::coupling

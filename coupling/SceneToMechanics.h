@@ -1,9 +1,11 @@
 #pragma once
 // Hands the mechanics module the parts of a scene it needs (it never sees the Scene type).
+#include <memory>
 #include <vector>
 
 #include "coupling/Scene.h"
 #include "mechanics/Material.hpp"
+#include "mechanics/NscdIntegrator.hpp"
 #include "mechanics/NscdParameters.hpp"
 #include "mechanics/ParticleSet.hpp"
 #include "mechanics/Wall.hpp"
@@ -14,6 +16,9 @@ mechanics::ParticleSet make_particle_set(const Scene& scene);
 std::vector<mechanics::Material> make_mechanics_materials(const Scene& scene);
 std::vector<mechanics::Wall> make_mechanics_walls(const Scene& scene);
 mechanics::NscdParameters make_nscd_parameters(const Scene& scene);
+// The scene's NSCD integrator over `particles` (the scene's own, or restored from a checkpoint).
+std::unique_ptr<mechanics::NscdIntegrator> make_nscd_integrator(const Scene& scene,
+                                                                mechanics::ParticleSet particles);
 // Solid sphere mass, kg: particles are spheres in 2D runs too.
 double particle_mass_kg(const Scene& scene, std::size_t id);
 

@@ -105,13 +105,9 @@ FrozenThermalProblem build_frozen_thermal_problem(const Scene& scene, ProgressRe
         problem.contacts.add(p.i, p.j, 0.0);
       break;
     case MechanicsMode::Settle: {
-      mechanics::NscdIntegrator nscd(
-          std::move(particles), make_mechanics_materials(scene), walls,
-          Eigen::Vector3d(scene.gravity_m_per_s2[0], scene.gravity_m_per_s2[1],
-                          scene.gravity_m_per_s2[2]),
-          scene.dimension, make_nscd_parameters(scene));
-      settle_packing(nscd, scene, progress);
-      gather_contacts(nscd.contacts(), problem.contacts);
+      auto nscd = make_nscd_integrator(scene, std::move(particles));
+      settle_packing(*nscd, scene, progress);
+      gather_contacts(nscd->contacts(), problem.contacts);
       break;
     }
     case MechanicsMode::Dynamic:

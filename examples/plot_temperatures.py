@@ -55,9 +55,13 @@ def read_result(path, frame):
     return times, temperatures, positions, radii, frame, status
 
 
-def default_ids(count):
-    """Particle 0 and the last particle."""
-    return sorted({0, count - 1})
+def default_ids(temperatures):
+    """The three particles hottest at the start and the three that warmed most by the end:
+    where the heat comes from and where it went."""
+    hottest = list(temperatures[0].argsort()[::-1][:3])
+    warmed = list((temperatures[-1] - temperatures[0]).argsort()[::-1])
+    ids = hottest + [i for i in warmed if i not in hottest][:3]
+    return sorted(int(i) for i in ids)
 
 
 def plot_history(times, temperatures, ids, title, out):
@@ -102,7 +106,8 @@ def main(argv=None):
     parser.add_argument("result", help="tmdem result file (.h5)")
     parser.add_argument("--ids", type=int, nargs="+", metavar="ID",
                         help="particle ids for the temperature plot "
-                             "(default: particle 0 and the last particle)")
+                             "(default: the three hottest at the start and the three that "
+                             "warmed most)")
     parser.add_argument("--frame", type=int, default=-1,
                         help="frame for the particle picture; negative counts from the end "
                              "(default: -1, the last frame)")
@@ -115,7 +120,7 @@ def main(argv=None):
     except (OSError, KeyError, ValueError) as error:
         sys.exit(f"plot_temperatures.py: cannot read {args.result}: {error}")
     count = temperatures.shape[1]
-    ids = args.ids if args.ids else default_ids(count)
+    ids = args.ids if args.ids else default_ids(temperatures)
     bad = [i for i in ids if not 0 <= i < count]
     if bad:
         sys.exit(f"plot_temperatures.py: particle ids {bad} out of range 0..{count - 1}")

@@ -53,7 +53,10 @@ bool settle_packing(mechanics::NscdIntegrator& nscd, const Scene& scene, Progres
 }
 
 void gather_contacts(const std::vector<mechanics::ContactForce>& forces, ContactList& out) {
-  std::vector<std::size_t> order(forces.size());
+  // Called every mechanical step of a dynamic run: the permutation buffer is kept between calls
+  // so that the step loop does not allocate once warm.
+  static thread_local std::vector<std::size_t> order;
+  order.resize(forces.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     return std::pair(forces[a].i, forces[a].j) < std::pair(forces[b].i, forces[b].j);

@@ -22,9 +22,11 @@ void IncompleteCholesky::analyse(const JacobianPattern& pattern) {
   marker_.assign(n, -1);
 }
 
-bool IncompleteCholesky::factor(std::span<const double> A_values) {
-  for (std::size_t q = 0; q < value_.size(); ++q) value_[q] = A_values[std::size_t(from_[q])];
+bool IncompleteCholesky::factor(std::span<const double> J_values, double scale,
+                                std::span<const double> shift) {
   const std::size_t n = start_.size() - 1;
+  for (std::size_t q = 0; q < value_.size(); ++q) value_[q] = scale * J_values[std::size_t(from_[q])];
+  for (std::size_t j = 0; j < n; ++j) value_[std::size_t(start_[j])] += shift[j];  // diagonal first
   for (std::size_t k = 0; k < n; ++k) {
     const auto first = start_[k], last = start_[k + 1];
     const double pivot = value_[std::size_t(first)];

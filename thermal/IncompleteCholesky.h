@@ -16,9 +16,10 @@ class IncompleteCholesky {
  public:
   // Takes the lower triangle of `pattern` (symmetric, diagonal present) as L's pattern.
   void analyse(const JacobianPattern& pattern);
-  // Factors A, given by its values in `pattern` order (both triangles present). Returns false
-  // on a non-positive pivot (A not positive definite).
-  bool factor(std::span<const double> A_values);
+  // Factors A = scale * J + diag(shift), J given by its values in `pattern` order (both
+  // triangles present), shift one value per row: the Newton matrix is formed on the fly, no copy
+  // of it is kept. Returns false on a non-positive pivot (A not positive definite).
+  bool factor(std::span<const double> J_values, double scale, std::span<const double> shift);
   // z = (L L^T)^-1 r.
   void solve(std::span<const double> r, std::span<double> z) const;
 

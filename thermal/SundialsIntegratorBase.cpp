@@ -118,7 +118,6 @@ bool SundialsIntegratorBase::setup_preconditioner(N_Vector y, bool reuse_jacobia
   if (preconditioner_topology_ != system_.topology_version()) {
     preconditioner_.analyse(p);
     jacobian_values_.assign(p.nonzeros(), 0.0);
-    newton_values_.assign(p.nonzeros(), 0.0);
     preconditioner_topology_ = system_.topology_version();
     reuse_jacobian = false;
   }
@@ -127,12 +126,10 @@ bool SundialsIntegratorBase::setup_preconditioner(N_Vector y, bool reuse_jacobia
     system_.prepare_jacobian(T_work_);
     system_.jacobian_values(jacobian_values_, scale_);
   }
-  for (std::size_t k = 0; k < newton_values_.size(); ++k)
-    newton_values_[k] = jacobian_factor * jacobian_values_[k];
   const auto& held = system_.network().held;
-  for (std::size_t i = 0; i < held.size(); ++i)
-    newton_values_[std::size_t(p.diagonal_slot[i])] += held[i] ? diagonal_held : diagonal_free;
-  return preconditioner_.factor(newton_values_);
+  newton_shift_.resize(held.size());
+  for (std::size_t i = 0; i < held.size(); ++i) newton_shift_[i] = held[i] ? diagonal_held : diagonal_free;
+  return preconditioner_.factor(jacobian_values_, jacobian_factor, newton_shift_);
 }
 
 void SundialsIntegratorBase::apply_preconditioner(N_Vector r, N_Vector z) const {

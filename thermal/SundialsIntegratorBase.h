@@ -80,7 +80,8 @@ class SundialsIntegratorBase : public ThermalIntegrator {
   std::vector<double> scale_;  // sqrt(C) for pcg, empty for klu
   std::vector<double> T_work_, dT_work_;
   IncompleteCholesky preconditioner_;
-  std::vector<double> jacobian_values_, newton_values_;  // pattern order, scaled
+  std::vector<double> jacobian_values_;  // pattern order, scaled
+  std::vector<double> newton_shift_;     // diagonal added to scale * J, per particle
   std::uint64_t preconditioner_topology_ = ~std::uint64_t{0};
   std::vector<double> T_out_;
   double t_ = 0.0;

@@ -13,14 +13,20 @@ using namespace tmdem::thermal::testing;
 
 namespace {
 
-// A = I - gamma J of a network, in pattern order, and as a dense matrix.
-std::vector<double> newton_values(const ThermalSystem& sys, double gamma) {
+// J in y = sqrt(C) T, in pattern order (symmetric).
+std::vector<double> scaled_jacobian(const ThermalSystem& sys) {
   std::vector<double> v(sys.pattern().nonzeros());
   std::vector<double> T(sys.size(), 300.0);
   sys.prepare_jacobian(T);
   std::vector<double> scale(sys.size());
   for (std::size_t i = 0; i < scale.size(); ++i) scale[i] = std::sqrt(sys.network().heat_capacity_J_per_K[i]);
   sys.jacobian_values(v, scale);
+  return v;
+}
+
+// A = I - gamma J, in pattern order.
+std::vector<double> newton_values(const ThermalSystem& sys, double gamma) {
+  auto v = scaled_jacobian(sys);
   for (auto& x : v) x *= -gamma;
   for (std::size_t i = 0; i < sys.size(); ++i) v[std::size_t(sys.pattern().diagonal_slot[i])] += 1.0;
   return v;
@@ -40,11 +46,11 @@ TEST(IncompleteCholesky, ExactOnAChainWhereCholeskyHasNoFill) {
   ThermalNetwork net = chain_network(30, 1e-3, 1e-4);
   for (int i = 0; i < 30; ++i) net.heat_capacity_J_per_K[i] = 1e-3 * (1.0 + 0.1 * i);
   auto sys = make_system(net, {"contact_conduction"});
-  const auto v = newton_values(*sys, 50.0);
+  // Factored the way the integrators do it: -gamma * J plus a unit diagonal shift.
   IncompleteCholesky ic;
   ic.analyse(sys->pattern());
-  ASSERT_TRUE(ic.factor(v));
-  const Eigen::MatrixXd A = dense(sys->pattern(), v);
+  ASSERT_TRUE(ic.factor(scaled_jacobian(*sys), -50.0, std::vector<double>(sys->size(), 1.0)));
+  const Eigen::MatrixXd A = dense(sys->pattern(), newton_values(*sys, 50.0));
   std::mt19937_64 rng(5);
   Eigen::VectorXd b(30);
   for (int i = 0; i < 30; ++i) b(i) = double(rng() % 1000) / 100.0 - 5.0;
@@ -66,7 +72,7 @@ TEST(IncompleteCholesky, MatchesTheMatrixOnItsPatternWithFill) {
   const auto v = newton_values(*sys, 20.0);
   IncompleteCholesky ic;
   ic.analyse(sys->pattern());
-  ASSERT_TRUE(ic.factor(v));
+  ASSERT_TRUE(ic.factor(v, 1.0, std::vector<double>(sys->size(), 0.0)));
   const auto& p = sys->pattern();
   const Eigen::MatrixXd A = dense(p, v);
   // Rebuild M = L L^T column by column from solves: M^-1 e_j = z_j, so M = (Z)^-1.

@@ -6,10 +6,8 @@
 #include "coupling/ContactList.h"
 #include "coupling/SceneToMechanics.h"
 #include "coupling/ThermalDiagnostics.h"
-#include "coupling/ThermalNetworkBuilder.h"
+#include "coupling/ThermalProblem.h"
 #include "mechanics/TouchingPairs.hpp"
-#include "thermal/ModeRegistry.h"
-#include "thermal/ThermalSystem.h"
 
 namespace tmdem::coupling {
 
@@ -63,27 +61,16 @@ void check_scene(const Scene& scene, std::ostream& out) {
                               scene.gravity_m_per_s2[2]);
   for (const auto& p : mechanics::find_touching_pairs(particles, make_mechanics_walls(scene), 1e-9))
     contacts.add(p.i, p.j, particles.mass[std::size_t(p.i)] * g);
-  ThermalNetworkBuilder builder(scene);
-  auto network = builder.nodes();
-  builder.build_edges(contacts, network);
-  std::vector<std::unique_ptr<thermal::HeatTransferMode>> modes;
+  const auto system = build_thermal_system(scene, contacts);
   out << "modes:";
-  for (const auto& name : builder.mode_names()) {
-    modes.push_back(thermal::make_heat_transfer_mode(name, builder.mode_settings()));
-    out << " " << name;
-  }
+  for (const auto& mode : system->modes()) out << " " << mode->name();
   out << "\n";
-  thermal::ThermalSystem system(std::move(network), std::move(modes));
-  double T_bound = T_max;
-  for (const auto& w : scene.walls)
-    if (w.temperature_K) T_bound = std::max(T_bound, *w.temperature_K);
-  if (scene.effects.radiation) T_bound = std::max(T_bound, scene.radiation.ambient_temperature_K);
   out << "estimated stiffness on the " << contacts.size() << " contacts touching at start"
       << (scene.effects.mechanics != MechanicsMode::Off && scene.thermal.conductance == "hertz"
               ? " (Hertz force estimated as each particle's weight; settling gives the real one)"
               : "")
       << ":\n";
-  print_diagnostics(out, diagnose(scene, contacts, system, T_bound));
+  print_diagnostics(out, diagnose(scene, contacts, *system, max_scene_temperature_K(scene)));
 }
 
 }  // namespace tmdem::coupling

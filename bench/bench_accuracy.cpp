@@ -20,11 +20,11 @@
 #include <string>
 #include <vector>
 
-#include "coupling/AccuracyStudy.h"
-#include "coupling/ProgressReporter.h"
-#include "coupling/SceneLoader.h"
-#include "coupling/ThermalNetworkBuilder.h"
-#include "coupling/ThermalProblem.h"
+#include "coupling/studies/AccuracyStudy.h"
+#include "coupling/output/ProgressReporter.h"
+#include "coupling/scene/SceneLoader.h"
+#include "coupling/bridge/ThermalNetworkBuilder.h"
+#include "coupling/run/ThermalProblem.h"
 #include "thermal/IntegratorRegistry.h"
 
 using namespace tmdem;

@@ -10,9 +10,9 @@
 #include <chrono>
 #include <cmath>
 
-#include "mechanics/ContactDetector.hpp"
-#include "mechanics/NscdIntegrator.hpp"
-#include "mechanics/TouchingPairs.hpp"
+#include "mechanics/ContactDetector.h"
+#include "mechanics/NscdIntegrator.h"
+#include "mechanics/TouchingPairs.h"
 
 using namespace tmdem::mechanics;
 using Eigen::Vector3d;

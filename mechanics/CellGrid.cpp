@@ -1,4 +1,4 @@
-#include "mechanics/CellGrid.hpp"
+#include "mechanics/CellGrid.h"
 
 #include <algorithm>
 #include <cmath>

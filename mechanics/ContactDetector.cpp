@@ -1,4 +1,4 @@
-#include "mechanics/ContactDetector.hpp"
+#include "mechanics/ContactDetector.h"
 
 #include <algorithm>
 #include <cmath>

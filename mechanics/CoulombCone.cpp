@@ -1,4 +1,4 @@
-#include "mechanics/CoulombCone.hpp"
+#include "mechanics/CoulombCone.h"
 
 #include <cmath>
 

@@ -1,4 +1,4 @@
-#include "mechanics/NscdIntegrator.hpp"
+#include "mechanics/NscdIntegrator.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include <Eigen/Geometry>
 
-#include "mechanics/CoulombCone.hpp"
+#include "mechanics/CoulombCone.h"
 
 namespace tmdem::mechanics {
 namespace {
@@ -235,7 +235,7 @@ int NscdIntegrator::gauss_seidel(double& residual, bool& converged) {
       // Local velocity without this contact's own reaction: u0 = u - W r.
       Eigen::Vector3d u0(u.dot(c.n) + c.bias - c.w_n * c.r[0], u.dot(c.t1) - c.w_t * c.r[1],
                          planar ? 0.0 : u.dot(c.t2) - c.w_t * c.r[2]);
-      // Exact local solve (closed form of the bipotential fixed point, CoulombCone.hpp).
+      // Exact local solve (closed form of the bipotential fixed point, CoulombCone.h).
       Eigen::Vector3d r;
       solve_contact_bipotential(u0, c.w_n, c.w_t, c.mu, r);
       if (relaxation != 1.0) r = project_onto_coulomb_cone(c.r + relaxation * (r - c.r), c.mu);

@@ -1,4 +1,4 @@
-#include "mechanics/ParticleSet.hpp"
+#include "mechanics/ParticleSet.h"
 
 #include <algorithm>
 #include <cmath>

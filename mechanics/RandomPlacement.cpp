@@ -1,4 +1,4 @@
-#include "mechanics/RandomPlacement.hpp"
+#include "mechanics/RandomPlacement.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "mechanics/StepReport.hpp"
+#include "mechanics/StepReport.h"
 
 #include <algorithm>
 

@@ -1,9 +1,9 @@
-#include "mechanics/TouchingPairs.hpp"
+#include "mechanics/TouchingPairs.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "mechanics/CellGrid.hpp"
+#include "mechanics/CellGrid.h"
 
 namespace tmdem::mechanics {
 namespace {

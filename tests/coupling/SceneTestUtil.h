@@ -7,8 +7,8 @@
 #include <string_view>
 #include <vector>
 
-#include "coupling/SceneError.h"
-#include "coupling/SceneLoader.h"
+#include "coupling/scene/SceneError.h"
+#include "coupling/scene/SceneLoader.h"
 
 namespace tmdem::coupling::test {
 

@@ -1,0 +1,90 @@
+#include "coupling/app/AccuracyCommand.h"
+
+#include <filesystem>
+#include <fstream>
+
+#include "coupling/bridge/ThermalNetworkBuilder.h"
+#include "coupling/output/ProgressReporter.h"
+#include "coupling/run/ThermalProblem.h"
+#include "coupling/studies/AccuracyReport.h"
+#include "coupling/studies/ContactRecording.h"
+#include "coupling/studies/ThermalReplay.h"
+
+namespace tmdem::coupling {
+
+int run_accuracy_command(const Scene& scene, const AccuracyCommandOptions& options,
+                         std::ostream& out, std::ostream& log) {
+  // Open the CSV first: an unwritable path should fail before minutes of computation.
+  std::ofstream csv;
+  if (!options.csv_path.empty()) {
+    csv.open(options.csv_path);
+    if (!csv) {
+      log << "error: cannot write CSV file '" << options.csv_path << "'" << std::endl;
+      return 4;
+    }
+  }
+  auto discard_csv = [&] {
+    if (options.csv_path.empty()) return;
+    csv.close();
+    std::error_code ec;
+    std::filesystem::remove(options.csv_path, ec);
+  };
+
+  AccuracyStudyResult result;
+  try {
+    ProgressReporter progress(log, options.quiet, options.terminal);
+    const auto base = integrator_settings(scene);
+    const auto modes = ThermalNetworkBuilder(scene).mode_settings();
+    if (scene.effects.mechanics == MechanicsMode::Dynamic) {
+      // Record the mechanics once; every run replays the same contact graph.
+      const auto recording = record_contacts(scene, progress);
+      ContactList no_contacts;
+      auto system = build_thermal_system(scene, no_contacts);
+      std::vector<double> T0;
+      for (const auto& p : scene.particles) T0.push_back(p.temperature_K);
+      ThermalReplay replay(scene, recording, *system);
+      auto study = options.study;
+      study.stability_bound_s = replay.min_stability_bound_s(base.max_temperature_K);
+      study.max_explicit_step_s = scene.mechanics.time_step_s;
+      const ThermalDriver driver = [&](thermal::ThermalIntegrator& integ, std::span<const double> T,
+                                       double, const std::string& coupling) {
+        replay.run(integ, T, coupling);
+      };
+      result = run_accuracy_study(*system, T0, scene.duration_s, base, modes, study,
+                                  options.quiet ? nullptr : &log, driver);
+    } else {
+      auto problem = build_frozen_thermal_problem(scene, progress);
+      result = run_accuracy_study(*problem.system, problem.T0_K, scene.duration_s, base, modes,
+                                  options.study, options.quiet ? nullptr : &log);
+    }
+  } catch (const ReferenceError& e) {
+    log << "error: " << e.what() << std::endl;
+    discard_csv();
+    return 3;
+  } catch (...) {
+    discard_csv();
+    throw;
+  }
+  for (const auto& r : result.runs)
+    if (!r.ok)
+      log << "warning: " << r.label() << " "
+          << (r.method == "explicit" ? "h = " : "rtol = ") << shortest_number(r.parameter)
+          << " failed (left out of the CSV): " << r.message << std::endl;
+
+  out << "accuracy study: " << scene.source << "\n";
+  print_accuracy_report(out, result, options.study);
+  out.flush();
+
+  if (!options.csv_path.empty()) {
+    write_accuracy_csv(csv, result.runs);
+    csv.close();
+    if (!csv) {
+      log << "error: writing CSV file '" << options.csv_path << "' failed" << std::endl;
+      return 4;
+    }
+    if (!options.quiet) log << "wrote " << options.csv_path << std::endl;
+  }
+  return 0;
+}
+
+}  // namespace tmdem::coupling

@@ -1,0 +1,76 @@
+#include "coupling/app/SceneCheck.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "coupling/bridge/ContactList.h"
+#include "coupling/bridge/SceneToMechanics.h"
+#include "coupling/bridge/ThermalDiagnostics.h"
+#include "coupling/run/ThermalProblem.h"
+#include "mechanics/TouchingPairs.h"
+
+namespace tmdem::coupling {
+
+namespace {
+const char* mechanics_name(MechanicsMode m) {
+  switch (m) {
+    case MechanicsMode::Off: return "off";
+    case MechanicsMode::Settle: return "settle";
+    case MechanicsMode::Dynamic: return "dynamic";
+  }
+  return "?";
+}
+}  // namespace
+
+void check_scene(const Scene& scene, std::ostream& out) {
+  const std::size_t n = scene.particles.size();
+  double r_min = n ? scene.particles[0].radius_m : 0.0, r_max = r_min;
+  double T_min = n ? scene.particles[0].temperature_K : 0.0, T_max = T_min;
+  std::size_t held = 0, sources = 0, fixed = 0;
+  for (const auto& p : scene.particles) {
+    r_min = std::min(r_min, p.radius_m);
+    r_max = std::max(r_max, p.radius_m);
+    T_min = std::min(T_min, p.temperature_K);
+    T_max = std::max(T_max, p.temperature_K);
+    held += p.fixed_temperature;
+    sources += p.heat_source_W != 0.0;
+    fixed += p.fixed;
+  }
+  out << "scene: " << scene.source << " (" << scene.dimension << "D, duration "
+      << scene.duration_s << " s)\n";
+  out << "particles: " << n << ", radius " << r_min << " .. " << r_max << " m, temperature "
+      << T_min << " .. " << T_max << " K; " << held << " held, " << sources
+      << " with heat sources, " << fixed << " fixed\n";
+  out << "materials:";
+  for (const auto& m : scene.materials) out << " " << m.name;
+  out << "\nwalls: " << scene.walls.size();
+  std::size_t isothermal = 0;
+  for (const auto& w : scene.walls) isothermal += w.temperature_K.has_value();
+  out << " (" << isothermal << " isothermal)\n";
+  out << "effects: mechanics " << mechanics_name(scene.effects.mechanics) << ", conduction "
+      << (scene.effects.conduction ? "on" : "off") << ", convection "
+      << (scene.effects.convection ? "on" : "off") << ", radiation "
+      << (scene.effects.radiation ? "on" : "off") << "\n";
+  out << "thermal: integrator " << scene.thermal.integrator << ", linear solver "
+      << scene.thermal.linear_solver << ", conductance " << scene.thermal.conductance << "\n";
+
+  // Estimated network on the contacts present now.
+  const auto particles = make_particle_set(scene);
+  ContactList contacts;
+  const double g = std::hypot(scene.gravity_m_per_s2[0], scene.gravity_m_per_s2[1],
+                              scene.gravity_m_per_s2[2]);
+  for (const auto& p : mechanics::find_touching_pairs(particles, make_mechanics_walls(scene), 1e-9))
+    contacts.add(p.i, p.j, particles.mass[std::size_t(p.i)] * g);
+  const auto system = build_thermal_system(scene, contacts);
+  out << "modes:";
+  for (const auto& mode : system->modes()) out << " " << mode->name();
+  out << "\n";
+  out << "estimated stiffness on the " << contacts.size() << " contacts touching at start"
+      << (scene.effects.mechanics != MechanicsMode::Off && scene.thermal.conductance == "hertz"
+              ? " (Hertz force estimated as each particle's weight; settling gives the real one)"
+              : "")
+      << ":\n";
+  print_diagnostics(out, diagnose(scene, contacts, *system, max_scene_temperature_K(scene)));
+}
+
+}  // namespace tmdem::coupling

@@ -1,0 +1,40 @@
+#pragma once
+// Hands a moving packing's contacts to the thermal system, one mechanical step at a time, the
+// same way for `tmdem run` and for the studies' replays: a sticky contact pattern (open
+// contacts keep a zero-conductance edge until a new pair closes), the step's conductances, and
+// with thermal.coupling = "restart" a re-initialised integrator every step.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "coupling/bridge/ContactList.h"
+#include "coupling/bridge/ContactPattern.h"
+#include "coupling/scene/Scene.h"
+#include "coupling/bridge/ThermalNetworkBuilder.h"
+#include "thermal/ThermalIntegrator.h"
+#include "thermal/ThermalSystem.h"
+
+namespace tmdem::coupling {
+
+class DynamicNetwork {
+ public:
+  DynamicNetwork(const Scene& scene, thermal::ThermalSystem& system);
+
+  // No contact, empty pattern (t = 0 of a dynamic run).
+  void reset();
+  // active: this step's contacts in canonical order; their conductances are filled in.
+  void update(ContactList& active, thermal::ThermalIntegrator& integrator,
+              const std::string& coupling);
+  // As update, without an integrator (e.g. to inspect the network of a step).
+  void load(const ContactList& active);
+
+ private:
+  thermal::ThermalSystem& system_;
+  ThermalNetworkBuilder builder_;
+  ContactPattern pattern_;
+  ContactList pattern_contacts_;
+  std::vector<std::uint8_t> pattern_active_;
+  thermal::ThermalNetwork edges_;
+};
+
+}  // namespace tmdem::coupling

@@ -1,0 +1,58 @@
+#include "coupling/bridge/SceneToMechanics.h"
+
+namespace tmdem::coupling {
+
+double particle_mass_kg(const Scene& scene, std::size_t id) {
+  const auto& p = scene.particles[id];
+  return mechanics::sphere_mass(p.radius_m, scene.materials[p.material].density_kg_per_m3);
+}
+
+mechanics::ParticleSet make_particle_set(const Scene& scene) {
+  mechanics::ParticleSet set;
+  set.reserve(scene.particles.size());
+  for (std::size_t i = 0; i < scene.particles.size(); ++i) {
+    const auto& p = scene.particles[i];
+    set.add(Eigen::Vector3d(p.position_m[0], p.position_m[1], p.position_m[2]), p.radius_m,
+            particle_mass_kg(scene, i), p.material, p.fixed);
+  }
+  return set;
+}
+
+std::vector<mechanics::Material> make_mechanics_materials(const Scene& scene) {
+  std::vector<mechanics::Material> out;
+  for (const auto& m : scene.materials)
+    out.push_back({m.density_kg_per_m3, m.young_modulus_Pa, m.poisson_ratio, m.friction});
+  return out;
+}
+
+std::vector<mechanics::Wall> make_mechanics_walls(const Scene& scene) {
+  std::vector<mechanics::Wall> out;
+  for (const auto& w : scene.walls)
+    out.push_back(mechanics::Wall::through(Eigen::Vector3d(w.point_m[0], w.point_m[1], w.point_m[2]),
+                                           Eigen::Vector3d(w.normal[0], w.normal[1], w.normal[2]),
+                                           w.material));
+  return out;
+}
+
+mechanics::NscdParameters make_nscd_parameters(const Scene& scene) {
+  mechanics::NscdParameters p;
+  p.time_step = scene.mechanics.time_step_s;
+  p.theta = scene.mechanics.theta;
+  p.tolerance = scene.mechanics.tolerance;
+  p.max_iterations = scene.mechanics.max_iterations;
+  return p;
+}
+
+}  // namespace tmdem::coupling
+
+namespace tmdem::coupling {
+
+std::unique_ptr<mechanics::NscdIntegrator> make_nscd_integrator(const Scene& scene,
+                                                                mechanics::ParticleSet particles) {
+  const auto& g = scene.gravity_m_per_s2;
+  return std::make_unique<mechanics::NscdIntegrator>(
+      std::move(particles), make_mechanics_materials(scene), make_mechanics_walls(scene),
+      Eigen::Vector3d(g[0], g[1], g[2]), scene.dimension, make_nscd_parameters(scene));
+}
+
+}  // namespace tmdem::coupling

@@ -1,0 +1,25 @@
+#pragma once
+// Hands the mechanics module the parts of a scene it needs (it never sees the Scene type).
+#include <memory>
+#include <vector>
+
+#include "coupling/scene/Scene.h"
+#include "mechanics/Material.h"
+#include "mechanics/NscdIntegrator.h"
+#include "mechanics/NscdParameters.h"
+#include "mechanics/ParticleSet.h"
+#include "mechanics/Wall.h"
+
+namespace tmdem::coupling {
+
+mechanics::ParticleSet make_particle_set(const Scene& scene);
+std::vector<mechanics::Material> make_mechanics_materials(const Scene& scene);
+std::vector<mechanics::Wall> make_mechanics_walls(const Scene& scene);
+mechanics::NscdParameters make_nscd_parameters(const Scene& scene);
+// The scene's NSCD integrator over `particles` (the scene's own, or restored from a checkpoint).
+std::unique_ptr<mechanics::NscdIntegrator> make_nscd_integrator(const Scene& scene,
+                                                                mechanics::ParticleSet particles);
+// Solid sphere mass, kg: particles are spheres in 2D runs too.
+double particle_mass_kg(const Scene& scene, std::size_t id);
+
+}  // namespace tmdem::coupling

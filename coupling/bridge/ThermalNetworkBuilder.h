@@ -1,0 +1,43 @@
+#pragma once
+// Turns a scene and the mechanics' contacts into the thermal network: nodes from the particles,
+// edges (with conductances from the scene's law) from the contacts, and the list of
+// heat-transfer modes the scene switches on. The only place that knows both sides' data.
+#include <string>
+#include <vector>
+
+#include "coupling/bridge/ContactList.h"
+#include "coupling/scene/Scene.h"
+#include "thermal/ConductanceLaw.h"
+#include "thermal/HeatTransferMode.h"
+#include "thermal/ThermalNetwork.h"
+
+namespace tmdem::coupling {
+
+class ThermalNetworkBuilder {
+ public:
+  explicit ThermalNetworkBuilder(const Scene& scene);
+
+  // Node data: heat capacity m c, surface 4 pi r^2, emissivity, sources, held flags.
+  thermal::ThermalNetwork nodes() const;
+  // Fills contacts.conductance_W_per_K and writes the edge arrays of `edges` (node arrays are
+  // left alone). A wall contact becomes an edge only for an isothermal wall; with conduction
+  // off, no contact carries heat and every conductance is 0.
+  // is_active (optional, one per contact): 0 marks a pattern-only pair, an edge of zero
+  // conductance that keeps the sparsity pattern while the contact is open.
+  void build_edges(ContactList& contacts, thermal::ThermalNetwork& edges,
+                   const std::vector<std::uint8_t>* is_active = nullptr) const;
+  // Conductance of one contact by the scene's law, W/K.
+  double conductance_W_per_K(std::int64_t i, std::int64_t j, double normal_force_N) const;
+
+  // Names of the heat-transfer modes the scene switches on (registry names), in RHS order.
+  std::vector<std::string> mode_names() const;
+  thermal::ModeSettings mode_settings() const;
+
+ private:
+  thermal::ContactBody body(std::int64_t id) const;  // id < 0: wall -1 - id
+
+  const Scene& scene_;
+  thermal::ConductanceLawKind law_;
+};
+
+}  // namespace tmdem::coupling

@@ -1,0 +1,104 @@
+#pragma once
+// Writes the HDF5 result file of contract section 3, frame by frame, plus RESULT.xdmf next to it.
+//
+// Layout (every dataset has a string attribute "units"):
+//   /  attributes format = "tmdem-result-1", version, scene (TOML text), status
+//      ("running" while the writer is open, then "ok" or "failed")
+//   /particles/radius [N] m, mass [N] kg, heat_capacity [N] J/K, material [N] int32 ("1";
+//      attribute "names" lists the material names when given)
+//   /frames/time [F] s, position [F,N,3] m, velocity [F,N,3] m/s, temperature [F,N] K,
+//      thermal_energy [F] J, boundary_heat [F] J, contact_offset [F+1] int64 ("1")
+//   /contacts/pair [C,2] int64 ("1"; j < 0 is wall -1-j), normal_force [C] N,
+//      conductance [C] W/K; group attribute "stored" = 1 or 0 (store_contacts)
+//
+// Reading while the run goes on: every write_frame() ends with H5Fflush, and the writer opens the
+// file without an HDF5 file lock, so any reader (h5py, ParaView, another tmdem) may open the
+// file read-only at any time with default settings and sees every complete frame. The frame
+// count is len(/frames/time) (written last in each frame). A reader that opens the file in the
+// middle of a write_frame() may get an HDF5 error; reopen then. Readers that keep the file open
+// may see stale metadata, not the later frames: reopen to refresh. Inside the writing process itself, a second
+// H5Fopen of the file while the writer holds it must also switch file locking off
+// (H5Pset_file_locking(fapl, false, true)), else HDF5 refuses: "file locking flag values don't
+// match". HDF5 older than 1.10.7 cannot switch the lock off per file: readers then need the
+// environment variable HDF5_USE_FILE_LOCKING=FALSE.
+//
+// RESULT.xdmf is rewritten (atomically: temporary file then rename) after each of the first 1024
+// frames, then whenever the frame count has grown by 1/32 since the last rewrite, and always in
+// finish() and in the destructor, so it is valid during the run and complete at the end.
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "coupling/output/OutputError.h"
+
+namespace tmdem::coupling {
+
+// Static data, written once. All vectors have N entries (N = radius_m.size()).
+struct ResultHeader {
+  std::string scene_toml;                     // resolved scene, root attribute "scene"
+  std::vector<double> radius_m;
+  std::vector<double> mass_kg;
+  std::vector<double> heat_capacity_J_per_K;  // m c
+  std::vector<int> material;                  // index into the scene's materials
+  std::vector<std::string> material_names;    // optional; attribute "names" of /particles/material
+};
+
+// One frame. The spans point into the caller's arrays; nothing is kept after write_frame().
+struct FrameView {
+  double time_s = 0.0;
+  std::span<const double> position_m;           // N*3, xyz interleaved
+  std::span<const double> velocity_m_per_s;     // N*3
+  std::span<const double> temperature_K;        // N
+  double thermal_energy_J = 0.0;                // sum C_i T_i
+  double boundary_heat_J = 0.0;                 // since t = 0
+  std::span<const std::int64_t> contact_pair;   // C*2; j < 0 is wall number (-1 - j)
+  std::span<const double> normal_force_N;       // C
+  std::span<const double> conductance_W_per_K;  // C
+};
+
+class ResultWriter {
+ public:
+  // Creates (truncates) the file and writes header, empty frame/contact datasets and
+  // contact_offset = [0]; status "running". Throws OutputError naming the path if the file
+  // cannot be created, std::invalid_argument if the header vectors differ in length.
+  ResultWriter(const std::string& path, const ResultHeader& header, bool store_contacts);
+
+  // Restart: opens an existing result file, keeps its first keep_frames frames (and their
+  // contacts), drops the rest and sets status "running" again. Throws OutputError naming the
+  // path if the file is missing, not a tmdem-result-1 file, or has fewer than keep_frames frames.
+  static ResultWriter reopen(const std::string& path, std::size_t keep_frames);
+
+  ResultWriter(ResultWriter&&) noexcept;
+  ResultWriter& operator=(ResultWriter&&) noexcept;
+  ResultWriter(const ResultWriter&) = delete;
+  ResultWriter& operator=(const ResultWriter&) = delete;
+  // Not finished: sets status "failed", closes and writes the XDMF, best effort; never throws.
+  ~ResultWriter();
+
+  // Appends one frame and flushes. Span sizes must match N (std::invalid_argument otherwise);
+  // contacts are ignored when store_contacts is false (contact_offset then stays 0). On an
+  // HDF5 failure the datasets are cut back to the previous frame and OutputError is thrown;
+  // OutputError also when RESULT.xdmf cannot be rewritten (the frame is then in the .h5).
+  // std::logic_error after finish(). Not thread-safe (serial HDF5): one writing thread.
+  void write_frame(const FrameView& frame);
+
+  // status is "ok" or "failed" (std::invalid_argument otherwise). Sets the root attribute,
+  // closes the file and writes RESULT.xdmf. A second call does nothing. Throws OutputError.
+  void finish(std::string_view status);
+
+  std::size_t frames() const;      // frames written so far (F)
+  std::size_t particles() const;   // N
+  bool finished() const;
+  const std::string& path() const;
+  std::string xdmf_path() const;   // RESULT.xdmf next to RESULT.h5
+
+ private:
+  struct Impl;
+  explicit ResultWriter(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace tmdem::coupling

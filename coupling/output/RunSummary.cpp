@@ -1,0 +1,117 @@
+#include "coupling/output/RunSummary.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+
+namespace tmdem::coupling {
+namespace {
+
+// Numbers that were NaN or infinite are written as null by nlohmann::json; read them back as NaN.
+double number(const nlohmann::json& object, const char* key, double fallback) {
+  if (!object.contains(key)) return fallback;
+  const nlohmann::json& value = object.at(key);
+  if (value.is_null()) return std::numeric_limits<double>::quiet_NaN();
+  return value.get<double>();
+}
+
+std::int64_t integer(const nlohmann::json& object, const char* key, std::int64_t fallback) {
+  return object.contains(key) ? object.at(key).get<std::int64_t>() : fallback;
+}
+
+std::string text(const nlohmann::json& object, const char* key, const std::string& fallback) {
+  return object.contains(key) ? object.at(key).get<std::string>() : fallback;
+}
+
+const nlohmann::json& section(const nlohmann::json& object, const char* key) {
+  static const nlohmann::json empty = nlohmann::json::object();
+  return object.contains(key) ? object.at(key) : empty;
+}
+
+}  // namespace
+
+nlohmann::json RunSummary::to_json() const {
+  nlohmann::json m = {{"steps", mechanics.steps},
+                      {"mean_iterations", mechanics.mean_iterations},
+                      {"max_iterations", mechanics.max_iterations},
+                      {"unconverged_steps", mechanics.unconverged_steps},
+                      {"max_penetration_m", mechanics.max_penetration_m}};
+  nlohmann::json t = {{"integrator", thermal.integrator},
+                      {"steps", thermal.steps},
+                      {"rhs_evals", thermal.rhs_evals},
+                      {"jacobian_evals", thermal.jacobian_evals},
+                      {"linear_setups", thermal.linear_setups},
+                      {"error_test_failures", thermal.error_test_failures},
+                      {"convergence_failures", thermal.convergence_failures},
+                      {"reinitializations", thermal.reinitializations}};
+  if (!thermal.linear_solver.empty()) t["linear_solver"] = thermal.linear_solver;
+  t["wall_time_s"] = thermal.wall_time_s;
+  if (!thermal.coupling.empty()) t["coupling"] = thermal.coupling;
+  nlohmann::json e = {{"initial_J", energy.initial_J},
+                      {"final_J", energy.final_J},
+                      {"boundary_heat_J", energy.boundary_heat_J},
+                      {"balance_error_rel", energy.balance_error_rel}};
+  nlohmann::json j = {{"status", status},
+                      {"wall_time_s", wall_time_s},
+                      {"simulated_time_s", simulated_time_s},
+                      {"particles", particles},
+                      {"mechanics", std::move(m)},
+                      {"thermal", std::move(t)},
+                      {"energy", std::move(e)}};
+  if (!message.empty()) j["message"] = message;
+  return j;
+}
+
+RunSummary RunSummary::from_json(const nlohmann::json& j) {
+  RunSummary s;
+  s.status = text(j, "status", s.status);
+  s.message = text(j, "message", s.message);
+  s.wall_time_s = number(j, "wall_time_s", s.wall_time_s);
+  s.simulated_time_s = number(j, "simulated_time_s", s.simulated_time_s);
+  s.particles = integer(j, "particles", s.particles);
+
+  const nlohmann::json& m = section(j, "mechanics");
+  s.mechanics.steps = integer(m, "steps", 0);
+  s.mechanics.mean_iterations = number(m, "mean_iterations", 0.0);
+  s.mechanics.max_iterations = integer(m, "max_iterations", 0);
+  s.mechanics.unconverged_steps = integer(m, "unconverged_steps", 0);
+  s.mechanics.max_penetration_m = number(m, "max_penetration_m", 0.0);
+
+  const nlohmann::json& t = section(j, "thermal");
+  s.thermal.integrator = text(t, "integrator", s.thermal.integrator);
+  s.thermal.linear_solver = text(t, "linear_solver", "");
+  s.thermal.steps = integer(t, "steps", 0);
+  s.thermal.rhs_evals = integer(t, "rhs_evals", 0);
+  s.thermal.jacobian_evals = integer(t, "jacobian_evals", 0);
+  s.thermal.linear_setups = integer(t, "linear_setups", 0);
+  s.thermal.error_test_failures = integer(t, "error_test_failures", 0);
+  s.thermal.convergence_failures = integer(t, "convergence_failures", 0);
+  s.thermal.reinitializations = integer(t, "reinitializations", 0);
+  s.thermal.wall_time_s = number(t, "wall_time_s", 0.0);
+  s.thermal.coupling = text(t, "coupling", "");
+
+  const nlohmann::json& e = section(j, "energy");
+  s.energy.initial_J = number(e, "initial_J", 0.0);
+  s.energy.final_J = number(e, "final_J", 0.0);
+  s.energy.boundary_heat_J = number(e, "boundary_heat_J", 0.0);
+  s.energy.balance_error_rel = number(e, "balance_error_rel", 0.0);
+  return s;
+}
+
+void RunSummary::write(const std::string& path) const {
+  const std::string text = to_json().dump(2) + "\n";
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out) throw OutputError("cannot write run summary '" + path + "': cannot create the file");
+  out << text;
+  out.close();
+  if (!out) throw OutputError("cannot write run summary '" + path + "': write failed");
+}
+
+double RunSummary::balance_error_rel(double initial_J, double final_J, double boundary_heat_J) {
+  const double scale = std::max(std::abs(initial_J), std::abs(boundary_heat_J));
+  if (scale == 0.0) return 0.0;  // nothing to compare with (as specified)
+  return std::abs(final_J - initial_J - boundary_heat_J) / scale;
+}
+
+}  // namespace tmdem::coupling

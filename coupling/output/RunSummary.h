@@ -1,0 +1,64 @@
+#pragma once
+// The run summary of contract section 4 (written by `tmdem run --summary SUMMARY.json`).
+// Key names in JSON are exactly the member names below; "message" and "thermal.linear_solver"
+// are extra keys written only when not empty.
+#include <cstdint>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "coupling/output/OutputError.h"
+
+namespace tmdem::coupling {
+
+struct MechanicsSummary {
+  std::int64_t steps = 0;
+  double mean_iterations = 0.0;      // Gauss-Seidel sweeps per step
+  std::int64_t max_iterations = 0;
+  std::int64_t unconverged_steps = 0;
+  double max_penetration_m = 0.0;
+};
+
+struct ThermalSummary {
+  std::string integrator = "cvode";  // "cvode", "ida" or "explicit"
+  std::string linear_solver;         // extra: "klu" or "pcg"; omitted when empty
+  std::int64_t steps = 0;
+  std::int64_t rhs_evals = 0;
+  std::int64_t jacobian_evals = 0;
+  std::int64_t linear_setups = 0;
+  std::int64_t error_test_failures = 0;
+  std::int64_t convergence_failures = 0;
+  std::int64_t reinitializations = 0;
+  double wall_time_s = 0.0;          // extra: time spent in the thermal side alone
+  std::string coupling;              // extra: thermal.coupling of a dynamic run; omitted when empty
+};
+
+struct EnergySummary {
+  double initial_J = 0.0;
+  double final_J = 0.0;
+  double boundary_heat_J = 0.0;
+  double balance_error_rel = 0.0;
+};
+
+struct RunSummary {
+  std::string status = "ok";         // "ok" or "failed"
+  std::string message;               // extra: what failed; omitted when empty
+  double wall_time_s = 0.0;
+  double simulated_time_s = 0.0;
+  std::int64_t particles = 0;
+  MechanicsSummary mechanics;
+  ThermalSummary thermal;
+  EnergySummary energy;
+
+  nlohmann::json to_json() const;
+  // Inverse of to_json (missing keys keep their defaults). Throws nlohmann::json::exception on
+  // wrong types.
+  static RunSummary from_json(const nlohmann::json& j);
+  // Pretty-printed JSON plus newline. Throws OutputError naming the path.
+  void write(const std::string& path) const;
+
+  // |final - initial - boundary_heat| / max(|initial|, |boundary_heat|); 0 when both are 0.
+  static double balance_error_rel(double initial_J, double final_J, double boundary_heat_J);
+};
+
+}  // namespace tmdem::coupling

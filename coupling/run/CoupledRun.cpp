@@ -1,0 +1,415 @@
+#include "coupling/run/CoupledRun.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <numeric>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+
+#include "coupling/output/Checkpoint.h"
+#include "coupling/bridge/ContactList.h"
+#include "coupling/bridge/DynamicNetwork.h"
+#include "coupling/output/OutputError.h"
+#include "coupling/output/ProgressReporter.h"
+#include "coupling/output/ResultWriter.h"
+#include "coupling/bridge/SceneToMechanics.h"
+#include "coupling/bridge/ThermalDiagnostics.h"
+#include "coupling/bridge/ThermalNetworkBuilder.h"
+#include "coupling/run/ThermalProblem.h"
+#include "mechanics/NscdIntegrator.h"
+#include "mechanics/TouchingPairs.h"
+#include "thermal/IntegratorRegistry.h"
+#include "thermal/ModeRegistry.h"
+#include "thermal/ThermalSolverError.h"
+
+namespace tmdem::coupling {
+
+std::string checkpoint_path_for(const std::string& output_path) {
+  const std::string ext = ".h5";
+  if (output_path.size() > ext.size() &&
+      output_path.compare(output_path.size() - ext.size(), ext.size(), ext) == 0)
+    return output_path.substr(0, output_path.size() - ext.size()) + ".checkpoint.h5";
+  return output_path + ".checkpoint.h5";
+}
+
+namespace {
+
+// Settings found invalid once the run is set up (nothing written yet): exit 2.
+struct StartError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+class CoupledRun {
+ public:
+  CoupledRun(const Scene& scene, const RunOptions& options, std::ostream& log)
+      : scene_(scene), options_(options), log_(log),
+        progress_(log, options.quiet, options.terminal) {}
+
+  RunOutcome run();
+
+ private:
+  void restore_checkpoint();
+  void prepare_mechanics();
+  void settle();
+  void prepare_thermal();
+  void run_static();
+  void run_dynamic();
+  void write_frame(double t_s);
+  void maybe_checkpoint(double t_s);
+  void fill_summary();
+  std::span<const double> positions() const;
+  std::span<const double> velocities() const;
+  double max_temperature_K() const;
+  std::vector<double> frame_times() const;
+
+  const Scene& scene_;
+  RunOptions options_;
+  std::ostream& log_;
+  ProgressReporter progress_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+
+  mechanics::ParticleSet particles_;                  // used when mechanics is off or settled
+  std::unique_ptr<mechanics::NscdIntegrator> nscd_;   // settle and dynamic
+  bool frozen_ = true;                                // positions no longer change
+  std::vector<double> zero_velocity_;
+  ContactList contacts_;
+  std::unique_ptr<DynamicNetwork> dynamic_network_;  // dynamic runs only
+  std::unique_ptr<thermal::ThermalSystem> system_;
+  std::unique_ptr<thermal::ThermalIntegrator> integrator_;
+  std::optional<ResultWriter> writer_;
+
+  std::optional<CheckpointState> restart_;
+  double t0_ = 0.0;
+  std::vector<double> T0_;
+  double boundary_heat0_J_ = 0.0;
+  double initial_energy_J_ = 0.0;
+  double next_checkpoint_s_ = 0.0;
+  double thermal_seconds_ = 0.0;        // wall time inside the thermal side
+  RunSummary summary_;
+};
+
+void CoupledRun::restore_checkpoint() {
+  if (options_.restart_path.empty()) return;
+  restart_ = read_checkpoint(options_.restart_path);  // OutputError -> exit 4
+  const std::size_t n = scene_.particles.size();
+  if (restart_->temperature_K.size() != n)
+    throw StartError("checkpoint " + options_.restart_path + " holds " +
+                     std::to_string(restart_->temperature_K.size()) +
+                     " particles but the scene has " + std::to_string(n));
+  t0_ = restart_->time_s;
+  T0_ = restart_->temperature_K;
+  boundary_heat0_J_ = restart_->boundary_heat_J;
+  if (auto it = restart_->extra.find("initial_energy_J"); it != restart_->extra.end())
+    initial_energy_J_ = it->second;
+}
+
+void CoupledRun::prepare_mechanics() {
+  particles_ = make_particle_set(scene_);
+  zero_velocity_.assign(3 * scene_.particles.size(), 0.0);
+  if (restart_) {
+    for (std::size_t i = 0; i < particles_.size(); ++i)
+      for (int k = 0; k < 3; ++k) {
+        particles_.position[i][k] = restart_->position_m[3 * i + k];
+        particles_.velocity[i][k] = restart_->velocity_m_per_s[3 * i + k];
+        particles_.angular_velocity[i][k] = restart_->angular_velocity_rad_per_s[3 * i + k];
+      }
+  }
+  const auto mode = scene_.effects.mechanics;
+  if (mode == MechanicsMode::Off) {
+    for (const auto& p : mechanics::find_touching_pairs(particles_, make_mechanics_walls(scene_), 1e-9))
+      contacts_.add(p.i, p.j, 0.0);
+    return;
+  }
+  nscd_ = make_nscd_integrator(scene_, particles_);
+  if (mode == MechanicsMode::Dynamic) {
+    frozen_ = false;
+    return;
+  }
+  if (restart_) {
+    // A settled run restarts on the frozen graph it checkpointed.
+    const double h = scene_.mechanics.time_step_s;
+    for (std::size_t c = 0; c < restart_->contact_pair.size() / 2; ++c)
+      contacts_.add(restart_->contact_pair[2 * c], restart_->contact_pair[2 * c + 1],
+                    restart_->contact_impulse_N_s[3 * c] / h);
+    particles_ = nscd_->particles();
+    return;
+  }
+  settle();
+}
+
+void CoupledRun::settle() {
+  settle_packing(*nscd_, scene_, progress_);
+  gather_contacts(nscd_->contacts(), contacts_);
+  particles_ = nscd_->particles();
+}
+
+double CoupledRun::max_temperature_K() const {
+  double T_max = max_scene_temperature_K(scene_);
+  for (double T : T0_) T_max = std::max(T_max, T);  // a restart may start elsewhere
+  return T_max;
+}
+
+void CoupledRun::prepare_thermal() {
+  system_ = build_thermal_system(scene_, contacts_);
+  if (!frozen_) dynamic_network_ = std::make_unique<DynamicNetwork>(scene_, *system_);
+  auto s = integrator_settings(scene_);
+  s.max_temperature_K = max_temperature_K();
+  try {
+    integrator_ = thermal::make_thermal_integrator(scene_.thermal.integrator, *system_, s);
+    if (T0_.empty())
+      for (const auto& p : scene_.particles) T0_.push_back(p.temperature_K);
+    integrator_->initialize(t0_, T0_, boundary_heat0_J_);
+  } catch (const std::invalid_argument& e) {
+    throw StartError(e.what());
+  }
+  if (!restart_) initial_energy_J_ = system_->thermal_energy_J(T0_);
+  if (!options_.quiet) {
+    std::ostringstream report;
+    report << "thermal: integrator " << scene_.thermal.integrator;
+    if (scene_.thermal.integrator != "explicit") report << " (" << scene_.thermal.linear_solver << ")";
+    report << ", modes:";
+    for (const auto& m : system_->modes()) report << " " << m->name();
+    report << "\n";
+    print_diagnostics(report, diagnose(scene_, contacts_, *system_, s.max_temperature_K));
+    progress_.message(report.str().substr(0, report.str().size() - 1));
+  }
+}
+
+std::span<const double> CoupledRun::positions() const {
+  const auto& p = nscd_ && !frozen_ ? nscd_->particles().position : particles_.position;
+  return {p.empty() ? nullptr : p.front().data(), 3 * p.size()};
+}
+
+std::span<const double> CoupledRun::velocities() const {
+  if (frozen_) return zero_velocity_;
+  const auto& v = nscd_->particles().velocity;
+  return {v.empty() ? nullptr : v.front().data(), 3 * v.size()};
+}
+
+void CoupledRun::write_frame(double t_s) {
+  FrameView f;
+  f.time_s = t_s;
+  f.position_m = positions();
+  f.velocity_m_per_s = velocities();
+  f.temperature_K = integrator_->temperatures_K();
+  f.thermal_energy_J = system_->thermal_energy_J(f.temperature_K);
+  f.boundary_heat_J = integrator_->boundary_heat_J();
+  f.contact_pair = contacts_.pair;
+  f.normal_force_N = contacts_.normal_force_N;
+  f.conductance_W_per_K = contacts_.conductance_W_per_K;
+  writer_->write_frame(f);
+}
+
+void CoupledRun::maybe_checkpoint(double t_s) {
+  if (!(scene_.output.checkpoint_interval_s > 0.0) || t_s < next_checkpoint_s_ - 1e-12) return;
+  while (next_checkpoint_s_ <= t_s + 1e-12) next_checkpoint_s_ += scene_.output.checkpoint_interval_s;
+  CheckpointState cs;
+  cs.time_s = t_s;
+  const auto& ps = nscd_ && !frozen_ ? nscd_->particles() : particles_;
+  for (std::size_t i = 0; i < ps.size(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      cs.position_m.push_back(ps.position[i][k]);
+      cs.velocity_m_per_s.push_back(frozen_ ? 0.0 : ps.velocity[i][k]);
+      cs.angular_velocity_rad_per_s.push_back(frozen_ ? 0.0 : ps.angular_velocity[i][k]);
+    }
+  const auto T = integrator_->temperatures_K();
+  cs.temperature_K.assign(T.begin(), T.end());
+  cs.boundary_heat_J = integrator_->boundary_heat_J();
+  cs.scene_toml = scene_.resolved_toml;
+  cs.frames_written = std::int64_t(writer_->frames());
+  cs.contact_pair = contacts_.pair;
+  for (double F : contacts_.normal_force_N) {
+    cs.contact_impulse_N_s.push_back(F * scene_.mechanics.time_step_s);
+    cs.contact_impulse_N_s.push_back(0.0);
+    cs.contact_impulse_N_s.push_back(0.0);
+  }
+  cs.extra["initial_energy_J"] = initial_energy_J_;
+  write_checkpoint(checkpoint_path_for(options_.output_path), cs);
+}
+
+std::vector<double> CoupledRun::frame_times() const {
+  std::vector<double> times;
+  const double dt = scene_.output.interval_s, end = scene_.duration_s;
+  for (long k = 0;; ++k) {
+    const double t = double(k) * dt;
+    if (t >= end - 1e-9 * dt) break;
+    times.push_back(t);
+  }
+  times.push_back(end);
+  return times;
+}
+
+void CoupledRun::run_static() {
+  const auto times = frame_times();
+  for (double t : times) {
+    if (t < t0_ - 1e-12) continue;
+    if (t > t0_ + 1e-12 || !restart_) {
+      const auto thermal_start = std::chrono::steady_clock::now();
+      integrator_->advance_to(t);
+      thermal_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - thermal_start).count();
+      write_frame(t);
+    }
+    maybe_checkpoint(t);
+    const auto st = integrator_->stats();
+    progress_.update("run", t, scene_.duration_s, std::to_string(st.steps) + " thermal steps");
+  }
+}
+
+void CoupledRun::run_dynamic() {
+  const double h = scene_.mechanics.time_step_s;
+  const auto times = frame_times();
+  std::size_t next_frame = 0;
+  while (next_frame < times.size() && times[next_frame] < t0_ + 0.5 * h) ++next_frame;
+  if (!restart_) write_frame(0.0);
+  double t = t0_;
+  long k = std::lround(t0_ / h);
+  while (t < scene_.duration_s - 1e-9 * h) {
+    ++k;
+    const double t_next = std::min(double(k) * h, scene_.duration_s);
+    const auto report = nscd_->step(t_next - t);
+    if (!report.converged && !options_.quiet && nscd_->stats().unconverged_steps <= 10) {
+      std::ostringstream msg;
+      msg << "warning: mechanics step at t = " << t_next << " s: Gauss-Seidel did not converge in "
+          << report.sweeps << " sweeps (residual " << report.residual << ")";
+      progress_.message(msg.str());
+    }
+    gather_contacts(nscd_->contacts(), contacts_);
+    const auto thermal_start = std::chrono::steady_clock::now();
+    dynamic_network_->update(contacts_, *integrator_, scene_.thermal.coupling);
+    integrator_->advance_to(t_next);
+    thermal_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - thermal_start).count();
+    t = t_next;
+    if (next_frame < times.size() && t >= times[next_frame] - 0.5 * h) {
+      write_frame(t);
+      while (next_frame < times.size() && times[next_frame] < t + 0.5 * h) ++next_frame;
+    }
+    maybe_checkpoint(t);
+    progress_.update("run", t, scene_.duration_s,
+                     std::to_string(contacts_.size()) + " contacts");
+  }
+}
+
+void CoupledRun::fill_summary() {
+  summary_.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  summary_.particles = std::int64_t(scene_.particles.size());
+  if (nscd_) {
+    const auto& ms = nscd_->stats();
+    summary_.mechanics.steps = ms.steps;
+    summary_.mechanics.mean_iterations = ms.mean_sweeps();
+    summary_.mechanics.max_iterations = ms.max_sweeps;
+    summary_.mechanics.unconverged_steps = ms.unconverged_steps;
+    summary_.mechanics.max_penetration_m = ms.max_penetration_m;
+  }
+  summary_.thermal.integrator = scene_.thermal.integrator;
+  summary_.thermal.linear_solver = scene_.thermal.integrator == "explicit" ? "" : scene_.thermal.linear_solver;
+  if (integrator_) {
+    const auto st = integrator_->stats();
+    summary_.thermal.steps = st.steps;
+    summary_.thermal.rhs_evals = st.rhs_evals;
+    summary_.thermal.jacobian_evals = st.jacobian_evals;
+    summary_.thermal.linear_setups = st.linear_setups;
+    summary_.thermal.error_test_failures = st.error_test_failures;
+    summary_.thermal.convergence_failures = st.convergence_failures;
+    summary_.thermal.reinitializations = st.reinitializations;
+    summary_.thermal.wall_time_s = thermal_seconds_;
+    if (!frozen_) summary_.thermal.coupling = scene_.thermal.coupling;
+    summary_.simulated_time_s = integrator_->time_s();
+    summary_.energy.initial_J = initial_energy_J_;
+    summary_.energy.final_J = system_->thermal_energy_J(integrator_->temperatures_K());
+    summary_.energy.boundary_heat_J = integrator_->boundary_heat_J();
+    summary_.energy.balance_error_rel = RunSummary::balance_error_rel(
+        summary_.energy.initial_J, summary_.energy.final_J, summary_.energy.boundary_heat_J);
+  }
+}
+
+RunOutcome CoupledRun::run() {
+  RunOutcome outcome;
+  auto finish = [&](int code, const std::string& message) {
+    progress_.done();
+    if (!message.empty()) log_ << "error: " << message << std::endl;
+    summary_.status = code == 0 ? "ok" : "failed";
+    summary_.message = message;
+    fill_summary();
+    if (writer_ && !writer_->finished()) {
+      try {
+        writer_->finish(code == 0 ? "ok" : "failed");
+      } catch (const OutputError& e) {
+        log_ << "error: " << e.what() << std::endl;
+        if (code == 0) code = 4;
+      }
+    }
+    // A run refused at start writes nothing, not even a summary.
+    if (!options_.summary_path.empty() && code != 2) {
+      try {
+        summary_.write(options_.summary_path);
+      } catch (const OutputError& e) {
+        log_ << "error: " << e.what() << std::endl;
+        if (code == 0) code = 4;
+      }
+    }
+    outcome.exit_code = code;
+    outcome.summary = summary_;
+    if (integrator_) {
+      const auto T = integrator_->temperatures_K();
+      outcome.final_temperature_K.assign(T.begin(), T.end());
+    }
+    return outcome;
+  };
+
+  try {
+    restore_checkpoint();
+    prepare_mechanics();
+    prepare_thermal();
+  } catch (const StartError& e) {
+    return finish(2, e.what());
+  } catch (const OutputError& e) {
+    return finish(4, e.what());
+  } catch (const thermal::ThermalSolverError& e) {
+    return finish(3, e.what());
+  } catch (const std::exception& e) {
+    return finish(3, std::string("setting up the run failed: ") + e.what());
+  }
+
+  try {
+    if (restart_) {
+      writer_.emplace(ResultWriter::reopen(options_.output_path, std::size_t(restart_->frames_written)));
+    } else {
+      ResultHeader header;
+      header.scene_toml = scene_.resolved_toml;
+      for (std::size_t i = 0; i < scene_.particles.size(); ++i) {
+        const auto& p = scene_.particles[i];
+        header.radius_m.push_back(p.radius_m);
+        header.mass_kg.push_back(particle_mass_kg(scene_, i));
+        header.heat_capacity_J_per_K.push_back(system_->network().heat_capacity_J_per_K[i]);
+        header.material.push_back(p.material);
+      }
+      for (const auto& m : scene_.materials) header.material_names.push_back(m.name);
+      writer_.emplace(options_.output_path, header, scene_.output.contacts);
+    }
+    next_checkpoint_s_ = t0_ + scene_.output.checkpoint_interval_s;
+    if (frozen_)
+      run_static();
+    else
+      run_dynamic();
+  } catch (const thermal::ThermalSolverError& e) {
+    return finish(3, e.what());
+  } catch (const OutputError& e) {
+    return finish(4, e.what());
+  } catch (const std::exception& e) {
+    return finish(3, e.what());
+  }
+  return finish(0, "");
+}
+
+}  // namespace
+
+RunOutcome run_scene(const Scene& scene, const RunOptions& options, std::ostream& log) {
+  CoupledRun run(scene, options, log);
+  return run.run();
+}
+
+}  // namespace tmdem::coupling

@@ -1,0 +1,126 @@
+#include "coupling/run/ThermalProblem.h"
+
+#include <algorithm>
+#include <numeric>
+#include <sstream>
+#include <stdexcept>
+
+#include "coupling/bridge/SceneToMechanics.h"
+#include "mechanics/TouchingPairs.h"
+#include "thermal/ModeRegistry.h"
+
+namespace tmdem::coupling {
+
+bool settle_packing(mechanics::NscdIntegrator& nscd, const Scene& scene, ProgressReporter& progress) {
+  const double h = scene.mechanics.time_step_s;
+  const double t_max = scene.mechanics.settle_time_s;
+  double t = 0.0;
+  bool at_rest = false;
+  while (t < t_max - 0.5 * h) {
+    const auto report = nscd.step(h);
+    t += h;
+    if (!report.converged && nscd.stats().unconverged_steps <= 10) {
+      std::ostringstream msg;
+      msg << "warning: settle step at t = " << t << " s: Gauss-Seidel did not converge in "
+          << report.sweeps << " sweeps (residual " << report.residual << ", tolerance "
+          << scene.mechanics.tolerance << ")";
+      if (nscd.stats().unconverged_steps == 10) msg << "; further such warnings are not shown";
+      progress.message(msg.str());
+    }
+    const double speed = nscd.max_speed();
+    std::ostringstream extra;
+    extra << "max speed " << speed << " m/s, " << report.active_contacts << " contacts";
+    progress.update("settle", t, t_max, extra.str());
+    if (speed < scene.mechanics.settle_velocity_m_per_s) {
+      at_rest = true;
+      break;
+    }
+  }
+  progress.done();
+  std::ostringstream msg;
+  if (!at_rest) {
+    msg << "warning: not at rest after mechanics.settle_time = " << t_max
+        << " s: largest speed " << nscd.max_speed() << " m/s (settle_velocity "
+        << scene.mechanics.settle_velocity_m_per_s << " m/s); freezing the packing as it is";
+  } else {
+    msg << "settle: at rest after " << t << " s (" << nscd.stats().steps << " steps, "
+        << nscd.contacts().size() << " contacts, max penetration "
+        << nscd.stats().max_penetration_m << " m, " << nscd.stats().unconverged_steps
+        << " unconverged steps)";
+  }
+  progress.message(msg.str());
+  return at_rest;
+}
+
+void gather_contacts(const std::vector<mechanics::ContactForce>& forces, ContactList& out) {
+  // Called every mechanical step of a dynamic run: the permutation buffer is kept between calls
+  // so that the step loop does not allocate once warm.
+  static thread_local std::vector<std::size_t> order;
+  order.resize(forces.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return std::pair(forces[a].i, forces[a].j) < std::pair(forces[b].i, forces[b].j);
+  });
+  out.clear();
+  for (auto k : order) out.add(forces[k].i, forces[k].j, forces[k].normal_force_N);
+}
+
+std::unique_ptr<thermal::ThermalSystem> build_thermal_system(const Scene& scene,
+                                                             ContactList& contacts) {
+  ThermalNetworkBuilder builder(scene);
+  auto network = builder.nodes();
+  builder.build_edges(contacts, network);
+  std::vector<std::unique_ptr<thermal::HeatTransferMode>> modes;
+  const auto settings = builder.mode_settings();
+  for (const auto& name : builder.mode_names())
+    modes.push_back(thermal::make_heat_transfer_mode(name, settings));
+  return std::make_unique<thermal::ThermalSystem>(std::move(network), std::move(modes));
+}
+
+double max_scene_temperature_K(const Scene& scene) {
+  double T_max = 0.0;
+  for (const auto& p : scene.particles) T_max = std::max(T_max, p.temperature_K);
+  for (const auto& w : scene.walls)
+    if (w.temperature_K) T_max = std::max(T_max, *w.temperature_K);
+  if (scene.effects.convection) T_max = std::max(T_max, scene.convection.fluid_temperature_K);
+  if (scene.effects.radiation) T_max = std::max(T_max, scene.radiation.ambient_temperature_K);
+  return T_max;
+}
+
+thermal::IntegratorSettings integrator_settings(const Scene& scene) {
+  thermal::IntegratorSettings s;
+  s.linear_solver = scene.thermal.linear_solver;
+  s.relative_tolerance = scene.thermal.relative_tolerance;
+  s.absolute_tolerance_K = scene.thermal.absolute_tolerance_K;
+  s.explicit_step_s = scene.thermal.explicit_step_s;
+  s.max_temperature_K = max_scene_temperature_K(scene);
+  s.stop_at_each_time = scene.effects.mechanics == MechanicsMode::Dynamic;
+  return s;
+}
+
+FrozenThermalProblem build_frozen_thermal_problem(const Scene& scene, ProgressReporter& progress) {
+  FrozenThermalProblem problem;
+  auto particles = make_particle_set(scene);
+  const auto walls = make_mechanics_walls(scene);
+  switch (scene.effects.mechanics) {
+    case MechanicsMode::Off:
+      for (const auto& p : mechanics::find_touching_pairs(particles, walls, 1e-9))
+        problem.contacts.add(p.i, p.j, 0.0);
+      break;
+    case MechanicsMode::Settle: {
+      auto nscd = make_nscd_integrator(scene, std::move(particles));
+      settle_packing(*nscd, scene, progress);
+      gather_contacts(nscd->contacts(), problem.contacts);
+      break;
+    }
+    case MechanicsMode::Dynamic:
+      throw std::invalid_argument(
+          "the thermal problem of a dynamic scene changes every mechanical step; it has no frozen "
+          "contact graph");
+  }
+  problem.system = build_thermal_system(scene, problem.contacts);
+  for (const auto& p : scene.particles) problem.T0_K.push_back(p.temperature_K);
+  return problem;
+}
+
+}  // namespace tmdem::coupling

@@ -1,0 +1,48 @@
+#pragma once
+// The pieces of a run that turn a scene into a thermal problem, shared by `tmdem run` and
+// `tmdem study accuracy`: settling, the canonical contact list, the thermal system with the
+// modes the scene switches on, and the integrator settings.
+#include <memory>
+#include <vector>
+
+#include "coupling/bridge/ContactList.h"
+#include "coupling/output/ProgressReporter.h"
+#include "coupling/scene/Scene.h"
+#include "coupling/bridge/ThermalNetworkBuilder.h"
+#include "mechanics/ContactForce.h"
+#include "mechanics/NscdIntegrator.h"
+#include "thermal/ThermalIntegrator.h"
+#include "thermal/ThermalSystem.h"
+
+namespace tmdem::coupling {
+
+// Steps the NSCD integrator until every particle is slower than mechanics.settle_velocity or
+// mechanics.settle_time runs out (then a warning with the largest speed). Returns whether the
+// packing came to rest.
+bool settle_packing(mechanics::NscdIntegrator& nscd, const Scene& scene, ProgressReporter& progress);
+
+// The mechanics' contacts in canonical (i, j) order, so that the same graph always gives the
+// same edge list and the thermal side can tell a values-only change from a new shape.
+void gather_contacts(const std::vector<mechanics::ContactForce>& forces, ContactList& out);
+
+// Network nodes from the scene, edges from `contacts` (conductances filled in), and the modes
+// the scene switches on (a mode that is off is never built).
+std::unique_ptr<thermal::ThermalSystem> build_thermal_system(const Scene& scene,
+                                                             ContactList& contacts);
+
+// Largest temperature the run can see: particles, isothermal walls, fluid, surroundings.
+double max_scene_temperature_K(const Scene& scene);
+
+// [thermal] of the scene as integrator settings.
+thermal::IntegratorSettings integrator_settings(const Scene& scene);
+
+// A scene's thermal problem on a frozen contact graph: contacts from geometry (mechanics off)
+// or from settling (settle). Throws std::invalid_argument for a dynamic scene.
+struct FrozenThermalProblem {
+  ContactList contacts;
+  std::unique_ptr<thermal::ThermalSystem> system;
+  std::vector<double> T0_K;
+};
+FrozenThermalProblem build_frozen_thermal_problem(const Scene& scene, ProgressReporter& progress);
+
+}  // namespace tmdem::coupling

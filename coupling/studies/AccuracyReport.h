@@ -1,0 +1,50 @@
+#pragma once
+// Output of the accuracy study (contract section 5): the CSV, the human-readable table, and
+// where each method reaches 1e-3 K and 1e-6 K.
+//
+// CSV: the header `method,linear_solver,parameter,max_error_K,wall_time_s,steps,rhs_evals`,
+// then one row per successful run. linear_solver is "none" for the explicit update; parameter
+// is the step (s) for explicit, the relative tolerance otherwise; numbers are written in the
+// shortest form that reads back to the same double. Failed runs are not in the CSV (the table
+// and stderr show them with their message).
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "coupling/common/ShortestNumber.h"
+#include "coupling/studies/AccuracyStudy.h"
+
+namespace tmdem::coupling {
+
+inline constexpr const char* kAccuracyCsvHeader =
+    "method,linear_solver,parameter,max_error_K,wall_time_s,steps,rhs_evals";
+
+void write_accuracy_csv(std::ostream& out, const std::vector<AccuracyRun>& runs);
+
+// The successful run of `label` ("explicit", "cvode/klu", ...) with the least wall time among
+// those whose max error is at most target_K; null if none.
+const AccuracyRun* cheapest_reaching(const std::vector<AccuracyRun>& runs, const std::string& label,
+                                     double target_K);
+
+// What the explicit update would cost to reach target_K, from its smallest-step successful run
+// (h0, e0, wall time w0 over n0 steps), assuming first order (error = c h, c = e0 / h0) and the
+// same cost per step: h = target / c, wall time = (w0 / n0) ceil(end_time / h).
+struct ExplicitProjection {
+  bool available = false;
+  double error_constant_K_per_s = 0.0;   // c
+  double step_s = 0.0;                   // h reaching the target
+  double steps = 0.0;
+  double cost_per_step_s = 0.0;
+  double wall_time_s = 0.0;
+  double basis_step_s = 0.0;             // h0
+  double observed_order = 0.0;           // from the two smallest steps; 0 if fewer than two
+};
+ExplicitProjection project_explicit(const std::vector<AccuracyRun>& runs, double end_time_s,
+                                    double target_K);
+
+// Setup lines, the table of every run (failed ones with their message) and the target summary.
+void print_accuracy_report(std::ostream& out, const AccuracyStudyResult& result,
+                           const AccuracyStudyOptions& options);
+
+
+}  // namespace tmdem::coupling

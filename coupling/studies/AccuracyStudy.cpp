@@ -1,0 +1,224 @@
+#include "coupling/studies/AccuracyStudy.h"
+#include "coupling/common/ShortestNumber.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include "coupling/studies/ExactThermalReference.h"
+#include "coupling/output/ProgressReporter.h"
+#include "coupling/studies/ContactRecording.h"
+#include "coupling/bridge/ThermalNetworkBuilder.h"
+#include "coupling/run/ThermalProblem.h"
+#include "coupling/studies/ThermalReplay.h"
+#include "thermal/IntegratorRegistry.h"
+
+namespace tmdem::coupling {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+double thread_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+double max_abs_difference(std::span<const double> T, std::span<const double> ref) {
+  double e = 0.0;
+  for (std::size_t i = 0; i < T.size(); ++i) {
+    const double d = std::abs(T[i] - ref[i]);
+    if (!std::isfinite(d)) return std::numeric_limits<double>::infinity();
+    e = std::max(e, d);
+  }
+  return e;
+}
+
+thermal::IntegratorSettings implicit_settings(const thermal::IntegratorSettings& base,
+                                              const std::string& linear_solver, double rtol) {
+  auto s = base;
+  s.linear_solver = linear_solver;
+  s.relative_tolerance = rtol;
+  s.absolute_tolerance_K = rtol;
+  return s;  // stop_at_each_time from base: true when a dynamic replay changes the network
+}
+
+}  // namespace
+
+AccuracyRun timed_accuracy_run(thermal::ThermalSystem& system, const std::string& method,
+                               const thermal::IntegratorSettings& settings,
+                               std::span<const double> T0_K, double end_time_s,
+                               std::span<const double> reference_T_K,
+                               const AccuracyStudyOptions& options, const ThermalDriver& driver) {
+  AccuracyRun run;
+  run.method = method;
+  run.linear_solver = method == "explicit" ? "none" : settings.linear_solver;
+  run.parameter = method == "explicit" ? settings.explicit_step_s : settings.relative_tolerance;
+  run.wall_time_s = std::numeric_limits<double>::infinity();
+  try {
+    while (run.timings < std::max(1, options.max_timings)) {
+      auto integrator = thermal::make_thermal_integrator(method, system, settings);
+      const double cpu_start = thread_cpu_seconds();
+      const auto start = Clock::now();
+      if (driver) {
+        driver(*integrator, T0_K, end_time_s, "continue");
+      } else {
+        integrator->initialize(0.0, T0_K, 0.0);
+        integrator->advance_to(end_time_s);
+      }
+      const double wall = seconds_since(start);
+      const double cpu = thread_cpu_seconds() - cpu_start;
+      if (run.timings == 0) {
+        const auto st = integrator->stats();
+        run.steps = st.steps;
+        run.rhs_evals = st.rhs_evals;
+        run.max_error_K = max_abs_difference(integrator->temperatures_K(), reference_T_K);
+        if (!std::isfinite(run.max_error_K)) {
+          run.ok = false;
+          run.message = "non-finite temperature at the end time";
+        }
+      }
+      ++run.timings;
+      if (wall < run.wall_time_s) {
+        run.wall_time_s = wall;
+        run.cpu_time_s = cpu;
+      }
+      if (!run.ok || wall >= options.repeat_below_s) break;
+    }
+  } catch (const std::exception& e) {
+    run.ok = false;
+    run.message = e.what();
+    if (!std::isfinite(run.wall_time_s)) run.wall_time_s = 0.0;
+  }
+  return run;
+}
+
+AccuracyReference accuracy_reference(thermal::ThermalSystem& system, std::span<const double> T0_K,
+                                     double end_time_s, const thermal::IntegratorSettings& base,
+                                     const thermal::ModeSettings& modes,
+                                     const AccuracyStudyOptions& options,
+                                     const ThermalDriver& driver) {
+  AccuracyReference ref;
+  const auto start = Clock::now();
+  std::optional<AffineThermalSystem> affine;
+  std::string why_not;
+  if (driver) {
+    why_not = "the contact graph changes every mechanical step";
+  } else if (system.size() > options.exact_reference_max_nodes) {
+    why_not = std::to_string(system.size()) + " particles, more than " +
+              std::to_string(options.exact_reference_max_nodes) + " for a dense exponential";
+  } else {
+    affine = affine_thermal_system(system, modes);
+    if (!affine) why_not = "the network is nonlinear (radiation)";
+  }
+  if (affine) {
+    try {
+      ref.T_K = exact_affine_temperatures(*affine, T0_K, end_time_s);
+    } catch (const std::exception& e) {
+      throw ReferenceError(std::string("the exact reference failed: ") + e.what());
+    }
+    ref.exact = true;
+    ref.description = "exact matrix exponential of the affine system dT/dt = A T + b (" +
+                      std::to_string(system.size()) + " particles, Eigen MatrixFunctions)";
+  } else {
+    auto s = implicit_settings(base, "klu", options.reference_tolerance);
+    s.max_steps_per_call = std::max(s.max_steps_per_call, 100000000L);
+    try {
+      auto integrator = thermal::make_thermal_integrator("cvode", system, s);
+      if (driver) {
+        driver(*integrator, T0_K, end_time_s, "restart");
+      } else {
+        integrator->initialize(0.0, T0_K, 0.0);
+        integrator->advance_to(end_time_s);
+      }
+      const auto T = integrator->temperatures_K();
+      ref.T_K.assign(T.begin(), T.end());
+    } catch (const std::exception& e) {
+      throw ReferenceError(std::string("the reference run (cvode/klu, rtol = atol = ") +
+                           shortest_number(options.reference_tolerance) + ") failed: " + e.what());
+    }
+    for (double T : ref.T_K)
+      if (!std::isfinite(T))
+        throw ReferenceError("the reference run (cvode/klu) gave a non-finite temperature");
+    ref.description = std::string("cvode/klu") + (driver ? " restarted every mechanical step" : "") +
+                      " at rtol = atol = " + shortest_number(options.reference_tolerance) +
+                      " (no exact reference: " + why_not + ")";
+  }
+  ref.wall_time_s = seconds_since(start);
+  return ref;
+}
+
+AccuracyStudyResult run_accuracy_study(thermal::ThermalSystem& system,
+                                       std::span<const double> T0_K, double end_time_s,
+                                       const thermal::IntegratorSettings& base,
+                                       const thermal::ModeSettings& modes,
+                                       const AccuracyStudyOptions& options, std::ostream* log,
+                                       const ThermalDriver& driver) {
+  AccuracyStudyResult result;
+  result.end_time_s = end_time_s;
+  const auto& net = system.network();
+  result.nodes = net.node_count();
+  result.edges = net.edge_count();
+  result.wall_edges = net.wall_edge_count();
+  result.stability_bound_s = options.stability_bound_s > 0.0
+                                 ? options.stability_bound_s
+                                 : system.explicit_stability_bound_s(base.max_temperature_K);
+
+  if (log) *log << "study: computing the reference..." << std::endl;
+  result.reference = accuracy_reference(system, T0_K, end_time_s, base, modes, options, driver);
+  if (log)
+    *log << "study: reference: " << result.reference.description << ", "
+         << result.reference.wall_time_s << " s" << std::endl;
+
+  auto report = [&](const AccuracyRun& r) {
+    if (!log) return;
+    *log << "study: " << r.label() << (r.method == "explicit" ? " h = " : " rtol = ")
+         << r.parameter << (r.method == "explicit" ? " s" : "");
+    if (r.ok)
+      *log << ": max error " << r.max_error_K << " K, " << r.wall_time_s << " s, " << r.steps
+           << " steps" << std::endl;
+    else
+      *log << ": FAILED: " << r.message << std::endl;
+  };
+
+  // Explicit ladder.
+  const double work_per_step = double(result.nodes + result.edges + result.wall_edges);
+  double h = std::isfinite(result.stability_bound_s)
+                 ? options.explicit_first_fraction * result.stability_bound_s
+                 : end_time_s;
+  if (options.max_explicit_step_s > 0.0) h = std::min(h, options.max_explicit_step_s);
+  for (int k = 0; k < options.explicit_rungs; ++k, h /= options.explicit_rung_factor) {
+    const double work = std::ceil(end_time_s / h) * work_per_step;
+    if (work > options.explicit_work_budget) {
+      result.skipped.push_back({h, work});
+      continue;
+    }
+    auto s = base;
+    s.explicit_step_s = h;
+    result.runs.push_back(timed_accuracy_run(system, "explicit", s, T0_K, end_time_s,
+                                             result.reference.T_K, options, driver));
+    report(result.runs.back());
+  }
+  // Implicit methods at each tolerance.
+  for (const auto& [method, solver] : options.implicit_methods)
+    for (double rtol : options.relative_tolerances) {
+      result.runs.push_back(timed_accuracy_run(system, method, implicit_settings(base, solver, rtol),
+                                               T0_K, end_time_s, result.reference.T_K, options,
+                                               driver));
+      report(result.runs.back());
+    }
+  return result;
+}
+
+}  // namespace tmdem::coupling

@@ -1,0 +1,133 @@
+#pragma once
+// `tmdem study accuracy` (contract section 5): a work-precision study of the thermal integrators
+// on a scene's frozen thermal problem.
+//
+// Runs, all from the scene's initial temperatures to simulation.duration:
+//   explicit   forward Euler at h = 0.9 x the stability bound (2 / lambda_max, Gershgorin), then
+//              h / 4, h / 16, ... (explicit_rungs = 12 rungs); a rung whose projected work
+//              ceil(duration / h) x (nodes + edges + wall edges) exceeds explicit_work_budget
+//              is skipped and listed as such (2e9 is a few seconds of wall time).
+//   cvode, ida with klu and pcg, at relative tolerances 1e-2, 1e-4, 1e-6, 1e-8, 1e-10 and the
+//              absolute tolerance equal to the relative one, read in kelvin (atol = rtol K).
+// Reference: for a linear network (no radiation) of at most exact_reference_max_nodes
+// particles, the exact matrix exponential (coupling/ExactThermalReference.h); otherwise
+// CVODE/KLU at rtol = atol = 1e-12.
+// Each run: wall time of the integrator's initialize + advance_to only (steady_clock; runs
+// under repeat_below_s are repeated up to max_timings times and the least time kept; the
+// thread CPU time of that timing is kept too), the
+// largest |T_i - T_ref,i| over all particles at the end time, steps and right-hand-side
+// evaluations. A run that fails (solver error, non-finite temperature) is kept with ok = false
+// and its message: it is printed, never written to the CSV.
+#include <cstddef>
+#include <functional>
+#include <ostream>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "coupling/scene/Scene.h"
+#include "thermal/HeatTransferMode.h"
+#include "thermal/ThermalIntegrator.h"
+#include "thermal/ThermalSystem.h"
+
+namespace tmdem::coupling {
+
+struct AccuracyStudyOptions {
+  std::vector<double> relative_tolerances{1e-2, 1e-4, 1e-6, 1e-8, 1e-10};
+  std::vector<std::pair<std::string, std::string>> implicit_methods{
+      {"cvode", "klu"}, {"cvode", "pcg"}, {"ida", "klu"}, {"ida", "pcg"}};
+  int explicit_rungs = 12;
+  double explicit_first_fraction = 0.9;      // of the stability bound
+  double explicit_rung_factor = 4.0;         // each rung's step is the previous one / this
+  double explicit_work_budget = 2.0e9;       // steps x (nodes + edges + wall edges)
+  double repeat_below_s = 0.05;
+  int max_timings = 10;
+  std::size_t exact_reference_max_nodes = 2000;
+  double reference_tolerance = 1e-12;        // CVODE/KLU reference: rtol = atol (K)
+  // Explicit ladder start: 0 takes the bound of the system's current network; a dynamic
+  // scene passes the smallest bound over its recorded steps.
+  double stability_bound_s = 0.0;
+  // Largest explicit step (a dynamic scene: the mechanical step); 0 = none.
+  double max_explicit_step_s = 0.0;
+};
+
+// How one run gets from t = 0 to the end time. Empty: initialize, then one advance on the
+// frozen network. A dynamic scene replays its recorded contact graph (ThermalReplay) with the
+// given coupling strategy ("continue" for the runs, "restart" for the reference).
+using ThermalDriver = std::function<void(thermal::ThermalIntegrator&, std::span<const double> T0_K,
+                                         double end_time_s, const std::string& coupling)>;
+
+struct AccuracyRun {
+  std::string method;          // explicit | cvode | ida
+  std::string linear_solver;   // klu | pcg; "none" for explicit
+  double parameter = 0.0;      // explicit: step, s; otherwise the relative tolerance
+  double max_error_K = 0.0;
+  double wall_time_s = 0.0;    // least over the timings
+  double cpu_time_s = 0.0;     // thread CPU time of the same run (not in the CSV): close to the
+                               // wall time unless the machine is busy with other work
+  long steps = 0;
+  long rhs_evals = 0;
+  int timings = 0;             // how many times it was run and timed
+  bool ok = true;
+  std::string message;         // why it failed
+
+  // "explicit", "cvode/klu", ...
+  std::string label() const { return method == "explicit" ? method : method + "/" + linear_solver; }
+};
+
+struct SkippedRung {
+  double step_s = 0.0;
+  double projected_work = 0.0;
+};
+
+struct AccuracyReference {
+  bool exact = false;
+  std::string description;     // what was used and why
+  std::vector<double> T_K;     // at the end time
+  double wall_time_s = 0.0;
+};
+
+struct AccuracyStudyResult {
+  double end_time_s = 0.0;
+  std::size_t nodes = 0, edges = 0, wall_edges = 0;
+  double stability_bound_s = 0.0;
+  AccuracyReference reference;
+  std::vector<AccuracyRun> runs;        // explicit rungs first, then each implicit method
+  std::vector<SkippedRung> skipped;     // explicit rungs over the work budget
+};
+
+// The reference could not be computed (exit code 3).
+struct ReferenceError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// The study on `system` from T0_K over [0, end_time_s]. `base` gives what is common to every
+// run (max_temperature_K for the explicit bound); tolerances, step and linear solver are set
+// per run. `modes` are the settings the exact reference reads. Progress lines go to `log`
+// (nothing if null). Throws ReferenceError when the reference fails.
+AccuracyStudyResult run_accuracy_study(thermal::ThermalSystem& system,
+                                       std::span<const double> T0_K, double end_time_s,
+                                       const thermal::IntegratorSettings& base,
+                                       const thermal::ModeSettings& modes,
+                                       const AccuracyStudyOptions& options, std::ostream* log,
+                                       const ThermalDriver& driver = {});
+
+// One timed run of `method` with `settings` against `reference_T_K` (the study's building block,
+// also used by the benchmark). Never throws for solver failures: they give ok = false.
+AccuracyRun timed_accuracy_run(thermal::ThermalSystem& system, const std::string& method,
+                               const thermal::IntegratorSettings& settings,
+                               std::span<const double> T0_K, double end_time_s,
+                               std::span<const double> reference_T_K,
+                               const AccuracyStudyOptions& options,
+                               const ThermalDriver& driver = {});
+
+// The study's reference alone (as in run_accuracy_study). Throws ReferenceError.
+AccuracyReference accuracy_reference(thermal::ThermalSystem& system, std::span<const double> T0_K,
+                                     double end_time_s, const thermal::IntegratorSettings& base,
+                                     const thermal::ModeSettings& modes,
+                                     const AccuracyStudyOptions& options,
+                                     const ThermalDriver& driver = {});
+
+}  // namespace tmdem::coupling

@@ -1,0 +1,65 @@
+#pragma once
+// Persistent table of candidate contacts (particle-particle and particle-wall), rebuilt from
+// a cell grid only when some particle may have come close to a pair that is not listed.
+//
+// A pair is listed when its gap is at most `margin` at the rebuild. Between rebuilds each
+// particle's displacement d_i since the rebuild is tracked; as long as
+// d_i + s_i <= margin / 2 for every particle (s_i = look-ahead: how far it can move during
+// the coming step), no unlisted pair can touch before the next check. This is the
+// "half the margin" Verlet criterion, with a look-ahead so that fast particles trigger the
+// rebuild one step early rather than one step late.
+//
+// Everything lives in reused vectors: no allocation once warm.
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "mechanics/CellGrid.h"
+#include "mechanics/ParticleSet.h"
+#include "mechanics/Wall.h"
+
+namespace tmdem::mechanics {
+
+struct CandidatePair {
+  std::int32_t i = 0;  // particle
+  std::int32_t j = 0;  // particle (> i), or -1 - wall index
+};
+
+class ContactDetector {
+ public:
+  // margin bounds, m: the margin used at a rebuild is 4 * (largest look-ahead) clamped to
+  // [min_margin_m, max_margin_m] (wider when particles are fast, so rebuilds stay rare).
+  ContactDetector(double min_margin_m, double max_margin_m);
+
+  // Rebuilds the table if needed (or if forced). lookahead_m[i] is how far particle i may
+  // move before the next call (may be empty: 0). Returns true if the table was rebuilt.
+  bool update(const ParticleSet& particles, const std::vector<Wall>& walls,
+              const std::vector<double>& lookahead_m);
+
+  // Forces a rebuild at the next update (after particles were moved by hand).
+  void invalidate() { valid_ = false; }
+
+  // Candidates sorted by (i, j) with j as a signed number (walls first for each i).
+  const std::vector<CandidatePair>& pairs() const { return pairs_; }
+  // After a rebuild: index in the previous table of each new pair, or -1 if it is new.
+  const std::vector<std::int32_t>& previous_index() const { return previous_index_; }
+
+  std::size_t rebuild_count() const { return rebuilds_; }
+  double margin() const { return margin_; }
+
+ private:
+  void rebuild(const ParticleSet& particles, const std::vector<Wall>& walls, double lookahead_max);
+
+  double min_margin_;
+  double max_margin_;
+  double margin_ = 0.0;
+  bool valid_ = false;
+  std::size_t rebuilds_ = 0;
+  std::vector<Eigen::Vector3d> reference_position_;  // positions at the last rebuild
+  std::vector<CandidatePair> pairs_, previous_pairs_;
+  std::vector<std::int32_t> previous_index_;
+  CellGrid grid_;
+};
+
+}  // namespace tmdem::mechanics

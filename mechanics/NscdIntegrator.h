@@ -1,0 +1,118 @@
+#pragma once
+// Non-smooth contact dynamics (Moreau-Jean theta scheme, [MOR 94][JEA 99]) with the
+// bipotential contact law solved by nonlinear Gauss-Seidel ("equilibres successifs").
+//
+// One step of length h:
+//   1. refresh the candidate table if needed (ContactDetector);
+//   2. free velocities v_free = v + h M^-1 F_ext (gravity; no torque);
+//   3. for each candidate: local frame (n from j to i, tangents), Delassus block
+//      W = H^T M^-1 H, and the position term of the Signorini condition (below);
+//   4. Gauss-Seidel sweeps: each contact solves its own law with the others frozen
+//      (CoulombCone.h: exact, in closed form) and updates the two bodies' velocities at once, warm-started from
+//      the previous step's forces of the same pair; stop when sum|dr| / sum|r| < tolerance;
+//   5. q_{n+1} = q_n + h (theta v_{n+1} + (1 - theta) v_n).
+//
+// Signorini with a position term. Let g be the gap at the start of the step and
+// P = g + h (1 - theta) u_n(v_n) the gap predicted with the part of the position update that
+// is already known. The normal condition is applied to U_n = u_n(v_{n+1}) + P / h:
+//   U_n >= 0, r_n >= 0, r_n U_n = 0   (inside the bipotential law, u_n is replaced by U_n).
+// This keeps P >= 0 from step to step, hence g_{n+1} >= (1 - theta) P >= 0: no penetration
+// builds up (for spheres the linearised gap is a lower bound of the true one), a contact
+// reached at P = 0 ends with u_n = 0 (inelastic impact), a resting contact (g = 0, u = 0)
+// carries exactly the weight, and a negative P (initial overlap, round-off) is pushed out in
+// one step instead of drifting. Far candidates (P > 0) only act if they would close.
+//
+// Friction between two materials uses the smaller coefficient (see Material.h).
+// dimension 2: gravity, reactions and velocities are kept in the xy-plane exactly
+// (z, v_z, omega_x, omega_y stay as they are: 0 for a planar scene); spheres still roll.
+// Fixed particles have infinite mass and inertia: they never move and keep zero velocity.
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "mechanics/ContactDetector.h"
+#include "mechanics/ContactForce.h"
+#include "mechanics/Material.h"
+#include "mechanics/NscdParameters.h"
+#include "mechanics/ParticleSet.h"
+#include "mechanics/StepReport.h"
+#include "mechanics/Wall.h"
+
+namespace tmdem::mechanics {
+
+class NscdIntegrator {
+ public:
+  // Throws std::invalid_argument for inconsistent input (bad material index, non-positive
+  // step, theta outside (0, 1], dimension not 2 or 3, ...).
+  NscdIntegrator(ParticleSet particles, std::vector<Material> materials, std::vector<Wall> walls,
+                 const Eigen::Vector3d& gravity_m_per_s2, int dimension,
+                 NscdParameters parameters = {});
+
+  StepReport step();          // one step of parameters().time_step
+  StepReport step(double h);  // one step of h seconds
+
+  // Contacts with r_n > 0 after the last step (forces are the step means, impulse / h).
+  const std::vector<ContactForce>& contacts() const { return contacts_; }
+  const MechanicsStats& stats() const { return stats_; }
+  void restore_stats(const MechanicsStats& stats) { stats_ = stats; }  // after a restart
+
+  double kinetic_energy() const;    // J, translation + rotation of moving particles
+  double potential_energy() const;  // J, -sum m g.x (zero at the origin), moving particles
+  // Largest centre speed |v| of a moving particle, m/s; the "settle" phase ends when it
+  // drops below settle_velocity. Spin is left out on purpose: a sphere spinning about its
+  // contact normal is at rest as far as the packing goes, and point contacts never stop it.
+  double max_speed() const;
+
+  const ParticleSet& particles() const { return particles_; }
+  // Mutable access (e.g. restoring a checkpoint). Call invalidate_contacts() after moving
+  // particles by hand; velocities can be changed freely.
+  ParticleSet& particles() { return particles_; }
+  void invalidate_contacts();
+
+  const std::vector<Wall>& walls() const { return walls_; }
+  const std::vector<Material>& materials() const { return materials_; }
+  const Eigen::Vector3d& gravity() const { return gravity_; }
+  int dimension() const { return dimension_; }
+  const NscdParameters& parameters() const { return parameters_; }
+  const ContactDetector& detector() const { return detector_; }
+
+ private:
+  // Solver state of one candidate contact; rebuilt from geometry every step.
+  struct ContactRow {
+    Eigen::Vector3d n, t1, t2;  // local frame
+    Eigen::Vector3d r;          // reaction impulse in the local frame (n, t1, t2), N s
+    double bias = 0.0;          // P / h, m/s
+    double gap = 0.0;           // m
+    double w_n = 0.0, w_t = 0.0;  // Delassus block diag(w_n, w_t, w_t), 1/kg
+    double mu = 0.0;
+    double lever_i = 0.0, lever_j = 0.0;  // radii (contact point offsets), m
+    int i = 0, j = 0;           // j < 0: wall -1 - j
+    bool solved = false;        // false when both bodies are immobile
+  };
+
+  void refresh_candidates(double h);
+  void setup_contacts(double h);
+  int gauss_seidel(double& residual, bool& converged);
+  Eigen::Vector3d relative_velocity(const ContactRow& c) const;
+  void apply_impulse(const ContactRow& c, const Eigen::Vector3d& p);
+  void keep_in_plane();
+
+  ParticleSet particles_;
+  std::vector<Material> materials_;
+  std::vector<Wall> walls_;
+  Eigen::Vector3d gravity_;
+  int dimension_;
+  NscdParameters parameters_;
+  ContactDetector detector_;
+
+  std::vector<double> inverse_mass_, inverse_inertia_;  // 0 for fixed particles
+  std::vector<Eigen::Vector3d> old_velocity_, old_angular_velocity_;
+  std::vector<double> lookahead_;
+  std::vector<ContactRow> rows_;
+  std::vector<Eigen::Vector3d> force_;       // global reaction force per candidate, N
+  std::vector<Eigen::Vector3d> old_force_;   // same, before a candidate rebuild
+  std::vector<ContactForce> contacts_;
+  MechanicsStats stats_;
+};
+
+}  // namespace tmdem::mechanics

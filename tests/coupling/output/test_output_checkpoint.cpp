@@ -1,0 +1,155 @@
+// Checkpoint: round trip, and written whole or not at all.
+#include <H5Cpp.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
+
+#include "coupling/output/Checkpoint.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using tmdem::coupling::CheckpointState;
+using tmdem::coupling::OutputError;
+
+class TempDir {
+ public:
+  TempDir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    path_ = fs::temp_directory_path() /
+            ("tmdem-output-" + std::string(info->name()) + "-" + std::to_string(getpid()));
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  std::string file(const std::string& name) const { return (path_ / name).string(); }
+  std::size_t entries() const {
+    return static_cast<std::size_t>(std::distance(fs::directory_iterator(path_), {}));
+  }
+
+ private:
+  fs::path path_;
+};
+
+CheckpointState sample() {
+  CheckpointState s;
+  s.time_s = 12.5;
+  s.position_m = {0, 1e-3, 0, 2e-3, 1e-3, 0, 1e-3, 2.7e-3, 0};
+  s.velocity_m_per_s = {1, 2, 3, 4, 5, 6, 7, 8, 9};
+  s.angular_velocity_rad_per_s = {-1, -2, -3, -4, -5, -6, -7, -8, -9};
+  s.temperature_K = {373.15, 300.0, 293.15};
+  s.boundary_heat_J = 4.25;
+  s.scene_toml = "format = \"tmdem-scene-1\"\n[simulation]\nduration = 100.0\n";
+  s.frames_written = 126;
+  s.contact_pair = {0, 1, 1, 2, 0, -1};
+  s.contact_impulse_N_s = {1e-3, 0, 0, 2e-3, 1e-5, 0, 3e-3, 0, -1e-5};
+  s.extra = {{"mechanics.step", 12500.0}, {"next_frame_time_s", 12.6}};
+  return s;
+}
+
+void expect_equal(const CheckpointState& a, const CheckpointState& b) {
+  EXPECT_EQ(a.time_s, b.time_s);
+  EXPECT_EQ(a.position_m, b.position_m);
+  EXPECT_EQ(a.velocity_m_per_s, b.velocity_m_per_s);
+  EXPECT_EQ(a.angular_velocity_rad_per_s, b.angular_velocity_rad_per_s);
+  EXPECT_EQ(a.temperature_K, b.temperature_K);
+  EXPECT_EQ(a.boundary_heat_J, b.boundary_heat_J);
+  EXPECT_EQ(a.scene_toml, b.scene_toml);
+  EXPECT_EQ(a.frames_written, b.frames_written);
+  EXPECT_EQ(a.contact_pair, b.contact_pair);
+  EXPECT_EQ(a.contact_impulse_N_s, b.contact_impulse_N_s);
+  EXPECT_EQ(a.extra, b.extra);
+}
+
+TEST(Checkpoint, RoundTrip) {
+  TempDir dir;
+  const std::string path = dir.file("run.ckpt.h5");
+  write_checkpoint(path, sample());
+  expect_equal(tmdem::coupling::read_checkpoint(path), sample());
+  EXPECT_FALSE(fs::exists(path + ".tmp"));
+  EXPECT_EQ(dir.entries(), 1u);
+
+  H5::H5File file(path, H5F_ACC_RDONLY);
+  H5::Attribute format = file.openAttribute("format");
+  std::string text;
+  format.read(format.getStrType(), text);
+  EXPECT_EQ(text, "tmdem-checkpoint-1");
+}
+
+TEST(Checkpoint, RoundTripWithoutContacts) {
+  TempDir dir;
+  CheckpointState s = sample();
+  s.contact_pair.clear();
+  s.contact_impulse_N_s.clear();
+  s.extra.clear();
+  write_checkpoint(dir.file("c.h5"), s);
+  expect_equal(tmdem::coupling::read_checkpoint(dir.file("c.h5")), s);
+}
+
+TEST(Checkpoint, OverwriteReplacesWhole) {
+  TempDir dir;
+  const std::string path = dir.file("c.h5");
+  write_checkpoint(path, sample());
+  CheckpointState later = sample();
+  later.time_s = 20.0;
+  later.temperature_K = {1.0, 2.0, 3.0};
+  write_checkpoint(path, later);
+  expect_equal(tmdem::coupling::read_checkpoint(path), later);
+  EXPECT_EQ(dir.entries(), 1u);
+}
+
+TEST(Checkpoint, MissingFolderLeavesNoFileAndNamesThePath) {
+  TempDir dir;
+  const std::string path = dir.file("missing/c.h5");
+  try {
+    write_checkpoint(path, sample());
+    FAIL() << "no exception";
+  } catch (const OutputError& e) {
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(dir.entries(), 0u);
+}
+
+TEST(Checkpoint, FailedWriteKeepsThePreviousCheckpoint) {
+  TempDir dir;
+  const std::string path = dir.file("c.h5");
+  write_checkpoint(path, sample());
+  fs::create_directory(path + ".tmp");  // the temporary file cannot be created
+  CheckpointState later = sample();
+  later.time_s = 99.0;
+  EXPECT_THROW(write_checkpoint(path, later), OutputError);
+  expect_equal(tmdem::coupling::read_checkpoint(path), sample());
+  EXPECT_TRUE(fs::is_directory(path + ".tmp"));  // not ours: left alone
+}
+
+TEST(Checkpoint, RejectsInconsistentState) {
+  TempDir dir;
+  CheckpointState s = sample();
+  s.velocity_m_per_s.pop_back();
+  EXPECT_THROW(write_checkpoint(dir.file("c.h5"), s), std::invalid_argument);
+  s = sample();
+  s.contact_impulse_N_s.pop_back();
+  EXPECT_THROW(write_checkpoint(dir.file("c.h5"), s), std::invalid_argument);
+  EXPECT_EQ(dir.entries(), 0u);
+}
+
+TEST(Checkpoint, ReadRejectsMissingAndForeignFiles) {
+  TempDir dir;
+  EXPECT_THROW(tmdem::coupling::read_checkpoint(dir.file("none.h5")), OutputError);
+  {
+    H5::H5File other(dir.file("other.h5"), H5F_ACC_TRUNC);
+  }
+  try {
+    tmdem::coupling::read_checkpoint(dir.file("other.h5"));
+    FAIL() << "no exception";
+  } catch (const OutputError& e) {
+    EXPECT_NE(std::string(e.what()).find(dir.file("other.h5")), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace

@@ -1,0 +1,118 @@
+// RunSummary: contract section 4.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "coupling/output/RunSummary.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using tmdem::coupling::OutputError;
+using tmdem::coupling::RunSummary;
+
+RunSummary sample() {
+  RunSummary s;
+  s.status = "ok";
+  s.wall_time_s = 1.25;
+  s.simulated_time_s = 100.0;
+  s.particles = 256;
+  s.mechanics = {1200, 35.5, 812, 2, 3.5e-7};
+  s.thermal.integrator = "ida";
+  s.thermal.steps = 410;
+  s.thermal.rhs_evals = 523;
+  s.thermal.jacobian_evals = 12;
+  s.thermal.linear_setups = 40;
+  s.thermal.error_test_failures = 3;
+  s.thermal.convergence_failures = 1;
+  s.thermal.reinitializations = 7;
+  s.energy = {1000.0, 1010.0, 10.5, RunSummary::balance_error_rel(1000.0, 1010.0, 10.5)};
+  return s;
+}
+
+TEST(RunSummary, JsonHasEveryContractKey) {
+  const nlohmann::json j = sample().to_json();
+  for (const char* key : {"status", "wall_time_s", "simulated_time_s", "particles", "mechanics",
+                          "thermal", "energy"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+  EXPECT_TRUE(j["status"].is_string());
+  EXPECT_TRUE(j["particles"].is_number_integer());
+  for (const char* key :
+       {"steps", "mean_iterations", "max_iterations", "unconverged_steps", "max_penetration_m"}) {
+    EXPECT_TRUE(j["mechanics"].contains(key) && j["mechanics"][key].is_number()) << key;
+  }
+  EXPECT_TRUE(j["thermal"]["integrator"].is_string());
+  for (const char* key : {"steps", "rhs_evals", "jacobian_evals", "linear_setups",
+                          "error_test_failures", "convergence_failures", "reinitializations"}) {
+    EXPECT_TRUE(j["thermal"].contains(key) && j["thermal"][key].is_number_integer()) << key;
+  }
+  for (const char* key : {"initial_J", "final_J", "boundary_heat_J", "balance_error_rel"}) {
+    EXPECT_TRUE(j["energy"].contains(key) && j["energy"][key].is_number()) << key;
+  }
+  // Extras only when set.
+  EXPECT_FALSE(j.contains("message"));
+  EXPECT_FALSE(j["thermal"].contains("linear_solver"));
+  EXPECT_EQ(j.size(), 7u);
+  EXPECT_EQ(j["mechanics"].size(), 5u);
+  // The contract's 8 thermal keys plus the extra wall_time_s (time in the thermal side alone).
+  EXPECT_EQ(j["thermal"].size(), 9u);
+  EXPECT_TRUE(j["thermal"]["wall_time_s"].is_number());
+  EXPECT_FALSE(j["thermal"].contains("coupling"));
+  EXPECT_EQ(j["energy"].size(), 4u);
+}
+
+TEST(RunSummary, FileRoundTrip) {
+  const fs::path path =
+      fs::temp_directory_path() / ("tmdem-output-summary-" + std::to_string(getpid()) + ".json");
+  RunSummary s = sample();
+  s.status = "failed";
+  s.message = "CVODE failed at t = 3.2 s";
+  s.thermal.linear_solver = "pcg";
+  s.write(path.string());
+  std::ifstream in(path);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  fs::remove(path);
+  EXPECT_EQ(j, s.to_json());
+  EXPECT_EQ(j["message"], "CVODE failed at t = 3.2 s");
+  EXPECT_EQ(j["thermal"]["linear_solver"], "pcg");
+  const RunSummary r = RunSummary::from_json(j);
+  EXPECT_EQ(r.to_json(), s.to_json());
+  EXPECT_EQ(r.mechanics.max_iterations, 812);
+  EXPECT_EQ(r.thermal.reinitializations, 7);
+  EXPECT_DOUBLE_EQ(r.energy.boundary_heat_J, 10.5);
+}
+
+TEST(RunSummary, WriteToMissingFolderThrowsOutputErrorNamingThePath) {
+  const std::string path = "/nonexistent-tmdem-folder/summary.json";
+  try {
+    sample().write(path);
+    FAIL() << "no exception";
+  } catch (const OutputError& e) {
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+  }
+}
+
+TEST(RunSummary, BalanceErrorFormula) {
+  // |final - initial - boundary_heat| / max(|initial|, |boundary_heat|)
+  EXPECT_DOUBLE_EQ(RunSummary::balance_error_rel(100.0, 110.0, 10.0), 0.0);
+  EXPECT_DOUBLE_EQ(RunSummary::balance_error_rel(100.0, 111.0, 10.0), 0.01);
+  EXPECT_DOUBLE_EQ(RunSummary::balance_error_rel(100.0, 109.0, 10.0), 0.01);
+  EXPECT_DOUBLE_EQ(RunSummary::balance_error_rel(1.0, -48.0, -50.0), 1.0 / 50.0);  // heat left
+  EXPECT_DOUBLE_EQ(RunSummary::balance_error_rel(0.0, 0.0, 0.0), 0.0);
+  EXPECT_DOUBLE_EQ(RunSummary::balance_error_rel(-4.0, -4.0, 0.0), 0.0);
+}
+
+TEST(RunSummary, NonFiniteNumbersSurviveAsNull) {
+  RunSummary s = sample();
+  s.energy.balance_error_rel = std::nan("");
+  const nlohmann::json j = nlohmann::json::parse(s.to_json().dump());
+  EXPECT_TRUE(j["energy"]["balance_error_rel"].is_null());
+  EXPECT_TRUE(std::isnan(RunSummary::from_json(j).energy.balance_error_rel));
+}
+
+}  // namespace

@@ -1,0 +1,343 @@
+// Particle ids, the deterministic generators and [[assign]].
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <string>
+
+#include "coupling/scene/SceneGenerators.h"
+#include "tests/coupling/SceneTestUtil.h"
+
+namespace tmdem::coupling::test {
+namespace {
+
+const std::string kHeader = R"(format = "tmdem-scene-1"
+
+[simulation]
+duration = 1.0
+dimension = 2
+
+[[material]]
+name = "steel"
+density = 7800.0
+young_modulus = 2.1e11
+poisson_ratio = 0.3
+conductivity = 50.0
+heat_capacity = 460.0
+
+[[material]]
+name = "glass"
+density = 2500.0
+young_modulus = 6.3e10
+poisson_ratio = 0.2
+conductivity = 1.0
+heat_capacity = 840.0
+)";
+
+double distance(const Vec3& a, const Vec3& b) {
+  return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                   (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+TEST(SceneGenerators, IdsExplicitParticlesFirstThenGeneratorsInFileOrder) {
+  // [[generate]] entries appear before the [[particle]] entries in the file.
+  const std::string text = kHeader + R"(
+[[generate]]
+kind = "column"
+count = 2
+radius = 0.001
+origin = [0.1, 0.001, 0.0]
+material = "steel"
+
+[[particle]]
+position = [0.0, 0.001, 0.0]
+radius = 0.002
+material = "glass"
+
+[[generate]]
+kind = "column"
+count = 3
+radius = 0.001
+origin = [0.2, 0.001, 0.0]
+material = "glass"
+temperature = 310.0
+
+[[particle]]
+position = [0.05, 0.001, 0.0]
+radius = 0.003
+material = "steel"
+)";
+  const Scene scene = load_scene_text(text, "t");
+  ASSERT_EQ(scene.particles.size(), 7u);
+  EXPECT_EQ(scene.particles[0].radius_m, 0.002);
+  EXPECT_EQ(scene.particles[1].radius_m, 0.003);
+  EXPECT_EQ(scene.particles[2].position_m[0], 0.1);
+  EXPECT_EQ(scene.particles[3].position_m[0], 0.1);
+  for (int i = 4; i < 7; ++i) {
+    EXPECT_EQ(scene.particles[i].position_m[0], 0.2);
+    EXPECT_EQ(scene.particles[i].material, 1);
+    EXPECT_EQ(scene.particles[i].temperature_K, 310.0);
+  }
+  EXPECT_EQ(scene.particles[2].temperature_K, 293.15);
+}
+
+TEST(SceneGenerators, TriangularPaperRows) {
+  const double r = 0.001;
+  const std::string text = kHeader + R"(
+[[generate]]
+kind = "triangular"
+rows = [5, 4, 3, 2]
+radius = 0.001
+origin = [0.001, 0.001, 0.0]
+material = "steel"
+)";
+  const Scene scene = load_scene_text(text, "t");
+  ASSERT_EQ(scene.particles.size(), 14u);
+  // Bottom row: origin, spacing 2 r along x.
+  EXPECT_DOUBLE_EQ(scene.particles[0].position_m[0], 0.001);
+  EXPECT_DOUBLE_EQ(scene.particles[0].position_m[1], 0.001);
+  EXPECT_DOUBLE_EQ(scene.particles[4].position_m[0], 0.009);
+  // Second row starts at origin + (r, sqrt(3) r); top row is centred on the bottom row.
+  EXPECT_NEAR(scene.particles[5].position_m[0], 0.002, 1e-15);
+  EXPECT_NEAR(scene.particles[5].position_m[1], 0.001 + std::sqrt(3.0) * r, 1e-15);
+  EXPECT_NEAR((scene.particles[12].position_m[0] + scene.particles[13].position_m[0]) / 2, 0.005,
+              1e-15);
+  // Every particle touches its neighbours exactly; none overlap.
+  int contacts = 0;
+  for (std::size_t i = 0; i < 14; ++i)
+    for (std::size_t j = i + 1; j < 14; ++j) {
+      const double d = distance(scene.particles[i].position_m, scene.particles[j].position_m);
+      EXPECT_GE(d, 2 * r * (1 - 1e-12));
+      if (std::abs(d - 2 * r) <= 2 * r * 1e-12) ++contacts;
+      EXPECT_EQ(scene.particles[i].position_m[2], 0.0);
+    }
+  // Rows: 4 + 3 + 2 + 1 within rows, 8 + 6 + 4 between rows.
+  EXPECT_EQ(contacts, 10 + 18);
+}
+
+TEST(SceneGenerators, TriangularEqualRowsStackStraight) {
+  const auto positions = triangular_positions({3, 3}, 1.0, {0.0, 0.0, 0.0});
+  ASSERT_EQ(positions.size(), 6u);
+  EXPECT_DOUBLE_EQ(positions[3][0], 0.0);
+  EXPECT_DOUBLE_EQ(positions[3][1], 2.0);
+}
+
+TEST(SceneGenerators, ColumnGoesAgainstGravity) {
+  const std::string text = kHeader + R"(
+[[generate]]
+kind = "column"
+count = 4
+radius = 0.001
+origin = [0.0, 0.001, 0.0]
+material = "steel"
+)";
+  const Scene up = load_scene_text(text, "t");
+  ASSERT_EQ(up.particles.size(), 4u);
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_DOUBLE_EQ(up.particles[i].position_m[0], 0.0);
+    EXPECT_NEAR(up.particles[i].position_m[1], 0.001 + 0.002 * i, 1e-15);
+  }
+  const Scene down = load_scene_text(text, "t", {"simulation.gravity=[0, 9.81, 0]"});
+  EXPECT_NEAR(down.particles[3].position_m[1], 0.001 - 0.006, 1e-15);
+  const Scene sideways = load_scene_text(text, "t", {"simulation.gravity=[-1, 0, 0]"});
+  EXPECT_NEAR(sideways.particles[3].position_m[0], 0.006, 1e-15);
+}
+
+TEST(SceneGenerators, LatticeSimpleCubicXFastest) {
+  const std::string text = kHeader + R"(
+[[generate]]
+kind = "lattice"
+counts = [3, 2, 2]
+spacing = 0.0025
+radius = 0.001
+origin = [0.0, 0.0, 0.0]
+material = "glass"
+)";
+  const Scene scene = load_scene_text(text, "t", {"simulation.dimension=3"});
+  ASSERT_EQ(scene.particles.size(), 12u);
+  EXPECT_NEAR(scene.particles[1].position_m[0], 0.0025, 1e-15);
+  EXPECT_NEAR(scene.particles[3].position_m[1], 0.0025, 1e-15);
+  EXPECT_NEAR(scene.particles[6].position_m[2], 0.0025, 1e-15);
+  EXPECT_NEAR(scene.particles[11].position_m[0], 0.005, 1e-15);
+  EXPECT_EQ(scene.particles[11].material, 1);
+}
+
+TEST(SceneGenerators, GeneratorOptionalSettings) {
+  const std::string text = kHeader + R"(
+[[generate]]
+kind = "column"
+count = 2
+radius = 0.001
+origin = [0.0, 0.001, 0.0]
+material = "steel"
+temperature = 400.0
+fixed_temperature = true
+heat_source = 0.5
+fixed = true
+)";
+  const Scene scene = load_scene_text(text, "t");
+  for (const auto& p : scene.particles) {
+    EXPECT_EQ(p.temperature_K, 400.0);
+    EXPECT_TRUE(p.fixed_temperature);
+    EXPECT_EQ(p.heat_source_W, 0.5);
+    EXPECT_TRUE(p.fixed);
+  }
+}
+
+const std::string kRandom = kHeader + R"(
+[[generate]]
+kind = "random"
+count = 50
+box = { min = [0.0, 0.0, 0.0], max = [0.02, 0.02, 0.0] }
+radii = [0.0005, 0.001]
+fractions = [0.6, 0.4]
+material = "steel"
+)";
+
+TEST(SceneGenerators, RandomIsReproducibleAndInsideTheBox) {
+  const Scene a = load_scene_text(kRandom, "t");
+  const Scene b = load_scene_text(kRandom, "t");
+  ASSERT_EQ(a.particles.size(), 50u);
+  int small = 0;
+  for (std::size_t i = 0; i < 50; ++i) {
+    const Particle& p = a.particles[i];
+    EXPECT_EQ(p.position_m, b.particles[i].position_m);
+    EXPECT_GE(p.position_m[0] - p.radius_m, 0.0);
+    EXPECT_LE(p.position_m[0] + p.radius_m, 0.02);
+    EXPECT_GE(p.position_m[1] - p.radius_m, 0.0);
+    EXPECT_LE(p.position_m[1] + p.radius_m, 0.02);
+    EXPECT_EQ(p.position_m[2], 0.0);
+    if (p.radius_m == 0.0005) ++small;
+  }
+  EXPECT_EQ(small, 30);
+  const Scene other = load_scene_text(kRandom, "t", {"simulation.seed=2"});
+  EXPECT_NE(other.particles[0].position_m, a.particles[0].position_m);
+}
+
+TEST(SceneGenerators, RandomGeneratorsDrawDifferentPlacements) {
+  const std::string text = kRandom + R"(
+[[generate]]
+kind = "random"
+count = 50
+box = { min = [0.1, 0.0, 0.0], max = [0.12, 0.02, 0.0] }
+radii = [0.0005, 0.001]
+fractions = [0.6, 0.4]
+material = "steel"
+)";
+  const Scene scene = load_scene_text(text, "t");
+  ASSERT_EQ(scene.particles.size(), 100u);
+  int same = 0;
+  for (std::size_t i = 0; i < 50; ++i)
+    if (std::abs(scene.particles[50 + i].position_m[0] - 0.1 - scene.particles[i].position_m[0]) <
+        1e-12)
+      ++same;
+  EXPECT_LT(same, 50);
+}
+
+TEST(SceneGenerators, RandomSingleRadiusThreeD) {
+  const Scene scene = load_scene_text(kHeader + R"(
+[[generate]]
+kind = "random"
+count = 20
+box = { min = [0.0, 0.0, 0.0], max = [0.01, 0.01, 0.01] }
+radius = 0.001
+material = "glass"
+)",
+                                      "t", {"simulation.dimension=3"});
+  ASSERT_EQ(scene.particles.size(), 20u);
+  for (const auto& p : scene.particles) {
+    EXPECT_EQ(p.radius_m, 0.001);
+    EXPECT_EQ(p.material, 1);
+    for (int d = 0; d < 3; ++d) {
+      EXPECT_GE(p.position_m[d], 0.001);
+      EXPECT_LE(p.position_m[d], 0.009);
+    }
+  }
+}
+
+TEST(SceneGenerators, RandomBoxTooFull) {
+  expect_scene_error(kRandom, {"generate[0].box.max=[0.004, 0.004, 0.0]"},
+                     {"generate[0]", "random placement failed"});
+  expect_scene_error(kRandom, {"generate[0].box.max=[0.0015, 0.02, 0.0]"},
+                     {"generate[0].box", "too small"});
+}
+
+TEST(SceneGenerators, RandomOverlapWithOtherParticlesIsAnError) {
+  expect_scene_error(kRandom + R"(
+[[particle]]
+position = [0.01, 0.01, 0.0]
+radius = 0.004
+material = "steel"
+)",
+                     {"particles 0 and", "overlap", "particle[0]", "generate[0]"});
+}
+
+const std::string kLatticeForAssign = kHeader + R"(
+[[generate]]
+kind = "lattice"
+counts = [4, 4, 1]
+spacing = 0.002
+radius = 0.001
+origin = [0.001, 0.001, 0.0]
+material = "steel"
+)";
+
+TEST(SceneAssign, ById) {
+  const Scene scene = load_scene_text(kLatticeForAssign + R"(
+[[assign]]
+ids = [0, 5]
+temperature = 373.15
+fixed_temperature = true
+heat_source = 2.0
+fixed = true
+material = "glass"
+)",
+                                      "t");
+  for (std::size_t i = 0; i < scene.particles.size(); ++i) {
+    const bool chosen = i == 0 || i == 5;
+    const Particle& p = scene.particles[i];
+    EXPECT_EQ(p.temperature_K, chosen ? 373.15 : 293.15) << i;
+    EXPECT_EQ(p.fixed_temperature, chosen);
+    EXPECT_EQ(p.heat_source_W, chosen ? 2.0 : 0.0);
+    EXPECT_EQ(p.fixed, chosen);
+    EXPECT_EQ(p.material, chosen ? 1 : 0);
+  }
+}
+
+TEST(SceneAssign, ByBoxInFileOrder) {
+  const Scene scene = load_scene_text(kLatticeForAssign + R"(
+[[assign]]
+box = { min = [0.0, 0.0, -1.0], max = [0.004, 0.004, 1.0] }
+temperature = 350.0
+
+[[assign]]
+ids = [0]
+temperature = 360.0
+)",
+                                      "t");
+  // Centres inside the box: (1,1), (3,1), (1,3), (3,3) mm -> ids 0, 1, 4, 5; later assign wins.
+  std::set<std::size_t> hot;
+  for (std::size_t i = 0; i < scene.particles.size(); ++i)
+    if (scene.particles[i].temperature_K > 300.0) hot.insert(i);
+  EXPECT_EQ(hot, (std::set<std::size_t>{0, 1, 4, 5}));
+  EXPECT_EQ(scene.particles[0].temperature_K, 360.0);
+  EXPECT_EQ(scene.particles[5].temperature_K, 350.0);
+}
+
+TEST(SceneAssign, ByNearest) {
+  const Scene scene = load_scene_text(kLatticeForAssign + R"(
+[[assign]]
+nearest = { point = [0.0085, 0.0, 0.0], count = 3 }
+temperature = 373.15
+)",
+                                      "t");
+  // Nearest to (8.5, 0) mm: (7,1) id 3, then (5,1) id 2 and (7,3) id 7.
+  std::set<std::size_t> hot;
+  for (std::size_t i = 0; i < scene.particles.size(); ++i)
+    if (scene.particles[i].temperature_K > 300.0) hot.insert(i);
+  EXPECT_EQ(hot, (std::set<std::size_t>{2, 3, 7}));
+}
+
+}  // namespace
+}  // namespace tmdem::coupling::test

@@ -1,0 +1,115 @@
+// Candidate table: complete within the margin, rebuilt only when needed, warm-start map.
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "mechanics/ContactDetector.h"
+#include "mechanics/RandomPlacement.h"
+
+using namespace tmdem::mechanics;
+using Eigen::Vector3d;
+
+namespace {
+
+ParticleSet random_set(std::size_t count, std::uint64_t seed) {
+  const auto placed = place_random(count, Vector3d(0, 0, 0), Vector3d(0.02, 0.02, 0.02),
+                                   {0.001, 0.0005}, {0.5, 0.5}, seed, 3);
+  ParticleSet set;
+  for (std::size_t i = 0; i < count; ++i) set.add(placed.positions[i], placed.radii[i], 1.0, 0);
+  return set;
+}
+
+std::set<std::pair<int, int>> brute_force(const ParticleSet& set, const std::vector<Wall>& walls,
+                                          double margin) {
+  std::set<std::pair<int, int>> expected;
+  for (std::size_t i = 0; i < set.size(); ++i) {
+    for (std::size_t j = i + 1; j < set.size(); ++j) {
+      if ((set.position[i] - set.position[j]).norm() - set.radius[i] - set.radius[j] <= margin) {
+        expected.insert({static_cast<int>(i), static_cast<int>(j)});
+      }
+    }
+    for (std::size_t w = 0; w < walls.size(); ++w) {
+      if (walls[w].signed_distance(set.position[i]) - set.radius[i] <= margin) {
+        expected.insert({static_cast<int>(i), -1 - static_cast<int>(w)});
+      }
+    }
+  }
+  return expected;
+}
+
+}  // namespace
+
+TEST(ContactDetector, ListsExactlyThePairsWithinTheMargin) {
+  ParticleSet set = random_set(800, 1);
+  const std::vector<Wall> walls = {Wall::through({0, 0.002, 0}, {0, 1, 0}, 0)};
+  ContactDetector detector(4e-4, 4e-4);
+  ASSERT_TRUE(detector.update(set, walls, {}));
+  EXPECT_EQ(detector.margin(), 4e-4);
+  std::set<std::pair<int, int>> found;
+  for (const auto& p : detector.pairs()) found.insert({p.i, p.j});
+  EXPECT_EQ(found.size(), detector.pairs().size());  // no duplicates
+  const auto expected = brute_force(set, walls, 4e-4);
+  EXPECT_GT(expected.size(), 200u);
+  EXPECT_EQ(found, expected);
+  // Sorted by (i, j).
+  for (std::size_t k = 1; k < detector.pairs().size(); ++k) {
+    const auto& a = detector.pairs()[k - 1];
+    const auto& b = detector.pairs()[k];
+    EXPECT_TRUE(a.i < b.i || (a.i == b.i && a.j < b.j));
+  }
+}
+
+TEST(ContactDetector, RebuildsOnlyPastHalfTheMargin) {
+  ParticleSet set = random_set(200, 2);
+  ContactDetector detector(1e-4, 1e-4);
+  EXPECT_TRUE(detector.update(set, {}, {}));
+  EXPECT_EQ(detector.rebuild_count(), 1u);
+  set.position[7].x() += 0.49e-4;  // below half the margin
+  EXPECT_FALSE(detector.update(set, {}, {}));
+  // The look-ahead counts: 0.49e-4 moved + 0.02e-4 ahead > 0.5e-4.
+  std::vector<double> ahead(set.size(), 0.0);
+  ahead[7] = 0.02e-4;
+  EXPECT_TRUE(detector.update(set, {}, ahead));
+  EXPECT_EQ(detector.rebuild_count(), 2u);
+  // Displacements are measured from the last rebuild.
+  set.position[7].x() += 0.49e-4;
+  EXPECT_FALSE(detector.update(set, {}, {}));
+  detector.invalidate();
+  EXPECT_TRUE(detector.update(set, {}, {}));
+}
+
+TEST(ContactDetector, MapsPairsToThePreviousTable) {
+  ParticleSet set;
+  set.add(Vector3d(0, 0, 0), 1.0, 1.0, 0);
+  set.add(Vector3d(2.05, 0, 0), 1.0, 1.0, 0);
+  set.add(Vector3d(10, 0, 0), 1.0, 1.0, 0);
+  ContactDetector detector(0.1, 0.1);
+  detector.update(set, {}, {});
+  ASSERT_EQ(detector.pairs().size(), 1u);
+  // Particle 2 comes close to 1: the old pair keeps its index, the new one is marked new.
+  set.position[2] = Vector3d(4.1, 0, 0);
+  ASSERT_TRUE(detector.update(set, {}, {}));
+  ASSERT_EQ(detector.pairs().size(), 2u);
+  EXPECT_EQ(detector.pairs()[0].i, 0);
+  EXPECT_EQ(detector.pairs()[0].j, 1);
+  EXPECT_EQ(detector.previous_index()[0], 0);
+  EXPECT_EQ(detector.pairs()[1].i, 1);
+  EXPECT_EQ(detector.pairs()[1].j, 2);
+  EXPECT_EQ(detector.previous_index()[1], -1);
+}
+
+TEST(ContactDetector, SkipsPairsOfFixedParticles) {
+  ParticleSet set;
+  set.add(Vector3d(0, 0, 0), 1.0, 1.0, 0, true);
+  set.add(Vector3d(2, 0, 0), 1.0, 1.0, 0, true);
+  set.add(Vector3d(4, 0, 0), 1.0, 1.0, 0, false);
+  const std::vector<Wall> walls = {Wall::through({0, -1, 0}, {0, 1, 0}, 0)};
+  ContactDetector detector(0.1, 0.1);
+  detector.update(set, walls, {});
+  // (0,1) both fixed: skipped. (1,2) kept. Walls: only the moving particle.
+  ASSERT_EQ(detector.pairs().size(), 2u);
+  EXPECT_EQ(detector.pairs()[0].i, 1);
+  EXPECT_EQ(detector.pairs()[0].j, 2);
+  EXPECT_EQ(detector.pairs()[1].i, 2);
+  EXPECT_EQ(detector.pairs()[1].j, -1);
+}

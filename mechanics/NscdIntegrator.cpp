@@ -7,7 +7,9 @@
 
 #include <Eigen/Geometry>
 
+#include "mechanics/ContactSolverRegistry.h"
 #include "mechanics/CoulombCone.h"
+#include "mechanics/TouchingPairs.h"
 
 namespace tmdem::mechanics {
 namespace {
@@ -93,6 +95,16 @@ NscdIntegrator::NscdIntegrator(ParticleSet particles, std::vector<Material> mate
     }
   }
   keep_in_plane();
+  SolverSettings settings;
+  settings.tolerance = parameters_.tolerance;
+  settings.max_iterations = parameters_.max_iterations;
+  settings.relaxation = parameters_.relaxation;
+  solver_ = make_contact_solver(parameters_.solver, settings);
+  problem_.dimension = dimension_;
+  problem_.inverse_mass = inverse_mass_;
+  problem_.inverse_inertia = inverse_inertia_;
+  problem_.free_velocity.resize(n);
+  problem_.free_angular_velocity.resize(n);
   old_velocity_.resize(n);
   old_angular_velocity_.resize(n);
   lookahead_.resize(n);
@@ -128,133 +140,69 @@ void NscdIntegrator::refresh_candidates(double h) {
   }
 }
 
-Eigen::Vector3d NscdIntegrator::relative_velocity(const ContactRow& c) const {
-  // Velocity of i's material point at the contact minus j's: contact points sit at
-  // x_i - R_i n and x_j + R_j n.
-  const auto& v = particles_.velocity;
-  const auto& w = particles_.angular_velocity;
-  if (c.j >= 0) {
-    return v[c.i] - v[c.j] - (c.lever_i * w[c.i] + c.lever_j * w[c.j]).cross(c.n);
-  }
-  return v[c.i] - (c.lever_i * w[c.i]).cross(c.n);
-}
-
-void NscdIntegrator::apply_impulse(const ContactRow& c, const Eigen::Vector3d& p) {
-  // p acts on i at x_i - R_i n (torque -R_i n x p) and -p on j at x_j + R_j n (same sign).
-  const Eigen::Vector3d nxp = c.n.cross(p);
-  particles_.velocity[c.i] += inverse_mass_[c.i] * p;
-  particles_.angular_velocity[c.i] -= (inverse_inertia_[c.i] * c.lever_i) * nxp;
-  if (c.j >= 0) {
-    particles_.velocity[c.j] -= inverse_mass_[c.j] * p;
-    particles_.angular_velocity[c.j] -= (inverse_inertia_[c.j] * c.lever_j) * nxp;
-  }
-}
-
 void NscdIntegrator::setup_contacts(double h) {
   const auto& pairs = detector_.pairs();
   const double theta = parameters_.theta;
-  rows_.resize(pairs.size());
+  ContactProblem& p = problem_;
+  p.resize_contacts(pairs.size());
+  reactions_.resize(pairs.size());
+  gap_.resize(pairs.size());
   for (std::size_t k = 0; k < pairs.size(); ++k) {
-    ContactRow& c = rows_[k];
-    c.i = pairs[k].i;
-    c.j = pairs[k].j;
-    const Eigen::Vector3d& xi = particles_.position[c.i];
-    c.lever_i = particles_.radius[c.i];
-    double inverse_mass = inverse_mass_[c.i];
-    double inverse_rotation = c.lever_i * c.lever_i * inverse_inertia_[c.i];
+    const std::int32_t i = pairs[k].i, j = pairs[k].j;
+    p.body_i[k] = i;
+    p.body_j[k] = j;
+    const Eigen::Vector3d& xi = particles_.position[i];
+    const double lever_i = particles_.radius[i];
+    double lever_j = 0.0;
+    double inverse_mass = inverse_mass_[i];
+    double inverse_rotation = lever_i * lever_i * inverse_inertia_[i];
     int other_material;
-    if (c.j >= 0) {
-      const Eigen::Vector3d d = xi - particles_.position[c.j];
+    Eigen::Vector3d n;
+    double gap;
+    if (j >= 0) {
+      const Eigen::Vector3d d = xi - particles_.position[j];
       const double distance = d.norm();
       // Coincident centres have no defined normal; any unit vector in the plane will do.
-      c.n = distance > 0.0 ? Eigen::Vector3d(d / distance) : Eigen::Vector3d::UnitY();
+      n = distance > 0.0 ? Eigen::Vector3d(d / distance) : Eigen::Vector3d::UnitY();
       // 2D: centres share z, so n_z is 0 already; enforce it if a scene breaks that.
-      if (dimension_ == 2 && c.n.z() != 0.0) {
-        c.n.z() = 0.0;
-        c.n = c.n.norm() > 0.0 ? Eigen::Vector3d(c.n.normalized()) : Eigen::Vector3d::UnitY();
+      if (dimension_ == 2 && n.z() != 0.0) {
+        n.z() = 0.0;
+        n = n.norm() > 0.0 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::UnitY();
       }
-      c.lever_j = particles_.radius[c.j];
-      c.gap = distance - c.lever_i - c.lever_j;
-      inverse_mass += inverse_mass_[c.j];
-      inverse_rotation += c.lever_j * c.lever_j * inverse_inertia_[c.j];
-      other_material = particles_.material[c.j];
+      lever_j = particles_.radius[j];
+      gap = distance - lever_i - lever_j;
+      inverse_mass += inverse_mass_[j];
+      inverse_rotation += lever_j * lever_j * inverse_inertia_[j];
+      other_material = particles_.material[j];
     } else {
-      const Wall& wall = walls_[-1 - c.j];
-      c.n = wall.normal;
-      c.lever_j = 0.0;
-      c.gap = wall.signed_distance(xi) - c.lever_i;
+      const Wall& wall = walls_[wall_index(j)];
+      n = wall.normal;
+      gap = wall.signed_distance(xi) - lever_i;
       other_material = wall.material;
     }
-    tangent_frame(c.n, dimension_, c.t1, c.t2);
+    p.normal[k] = n;
+    p.lever_i[k] = lever_i;
+    p.lever_j[k] = lever_j;
+    gap_[k] = gap;
+    tangent_frame(n, dimension_, p.tangent1[k], p.tangent2[k]);
     // W = H^T M^-1 H: (1/m_i + 1/m_j) I + (R_i^2/I_i + R_j^2/I_j) (I - n n^T), i.e.
     // diag(w_n, w_t, w_t) in the local frame.
-    c.w_n = inverse_mass;
-    c.w_t = inverse_mass + inverse_rotation;
-    c.solved = c.w_n > 0.0;
-    c.mu = contact_friction(materials_[particles_.material[c.i]], materials_[other_material]);
+    p.w_n[k] = inverse_mass;
+    p.w_t[k] = inverse_mass + inverse_rotation;
+    const double mu = contact_friction(materials_[particles_.material[i]], materials_[other_material]);
+    p.mu[k] = mu;
 
     // Position term P / h, with the normal velocity at the start of the step.
-    const Eigen::Vector3d& vi = old_velocity_[c.i];
-    const Eigen::Vector3d& wi = old_angular_velocity_[c.i];
-    Eigen::Vector3d u_old = vi - (c.lever_i * wi).cross(c.n);
-    if (c.j >= 0) {
-      u_old -= old_velocity_[c.j] + (c.lever_j * old_angular_velocity_[c.j]).cross(c.n);
-    }
-    c.bias = (c.gap + h * (1.0 - theta) * u_old.dot(c.n)) / h;
+    Eigen::Vector3d u_old = old_velocity_[i] - (lever_i * old_angular_velocity_[i]).cross(n);
+    if (j >= 0) u_old -= old_velocity_[j] + (lever_j * old_angular_velocity_[j]).cross(n);
+    p.bias[k] = (gap + h * (1.0 - theta) * u_old.dot(n)) / h;
 
     // Warm start: last step's force of this pair, in the new frame, as an impulse.
     const Eigen::Vector3d impulse = force_[k] * h;
-    c.r = Eigen::Vector3d(impulse.dot(c.n), impulse.dot(c.t1),
-                          dimension_ == 2 ? 0.0 : impulse.dot(c.t2));
-    c.r = c.solved ? project_onto_coulomb_cone(c.r, c.mu) : Eigen::Vector3d::Zero();
-    if (c.r[0] > 0.0) {
-      apply_impulse(c, c.r[0] * c.n + c.r[1] * c.t1 + c.r[2] * c.t2);
-    }
+    const Eigen::Vector3d r(impulse.dot(n), impulse.dot(p.tangent1[k]),
+                            dimension_ == 2 ? 0.0 : impulse.dot(p.tangent2[k]));
+    reactions_[k] = p.solvable(k) ? project_onto_coulomb_cone(r, mu) : Eigen::Vector3d::Zero();
   }
-}
-
-int NscdIntegrator::gauss_seidel(double& residual, bool& converged) {
-  const double tolerance = parameters_.tolerance;
-  const bool planar = dimension_ == 2;
-  const double relaxation = parameters_.relaxation;
-  int sweep = 0;
-  converged = false;
-  residual = 0.0;
-  while (sweep < parameters_.max_iterations) {
-    ++sweep;
-    double change = 0.0, total = 0.0;
-    // Symmetric Gauss-Seidel: sweeps alternate forward and backward through the contacts,
-    // so that a load travels the whole length of a chain (a column, a force path) in one
-    // pair of sweeps whichever way the contacts happen to be numbered.
-    const bool forward = sweep % 2 == 1;
-    const std::size_t count = rows_.size();
-    for (std::size_t visit = 0; visit < count; ++visit) {
-      ContactRow& c = rows_[forward ? visit : count - 1 - visit];
-      if (!c.solved) continue;
-      const Eigen::Vector3d u = relative_velocity(c);
-      // Local velocity without this contact's own reaction: u0 = u - W r.
-      Eigen::Vector3d u0(u.dot(c.n) + c.bias - c.w_n * c.r[0], u.dot(c.t1) - c.w_t * c.r[1],
-                         planar ? 0.0 : u.dot(c.t2) - c.w_t * c.r[2]);
-      // Exact local solve (closed form of the bipotential fixed point, CoulombCone.h).
-      Eigen::Vector3d r;
-      solve_contact_bipotential(u0, c.w_n, c.w_t, c.mu, r);
-      if (relaxation != 1.0) r = project_onto_coulomb_cone(c.r + relaxation * (r - c.r), c.mu);
-      if (planar) r[2] = 0.0;
-      const Eigen::Vector3d dr = r - c.r;
-      if (dr[0] != 0.0 || dr[1] != 0.0 || dr[2] != 0.0) {
-        apply_impulse(c, dr[0] * c.n + dr[1] * c.t1 + dr[2] * c.t2);
-        c.r = r;
-      }
-      change += dr.norm();
-      total += r.norm();
-    }
-    residual = total > 0.0 ? change / total : 0.0;
-    if (change <= tolerance * total) {
-      converged = true;
-      break;
-    }
-  }
-  return sweep;
 }
 
 StepReport NscdIntegrator::step(double h) {
@@ -269,11 +217,17 @@ StepReport NscdIntegrator::step(double h) {
   for (std::size_t i = 0; i < n; ++i) {
     old_velocity_[i] = particles_.velocity[i];
     old_angular_velocity_[i] = particles_.angular_velocity[i];
-    if (inverse_mass_[i] > 0.0) particles_.velocity[i] += h * gravity_;
+    problem_.free_velocity[i] = particles_.velocity[i];
+    if (inverse_mass_[i] > 0.0) problem_.free_velocity[i] += h * gravity_;
+    problem_.free_angular_velocity[i] = particles_.angular_velocity[i];
   }
   setup_contacts(h);
-  report.candidates = rows_.size();
-  report.sweeps = gauss_seidel(report.residual, report.converged);
+  report.candidates = problem_.size();
+  const SolveReport solved =
+      solver_->solve(problem_, reactions_, particles_.velocity, particles_.angular_velocity);
+  report.sweeps = solved.sweeps;
+  report.residual = solved.residual;
+  report.converged = solved.converged;
   keep_in_plane();
 
   // Positions: q_{n+1} = q_n + h (theta v_{n+1} + (1 - theta) v_n).
@@ -286,26 +240,27 @@ StepReport NscdIntegrator::step(double h) {
   // Forces for the warm start and the contact list; penetration after the step.
   contacts_.clear();
   double penetration = 0.0;
-  for (std::size_t k = 0; k < rows_.size(); ++k) {
-    const ContactRow& c = rows_[k];
-    const Eigen::Vector3d impulse = c.r[0] * c.n + c.r[1] * c.t1 + c.r[2] * c.t2;
-    force_[k] = impulse / h;
+  for (std::size_t k = 0; k < problem_.size(); ++k) {
+    const Eigen::Vector3d& r = reactions_[k];
+    const std::int32_t i = problem_.body_i[k], j = problem_.body_j[k];
+    force_[k] = problem_.to_global(k, r) / h;
     double gap;
-    if (c.j >= 0) {
-      gap = (particles_.position[c.i] - particles_.position[c.j]).norm() - c.lever_i - c.lever_j;
+    if (j >= 0) {
+      gap = (particles_.position[i] - particles_.position[j]).norm() - problem_.lever_i[k] -
+            problem_.lever_j[k];
     } else {
-      gap = walls_[-1 - c.j].signed_distance(particles_.position[c.i]) - c.lever_i;
+      gap = walls_[wall_index(j)].signed_distance(particles_.position[i]) - problem_.lever_i[k];
     }
     penetration = std::max(penetration, -gap);
-    if (c.r[0] > 0.0) {
+    if (r[0] > 0.0) {
       ContactForce out;
-      out.i = c.i;
-      out.j = c.j;
-      out.normal = c.n;
-      out.gap_m = c.gap;
-      out.normal_impulse_Ns = c.r[0];
-      out.normal_force_N = c.r[0] / h;
-      out.tangential_force_N = (c.r[1] * c.t1 + c.r[2] * c.t2) / h;
+      out.i = i;
+      out.j = j;
+      out.normal = problem_.normal[k];
+      out.gap_m = gap_[k];
+      out.normal_impulse_Ns = r[0];
+      out.normal_force_N = r[0] / h;
+      out.tangential_force_N = (r[1] * problem_.tangent1[k] + r[2] * problem_.tangent2[k]) / h;
       contacts_.push_back(out);
     }
   }

@@ -7,9 +7,9 @@
 //   2. free velocities v_free = v + h M^-1 F_ext (gravity; no torque);
 //   3. for each candidate: local frame (n from j to i, tangents), Delassus block
 //      W = H^T M^-1 H, and the position term of the Signorini condition (below);
-//   4. Gauss-Seidel sweeps: each contact solves its own law with the others frozen
-//      (CoulombCone.h: exact, in closed form) and updates the two bodies' velocities at once, warm-started from
-//      the previous step's forces of the same pair; stop when sum|dr| / sum|r| < tolerance;
+//   4. the contact solver chosen by name (ContactSolverRegistry.h; "nlgs": Gauss-Seidel sweeps,
+//      each contact solving its own law with the others frozen), warm-started from the
+//      previous step's forces of the same pair;
 //   5. q_{n+1} = q_n + h (theta v_{n+1} + (1 - theta) v_n).
 //
 // Signorini with a position term. Let g be the gap at the start of the step and
@@ -30,8 +30,12 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include <memory>
+
 #include "mechanics/ContactDetector.h"
 #include "mechanics/ContactForce.h"
+#include "mechanics/ContactProblem.h"
+#include "mechanics/ContactSolver.h"
 #include "mechanics/Material.h"
 #include "mechanics/NscdParameters.h"
 #include "mechanics/ParticleSet.h"
@@ -75,26 +79,13 @@ class NscdIntegrator {
   int dimension() const { return dimension_; }
   const NscdParameters& parameters() const { return parameters_; }
   const ContactDetector& detector() const { return detector_; }
+  // The last step's contact problem and its solver (mechanics.solver).
+  const ContactProblem& problem() const { return problem_; }
+  const ContactSolver& solver() const { return *solver_; }
 
  private:
-  // Solver state of one candidate contact; rebuilt from geometry every step.
-  struct ContactRow {
-    Eigen::Vector3d n, t1, t2;  // local frame
-    Eigen::Vector3d r;          // reaction impulse in the local frame (n, t1, t2), N s
-    double bias = 0.0;          // P / h, m/s
-    double gap = 0.0;           // m
-    double w_n = 0.0, w_t = 0.0;  // Delassus block diag(w_n, w_t, w_t), 1/kg
-    double mu = 0.0;
-    double lever_i = 0.0, lever_j = 0.0;  // radii (contact point offsets), m
-    int i = 0, j = 0;           // j < 0: wall -1 - j
-    bool solved = false;        // false when both bodies are immobile
-  };
-
   void refresh_candidates(double h);
   void setup_contacts(double h);
-  int gauss_seidel(double& residual, bool& converged);
-  Eigen::Vector3d relative_velocity(const ContactRow& c) const;
-  void apply_impulse(const ContactRow& c, const Eigen::Vector3d& p);
   void keep_in_plane();
 
   ParticleSet particles_;
@@ -108,7 +99,10 @@ class NscdIntegrator {
   std::vector<double> inverse_mass_, inverse_inertia_;  // 0 for fixed particles
   std::vector<Eigen::Vector3d> old_velocity_, old_angular_velocity_;
   std::vector<double> lookahead_;
-  std::vector<ContactRow> rows_;
+  ContactProblem problem_;
+  std::unique_ptr<ContactSolver> solver_;
+  std::vector<Eigen::Vector3d> reactions_;   // local impulse per candidate (n, t1, t2), N s
+  std::vector<double> gap_;                  // per candidate at the start of the step, m
   std::vector<Eigen::Vector3d> force_;       // global reaction force per candidate, N
   std::vector<Eigen::Vector3d> old_force_;   // same, before a candidate rebuild
   std::vector<ContactForce> contacts_;

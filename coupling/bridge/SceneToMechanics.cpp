@@ -38,6 +38,7 @@ mechanics::NscdParameters make_nscd_parameters(const Scene& scene) {
   mechanics::NscdParameters p;
   p.time_step = scene.mechanics.time_step_s;
   p.theta = scene.mechanics.theta;
+  p.solver = scene.mechanics.solver;
   p.tolerance = scene.mechanics.tolerance;
   p.max_iterations = scene.mechanics.max_iterations;
   return p;

@@ -60,6 +60,7 @@ struct RadiationSettings {
 struct MechanicsSettings {
   double time_step_s = 1.0e-3;
   double theta = 0.5;
+  std::string solver = "nlgs";  // mechanics::contact_solver_names()
   double tolerance = 1.0e-6;
   int max_iterations = 10000;
   double settle_time_s = 5.0;

@@ -18,6 +18,7 @@
 #include "coupling/scene/SceneOverrides.h"
 #include "coupling/scene/SceneTable.h"
 #include "coupling/scene/TomlWriter.h"
+#include "mechanics/ContactSolverRegistry.h"
 #include "mechanics/ParticleSet.h"
 #include "mechanics/RandomPlacement.h"
 #include "mechanics/TouchingPairs.h"
@@ -432,6 +433,7 @@ class SceneBuilder {
       auto& m = scene_.mechanics;
       m.time_step_s = t.number("time_step", m.time_step_s, Range::greater(0.0));
       m.theta = t.number("theta", m.theta, Range::open_closed(0.0, 1.0));
+      m.solver = t.choice("solver", m.solver, mechanics::contact_solver_names());
       m.tolerance = t.number("tolerance", m.tolerance, Range::greater(0.0));
       const auto iterations = t.integer("max_iterations", m.max_iterations,
                                         mechanics_on ? 1 : std::numeric_limits<int>::min(),

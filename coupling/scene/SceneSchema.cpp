@@ -78,6 +78,7 @@ const std::map<std::string_view, std::vector<Key>>& schema_map() {
       {"mechanics",
        {{"time_step"},
         {"theta"},
+        {"solver"},
         {"tolerance"},
         {"max_iterations"},
         {"settle_time"},

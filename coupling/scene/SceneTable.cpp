@@ -223,12 +223,17 @@ std::string SceneTable::required_string(std::string_view key) const {
 
 std::string SceneTable::choice(std::string_view key, std::string_view fallback,
                                std::initializer_list<std::string_view> choices) const {
+  return choice(key, fallback, std::vector<std::string>(choices.begin(), choices.end()));
+}
+
+std::string SceneTable::choice(std::string_view key, std::string_view fallback,
+                               const std::vector<std::string>& choices) const {
   const auto value = optional_string(key);
   if (!value) return std::string(fallback);
-  for (const auto c : choices)
+  for (const auto& c : choices)
     if (*value == c) return *value;
   std::string allowed;
-  for (const auto c : choices) {
+  for (const auto& c : choices) {
     if (!allowed.empty()) allowed += ", ";
     allowed += quote_text(c);
   }

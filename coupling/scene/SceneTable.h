@@ -91,6 +91,9 @@ class SceneTable {
   // One of `choices`; the message lists them.
   std::string choice(std::string_view key, std::string_view fallback,
                      std::initializer_list<std::string_view> choices) const;
+  // Same, for choices known at run time (a registry's names).
+  std::string choice(std::string_view key, std::string_view fallback,
+                     const std::vector<std::string>& choices) const;
 
   // A point or vector: 3 finite numbers, or 2 when dimension == 2 (then z = 0).
   std::optional<Vec3> optional_vec3(std::string_view key, int dimension) const;

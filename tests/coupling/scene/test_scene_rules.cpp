@@ -259,6 +259,13 @@ TEST(SceneRules, ThetaInZeroOne) {
   EXPECT_NO_THROW(load_scene_text(kBaseScene, "t", {"mechanics.theta=1"}));
 }
 
+TEST(SceneRules, SolverByNameListsTheValidNames) {
+  expect_scene_error(kBaseScene, {"mechanics.solver=jacobi_typo"},
+                     {"mechanics.solver", "\"nlgs\"", "\"jacobi_typo\""});
+  EXPECT_EQ(load_scene_text(kBaseScene, "t", {"mechanics.solver=nlgs"}).mechanics.solver, "nlgs");
+  EXPECT_EQ(load_scene_text(kBaseScene, "t").mechanics.solver, "nlgs");
+}
+
 TEST(SceneRules, MaxIterationsAtLeastOne) {
   expect_scene_error(kBaseScene, {"mechanics.max_iterations=0"},
                      {"mechanics.max_iterations", ">= 1"});

@@ -1,0 +1,100 @@
+#pragma once
+// One step's contact problem, apart from any solver (Siconos style): find local reaction
+// impulses r_c (N s, in the frame n, t1, t2 of contact c) such that each contact obeys the
+// bipotential Coulomb law (CoulombCone.h) with its local velocity
+//   U_c = H_c^T v + bias_c n,   v = v_free + M^-1 H r   (all contacts together).
+// H_c maps a local impulse to the two bodies' velocity changes; W = H^T M^-1 H is the
+// Delassus operator, whose diagonal block for two spheres is diag(w_n, w_t, w_t) exactly.
+//
+// The problem is built by NscdIntegrator and only read by the solvers (ContactSolver.h).
+// Everything is a structure of arrays reused from step to step: no allocation once warm.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace tmdem::mechanics {
+
+struct ContactProblem {
+  int dimension = 3;  // 2: reactions stay in the xy-plane (t2 = z, r_t2 = 0)
+
+  // Bodies (one per particle; walls are not bodies).
+  std::vector<double> inverse_mass;                     // 1/kg, 0 for fixed particles
+  std::vector<double> inverse_inertia;                  // 1/(kg m^2), 0 for fixed particles
+  std::vector<Eigen::Vector3d> free_velocity;           // m/s, v + h M^-1 F_ext
+  std::vector<Eigen::Vector3d> free_angular_velocity;   // rad/s
+
+  // Contacts.
+  std::vector<std::int32_t> body_i;     // particle
+  std::vector<std::int32_t> body_j;     // particle, or -1 - wall index (a wall is immobile)
+  std::vector<Eigen::Vector3d> normal;  // unit, from j to i
+  std::vector<Eigen::Vector3d> tangent1, tangent2;
+  std::vector<double> lever_i, lever_j; // m, contact point offsets (radii; 0 for a wall)
+  std::vector<double> w_n, w_t;         // Delassus block diag(w_n, w_t, w_t), 1/kg
+  std::vector<double> bias;             // m/s, position term added to the normal velocity
+  std::vector<double> mu;               // friction coefficient
+
+  std::size_t size() const { return body_i.size(); }
+  std::size_t body_count() const { return inverse_mass.size(); }
+  void resize_contacts(std::size_t count);
+
+  // A contact between two immobile bodies carries no reaction (W_cc = 0).
+  bool solvable(std::size_t c) const { return w_n[c] > 0.0; }
+
+  // Local velocity U_c = H_c^T v (+ bias along n) in (n, t1, t2), m/s; t2 is 0 in 2D.
+  Eigen::Vector3d local_velocity(std::size_t c, const std::vector<Eigen::Vector3d>& velocity,
+                                 const std::vector<Eigen::Vector3d>& angular_velocity) const;
+
+  // velocity += M^-1 H_c r_c for one local impulse r_c.
+  void apply_impulse(std::size_t c, const Eigen::Vector3d& r_local,
+                     std::vector<Eigen::Vector3d>& velocity,
+                     std::vector<Eigen::Vector3d>& angular_velocity) const;
+
+  // velocity = v_free + M^-1 H r for all reactions at once (the start of any solver, and the
+  // W r product of a Jacobi-type method: U(r) - U(0)).
+  void velocities_from_reactions(const std::vector<Eigen::Vector3d>& r,
+                                 std::vector<Eigen::Vector3d>& velocity,
+                                 std::vector<Eigen::Vector3d>& angular_velocity) const;
+
+  // Global impulse of a local one, N s.
+  Eigen::Vector3d to_global(std::size_t c, const Eigen::Vector3d& r_local) const {
+    return r_local[0] * normal[c] + r_local[1] * tangent1[c] + r_local[2] * tangent2[c];
+  }
+};
+
+// Inline: the inner loop of every solver.
+inline Eigen::Vector3d ContactProblem::local_velocity(
+    std::size_t c, const std::vector<Eigen::Vector3d>& velocity,
+    const std::vector<Eigen::Vector3d>& angular_velocity) const {
+  // Velocity of i's material point at the contact minus j's: contact points sit at
+  // x_i - R_i n and x_j + R_j n.
+  const Eigen::Vector3d& n = normal[c];
+  const std::int32_t i = body_i[c], j = body_j[c];
+  Eigen::Vector3d u;
+  if (j >= 0) {
+    u = velocity[i] - velocity[j] - (lever_i[c] * angular_velocity[i] + lever_j[c] * angular_velocity[j]).cross(n);
+  } else {
+    u = velocity[i] - (lever_i[c] * angular_velocity[i]).cross(n);
+  }
+  return Eigen::Vector3d(u.dot(n) + bias[c], u.dot(tangent1[c]),
+                         dimension == 2 ? 0.0 : u.dot(tangent2[c]));
+}
+
+inline void ContactProblem::apply_impulse(std::size_t c, const Eigen::Vector3d& r_local,
+                                   std::vector<Eigen::Vector3d>& velocity,
+                                   std::vector<Eigen::Vector3d>& angular_velocity) const {
+  // p acts on i at x_i - R_i n (torque -R_i n x p) and -p on j at x_j + R_j n (same sign).
+  const Eigen::Vector3d p = to_global(c, r_local);
+  const Eigen::Vector3d nxp = normal[c].cross(p);
+  const std::int32_t i = body_i[c], j = body_j[c];
+  velocity[i] += inverse_mass[i] * p;
+  angular_velocity[i] -= (inverse_inertia[i] * lever_i[c]) * nxp;
+  if (j >= 0) {
+    velocity[j] -= inverse_mass[j] * p;
+    angular_velocity[j] -= (inverse_inertia[j] * lever_j[c]) * nxp;
+  }
+}
+
+}  // namespace tmdem::mechanics

@@ -1,0 +1,45 @@
+#pragma once
+// The interface every contact solver implements: it takes a ContactProblem and the
+// warm-start reactions, and returns the reactions and the body velocities they give.
+// Solvers are chosen by name (mechanics.solver) through ContactSolverRegistry.h.
+//
+// What a solver may use from the problem: local_velocity (H^T v + bias), apply_impulse /
+// velocities_from_reactions (v = v_free + M^-1 H r, so W r = H^T (v(r) - v_free)), the
+// Delassus diagonal blocks (w_n, w_t), the local law (CoulombCone.h: projection onto the
+// cone and the closed-form local solve) and ContactResidual.h for the stop test.
+
+#include <Eigen/Core>
+#include <string_view>
+#include <vector>
+
+#include "mechanics/ContactProblem.h"
+
+namespace tmdem::mechanics {
+
+struct SolverSettings {
+  double tolerance = 1.0e-6;  // stop when the solver's residual is at most this
+  int max_iterations = 10000; // sweeps (or iterations) per solve
+  double relaxation = 1.0;    // over-relaxation factor, where the solver has one
+};
+
+struct SolveReport {
+  int sweeps = 0;          // iterations used
+  double residual = 0.0;   // at the last iteration (meaning: see the solver)
+  bool converged = false;  // residual <= tolerance within max_iterations
+};
+
+class ContactSolver {
+ public:
+  virtual ~ContactSolver() = default;
+  virtual std::string_view name() const = 0;
+
+  // r: one local impulse per contact (N s, frame n, t1, t2): the warm start on entry (already
+  // inside its Coulomb cone, zero for unsolvable contacts), the reactions on return.
+  // velocity, angular_velocity: one per body, overwritten with v_free + M^-1 H r on return.
+  // Must not allocate once warm (the step loop calls it every step).
+  virtual SolveReport solve(const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
+                            std::vector<Eigen::Vector3d>& velocity,
+                            std::vector<Eigen::Vector3d>& angular_velocity) = 0;
+};
+
+}  // namespace tmdem::mechanics

@@ -1,0 +1,22 @@
+#pragma once
+// Nonlinear Gauss-Seidel ("equilibres successifs", [JEA 99]) over the contacts: each contact
+// solves its own bipotential law with the others frozen (closed form, CoulombCone.h) and
+// updates the two bodies' velocities at once. Registered as "nlgs".
+
+#include "mechanics/ContactSolver.h"
+
+namespace tmdem::mechanics {
+
+class GaussSeidelSolver final : public ContactSolver {
+ public:
+  explicit GaussSeidelSolver(const SolverSettings& settings);
+  std::string_view name() const override { return "nlgs"; }
+  SolveReport solve(const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
+                    std::vector<Eigen::Vector3d>& velocity,
+                    std::vector<Eigen::Vector3d>& angular_velocity) override;
+
+ private:
+  SolverSettings settings_;
+};
+
+}  // namespace tmdem::mechanics

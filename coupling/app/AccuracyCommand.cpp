@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "coupling/bridge/ThermalNetworkBuilder.h"
+#include "coupling/common/ExitCode.h"
 #include "coupling/output/ProgressReporter.h"
 #include "coupling/run/ThermalProblem.h"
 #include "coupling/studies/AccuracyReport.h"
@@ -20,7 +21,7 @@ int run_accuracy_command(const Scene& scene, const AccuracyCommandOptions& optio
     csv.open(options.csv_path);
     if (!csv) {
       log << "error: cannot write CSV file '" << options.csv_path << "'" << std::endl;
-      return 4;
+      return kExitIo;
     }
   }
   auto discard_csv = [&] {
@@ -60,7 +61,7 @@ int run_accuracy_command(const Scene& scene, const AccuracyCommandOptions& optio
   } catch (const ReferenceError& e) {
     log << "error: " << e.what() << std::endl;
     discard_csv();
-    return 3;
+    return kExitSolverFailed;
   } catch (...) {
     discard_csv();
     throw;
@@ -80,11 +81,11 @@ int run_accuracy_command(const Scene& scene, const AccuracyCommandOptions& optio
     csv.close();
     if (!csv) {
       log << "error: writing CSV file '" << options.csv_path << "' failed" << std::endl;
-      return 4;
+      return kExitIo;
     }
     if (!options.quiet) log << "wrote " << options.csv_path << std::endl;
   }
-  return 0;
+  return kExitOk;
 }
 
 }  // namespace tmdem::coupling

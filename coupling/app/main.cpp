@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "coupling/app/AccuracyCommand.h"
+#include "coupling/common/ExitCode.h"
 #include "coupling/run/CoupledRun.h"
 #include "coupling/studies/CouplingStudy.h"
 #include "coupling/scene/DefaultScene.h"
@@ -17,7 +18,15 @@ using namespace tmdem::coupling;
 
 namespace {
 
-constexpr int kExitOk = 0, kExitInvalid = 2, kExitIo = 4;
+// An argument as the shell needs it in the resume hint.
+std::string shell_quoted(const std::string& text) {
+  if (!text.empty() && text.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                              "0123456789_-+=./:,@") == std::string::npos)
+    return text;
+  std::string out = "'";
+  for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
 
 Scene load(const std::string& path, const std::vector<std::string>& sets) {
   return path.empty() ? load_default_scene(sets) : load_scene_file(path, sets);
@@ -33,14 +42,16 @@ int main(int argc, char** argv) {
 
   std::string scene_path, output, summary, restart;
   std::vector<std::string> sets;
-  bool quiet = false;
+  bool quiet = false, overwrite = false;
   auto* run = app.add_subcommand("run", "run a scene (default: the built-in paper bed)");
   run->add_option("scene", scene_path, "scene file (TOML)");
-  run->add_option("-o,--output", output, "result file (overrides output.file)");
+  auto* output_option =
+      run->add_option("-o,--output", output, "result file (overrides output.file)");
   run->add_option("--set", sets, "override one scene value, KEY=VALUE (TOML value)")
       ->take_all()->allow_extra_args(false);
   run->add_option("--summary", summary, "write the run summary (JSON) here");
   run->add_option("--restart", restart, "continue from a checkpoint file");
+  run->add_flag("--overwrite", overwrite, "replace an existing result file");
   run->add_flag("--quiet", quiet, "no progress on stderr");
 
   std::string check_path;
@@ -82,12 +93,22 @@ int main(int argc, char** argv) {
 
   try {
     if (*run) {
+      if (output_option->count() > 0 && output.empty()) {
+        std::cerr << "error: -o needs a file name (got an empty one)" << std::endl;
+        return kExitInvalid;
+      }
       const Scene scene = load(scene_path, sets);
       RunOptions options;
       options.output_path = output.empty()
                                 ? (scene_path.empty() && scene.output.file.empty() ? "tmdem-default.h5"
                                                                                    : scene.output.file)
                                 : output;
+      options.scene_path = scene_path;
+      options.overwrite = overwrite;
+      options.handle_signals = true;
+      options.resume_command = "tmdem run" + (scene_path.empty() ? "" : " " + shell_quoted(scene_path));
+      for (const auto& set : sets) options.resume_command += " --set " + shell_quoted(set);
+      options.resume_command += " -o " + shell_quoted(options.output_path);
       options.summary_path = summary;
       options.restart_path = restart;
       options.quiet = quiet;
@@ -122,7 +143,7 @@ int main(int argc, char** argv) {
     return kExitIo;
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << std::endl;
-    return 3;
+    return kExitSolverFailed;
   }
   return kExitOk;
 }

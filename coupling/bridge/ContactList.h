@@ -1,6 +1,7 @@
 #pragma once
 // The contacts of one moment, in the result-file layout (contract section 3): the mechanics'
 // contacts become the thermal network's edges through this list.
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -10,18 +11,23 @@ struct ContactList {
   std::vector<std::int64_t> pair;                 // 2 per contact: i, j (j < 0: wall -1 - j)
   std::vector<double> normal_force_N;             // per contact
   std::vector<double> conductance_W_per_K;        // per contact, filled by the network builder
+  std::vector<double> tangential_force_N;         // 3 per contact: xyz, the tangential part of
+                                                  // the reaction on i (0 without mechanics)
 
   std::size_t size() const { return normal_force_N.size(); }
   void clear() {
     pair.clear();
     normal_force_N.clear();
     conductance_W_per_K.clear();
+    tangential_force_N.clear();
   }
-  void add(std::int64_t i, std::int64_t j, double force_N) {
+  void add(std::int64_t i, std::int64_t j, double force_N,
+           const std::array<double, 3>& tangential_N = {0.0, 0.0, 0.0}) {
     pair.push_back(i);
     pair.push_back(j);
     normal_force_N.push_back(force_N);
     conductance_W_per_K.push_back(0.0);
+    tangential_force_N.insert(tangential_force_N.end(), tangential_N.begin(), tangential_N.end());
   }
 };
 

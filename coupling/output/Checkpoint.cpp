@@ -1,13 +1,14 @@
-#include "coupling/output/Hdf5ErrorSilence.h"
 #include "coupling/output/Checkpoint.h"
 
-#include <H5Cpp.h>
 #include <fcntl.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <stdexcept>
 #include <system_error>
+
+#include "coupling/output/Hdf5ErrorSilence.h"
+#include "coupling/output/Hdf5Io.h"
 
 #ifndef TMDEM_VERSION
 #define TMDEM_VERSION "0.1.0"
@@ -18,93 +19,6 @@ namespace {
 
 constexpr const char* kFormat = "tmdem-checkpoint-1";
 
-using ScopedSilence = Hdf5ErrorSilence;
-
-// A checkpoint problem found by this file (not by HDF5).
-struct Invalid : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-H5::StrType utf8_string_type() {
-  H5::StrType type(H5::PredType::C_S1, H5T_VARIABLE);
-  type.setCset(H5T_CSET_UTF8);
-  return type;
-}
-
-H5::FileAccPropList file_access(bool lock) {
-  H5::FileAccPropList access;
-#if H5_VERSION_GE(1, 10, 7)
-  // Writing: PATH.tmp is private, no lock needed. Reading: lock where the file system can.
-  H5Pset_file_locking(access.getId(), lock, true);
-#else
-  (void)lock;
-#endif
-  return access;
-}
-
-void put_string(H5::H5Object& object, const char* name, const std::string& value) {
-  H5::StrType type = utf8_string_type();
-  H5::Attribute attribute = object.createAttribute(name, type, H5::DataSpace(H5S_SCALAR));
-  attribute.write(type, value);
-}
-
-template <class T>
-void put_scalar(H5::H5Object& object, const char* name, const T& value,
-                const H5::PredType& file_type, const H5::PredType& memory_type) {
-  H5::Attribute attribute = object.createAttribute(name, file_type, H5::DataSpace(H5S_SCALAR));
-  attribute.write(memory_type, &value);
-}
-
-std::string get_string(const H5::H5Object& object, const char* name) {
-  if (!object.attrExists(name)) throw Invalid(std::string("attribute '") + name + "' is missing");
-  H5::Attribute attribute = object.openAttribute(name);
-  std::string value;
-  attribute.read(attribute.getStrType(), value);
-  return value;
-}
-
-template <class T>
-T get_scalar(const H5::H5Object& object, const char* name, const H5::PredType& memory_type) {
-  if (!object.attrExists(name)) throw Invalid(std::string("attribute '") + name + "' is missing");
-  T value{};
-  object.openAttribute(name).read(memory_type, &value);
-  return value;
-}
-
-// A [rows] (columns == 0) or [rows, columns] dataset with a "units" attribute.
-template <class T>
-void put_array(H5::Group& group, const char* name, const std::vector<T>& values,
-               hsize_t columns, const H5::PredType& file_type, const H5::PredType& memory_type,
-               const char* units) {
-  const hsize_t rows = columns == 0 ? values.size() : values.size() / columns;
-  const hsize_t dims[2] = {rows, columns};
-  H5::DataSpace space(columns == 0 ? 1 : 2, dims);
-  H5::DataSet dataset = group.createDataSet(name, file_type, space);
-  if (!values.empty()) dataset.write(values.data(), memory_type);
-  put_string(dataset, "units", units);
-}
-
-template <class T>
-std::vector<T> get_array(const H5::Group& group, const char* name, hsize_t columns,
-                         const H5::PredType& memory_type) {
-  if (!group.nameExists(name)) throw Invalid(std::string("dataset '") + name + "' is missing");
-  H5::DataSet dataset = group.openDataSet(name);
-  H5::DataSpace space = dataset.getSpace();
-  const int rank = space.getSimpleExtentNdims();
-  hsize_t dims[2] = {0, 0};
-  if (rank != (columns == 0 ? 1 : 2)) {
-    throw Invalid(std::string("dataset '") + name + "' has the wrong rank");
-  }
-  space.getSimpleExtentDims(dims);
-  if (columns != 0 && dims[1] != columns) {
-    throw Invalid(std::string("dataset '") + name + "' must have " + std::to_string(columns) +
-                  " columns");
-  }
-  std::vector<T> values(dims[0] * (columns == 0 ? 1 : columns));
-  if (!values.empty()) dataset.read(values.data(), memory_type);
-  return values;
-}
-
 // Makes the written bytes durable before the rename (best effort).
 void sync_file(const std::string& path) {
   const int fd = ::open(path.c_str(), O_RDONLY);
@@ -113,10 +27,81 @@ void sync_file(const std::string& path) {
   ::close(fd);
 }
 
-std::string describe(const H5::Exception& e) {
-  std::string text = e.getFuncName();
-  if (!e.getDetailMsg().empty()) text += (text.empty() ? "" : ": ") + e.getDetailMsg();
-  return text.empty() ? "HDF5 error" : text;
+void write_contents(hid_t file, const CheckpointState& s) {
+  hdf5::write_string_attribute(file, "format", kFormat);
+  hdf5::write_string_attribute(file, "version", TMDEM_VERSION);
+  hdf5::write_string_attribute(file, "scene", s.scene_toml);
+  hdf5::write_double_attribute(file, "time_s", s.time_s);
+  hdf5::write_double_attribute(file, "boundary_heat_J", s.boundary_heat_J);
+  hdf5::write_int64_attribute(file, "frames_written", s.frames_written);
+  hdf5::write_array(file, "position", s.position_m, 3, "m");
+  hdf5::write_array(file, "velocity", s.velocity_m_per_s, 3, "m/s");
+  hdf5::write_array(file, "angular_velocity", s.angular_velocity_rad_per_s, 3, "rad/s");
+  hdf5::write_array(file, "temperature", s.temperature_K, 0, "K");
+  Hdf5Handle contacts = hdf5::create_group(file, "contacts");
+  hdf5::write_array(contacts.get(), "pair", s.contact_pair, 2, "1");
+  hdf5::write_array(contacts.get(), "impulse", s.contact_impulse_N_s, 3, "N s");
+  std::vector<double> tangential = s.contact_tangential_force_N;
+  tangential.resize(3 * (s.contact_pair.size() / 2), 0.0);
+  hdf5::write_array(contacts.get(), "tangential_force", tangential, 3, "N");
+  Hdf5Handle extra = hdf5::create_group(file, "extra");
+  for (const auto& [name, value] : s.extra) {
+    Hdf5Handle space(hdf5::check_id(H5Screate(H5S_SCALAR), name), H5Sclose);
+    Hdf5Handle d(hdf5::check_id(H5Dcreate2(extra.get(), name.c_str(), H5T_IEEE_F64LE,
+                                           space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                                name),
+                 H5Dclose);
+    hdf5::check_ok(H5Dwrite(d.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &value),
+                   name);
+  }
+}
+
+herr_t collect_name(hid_t, const char* name, const H5L_info_t*, void* data) {
+  static_cast<std::vector<std::string>*>(data)->push_back(name);
+  return 0;
+}
+
+CheckpointState read_contents(hid_t file) {
+  CheckpointState s;
+  std::string format;
+  if (!hdf5::read_string_attribute(file, "format", format) || format != kFormat) {
+    throw Hdf5Failure(std::string("not a ") + kFormat + " file");
+  }
+  auto require = [](bool present, const char* name) {
+    if (!present) throw Hdf5Failure(std::string("attribute '") + name + "' is missing");
+  };
+  require(hdf5::read_string_attribute(file, "scene", s.scene_toml), "scene");
+  require(hdf5::read_double_attribute(file, "time_s", s.time_s), "time_s");
+  require(hdf5::read_double_attribute(file, "boundary_heat_J", s.boundary_heat_J),
+          "boundary_heat_J");
+  require(hdf5::read_int64_attribute(file, "frames_written", s.frames_written), "frames_written");
+  s.position_m = hdf5::read_double_array(file, "position", 3);
+  s.velocity_m_per_s = hdf5::read_double_array(file, "velocity", 3);
+  s.angular_velocity_rad_per_s = hdf5::read_double_array(file, "angular_velocity", 3);
+  s.temperature_K = hdf5::read_double_array(file, "temperature", 0);
+  Hdf5Handle contacts = hdf5::open_group(file, "contacts");
+  s.contact_pair = hdf5::read_int64_array(contacts.get(), "pair", 2);
+  s.contact_impulse_N_s = hdf5::read_double_array(contacts.get(), "impulse", 3);
+  if (hdf5::exists(contacts.get(), "tangential_force")) {
+    s.contact_tangential_force_N = hdf5::read_double_array(contacts.get(), "tangential_force", 3);
+  } else {
+    s.contact_tangential_force_N.assign(3 * (s.contact_pair.size() / 2), 0.0);
+  }
+  if (hdf5::exists(file, "extra")) {
+    Hdf5Handle extra = hdf5::open_group(file, "extra");
+    std::vector<std::string> names;
+    hdf5::check_ok(H5Literate(extra.get(), H5_INDEX_NAME, H5_ITER_INC, nullptr, collect_name,
+                               &names),
+                   "group 'extra'");
+    for (const std::string& name : names) {
+      Hdf5Handle d = hdf5::open_dataset(extra.get(), name.c_str());
+      double value = 0.0;
+      hdf5::check_ok(H5Dread(d.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &value),
+                     name);
+      s.extra[name] = value;
+    }
+  }
+  return s;
 }
 
 }  // namespace
@@ -130,9 +115,11 @@ void write_checkpoint(const std::string& path, const CheckpointState& s) {
         "CheckpointState: position_m, velocity_m_per_s and angular_velocity_rad_per_s need 3 N "
         "values (N = temperature_K.size() = " + std::to_string(n) + ")");
   }
-  if (s.contact_pair.size() != 2 * c || s.contact_impulse_N_s.size() != 3 * c) {
+  if (s.contact_pair.size() != 2 * c || s.contact_impulse_N_s.size() != 3 * c ||
+      (!s.contact_tangential_force_N.empty() && s.contact_tangential_force_N.size() != 3 * c)) {
     throw std::invalid_argument(
-        "CheckpointState: contact_pair needs 2 C values and contact_impulse_N_s 3 C");
+        "CheckpointState: contact_pair needs 2 C values, contact_impulse_N_s 3 C and "
+        "contact_tangential_force_N 3 C or none");
   }
   const std::string temporary = path + ".tmp";
   const std::filesystem::path folder = std::filesystem::path(path).parent_path();
@@ -144,37 +131,15 @@ void write_checkpoint(const std::string& path, const CheckpointState& s) {
   std::string problem;
   bool created = false;  // PATH.tmp is ours to remove
   {
-    ScopedSilence silence;
+    Hdf5ErrorSilence silence;
     try {
-      H5::H5File file(temporary, H5F_ACC_TRUNC, H5::FileCreatPropList::DEFAULT,
-                      file_access(false));
+      // PATH.tmp is private to this writer; HDF5's lock keeps any other writer off it.
+      Hdf5Handle file = hdf5::create_file(temporary, true);
       created = true;
-      put_string(file, "format", kFormat);
-      put_string(file, "version", TMDEM_VERSION);
-      put_string(file, "scene", s.scene_toml);
-      put_scalar(file, "time_s", s.time_s, H5::PredType::IEEE_F64LE, H5::PredType::NATIVE_DOUBLE);
-      put_scalar(file, "boundary_heat_J", s.boundary_heat_J, H5::PredType::IEEE_F64LE,
-                 H5::PredType::NATIVE_DOUBLE);
-      put_scalar(file, "frames_written", s.frames_written, H5::PredType::STD_I64LE,
-                 H5::PredType::NATIVE_INT64);
-      const auto& f64 = H5::PredType::IEEE_F64LE;
-      const auto& dbl = H5::PredType::NATIVE_DOUBLE;
-      put_array(file, "position", s.position_m, 3, f64, dbl, "m");
-      put_array(file, "velocity", s.velocity_m_per_s, 3, f64, dbl, "m/s");
-      put_array(file, "angular_velocity", s.angular_velocity_rad_per_s, 3, f64, dbl, "rad/s");
-      put_array(file, "temperature", s.temperature_K, 0, f64, dbl, "K");
-      H5::Group contacts = file.createGroup("contacts");
-      put_array(contacts, "pair", s.contact_pair, 2, H5::PredType::STD_I64LE,
-                H5::PredType::NATIVE_INT64, "1");
-      put_array(contacts, "impulse", s.contact_impulse_N_s, 3, f64, dbl, "N s");
-      H5::Group extra = file.createGroup("extra");
-      for (const auto& [name, value] : s.extra) {
-        H5::DataSet d = extra.createDataSet(name, f64, H5::DataSpace(H5S_SCALAR));
-        d.write(&value, dbl);
-      }
-      file.close();
-    } catch (const H5::Exception& e) {
-      problem = describe(e);
+      write_contents(file.get(), s);
+      if (!file.reset()) hdf5::fail("H5Fclose");
+    } catch (const Hdf5Failure& e) {
+      problem = e.what();
     }
   }
   if (problem.empty()) {
@@ -195,44 +160,18 @@ CheckpointState read_checkpoint(const std::string& path) {
     throw OutputError("cannot read checkpoint '" + path + "': no such file");
   }
   CheckpointState s;
-  ScopedSilence silence;
   try {
-    H5::H5File file(path, H5F_ACC_RDONLY, H5::FileCreatPropList::DEFAULT, file_access(true));
-    if (get_string(file, "format") != kFormat) {
-      throw Invalid(std::string("not a ") + kFormat + " file");
-    }
-    s.scene_toml = get_string(file, "scene");
-    s.time_s = get_scalar<double>(file, "time_s", H5::PredType::NATIVE_DOUBLE);
-    s.boundary_heat_J = get_scalar<double>(file, "boundary_heat_J", H5::PredType::NATIVE_DOUBLE);
-    s.frames_written =
-        get_scalar<std::int64_t>(file, "frames_written", H5::PredType::NATIVE_INT64);
-    const auto& dbl = H5::PredType::NATIVE_DOUBLE;
-    s.position_m = get_array<double>(file, "position", 3, dbl);
-    s.velocity_m_per_s = get_array<double>(file, "velocity", 3, dbl);
-    s.angular_velocity_rad_per_s = get_array<double>(file, "angular_velocity", 3, dbl);
-    s.temperature_K = get_array<double>(file, "temperature", 0, dbl);
-    if (!file.nameExists("contacts")) throw Invalid("group 'contacts' is missing");
-    H5::Group contacts = file.openGroup("contacts");
-    s.contact_pair = get_array<std::int64_t>(contacts, "pair", 2, H5::PredType::NATIVE_INT64);
-    s.contact_impulse_N_s = get_array<double>(contacts, "impulse", 3, dbl);
-    if (file.nameExists("extra")) {
-      H5::Group extra = file.openGroup("extra");
-      for (hsize_t i = 0; i < extra.getNumObjs(); ++i) {
-        const std::string name = extra.getObjnameByIdx(i);
-        double value = 0.0;
-        extra.openDataSet(name).read(&value, dbl);
-        s.extra[name] = value;
-      }
-    }
-  } catch (const Invalid& e) {
+    Hdf5ErrorSilence silence;
+    Hdf5Handle file = hdf5::open_file(path, false, true);
+    s = read_contents(file.get());
+  } catch (const Hdf5Failure& e) {
     throw OutputError("cannot read checkpoint '" + path + "': " + e.what());
-  } catch (const H5::Exception& e) {
-    throw OutputError("cannot read checkpoint '" + path + "': " + describe(e));
   }
   const std::size_t n = s.temperature_K.size();
+  const std::size_t c = s.contact_pair.size() / 2;
   if (s.position_m.size() != 3 * n || s.velocity_m_per_s.size() != 3 * n ||
-      s.angular_velocity_rad_per_s.size() != 3 * n ||
-      s.contact_impulse_N_s.size() / 3 != s.contact_pair.size() / 2) {
+      s.angular_velocity_rad_per_s.size() != 3 * n || s.contact_impulse_N_s.size() != 3 * c ||
+      s.contact_tangential_force_N.size() != 3 * c) {
     throw OutputError("cannot read checkpoint '" + path +
                       "': particle or contact counts of its datasets disagree");
   }

@@ -4,7 +4,9 @@
 // Layout: root attributes format, version, scene (TOML text), time_s, boundary_heat_J,
 // frames_written; datasets (each with a "units" attribute) /position [N,3] m,
 // /velocity [N,3] m/s, /angular_velocity [N,3] rad/s, /temperature [N] K,
-// /contacts/pair [C,2] int64, /contacts/impulse [C,3] N s, /extra/<name> scalar double.
+// /contacts/pair [C,2] int64, /contacts/impulse [C,3] N s, /contacts/tangential_force [C,3] N,
+// /extra/<name> scalar double. A checkpoint without tangential_force (written before it
+// existed) reads as tangential force 0.
 //
 // write_checkpoint writes PATH.tmp, flushes it to disk and renames it to PATH: PATH is either the
 // previous checkpoint or the new one, never a partial file. On failure PATH.tmp is removed.
@@ -29,6 +31,7 @@ struct CheckpointState {
   std::vector<std::int64_t> contact_pair;            // C*2, as in the result file
   std::vector<double> contact_impulse_N_s;           // C*3, last reactions (mechanics warm
                                                      // start; frame as the solver stores it)
+  std::vector<double> contact_tangential_force_N;    // C*3, xyz on i, as in the result file
   std::map<std::string, double> extra;               // free-form named scalars for the run loop
 };
 

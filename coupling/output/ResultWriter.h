@@ -3,28 +3,32 @@
 //
 // Layout (every dataset has a string attribute "units"):
 //   /  attributes format = "tmdem-result-1", version, scene (TOML text), status
-//      ("running" while the writer is open, then "ok" or "failed")
+//      ("running" while the writer is open, then "ok", "failed" or "interrupted")
 //   /particles/radius [N] m, mass [N] kg, heat_capacity [N] J/K, material [N] int32 ("1";
 //      attribute "names" lists the material names when given)
 //   /frames/time [F] s, position [F,N,3] m, velocity [F,N,3] m/s, temperature [F,N] K,
 //      thermal_energy [F] J, boundary_heat [F] J, contact_offset [F+1] int64 ("1")
 //   /contacts/pair [C,2] int64 ("1"; j < 0 is wall -1-j), normal_force [C] N,
-//      conductance [C] W/K; group attribute "stored" = 1 or 0 (store_contacts)
+//      tangential_force [C,3] N, conductance [C] W/K; group attribute "stored" = 1 or 0
+// The three parts are written by ResultMetadata, ResultFrames and ResultContacts.
 //
 // Reading while the run goes on: every write_frame() ends with H5Fflush, and the writer opens the
-// file without an HDF5 file lock, so any reader (h5py, ParaView, another tmdem) may open the
-// file read-only at any time with default settings and sees every complete frame. The frame
-// count is len(/frames/time) (written last in each frame). A reader that opens the file in the
-// middle of a write_frame() may get an HDF5 error; reopen then. Readers that keep the file open
-// may see stale metadata, not the later frames: reopen to refresh. Inside the writing process itself, a second
-// H5Fopen of the file while the writer holds it must also switch file locking off
+// file without HDF5's flock(), so any reader (h5py, ParaView, another tmdem) may open the file
+// read-only at any time with default settings and sees every complete frame. The frame count is
+// len(/frames/time) (written last in each frame). A reader that opens the file in the middle of
+// a write_frame() may get an HDF5 error; reopen then. Readers that keep the file open may see
+// stale metadata, not the later frames: reopen to refresh. Inside the writing process itself, a
+// second H5Fopen of the file while the writer holds it must also switch file locking off
 // (H5Pset_file_locking(fapl, false, true)), else HDF5 refuses: "file locking flag values don't
-// match". HDF5 older than 1.10.7 cannot switch the lock off per file: readers then need the
-// environment variable HDF5_USE_FILE_LOCKING=FALSE.
+// match". A second writer is refused by ResultFileLock (a record lock, see ResultFileLock.h).
 //
-// RESULT.xdmf is rewritten (atomically: temporary file then rename) after each of the first 1024
-// frames, then whenever the frame count has grown by 1/32 since the last rewrite, and always in
-// finish() and in the destructor, so it is valid during the run and complete at the end.
+// Files are never lost silently: the constructor refuses an existing file unless told to
+// overwrite it, and reopen() checks that the file belongs to the restarted scene before it
+// changes a byte. Every HDF5 identifier is owned and closed on every path (also when the disk
+// is full), so HDF5's teardown at exit finds nothing open.
+//
+// RESULT.xdmf is rewritten (atomically: temporary file then rename) after every frame, so after
+// any crash it lists exactly the frames the .h5 holds (see XdmfWriter.h for the cost).
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -57,19 +61,35 @@ struct FrameView {
   std::span<const std::int64_t> contact_pair;   // C*2; j < 0 is wall number (-1 - j)
   std::span<const double> normal_force_N;       // C
   std::span<const double> conductance_W_per_K;  // C
+  std::span<const double> tangential_force_N;   // C*3 (xyz, on i), or empty: stored as 0
 };
+
+// What reopen() checks before it changes a byte of an existing result file.
+struct RestartMatch {
+  std::size_t particles = 0;
+  std::string scene_toml;        // the checkpoint's scene: must equal the file's "scene"
+  double checkpoint_time_s = 0;  // the last kept frame may not lie after it
+  std::string next_scene_toml;   // written as "scene" once the checks pass (empty: kept)
+};
+
+enum class ExistingResult { Refuse, Overwrite };
 
 class ResultWriter {
  public:
-  // Creates (truncates) the file and writes header, empty frame/contact datasets and
-  // contact_offset = [0]; status "running". Throws OutputError naming the path if the file
-  // cannot be created, std::invalid_argument if the header vectors differ in length.
-  ResultWriter(const std::string& path, const ResultHeader& header, bool store_contacts);
+  // Creates the file and writes header, empty frame/contact datasets and contact_offset = [0];
+  // status "running". An existing file is refused (OutputError naming it) unless `existing` is
+  // Overwrite; a file another writer holds is always refused. Throws OutputError naming the path
+  // if the file cannot be created, std::invalid_argument if the header vectors differ in length.
+  ResultWriter(const std::string& path, const ResultHeader& header, bool store_contacts,
+               ExistingResult existing = ExistingResult::Refuse);
 
   // Restart: opens an existing result file, keeps its first keep_frames frames (and their
   // contacts), drops the rest and sets status "running" again. Throws OutputError naming the
-  // path if the file is missing, not a tmdem-result-1 file, or has fewer than keep_frames frames.
-  static ResultWriter reopen(const std::string& path, std::size_t keep_frames);
+  // path, with the file unchanged, if it is missing, held by another writer, not a
+  // tmdem-result-1 file, has fewer than keep_frames frames, or (with `match`) holds another
+  // particle count, another scene, or a kept frame after the checkpoint's time.
+  static ResultWriter reopen(const std::string& path, std::size_t keep_frames,
+                             const RestartMatch* match = nullptr);
 
   ResultWriter(ResultWriter&&) noexcept;
   ResultWriter& operator=(ResultWriter&&) noexcept;
@@ -85,7 +105,7 @@ class ResultWriter {
   // std::logic_error after finish(). Not thread-safe (serial HDF5): one writing thread.
   void write_frame(const FrameView& frame);
 
-  // status is "ok" or "failed" (std::invalid_argument otherwise). Sets the root attribute,
+  // status is "ok", "failed" or "interrupted" (std::invalid_argument otherwise). Sets the root attribute,
   // closes the file and writes RESULT.xdmf. A second call does nothing. Throws OutputError.
   void finish(std::string_view status);
 

@@ -41,7 +41,7 @@ struct EnergySummary {
 };
 
 struct RunSummary {
-  std::string status = "ok";         // "ok" or "failed"
+  std::string status = "ok";         // "ok", "failed" or "interrupted"
   std::string message;               // extra: what failed; omitted when empty
   double wall_time_s = 0.0;
   double simulated_time_s = 0.0;

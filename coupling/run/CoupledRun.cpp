@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <cmath>
 #include <memory>
 #include <numeric>
@@ -9,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "coupling/common/ExitCode.h"
 #include "coupling/output/Checkpoint.h"
 #include "coupling/bridge/ContactList.h"
 #include "coupling/bridge/DynamicNetwork.h"
@@ -18,6 +20,8 @@
 #include "coupling/bridge/SceneToMechanics.h"
 #include "coupling/bridge/ThermalDiagnostics.h"
 #include "coupling/bridge/ThermalNetworkBuilder.h"
+#include "coupling/run/Interruption.h"
+#include "coupling/run/OutputPaths.h"
 #include "coupling/run/ThermalProblem.h"
 #include "mechanics/NscdIntegrator.h"
 #include "mechanics/TouchingPairs.h"
@@ -42,6 +46,12 @@ struct StartError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A first SIGINT/SIGTERM was handled: last frame and checkpoint are written.
+struct Interrupted {
+  int signal = 0;
+  double time_s = 0.0;
+};
+
 class CoupledRun {
  public:
   CoupledRun(const Scene& scene, const RunOptions& options, std::ostream& log)
@@ -59,6 +69,8 @@ class CoupledRun {
   void run_dynamic();
   void write_frame(double t_s);
   void maybe_checkpoint(double t_s);
+  void checkpoint(double t_s);
+  void stop_if_interrupted(double t_s, bool frame_written);
   void fill_summary();
   std::span<const double> positions() const;
   std::span<const double> velocities() const;
@@ -118,7 +130,7 @@ void CoupledRun::prepare_mechanics() {
       }
   }
   const auto mode = scene_.effects.mechanics;
-  if (mode == MechanicsMode::Off) {
+  if (mode == MechanicsMode::Off) {  // no mechanics: tangential force 0
     for (const auto& p : mechanics::find_touching_pairs(particles_, make_mechanics_walls(scene_), 1e-9))
       contacts_.add(p.i, p.j, 0.0);
     return;
@@ -131,9 +143,11 @@ void CoupledRun::prepare_mechanics() {
   if (restart_) {
     // A settled run restarts on the frozen graph it checkpointed.
     const double h = scene_.mechanics.time_step_s;
+    const auto& tangential = restart_->contact_tangential_force_N;
     for (std::size_t c = 0; c < restart_->contact_pair.size() / 2; ++c)
       contacts_.add(restart_->contact_pair[2 * c], restart_->contact_pair[2 * c + 1],
-                    restart_->contact_impulse_N_s[3 * c] / h);
+                    restart_->contact_impulse_N_s[3 * c] / h,
+                    {tangential[3 * c], tangential[3 * c + 1], tangential[3 * c + 2]});
     particles_ = nscd_->particles();
     return;
   }
@@ -200,12 +214,17 @@ void CoupledRun::write_frame(double t_s) {
   f.contact_pair = contacts_.pair;
   f.normal_force_N = contacts_.normal_force_N;
   f.conductance_W_per_K = contacts_.conductance_W_per_K;
+  f.tangential_force_N = contacts_.tangential_force_N;
   writer_->write_frame(f);
 }
 
 void CoupledRun::maybe_checkpoint(double t_s) {
   if (!(scene_.output.checkpoint_interval_s > 0.0) || t_s < next_checkpoint_s_ - 1e-12) return;
   while (next_checkpoint_s_ <= t_s + 1e-12) next_checkpoint_s_ += scene_.output.checkpoint_interval_s;
+  checkpoint(t_s);
+}
+
+void CoupledRun::checkpoint(double t_s) {
   CheckpointState cs;
   cs.time_s = t_s;
   const auto& ps = nscd_ && !frozen_ ? nscd_->particles() : particles_;
@@ -226,8 +245,17 @@ void CoupledRun::maybe_checkpoint(double t_s) {
     cs.contact_impulse_N_s.push_back(0.0);
     cs.contact_impulse_N_s.push_back(0.0);
   }
+  cs.contact_tangential_force_N = contacts_.tangential_force_N;
   cs.extra["initial_energy_J"] = initial_energy_J_;
   write_checkpoint(checkpoint_path_for(options_.output_path), cs);
+}
+
+void CoupledRun::stop_if_interrupted(double t_s, bool frame_written) {
+  const int signal = Interruption::pending();
+  if (signal == 0 || t_s >= scene_.duration_s) return;  // at the end: the run is complete
+  if (!frame_written) write_frame(t_s);
+  checkpoint(t_s);
+  throw Interrupted{signal, t_s};
 }
 
 std::vector<double> CoupledRun::frame_times() const {
@@ -253,6 +281,7 @@ void CoupledRun::run_static() {
       write_frame(t);
     }
     maybe_checkpoint(t);
+    stop_if_interrupted(t, true);
     const auto st = integrator_->stats();
     progress_.update("run", t, scene_.duration_s, std::to_string(st.steps) + " thermal steps");
   }
@@ -282,11 +311,14 @@ void CoupledRun::run_dynamic() {
     integrator_->advance_to(t_next);
     thermal_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - thermal_start).count();
     t = t_next;
+    bool frame_written = false;
     if (next_frame < times.size() && t >= times[next_frame] - 0.5 * h) {
       write_frame(t);
+      frame_written = true;
       while (next_frame < times.size() && times[next_frame] < t + 0.5 * h) ++next_frame;
     }
     maybe_checkpoint(t);
+    stop_if_interrupted(t, frame_written);
     progress_.update("run", t, scene_.duration_s,
                      std::to_string(contacts_.size()) + " contacts");
   }
@@ -328,27 +360,32 @@ void CoupledRun::fill_summary() {
 
 RunOutcome CoupledRun::run() {
   RunOutcome outcome;
-  auto finish = [&](int code, const std::string& message) {
+  // status: "ok", "failed" or "interrupted"; `message` is printed once as the error line, a
+  // later failure while closing the files only when it says something new.
+  auto finish = [&](int code, const std::string& message, std::string status) {
     progress_.done();
     if (!message.empty()) log_ << "error: " << message << std::endl;
-    summary_.status = code == 0 ? "ok" : "failed";
+    auto report = [&](const OutputError& e) {
+      if (message.empty() || message != e.what()) log_ << "error: " << e.what() << std::endl;
+      if (code == kExitOk) code = kExitIo, status = "failed";
+    };
+    summary_.status = status;
     summary_.message = message;
     fill_summary();
     if (writer_ && !writer_->finished()) {
       try {
-        writer_->finish(code == 0 ? "ok" : "failed");
+        writer_->finish(status);
       } catch (const OutputError& e) {
-        log_ << "error: " << e.what() << std::endl;
-        if (code == 0) code = 4;
+        report(e);
       }
     }
+    summary_.status = status;
     // A run refused at start writes nothing, not even a summary.
-    if (!options_.summary_path.empty() && code != 2) {
+    if (!options_.summary_path.empty() && code != kExitInvalid) {
       try {
         summary_.write(options_.summary_path);
       } catch (const OutputError& e) {
-        log_ << "error: " << e.what() << std::endl;
-        if (code == 0) code = 4;
+        report(e);
       }
     }
     outcome.exit_code = code;
@@ -359,24 +396,46 @@ RunOutcome CoupledRun::run() {
     }
     return outcome;
   };
+  auto failed = [&](int code, const std::string& message) {
+    return finish(code, message, code == kExitOk ? "ok" : "failed");
+  };
 
+  OutputPaths paths;
+  paths.scene = options_.scene_path;
+  paths.result = options_.output_path;
+  paths.summary = options_.summary_path;
+  paths.checkpoint = checkpoint_path_for(options_.output_path);
+  paths.checkpoints = true;  // an interruption writes one even without checkpoint_interval
+  paths.overwrite = options_.overwrite;
+  paths.restart = !options_.restart_path.empty();
+  if (const auto problem = check_output_paths(paths); problem.exit_code != 0)
+    return failed(problem.exit_code, problem.message);
+
+  std::optional<Interruption> interruption;
+  if (options_.handle_signals) interruption.emplace(options_.quiet);
   try {
     restore_checkpoint();
     prepare_mechanics();
     prepare_thermal();
   } catch (const StartError& e) {
-    return finish(2, e.what());
+    return failed(kExitInvalid, e.what());
   } catch (const OutputError& e) {
-    return finish(4, e.what());
+    return failed(kExitIo, e.what());
   } catch (const thermal::ThermalSolverError& e) {
-    return finish(3, e.what());
+    return failed(kExitSolverFailed, e.what());
   } catch (const std::exception& e) {
-    return finish(3, std::string("setting up the run failed: ") + e.what());
+    return failed(kExitSolverFailed, std::string("setting up the run failed: ") + e.what());
   }
 
   try {
     if (restart_) {
-      writer_.emplace(ResultWriter::reopen(options_.output_path, std::size_t(restart_->frames_written)));
+      RestartMatch match;
+      match.particles = scene_.particles.size();
+      match.scene_toml = restart_->scene_toml;
+      match.checkpoint_time_s = restart_->time_s;
+      match.next_scene_toml = scene_.resolved_toml;
+      writer_.emplace(ResultWriter::reopen(options_.output_path,
+                                           std::size_t(restart_->frames_written), &match));
     } else {
       ResultHeader header;
       header.scene_toml = scene_.resolved_toml;
@@ -388,21 +447,37 @@ RunOutcome CoupledRun::run() {
         header.material.push_back(p.material);
       }
       for (const auto& m : scene_.materials) header.material_names.push_back(m.name);
-      writer_.emplace(options_.output_path, header, scene_.output.contacts);
+      writer_.emplace(options_.output_path, header, scene_.output.contacts,
+                      options_.overwrite ? ExistingResult::Overwrite : ExistingResult::Refuse);
     }
     next_checkpoint_s_ = t0_ + scene_.output.checkpoint_interval_s;
     if (frozen_)
       run_static();
     else
       run_dynamic();
+  } catch (const Interrupted& stop) {
+    const int code = stop.signal == SIGINT ? kExitSigint : kExitSigterm;
+    const std::string checkpoint = checkpoint_path_for(options_.output_path);
+    RunOutcome result = finish(code, "", "interrupted");
+    if (result.exit_code == code) {
+      log_ << "interrupted by " << signal_name(stop.signal) << " at t = " << stop.time_s
+           << " s; resume with: "
+           << (options_.resume_command.empty() ? "tmdem run SCENE -o " + options_.output_path
+                                               : options_.resume_command)
+           << " --restart " << checkpoint
+           << std::endl;
+    }
+    return result;
   } catch (const thermal::ThermalSolverError& e) {
-    return finish(3, e.what());
+    return failed(kExitSolverFailed, e.what());
+  } catch (const ResultMismatch& e) {
+    return failed(writer_ ? kExitIo : kExitInvalid, e.what());
   } catch (const OutputError& e) {
-    return finish(4, e.what());
+    return failed(kExitIo, e.what());
   } catch (const std::exception& e) {
-    return finish(3, e.what());
+    return failed(kExitSolverFailed, e.what());
   }
-  return finish(0, "");
+  return failed(kExitOk, "");
 }
 
 }  // namespace

@@ -21,19 +21,25 @@ struct RunOptions {
   std::string output_path;      // result file (scene's output.file unless -o)
   std::string summary_path;     // empty: no summary file
   std::string restart_path;     // empty: start at t = 0
+  std::string scene_path;       // the scene file read (empty: built-in); never an output
+  bool overwrite = false;       // --overwrite: an existing result file may be replaced
+  std::string resume_command;   // "tmdem run SCENE ... -o RESULT" for the resume hint
+  bool handle_signals = false;  // SIGINT/SIGTERM end the run cleanly (exit 130/143)
   bool quiet = false;
   bool terminal = false;        // stderr is a terminal: one updating progress line
 };
 
 struct RunOutcome {
-  int exit_code = 0;            // 0 ok, 2 invalid settings found at start, 3 solver, 4 I/O
+  int exit_code = 0;            // an ExitCode (coupling/common/ExitCode.h)
   RunSummary summary;
   std::vector<double> final_temperature_K;  // at the last time reached
 };
 
 // Never throws for solver or output failures: they become exit codes with the message on `log`
 // (and in summary.message). Settings refused at start (e.g. an explicit step above the
-// stability bound) give exit 2 before any file is written.
+// stability bound, a result file that exists without --overwrite) give exit 2 before any file
+// is written. With handle_signals, a first SIGINT/SIGTERM ends the run after the current step
+// with a last frame, a checkpoint, status "interrupted" and exit 130/143.
 RunOutcome run_scene(const Scene& scene, const RunOptions& options, std::ostream& log);
 
 // Where checkpoints of a run writing `output_path` go: RESULT.checkpoint.h5.

@@ -62,7 +62,10 @@ void gather_contacts(const std::vector<mechanics::ContactForce>& forces, Contact
     return std::pair(forces[a].i, forces[a].j) < std::pair(forces[b].i, forces[b].j);
   });
   out.clear();
-  for (auto k : order) out.add(forces[k].i, forces[k].j, forces[k].normal_force_N);
+  for (auto k : order) {
+    const auto& t = forces[k].tangential_force_N;
+    out.add(forces[k].i, forces[k].j, forces[k].normal_force_N, {t.x(), t.y(), t.z()});
+  }
 }
 
 std::unique_ptr<thermal::ThermalSystem> build_thermal_system(const Scene& scene,

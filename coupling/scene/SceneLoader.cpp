@@ -1,4 +1,5 @@
 #include "coupling/scene/SceneLoader.h"
+#include "coupling/scene/SceneLimits.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -78,6 +79,7 @@ class SceneBuilder {
     read_walls();
     read_assigns();
     read_settings();
+    check_scene_limits(scene_, origins_, source_);
     check_overlaps();
     return std::move(scene_);
   }

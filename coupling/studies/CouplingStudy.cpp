@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "coupling/studies/ContactRecording.h"
+#include "coupling/common/ExitCode.h"
 #include "coupling/run/ThermalProblem.h"
 #include "coupling/studies/ThermalReplay.h"
 #include "thermal/IntegratorRegistry.h"
@@ -65,7 +66,7 @@ int run_coupling_study(const Scene& scene, const std::string& csv_path, std::ost
                        std::ostream& log) {
   if (scene.effects.mechanics != MechanicsMode::Dynamic) {
     log << "error: tmdem study coupling needs a scene with effects.mechanics = \"dynamic\"\n";
-    return 2;
+    return kExitInvalid;
   }
   const double h = scene.mechanics.time_step_s;
   ProgressReporter progress(log, false, false);
@@ -83,7 +84,7 @@ int run_coupling_study(const Scene& scene, const std::string& csv_path, std::ost
   const auto ref = run_variant(scene, *system, replay, T0, {"restart", "cvode", 1e-12});
   if (!ref.failure.empty()) {
     log << "error: the reference run failed: " << ref.failure << "\n";
-    return 3;
+    return kExitSolverFailed;
   }
   out << "reference: cvode/klu restarted every mechanical step, rtol = atol = 1e-12 ("
       << ref.stats.steps << " thermal steps, " << ref.thermal_wall_s << " s)\n";
@@ -119,10 +120,10 @@ int run_coupling_study(const Scene& scene, const std::string& csv_path, std::ost
     f << csv.str();
     if (!f) {
       log << "error: cannot write " << csv_path << "\n";
-      return 4;
+      return kExitIo;
     }
   }
-  return 0;
+  return kExitOk;
 }
 
 }  // namespace tmdem::coupling

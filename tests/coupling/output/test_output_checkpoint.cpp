@@ -48,6 +48,7 @@ CheckpointState sample() {
   s.frames_written = 126;
   s.contact_pair = {0, 1, 1, 2, 0, -1};
   s.contact_impulse_N_s = {1e-3, 0, 0, 2e-3, 1e-5, 0, 3e-3, 0, -1e-5};
+  s.contact_tangential_force_N = {0.1, -0.2, 0.3, 0, 0, 0, -1.5, 2.5, 1e-9};
   s.extra = {{"mechanics.step", 12500.0}, {"next_frame_time_s", 12.6}};
   return s;
 }
@@ -63,6 +64,7 @@ void expect_equal(const CheckpointState& a, const CheckpointState& b) {
   EXPECT_EQ(a.frames_written, b.frames_written);
   EXPECT_EQ(a.contact_pair, b.contact_pair);
   EXPECT_EQ(a.contact_impulse_N_s, b.contact_impulse_N_s);
+  EXPECT_EQ(a.contact_tangential_force_N, b.contact_tangential_force_N);
   EXPECT_EQ(a.extra, b.extra);
 }
 
@@ -86,6 +88,7 @@ TEST(Checkpoint, RoundTripWithoutContacts) {
   CheckpointState s = sample();
   s.contact_pair.clear();
   s.contact_impulse_N_s.clear();
+  s.contact_tangential_force_N.clear();
   s.extra.clear();
   write_checkpoint(dir.file("c.h5"), s);
   expect_equal(tmdem::coupling::read_checkpoint(dir.file("c.h5")), s);

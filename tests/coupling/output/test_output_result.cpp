@@ -67,11 +67,11 @@ struct SampleFrame {
   double time_s;
   std::vector<double> position, velocity, temperature;
   std::vector<std::int64_t> pair;
-  std::vector<double> force, conductance;
+  std::vector<double> force, conductance, tangential;
 
   FrameView view() const {
-    return FrameView{time_s,      position, velocity, temperature, 10.0 * time_s + 1.0,
-                     -0.5 * time_s, pair,     force,    conductance};
+    return FrameView{time_s,        position, velocity, temperature, 10.0 * time_s + 1.0,
+                     -0.5 * time_s, pair,     force,    conductance, tangential};
   }
 };
 
@@ -92,6 +92,7 @@ SampleFrame sample_frame(std::size_t f) {
   for (std::size_t c = 0; c < s.pair.size() / 2; ++c) {
     s.force.push_back(100.0 * static_cast<double>(f) + static_cast<double>(c));
     s.conductance.push_back(1e-4 * static_cast<double>(c + 1));
+    for (int k = 0; k < 3; ++k) s.tangential.push_back(0.5 * static_cast<double>(f) - k - 0.1 * c);
   }
   return s;
 }
@@ -191,6 +192,7 @@ TEST(ResultWriter, WritesContractLayoutUnitsAndValues) {
       {"/frames/contact_offset", {{4}, "1"}},
       {"/contacts/pair", {{5, 2}, "1"}},
       {"/contacts/normal_force", {{5}, "N"}},
+      {"/contacts/tangential_force", {{5, 3}, "N"}},
       {"/contacts/conductance", {{5}, "W/K"}},
   };
   for (const auto& [name, shape_units] : expected) {
@@ -220,7 +222,7 @@ TEST(ResultWriter, WritesContractLayoutUnitsAndValues) {
 
   std::vector<double> time, position, velocity, temperature, energy, heat;
   std::vector<std::int64_t> pair;
-  std::vector<double> force, conductance;
+  std::vector<double> force, conductance, tangential;
   for (std::size_t f = 0; f < 3; ++f) {
     const SampleFrame s = sample_frame(f);
     time.push_back(s.time_s);
@@ -232,6 +234,7 @@ TEST(ResultWriter, WritesContractLayoutUnitsAndValues) {
     pair.insert(pair.end(), s.pair.begin(), s.pair.end());
     force.insert(force.end(), s.force.begin(), s.force.end());
     conductance.insert(conductance.end(), s.conductance.begin(), s.conductance.end());
+    tangential.insert(tangential.end(), s.tangential.begin(), s.tangential.end());
   }
   EXPECT_EQ(read_doubles(file, "/frames/time"), time);
   EXPECT_EQ(read_doubles(file, "/frames/position"), position);
@@ -244,6 +247,7 @@ TEST(ResultWriter, WritesContractLayoutUnitsAndValues) {
   EXPECT_EQ(pair[9], -1);  // frame 1, third contact: wall 0
   EXPECT_EQ(read_doubles(file, "/contacts/normal_force"), force);
   EXPECT_EQ(read_doubles(file, "/contacts/conductance"), conductance);
+  EXPECT_EQ(read_doubles(file, "/contacts/tangential_force"), tangential);
 
   EXPECT_TRUE(fs::exists(dir.file("result.xdmf")));
 }
@@ -403,6 +407,7 @@ TEST(ResultWriter, WithoutContactsWritesZeroOffsetsAndEmptyContacts) {
   EXPECT_EQ(dims_of(file.openDataSet("/contacts/pair")), (Dims{0, 2}));
   EXPECT_EQ(dims_of(file.openDataSet("/contacts/normal_force")), Dims{0});
   EXPECT_EQ(dims_of(file.openDataSet("/contacts/conductance")), Dims{0});
+  EXPECT_EQ(dims_of(file.openDataSet("/contacts/tangential_force")), (Dims{0, 3}));
   EXPECT_EQ(string_attribute(file.openDataSet("/contacts/pair"), "units"), "1");
 }
 
@@ -488,6 +493,96 @@ TEST(ResultWriter, MoveKeepsOneOwner) {
   write_sample(b, 1);
   b.finish("ok");
   EXPECT_EQ(root_attribute(path, "status"), "ok");
+}
+
+// ---- no silent loss ----
+
+std::string file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+TEST(ResultWriter, ExistingFileIsRefusedUnlessOverwrite) {
+  TempDir dir;
+  const std::string path = dir.file("precious.h5");
+  std::ofstream(path) << "not yours to overwrite\n";
+  try {
+    ResultWriter writer(path, sample_header(), true);
+    FAIL() << "no exception";
+  } catch (const tmdem::coupling::ResultMismatch& e) {
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("--overwrite"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(file_bytes(path), "not yours to overwrite\n");
+  EXPECT_FALSE(fs::exists(dir.file("precious.xdmf")));
+  {
+    ResultWriter writer(path, sample_header(), true, tmdem::coupling::ExistingResult::Overwrite);
+    write_sample(writer, 1);
+    writer.finish("ok");
+  }
+  EXPECT_EQ(root_attribute(path, "status"), "ok");
+}
+
+TEST(ResultWriter, SecondConcurrentWriterIsRefusedNamingTheFile) {
+  TempDir dir;
+  const std::string path = dir.file("shared.h5");
+  ResultWriter first(path, sample_header(), true);
+  write_sample(first, 2);
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    try {
+      if (attempt == 0) {
+        ResultWriter second(path, sample_header(), true, tmdem::coupling::ExistingResult::Overwrite);
+      } else {
+        ResultWriter second = ResultWriter::reopen(path, 1);
+      }
+      FAIL() << "no exception (attempt " << attempt << ")";
+    } catch (const OutputError& e) {
+      EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("another process"), std::string::npos) << e.what();
+    }
+  }
+  // The first writer is untouched and completes its file.
+  first.write_frame(sample_frame(2).view());
+  first.finish("ok");
+  H5::H5File file(path, H5F_ACC_RDONLY);
+  EXPECT_EQ(string_attribute(file, "status"), "ok");
+  EXPECT_EQ(read_doubles(file, "/frames/time"), (std::vector<double>{0.0, 0.25, 0.5}));
+  EXPECT_EQ(read_doubles(file, "/frames/temperature").back(), sample_frame(2).temperature.back());
+}
+
+TEST(ResultWriter, ReopenOfAnotherScenesFileLeavesItByteForByte) {
+  TempDir dir;
+  const std::string path = dir.file("other_scene.h5");
+  const ResultHeader header = sample_header();
+  {
+    ResultWriter writer(path, header, true);
+    write_sample(writer, 3);
+    writer.finish("ok");
+  }
+  const std::string before = file_bytes(path);
+  tmdem::coupling::RestartMatch match;
+  match.particles = kN + 1;
+  match.scene_toml = header.scene_toml;
+  match.checkpoint_time_s = 10.0;
+  EXPECT_THROW(ResultWriter::reopen(path, 2, &match), tmdem::coupling::ResultMismatch);
+  match.particles = kN;
+  match.scene_toml = "format = \"tmdem-scene-1\"\n# another scene\n";
+  EXPECT_THROW(ResultWriter::reopen(path, 2, &match), tmdem::coupling::ResultMismatch);
+  match.scene_toml = header.scene_toml;
+  match.checkpoint_time_s = 0.1;  // frame 1 is at 0.25 s: the checkpoint cannot be from this file
+  EXPECT_THROW(ResultWriter::reopen(path, 2, &match), tmdem::coupling::ResultMismatch);
+  EXPECT_THROW(ResultWriter::reopen(path, 4, &match), OutputError);  // only 3 frames
+  EXPECT_EQ(file_bytes(path), before);
+
+  match.checkpoint_time_s = 0.25;
+  match.next_scene_toml = header.scene_toml + "# extended\n";
+  {
+    ResultWriter writer = ResultWriter::reopen(path, 2, &match);
+    writer.finish("ok");
+  }
+  EXPECT_EQ(root_attribute(path, "scene"), match.next_scene_toml);
 }
 
 }  // namespace

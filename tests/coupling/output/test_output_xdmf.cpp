@@ -88,12 +88,12 @@ TEST(XdmfWriter, ResultWriterKeepsXdmfCurrent) {
     ResultWriter writer(path, header, true);
     const std::vector<double> xyz(6, 0.0), temperature(2, 300.0);
     for (int f = 0; f < 2; ++f) {
-      writer.write_frame(FrameView{0.5 * f, xyz, xyz, temperature, 6.0, 0.0, {}, {}, {}});
+      writer.write_frame(FrameView{0.5 * f, xyz, xyz, temperature, 6.0, 0.0, {}, {}, {}, {}});
     }
     EXPECT_EQ(writer.xdmf_path(), (dir / "bed.xdmf").string());
     const std::string during = read_text(writer.xdmf_path());
     EXPECT_EQ(count(during, "<Grid Name=\"frame_"), 2u);
-    writer.write_frame(FrameView{1.0, xyz, xyz, temperature, 6.0, 0.0, {}, {}, {}});
+    writer.write_frame(FrameView{1.0, xyz, xyz, temperature, 6.0, 0.0, {}, {}, {}, {}});
     writer.finish("ok");
   }
   const std::string xml = read_text((dir / "bed.xdmf").string());

@@ -1,0 +1,88 @@
+#include "coupling/output/ResultContacts.h"
+
+#include <algorithm>
+#include <vector>
+
+#include "coupling/output/Hdf5Io.h"
+
+namespace tmdem::coupling {
+namespace {
+
+// Rows of a contact chunk: about one frame's contacts, within [256, 65536].
+hsize_t contact_chunk_rows(std::size_t particles) {
+  hsize_t rows = 256;
+  while (rows < 3 * particles && rows < 65536) rows *= 2;
+  return rows;
+}
+
+}  // namespace
+
+void ResultContacts::create(hid_t file, std::size_t particles, bool stored) {
+  stored_ = stored;
+  Hdf5Handle contacts = hdf5::create_group(file, "contacts");
+  const hid_t g = contacts.get();
+  hdf5::write_int_attribute(g, "stored", stored ? 1 : 0);
+  const hsize_t chunk = contact_chunk_rows(particles);
+  pair_ = hdf5::create_dataset(g, "pair", H5T_STD_I64LE, {0, 2}, chunk, "1");
+  normal_force_ = hdf5::create_dataset(g, "normal_force", H5T_IEEE_F64LE, {0}, chunk, "N");
+  tangential_force_ =
+      hdf5::create_dataset(g, "tangential_force", H5T_IEEE_F64LE, {0, 3}, chunk, "N");
+  conductance_ = hdf5::create_dataset(g, "conductance", H5T_IEEE_F64LE, {0}, chunk, "W/K");
+}
+
+void ResultContacts::open(hid_t file, bool writable) {
+  Hdf5Handle contacts = hdf5::open_group(file, "/contacts");
+  const hid_t g = contacts.get();
+  int stored = 1;
+  hdf5::read_int_attribute(g, "stored", stored);
+  stored_ = stored != 0;
+  pair_ = hdf5::open_dataset(g, "pair");
+  normal_force_ = hdf5::open_dataset(g, "normal_force");
+  conductance_ = hdf5::open_dataset(g, "conductance");
+  if (hdf5::exists(g, "tangential_force")) {
+    tangential_force_ = hdf5::open_dataset(g, "tangential_force");
+  } else if (writable) {
+    const hsize_t rows = hdf5::dataset_rows(pair_.get());
+    tangential_force_ =
+        hdf5::create_dataset(g, "tangential_force", H5T_IEEE_F64LE, {0, 3}, 256, "N");
+    const std::vector<double> zeros(3 * rows, 0.0);
+    hdf5::write_rows(tangential_force_.get(), 0, rows, zeros.data(), H5T_NATIVE_DOUBLE);
+  }
+}
+
+std::int64_t ResultContacts::rows() const {
+  hsize_t rows = hdf5::dataset_rows(pair_.get());
+  for (const Hdf5Handle* d : {&normal_force_, &tangential_force_, &conductance_}) {
+    if (d->valid()) rows = std::min(rows, hdf5::dataset_rows(d->get()));
+  }
+  return static_cast<std::int64_t>(rows);
+}
+
+void ResultContacts::append(std::int64_t first, const FrameView& frame) {
+  const hsize_t c = frame.normal_force_N.size();
+  if (c == 0) return;
+  const hsize_t at = static_cast<hsize_t>(first);
+  hdf5::write_rows(pair_.get(), at, c, frame.contact_pair.data(), H5T_NATIVE_INT64);
+  hdf5::write_rows(normal_force_.get(), at, c, frame.normal_force_N.data(), H5T_NATIVE_DOUBLE);
+  if (frame.tangential_force_N.empty()) {
+    const std::vector<double> zeros(3 * c, 0.0);
+    hdf5::write_rows(tangential_force_.get(), at, c, zeros.data(), H5T_NATIVE_DOUBLE);
+  } else {
+    hdf5::write_rows(tangential_force_.get(), at, c, frame.tangential_force_N.data(),
+                     H5T_NATIVE_DOUBLE);
+  }
+  hdf5::write_rows(conductance_.get(), at, c, frame.conductance_W_per_K.data(),
+                   H5T_NATIVE_DOUBLE);
+}
+
+void ResultContacts::cut_back(std::int64_t rows) {
+  for (const Hdf5Handle* d : {&pair_, &normal_force_, &tangential_force_, &conductance_}) {
+    hdf5::set_rows(d->get(), static_cast<hsize_t>(rows));
+  }
+}
+
+void ResultContacts::close() {
+  for (Hdf5Handle* d : {&pair_, &normal_force_, &tangential_force_, &conductance_}) d->reset();
+}
+
+}  // namespace tmdem::coupling

@@ -1,0 +1,88 @@
+#include "coupling/output/ResultFrames.h"
+
+#include <algorithm>
+
+#include "coupling/output/Hdf5Io.h"
+
+namespace tmdem::coupling {
+namespace {
+
+constexpr hsize_t kFrameChunk = 1024;  // rows per chunk of the [F] datasets
+
+}  // namespace
+
+void ResultFrames::create(hid_t file, std::size_t particles) {
+  const hsize_t n = particles;
+  Hdf5Handle frames = hdf5::create_group(file, "frames");
+  const hid_t g = frames.get();
+  time_ = hdf5::create_dataset(g, "time", H5T_IEEE_F64LE, {0}, kFrameChunk, "s");
+  position_ = hdf5::create_dataset(g, "position", H5T_IEEE_F64LE, {0, n, 3}, 1, "m");
+  velocity_ = hdf5::create_dataset(g, "velocity", H5T_IEEE_F64LE, {0, n, 3}, 1, "m/s");
+  temperature_ = hdf5::create_dataset(g, "temperature", H5T_IEEE_F64LE, {0, n}, 1, "K");
+  thermal_energy_ = hdf5::create_dataset(g, "thermal_energy", H5T_IEEE_F64LE, {0}, kFrameChunk, "J");
+  boundary_heat_ = hdf5::create_dataset(g, "boundary_heat", H5T_IEEE_F64LE, {0}, kFrameChunk, "J");
+  contact_offset_ =
+      hdf5::create_dataset(g, "contact_offset", H5T_STD_I64LE, {0}, kFrameChunk, "1");
+  const std::int64_t zero = 0;
+  hdf5::write_rows(contact_offset_.get(), 0, 1, &zero, H5T_NATIVE_INT64);
+}
+
+void ResultFrames::open(hid_t file) {
+  time_ = hdf5::open_dataset(file, "/frames/time");
+  position_ = hdf5::open_dataset(file, "/frames/position");
+  velocity_ = hdf5::open_dataset(file, "/frames/velocity");
+  temperature_ = hdf5::open_dataset(file, "/frames/temperature");
+  thermal_energy_ = hdf5::open_dataset(file, "/frames/thermal_energy");
+  boundary_heat_ = hdf5::open_dataset(file, "/frames/boundary_heat");
+  contact_offset_ = hdf5::open_dataset(file, "/frames/contact_offset");
+}
+
+std::size_t ResultFrames::complete_frames() const {
+  hsize_t complete = hdf5::dataset_rows(contact_offset_.get());
+  complete = complete == 0 ? 0 : complete - 1;
+  for (const Hdf5Handle* d :
+       {&time_, &position_, &velocity_, &temperature_, &thermal_energy_, &boundary_heat_}) {
+    complete = std::min(complete, hdf5::dataset_rows(d->get()));
+  }
+  return complete;
+}
+
+std::int64_t ResultFrames::contact_offset(std::size_t frame) const {
+  std::int64_t offset = 0;
+  hdf5::read_rows(contact_offset_.get(), frame, 1, &offset, H5T_NATIVE_INT64);
+  return offset;
+}
+
+std::vector<double> ResultFrames::times(std::size_t frames) const {
+  std::vector<double> values(frames);
+  hdf5::read_rows(time_.get(), 0, frames, values.data(), H5T_NATIVE_DOUBLE);
+  return values;
+}
+
+void ResultFrames::append(std::size_t index, const FrameView& frame, std::int64_t contact_end) {
+  const hsize_t f = index;
+  hdf5::write_rows(position_.get(), f, 1, frame.position_m.data(), H5T_NATIVE_DOUBLE);
+  hdf5::write_rows(velocity_.get(), f, 1, frame.velocity_m_per_s.data(), H5T_NATIVE_DOUBLE);
+  hdf5::write_rows(temperature_.get(), f, 1, frame.temperature_K.data(), H5T_NATIVE_DOUBLE);
+  hdf5::write_rows(thermal_energy_.get(), f, 1, &frame.thermal_energy_J, H5T_NATIVE_DOUBLE);
+  hdf5::write_rows(boundary_heat_.get(), f, 1, &frame.boundary_heat_J, H5T_NATIVE_DOUBLE);
+  hdf5::write_rows(contact_offset_.get(), f + 1, 1, &contact_end, H5T_NATIVE_INT64);
+  hdf5::write_rows(time_.get(), f, 1, &frame.time_s, H5T_NATIVE_DOUBLE);  // last: commits
+}
+
+void ResultFrames::cut_back(std::size_t frames) {
+  for (const Hdf5Handle* d :
+       {&time_, &position_, &velocity_, &temperature_, &thermal_energy_, &boundary_heat_}) {
+    hdf5::set_rows(d->get(), frames);
+  }
+  hdf5::set_rows(contact_offset_.get(), frames + 1);
+}
+
+void ResultFrames::close() {
+  for (Hdf5Handle* d : {&time_, &position_, &velocity_, &temperature_, &thermal_energy_,
+                        &boundary_heat_, &contact_offset_}) {
+    d->reset();
+  }
+}
+
+}  // namespace tmdem::coupling

@@ -1,0 +1,36 @@
+#pragma once
+// The /frames group of a result file: time, position, velocity, temperature, thermal_energy,
+// boundary_heat and contact_offset, one row per frame. /frames/time is written last in each
+// frame, so len(time) is the number of complete frames.
+#include <hdf5.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "coupling/output/Hdf5Handle.h"
+#include "coupling/output/ResultWriter.h"
+
+namespace tmdem::coupling {
+
+class ResultFrames {
+ public:
+  // Creates the empty datasets for `particles` particles; contact_offset = [0].
+  void create(hid_t file, std::size_t particles);
+  void open(hid_t file);
+
+  // Complete frames present: min over the frame datasets and len(contact_offset) - 1.
+  std::size_t complete_frames() const;
+  std::int64_t contact_offset(std::size_t frame) const;
+  std::vector<double> times(std::size_t frames) const;
+
+  // Frame `index` (rows before it exist); `contact_end` = contact rows after this frame.
+  void append(std::size_t index, const FrameView& frame, std::int64_t contact_end);
+  void cut_back(std::size_t frames);
+  void close();
+
+ private:
+  Hdf5Handle time_, position_, velocity_, temperature_, thermal_energy_, boundary_heat_,
+      contact_offset_;
+};
+
+}  // namespace tmdem::coupling

@@ -1,0 +1,56 @@
+#include "coupling/run/Interruption.h"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
+
+namespace tmdem::coupling {
+namespace {
+
+std::atomic<int> g_signal{0};
+std::atomic<bool> g_quiet{false};
+struct sigaction g_previous_int {}, g_previous_term {};
+
+extern "C" void on_signal(int signal) {
+  if (g_signal.load() != 0) {
+    // Second signal: abort now, with the default action of this signal.
+    std::signal(signal, SIG_DFL);
+    std::raise(signal);
+    return;
+  }
+  g_signal.store(signal);
+  if (!g_quiet.load()) {
+    static const char notice[] =
+        "\ninterrupt received: finishing the current step, then writing a last frame and a "
+        "checkpoint (a second signal aborts at once)\n";
+    const ssize_t ignored = ::write(STDERR_FILENO, notice, sizeof notice - 1);
+    (void)ignored;
+  }
+}
+
+}  // namespace
+
+Interruption::Interruption(bool quiet) {
+  g_signal.store(0);
+  g_quiet.store(quiet);
+  struct sigaction action {};
+  action.sa_handler = on_signal;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESTART;  // system calls of the step in progress carry on
+  sigaction(SIGINT, &action, &g_previous_int);
+  sigaction(SIGTERM, &action, &g_previous_term);
+}
+
+Interruption::~Interruption() {
+  sigaction(SIGINT, &g_previous_int, nullptr);
+  sigaction(SIGTERM, &g_previous_term, nullptr);
+}
+
+int Interruption::pending() { return g_signal.load(); }
+
+const char* signal_name(int signal) {
+  return signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "signal";
+}
+
+}  // namespace tmdem::coupling

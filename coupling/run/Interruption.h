@@ -1,0 +1,24 @@
+#pragma once
+// SIGINT / SIGTERM during a run (contract section 1): the first signal only raises a flag; the
+// time loop finishes its current step, writes a last frame and a checkpoint, marks the result
+// "interrupted" and exits 130 / 143. A second signal aborts at once (the default action), for a
+// user who does not want to wait for the step to end.
+namespace tmdem::coupling {
+
+class Interruption {
+ public:
+  // Installs the handlers for the lifetime of this object (one at a time); `quiet` keeps the
+  // handler from printing its one-line notice on stderr.
+  explicit Interruption(bool quiet);
+  ~Interruption();
+  Interruption(const Interruption&) = delete;
+  Interruption& operator=(const Interruption&) = delete;
+
+  // The signal received (SIGINT or SIGTERM), or 0.
+  static int pending();
+};
+
+// "SIGINT" / "SIGTERM".
+const char* signal_name(int signal);
+
+}  // namespace tmdem::coupling

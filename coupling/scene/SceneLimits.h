@@ -1,0 +1,33 @@
+#pragma once
+// Bounded resources: a scene whose frame count, step count, particle count or estimated output
+// is absurd, or whose particles are so small that mass or heat capacity underflow to 0, is a
+// scene error (exit 2, nothing written) that names the key, instead of a run that allocates until
+// std::bad_alloc or dies later on "heat capacity 0".
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "coupling/scene/Scene.h"
+
+namespace tmdem::coupling {
+
+// What a run of the scene will roughly need: exact frame count, estimated sizes.
+struct SceneResources {
+  double frames = 0;              // frames in the result file (first at t = 0, last at the end)
+  double mechanics_steps = 0;     // dynamic runs: duration / time_step; else 0
+  double output_bytes = 0;        // result file + XDMF, contacts estimated at 3 per particle
+  double memory_bytes = 0;        // rough peak of the run
+};
+
+inline constexpr double kMaxFrames = 1.0e7;
+inline constexpr double kMaxMechanicsSteps = 1.0e12;
+inline constexpr double kMaxOutputBytes = 1.0e12;  // 1 TB
+
+SceneResources estimate_resources(const Scene& scene);
+
+// Throws SceneError ("SOURCE: KEY: ...") for the first limit the scene exceeds. `origins` names
+// each particle's entry ("particle[3]", "generate[0]") for the underflow message; may be empty.
+void check_scene_limits(const Scene& scene, const std::vector<std::string>& origins,
+                        const std::string& source);
+
+}  // namespace tmdem::coupling

@@ -9,49 +9,23 @@
 
 #include "coupling/scene/SceneError.h"
 #include "coupling/scene/SceneLoader.h"
+#include "support/SceneBuilder.h"
 
 namespace tmdem::coupling::test {
 
+using namespace tmdem::test;
+
 // A small valid 3D scene: two materials, two touching particles, a floor.
-inline const std::string kBaseScene = R"(format = "tmdem-scene-1"
-
-[simulation]
-duration = 10
-
-[[material]]
-name = "steel"
-density = 7800.0
-young_modulus = 2.1e11
-poisson_ratio = 0.3
-conductivity = 50.0
-heat_capacity = 460.0
-
-[[material]]
-name = "glass"
-density = 2500.0
-young_modulus = 6.3e10
-poisson_ratio = 0.2
-friction = 0.5
-conductivity = 1.0
-heat_capacity = 840.0
-emissivity = 0.9
-
-[[particle]]
-position = [0.0, 0.001, 0.0]
-radius = 0.001
-material = "steel"
-
-[[particle]]
-position = [0.002, 0.001, 0.0]
-radius = 0.001
-material = "glass"
-temperature = 300.0
-
-[[wall]]
-point = [0.0, 0.0, 0.0]
-normal = [0.0, 1.0, 0.0]
-material = "steel"
-)";
+inline SceneBuilder base_scene() {
+  return SceneBuilder()
+      .set("simulation.duration", 10)
+      .add("material", steel())
+      .add("material", glass({{"friction", 0.5}, {"emissivity", 0.9}}))
+      .add("particle", particle({0.0, 0.001, 0.0}))
+      .add("particle", particle({0.002, 0.001, 0.0}, {{"material", "glass"}, {"temperature", 300.0}}))
+      .add("wall", floor_wall());
+}
+inline const std::string kBaseScene = base_scene();
 
 // The SceneError message of loading `text` with `overrides`; a test failure if it loads.
 inline std::string scene_error(std::string_view text, const std::vector<std::string>& overrides = {}) {

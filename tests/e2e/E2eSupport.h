@@ -11,7 +11,11 @@
 #include <string>
 #include <vector>
 
+#include "support/SceneBuilder.h"
+
 namespace tmdem::e2e {
+
+using namespace tmdem::test;
 
 struct ProgramResult {
   int exit_code = -1;
@@ -43,15 +47,15 @@ inline void write_file(const std::string& path, const std::string& text) {
   std::ofstream(path) << text;
 }
 
-// The steel of every test scene, as a [[material]] TOML block.
-inline const std::string kSteelMaterial = R"([[material]]
-name = "steel"
-density = 7800.0
-young_modulus = 2.1e11
-poisson_ratio = 0.3
-conductivity = 50.0
-heat_capacity = 460.0
-)";
+// A 2D copper scene under gravity with dynamic mechanics; tests add the particles and walls.
+inline SceneBuilder copper_drop_scene(double duration_s) {
+  return SceneBuilder()
+      .set({{"simulation.duration", duration_s},
+            {"simulation.dimension", 2},
+            {"simulation.gravity", {0.0, -9.81, 0.0}},
+            {"effects.mechanics", "dynamic"}})
+      .add("material", copper());
+}
 
 inline nlohmann::json read_summary(const std::string& path) {
   std::ifstream in(path);

@@ -10,47 +10,16 @@ using namespace tmdem::e2e;
 
 TEST(EndToEndDynamic, DropOntoHeatedFloorKeepsBalanceBoundsAndHertzConductances) {
   const auto dir = scratch_dir("dynamic_drop");
-  write_file(dir + "/drop.toml", R"(format = "tmdem-scene-1"
-[simulation]
-duration = 0.4
-dimension = 2
-gravity = [0.0, -9.81, 0.0]
-[effects]
-mechanics = "dynamic"
-[[material]]
-name = "copper"
-density = 8900.0
-young_modulus = 1.2e11
-poisson_ratio = 0.34
-conductivity = 400.0
-heat_capacity = 385.0
-[[generate]]
-kind = "random"
-count = 12
-box = { min = [0.0005, 0.0005, 0.0], max = [0.008, 0.012, 0.0] }
-radius = 0.0008
-material = "copper"
-temperature = 293.15
-[[wall]]
-point = [0.0, 0.0, 0.0]
-normal = [0.0, 1.0, 0.0]
-material = "copper"
-temperature = 400.0
-[[wall]]
-point = [0.0, 0.0, 0.0]
-normal = [1.0, 0.0, 0.0]
-material = "copper"
-[[wall]]
-point = [0.0085, 0.0, 0.0]
-normal = [-1.0, 0.0, 0.0]
-material = "copper"
-[thermal]
-relative_tolerance = 1.0e-10
-absolute_tolerance = 1.0e-10
-[output]
-file = "drop.h5"
-interval = 0.02
-)");
+  const TomlKeys in_copper = {{"material", "copper"}};
+  write_file(dir + "/drop.toml",
+             copper_drop_scene(0.4)
+                 .add("generate", random_fill(12, "{ min = [0.0005, 0.0005, 0.0], max = [0.008, 0.012, 0.0] }",
+                                              {{"radius", 0.0008}, {"material", "copper"}, {"temperature", 293.15}}))
+                 .add("wall", floor_wall(with(in_copper, {{"temperature", 400.0}})))
+                 .add("wall", plane_wall({0.0, 0.0, 0.0}, {1.0, 0.0, 0.0}, in_copper))
+                 .add("wall", plane_wall({0.0085, 0.0, 0.0}, {-1.0, 0.0, 0.0}, in_copper))
+                 .set(tolerances(1.0e-10))
+                 .set(output("drop.h5", 0.02)));
   const auto r = run_tmdem("run drop.toml --quiet --summary s.json", dir);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto s = read_summary(dir + "/s.json");

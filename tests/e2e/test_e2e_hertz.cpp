@@ -11,36 +11,18 @@ using namespace tmdem::e2e;
 
 TEST(EndToEndHertz, TwoStackedSpheresDecayWithHertzConductanceOfTheWeight) {
   const auto dir = scratch_dir("hertz");
-  write_file(dir + "/two.toml", R"(format = "tmdem-scene-1"
-[simulation]
-duration = 2000.0
-dimension = 3
-gravity = [0.0, -9.81, 0.0]
-[effects]
-mechanics = "settle"
-)" + kSteelMaterial + R"([[generate]]
-kind = "column"
-count = 2
-radius = 0.001
-origin = [0.0, 0.001, 0.0]
-material = "steel"
-temperature = 293.15
-[[assign]]
-ids = [0]
-temperature = 373.15
-[[wall]]
-point = [0.0, 0.0, 0.0]
-normal = [0.0, 1.0, 0.0]
-material = "steel"
-[mechanics]
-tolerance = 1.0e-12
-[thermal]
-relative_tolerance = 1.0e-10
-absolute_tolerance = 1.0e-10
-[output]
-file = "two.h5"
-interval = 100.0
-)");
+  write_file(dir + "/two.toml",
+             steel_scene()
+                 .set({{"simulation.duration", 2000.0},
+                       {"simulation.dimension", 3},
+                       {"simulation.gravity", {0.0, -9.81, 0.0}},
+                       {"effects.mechanics", "settle"}})
+                 .add("generate", column(2))
+                 .add("assign", assign_ids({0}, {{"temperature", 373.15}}))
+                 .add("wall", floor_wall())
+                 .set("mechanics.tolerance", 1.0e-12)
+                 .set(tolerances(1.0e-10))
+                 .set(output("two.h5", 100.0)));
   const auto r = run_tmdem("run two.toml --quiet --summary s.json", dir);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   H5::H5File f(dir + "/two.h5", H5F_ACC_RDONLY);

@@ -10,49 +10,17 @@ using namespace tmdem::e2e;
 
 namespace {
 
-std::string scene(const std::string& effects, const std::string& extra) {
-  return R"(format = "tmdem-scene-1"
-[simulation]
-duration = 200.0
-[effects]
-mechanics = "off"
-)" + effects + R"(
-[[material]]
-name = "steel"
-density = 7800.0
-young_modulus = 2.1e11
-poisson_ratio = 0.3
-conductivity = 50.0
-heat_capacity = 460.0
-emissivity = 0.8
-[[generate]]
-kind = "column"
-count = 6
-radius = 0.001
-origin = [0.0, 0.001, 0.0]
-material = "steel"
-temperature = 293.15
-[[assign]]
-ids = [5]
-heat_source = 0.01
-[[assign]]
-ids = [2]
-temperature = 350.0
-fixed_temperature = true
-[[wall]]
-point = [0.0, 0.0, 0.0]
-normal = [0.0, 1.0, 0.0]
-material = "steel"
-temperature = 400.0
-[thermal]
-conductance = "constant"
-constant_conductance = 1.0e-3
-relative_tolerance = 1.0e-10
-absolute_tolerance = 1.0e-10
-[output]
-file = "out.h5"
-interval = 20.0
-)" + extra;
+// Six steel spheres on a 400 K floor: a heat source on top, one held particle in the middle.
+SceneBuilder scene() {
+  return thermal_scene()
+      .set("simulation.duration", 200.0)
+      .set("material[0].emissivity", 0.8)
+      .add("generate", column(6))
+      .add("assign", assign_ids({5}, {{"heat_source", 0.01}}))
+      .add("assign", assign_ids({2}, {{"temperature", 350.0}, {"fixed_temperature", true}}))
+      .add("wall", floor_wall({{"temperature", 400.0}}))
+      .set(tolerances(1.0e-10))
+      .set(output("out.h5", 20.0));
 }
 
 nlohmann::json summary_of(const std::string& dir) {
@@ -68,17 +36,14 @@ std::vector<double> final_temperatures(const std::string& dir) {
 }  // namespace
 
 TEST(EndToEndModes, EveryModeRunsWithExactEnergyBalanceAndHeldTemperature) {
-  const std::string effects = "convection = true\nradiation = true\n";
-  const std::string sections = R"([convection]
-coefficient = 50.0
-fluid_temperature = 300.0
-[radiation]
-ambient_temperature = 280.0
-)";
+  const TomlKeys effects = {{"effects.convection", true}, {"effects.radiation", true}};
+  const TomlKeys sections = {{"convection.coefficient", 50.0},
+                             {"convection.fluid_temperature", 300.0},
+                             {"radiation.ambient_temperature", 280.0}};
   std::vector<double> T_cvode;
   for (const std::string integrator : {"cvode", "ida"}) {
     const auto dir = scratch_dir("modes_" + integrator);
-    write_file(dir + "/s.toml", scene(effects, sections));
+    write_file(dir + "/s.toml", scene().set(effects).set(sections));
     const auto r = run_tmdem("run s.toml --quiet --summary s.json --set thermal.integrator=" + integrator, dir);
     ASSERT_EQ(r.exit_code, 0) << r.output;
     const auto s = summary_of(dir);
@@ -99,16 +64,14 @@ ambient_temperature = 280.0
 }
 
 TEST(EndToEndModes, SectionsOfSwitchedOffModesChangeNothing) {
-  const std::string sections = R"([convection]
-coefficient = 5000.0
-fluid_temperature = 1000.0
-[radiation]
-ambient_temperature = 2000.0
-)";
+  const TomlKeys sections = {{"convection.coefficient", 5000.0},
+                             {"convection.fluid_temperature", 1000.0},
+                             {"radiation.ambient_temperature", 2000.0}};
   const auto plain = scratch_dir("modes_plain");
   const auto with = scratch_dir("modes_with");
-  write_file(plain + "/s.toml", scene("", ""));
-  write_file(with + "/s.toml", scene("convection = false\nradiation = false\n", sections));
+  write_file(plain + "/s.toml", scene());
+  write_file(with + "/s.toml",
+             scene().set({{"effects.convection", false}, {"effects.radiation", false}}).set(sections));
   ASSERT_EQ(run_tmdem("run s.toml --quiet --summary s.json", plain).exit_code, 0);
   const auto r = run_tmdem("run s.toml --summary s.json", with);
   ASSERT_EQ(r.exit_code, 0) << r.output;

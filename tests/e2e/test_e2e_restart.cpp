@@ -9,37 +9,14 @@
 using namespace tmdem::e2e;
 
 namespace {
-const std::string kScene = R"(format = "tmdem-scene-1"
-[simulation]
-duration = 20.0
-[effects]
-mechanics = "off"
-)" + kSteelMaterial + R"([[generate]]
-kind = "lattice"
-counts = [3, 2, 2]
-spacing = 0.002
-radius = 0.001
-origin = [0.001, 0.001, 0.001]
-material = "steel"
-temperature = 293.15
-[[assign]]
-ids = [0]
-temperature = 373.15
-[[wall]]
-point = [0.0, 0.0, 0.0]
-normal = [0.0, 1.0, 0.0]
-material = "steel"
-temperature = 350.0
-[thermal]
-conductance = "constant"
-constant_conductance = 1.0e-3
-relative_tolerance = 1.0e-10
-absolute_tolerance = 1.0e-10
-[output]
-file = "out.h5"
-interval = 2.0
-checkpoint_interval = 10.0
-)";
+const std::string kScene = thermal_scene()
+                                 .set("simulation.duration", 20.0)
+                                 .add("generate", lattice({3, 2, 2}))
+                                 .add("assign", assign_ids({0}, {{"temperature", 373.15}}))
+                                 .add("wall", floor_wall({{"temperature", 350.0}}))
+                                 .set(tolerances(1.0e-10))
+                                 .set(output("out.h5", 2.0))
+                                 .set("output.checkpoint_interval", 10.0);
 }  // namespace
 
 TEST(EndToEndRestart, RestartFromCheckpointMatchesUninterruptedRun) {

@@ -18,35 +18,13 @@ namespace {
 
 // 3 x 3 x 2 lattice of touching spheres on a heated floor, constant conductance, one hot
 // particle and one held cold one: linear and small, so the reference is the exact exponential.
-const std::string kLattice = R"(format = "tmdem-scene-1"
-[simulation]
-duration = 1000.0
-[effects]
-mechanics = "off"
-)" + kSteelMaterial + R"([[generate]]
-kind = "lattice"
-counts = [3, 3, 2]
-spacing = 0.002
-radius = 0.001
-origin = [0.001, 0.001, 0.001]
-material = "steel"
-temperature = 293.15
-[[assign]]
-ids = [0]
-temperature = 373.15
-[[assign]]
-ids = [17]
-temperature = 283.15
-fixed_temperature = true
-[[wall]]
-point = [0.0, 0.0, 0.0]
-normal = [0.0, 1.0, 0.0]
-material = "steel"
-temperature = 353.15
-[thermal]
-conductance = "constant"
-constant_conductance = 1.0e-3
-)";
+const std::string kLattice =
+    thermal_scene()
+        .set("simulation.duration", 1000.0)
+        .add("generate", lattice({3, 3, 2}))
+        .add("assign", assign_ids({0}, {{"temperature", 373.15}}))
+        .add("assign", assign_ids({17}, {{"temperature", 283.15}, {"fixed_temperature", true}}))
+        .add("wall", floor_wall({{"temperature", 353.15}}));
 
 struct Row {
   std::string method, solver;
@@ -153,40 +131,13 @@ TEST(EndToEndStudy, ExitCodes) {
 TEST(EndToEndStudy, DynamicSceneReplaysItsRecordedContactGraph) {
   // Three spheres dropped onto a floor held at 400 K: contacts close during the run.
   const auto dir = scratch_dir("study_dynamic");
-  write_file(dir + "/drop.toml", R"(format = "tmdem-scene-1"
-[simulation]
-duration = 0.3
-dimension = 2
-gravity = [0.0, -9.81, 0.0]
-[effects]
-mechanics = "dynamic"
-[[material]]
-name = "copper"
-density = 8900.0
-young_modulus = 1.2e11
-poisson_ratio = 0.34
-conductivity = 400.0
-heat_capacity = 385.0
-[[particle]]
-position = [0.002, 0.003, 0.0]
-radius = 0.001
-material = "copper"
-[[particle]]
-position = [0.002, 0.0052, 0.0]
-radius = 0.001
-material = "copper"
-[[particle]]
-position = [0.0045, 0.004, 0.0]
-radius = 0.001
-material = "copper"
-[[wall]]
-point = [0.0, 0.0, 0.0]
-normal = [0.0, 1.0, 0.0]
-material = "copper"
-temperature = 400.0
-[output]
-file = "drop.h5"
-)");
+  write_file(dir + "/drop.toml",
+             copper_drop_scene(0.3)
+                 .add("particle", particle({0.002, 0.003, 0.0}, {{"material", "copper"}}))
+                 .add("particle", particle({0.002, 0.0052, 0.0}, {{"material", "copper"}}))
+                 .add("particle", particle({0.0045, 0.004, 0.0}, {{"material", "copper"}}))
+                 .add("wall", floor_wall({{"material", "copper"}, {"temperature", 400.0}}))
+                 .set("output.file", "drop.h5"));
   const auto r = run_tmdem("study accuracy drop.toml --csv out.csv --explicit-rungs 3", dir);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("restarted every mechanical step"), std::string::npos) << r.output;

@@ -16,31 +16,12 @@ namespace {
 
 // 3 x 3 x 2 lattice of touching spheres, constant conductance, one hot corner, one held cold
 // particle: small enough for a dense matrix exponential.
-const std::string kLattice = R"(format = "tmdem-scene-1"
-[simulation]
-duration = 20.0
-[effects]
-mechanics = "off"
-)" + kSteelMaterial + R"([[generate]]
-kind = "lattice"
-counts = [3, 3, 2]
-spacing = 0.002
-radius = 0.001
-origin = [0.001, 0.001, 0.001]
-material = "steel"
-temperature = 293.15
-[[assign]]
-ids = [0]
-temperature = 373.15
-[thermal]
-conductance = "constant"
-constant_conductance = 1.0e-3
-relative_tolerance = 1.0e-9
-absolute_tolerance = 1.0e-9
-[output]
-file = "lattice.h5"
-interval = 2.0
-)";
+const std::string kLattice = thermal_scene()
+                                   .set("simulation.duration", 20.0)
+                                   .add("generate", lattice({3, 3, 2}))
+                                   .add("assign", assign_ids({0}, {{"temperature", 373.15}}))
+                                   .set(tolerances(1.0e-9))
+                                   .set(output("lattice.h5", 2.0));
 
 struct Lattice {
   Eigen::MatrixXd A;  // dT/dt = A T

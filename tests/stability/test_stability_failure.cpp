@@ -11,39 +11,19 @@
 #include <fstream>
 #include <sstream>
 
+#include "support/SceneBuilder.h"
+
+using namespace tmdem::test;
+
 TEST(StabilityFailure, InjectedRhsFailureExitsThreeKeepsFramesAndMarksFailed) {
   const auto dir = std::filesystem::temp_directory_path() / ("tmdem_fault_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   {
-    std::ofstream(dir / "s.toml") << R"(format = "tmdem-scene-1"
-[simulation]
-duration = 50.0
-[effects]
-mechanics = "off"
-[[material]]
-name = "steel"
-density = 7800.0
-young_modulus = 2.1e11
-poisson_ratio = 0.3
-conductivity = 50.0
-heat_capacity = 460.0
-[[generate]]
-kind = "column"
-count = 4
-radius = 0.001
-origin = [0.0, 0.001, 0.0]
-material = "steel"
-temperature = 293.15
-[[assign]]
-ids = [0]
-temperature = 373.15
-[thermal]
-conductance = "constant"
-constant_conductance = 1.0e-3
-[output]
-file = "out.h5"
-interval = 0.5
-)";
+    std::ofstream(dir / "s.toml") << thermal_scene()
+                                         .set("simulation.duration", 50.0)
+                                         .add("generate", column(4))
+                                         .add("assign", assign_ids({0}, {{"temperature", 373.15}}))
+                                         .set(output("out.h5", 0.5));
   }
   const std::string cmd = "cd '" + dir.string() + "' && TMDEM_FAULT_AFTER_RHS_EVALS=40 '" +
                           TMDEM_BINARY + "' run s.toml --summary s.json > log.txt 2>&1";

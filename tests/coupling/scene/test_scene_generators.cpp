@@ -12,28 +12,8 @@
 namespace tmdem::coupling::test {
 namespace {
 
-const std::string kHeader = R"(format = "tmdem-scene-1"
-
-[simulation]
-duration = 1.0
-dimension = 2
-
-[[material]]
-name = "steel"
-density = 7800.0
-young_modulus = 2.1e11
-poisson_ratio = 0.3
-conductivity = 50.0
-heat_capacity = 460.0
-
-[[material]]
-name = "glass"
-density = 2500.0
-young_modulus = 6.3e10
-poisson_ratio = 0.2
-conductivity = 1.0
-heat_capacity = 840.0
-)";
+// 2D, 1 s; steel and glass.
+SceneBuilder header() { return steel_scene().set("simulation.dimension", 2).add("material", glass()); }
 
 double distance(const Vec3& a, const Vec3& b) {
   return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
@@ -42,32 +22,12 @@ double distance(const Vec3& a, const Vec3& b) {
 
 TEST(SceneGenerators, IdsExplicitParticlesFirstThenGeneratorsInFileOrder) {
   // [[generate]] entries appear before the [[particle]] entries in the file.
-  const std::string text = kHeader + R"(
-[[generate]]
-kind = "column"
-count = 2
-radius = 0.001
-origin = [0.1, 0.001, 0.0]
-material = "steel"
-
-[[particle]]
-position = [0.0, 0.001, 0.0]
-radius = 0.002
-material = "glass"
-
-[[generate]]
-kind = "column"
-count = 3
-radius = 0.001
-origin = [0.2, 0.001, 0.0]
-material = "glass"
-temperature = 310.0
-
-[[particle]]
-position = [0.05, 0.001, 0.0]
-radius = 0.003
-material = "steel"
-)";
+  const std::string text =
+      header()
+          .add("generate", column(2, {{"origin", {0.1, 0.001, 0.0}}}))
+          .add("particle", particle({0.0, 0.001, 0.0}, {{"radius", 0.002}, {"material", "glass"}}))
+          .add("generate", column(3, {{"origin", {0.2, 0.001, 0.0}}, {"material", "glass"}, {"temperature", 310.0}}))
+          .add("particle", particle({0.05, 0.001, 0.0}, {{"radius", 0.003}}));
   const Scene scene = load_scene_text(text, "t");
   ASSERT_EQ(scene.particles.size(), 7u);
   EXPECT_EQ(scene.particles[0].radius_m, 0.002);
@@ -84,14 +44,7 @@ material = "steel"
 
 TEST(SceneGenerators, TriangularPaperRows) {
   const double r = 0.001;
-  const std::string text = kHeader + R"(
-[[generate]]
-kind = "triangular"
-rows = [5, 4, 3, 2]
-radius = 0.001
-origin = [0.001, 0.001, 0.0]
-material = "steel"
-)";
+  const std::string text = header().add("generate", triangular({5, 4, 3, 2}));
   const Scene scene = load_scene_text(text, "t");
   ASSERT_EQ(scene.particles.size(), 14u);
   // Bottom row: origin, spacing 2 r along x.
@@ -124,14 +77,7 @@ TEST(SceneGenerators, TriangularEqualRowsStackStraight) {
 }
 
 TEST(SceneGenerators, ColumnGoesAgainstGravity) {
-  const std::string text = kHeader + R"(
-[[generate]]
-kind = "column"
-count = 4
-radius = 0.001
-origin = [0.0, 0.001, 0.0]
-material = "steel"
-)";
+  const std::string text = header().add("generate", column(4));
   const Scene up = load_scene_text(text, "t");
   ASSERT_EQ(up.particles.size(), 4u);
   for (int i = 0; i < 4; ++i) {
@@ -145,15 +91,8 @@ material = "steel"
 }
 
 TEST(SceneGenerators, LatticeSimpleCubicXFastest) {
-  const std::string text = kHeader + R"(
-[[generate]]
-kind = "lattice"
-counts = [3, 2, 2]
-spacing = 0.0025
-radius = 0.001
-origin = [0.0, 0.0, 0.0]
-material = "glass"
-)";
+  const std::string text = header().add(
+      "generate", lattice({3, 2, 2}, {{"spacing", 0.0025}, {"origin", {0.0, 0.0, 0.0}}, {"material", "glass"}}));
   const Scene scene = load_scene_text(text, "t", {"simulation.dimension=3"});
   ASSERT_EQ(scene.particles.size(), 12u);
   EXPECT_NEAR(scene.particles[1].position_m[0], 0.0025, 1e-15);
@@ -164,18 +103,8 @@ material = "glass"
 }
 
 TEST(SceneGenerators, GeneratorOptionalSettings) {
-  const std::string text = kHeader + R"(
-[[generate]]
-kind = "column"
-count = 2
-radius = 0.001
-origin = [0.0, 0.001, 0.0]
-material = "steel"
-temperature = 400.0
-fixed_temperature = true
-heat_source = 0.5
-fixed = true
-)";
+  const std::string text = header().add(
+      "generate", column(2, {{"temperature", 400.0}, {"fixed_temperature", true}, {"heat_source", 0.5}, {"fixed", true}}));
   const Scene scene = load_scene_text(text, "t");
   for (const auto& p : scene.particles) {
     EXPECT_EQ(p.temperature_K, 400.0);
@@ -185,15 +114,12 @@ fixed = true
   }
 }
 
-const std::string kRandom = kHeader + R"(
-[[generate]]
-kind = "random"
-count = 50
-box = { min = [0.0, 0.0, 0.0], max = [0.02, 0.02, 0.0] }
-radii = [0.0005, 0.001]
-fractions = [0.6, 0.4]
-material = "steel"
-)";
+// 50 spheres of two sizes in a 20 mm square.
+TomlKeys random_in_square(std::string box) {
+  return random_fill(50, std::move(box), {{"radii", {0.0005, 0.001}}, {"fractions", {0.6, 0.4}}});
+}
+const std::string kRandom =
+    header().add("generate", random_in_square("{ min = [0.0, 0.0, 0.0], max = [0.02, 0.02, 0.0] }"));
 
 TEST(SceneGenerators, RandomIsReproducibleAndInsideTheBox) {
   const Scene a = load_scene_text(kRandom, "t");
@@ -216,15 +142,10 @@ TEST(SceneGenerators, RandomIsReproducibleAndInsideTheBox) {
 }
 
 TEST(SceneGenerators, RandomGeneratorsDrawDifferentPlacements) {
-  const std::string text = kRandom + R"(
-[[generate]]
-kind = "random"
-count = 50
-box = { min = [0.1, 0.0, 0.0], max = [0.12, 0.02, 0.0] }
-radii = [0.0005, 0.001]
-fractions = [0.6, 0.4]
-material = "steel"
-)";
+  const std::string text =
+      header()
+          .add("generate", random_in_square("{ min = [0.0, 0.0, 0.0], max = [0.02, 0.02, 0.0] }"))
+          .add("generate", random_in_square("{ min = [0.1, 0.0, 0.0], max = [0.12, 0.02, 0.0] }"));
   const Scene scene = load_scene_text(text, "t");
   ASSERT_EQ(scene.particles.size(), 100u);
   int same = 0;
@@ -236,15 +157,10 @@ material = "steel"
 }
 
 TEST(SceneGenerators, RandomSingleRadiusThreeD) {
-  const Scene scene = load_scene_text(kHeader + R"(
-[[generate]]
-kind = "random"
-count = 20
-box = { min = [0.0, 0.0, 0.0], max = [0.01, 0.01, 0.01] }
-radius = 0.001
-material = "glass"
-)",
-                                      "t", {"simulation.dimension=3"});
+  const std::string text = header().add(
+      "generate", random_fill(20, "{ min = [0.0, 0.0, 0.0], max = [0.01, 0.01, 0.01] }",
+                              {{"radius", 0.001}, {"material", "glass"}}));
+  const Scene scene = load_scene_text(text, "t", {"simulation.dimension=3"});
   ASSERT_EQ(scene.particles.size(), 20u);
   for (const auto& p : scene.particles) {
     EXPECT_EQ(p.radius_m, 0.001);
@@ -264,36 +180,27 @@ TEST(SceneGenerators, RandomBoxTooFull) {
 }
 
 TEST(SceneGenerators, RandomOverlapWithOtherParticlesIsAnError) {
-  expect_scene_error(kRandom + R"(
-[[particle]]
-position = [0.01, 0.01, 0.0]
-radius = 0.004
-material = "steel"
-)",
+  const std::string text =
+      header()
+          .add("generate", random_in_square("{ min = [0.0, 0.0, 0.0], max = [0.02, 0.02, 0.0] }"))
+          .add("particle", particle({0.01, 0.01, 0.0}, {{"radius", 0.004}}));
+  expect_scene_error(text,
                      {"particles 0 and", "overlap", "particle[0]", "generate[0]"});
 }
 
-const std::string kLatticeForAssign = kHeader + R"(
-[[generate]]
-kind = "lattice"
-counts = [4, 4, 1]
-spacing = 0.002
-radius = 0.001
-origin = [0.001, 0.001, 0.0]
-material = "steel"
-)";
+// 4 x 4 touching steel spheres in the plane z = 0.
+SceneBuilder lattice_for_assign() {
+  return header().add("generate", lattice({4, 4, 1}, {{"origin", {0.001, 0.001, 0.0}}}));
+}
 
 TEST(SceneAssign, ById) {
-  const Scene scene = load_scene_text(kLatticeForAssign + R"(
-[[assign]]
-ids = [0, 5]
-temperature = 373.15
-fixed_temperature = true
-heat_source = 2.0
-fixed = true
-material = "glass"
-)",
-                                      "t");
+  const std::string text = lattice_for_assign().add(
+      "assign", assign_ids({0, 5}, {{"temperature", 373.15},
+                                    {"fixed_temperature", true},
+                                    {"heat_source", 2.0},
+                                    {"fixed", true},
+                                    {"material", "glass"}}));
+  const Scene scene = load_scene_text(text, "t");
   for (std::size_t i = 0; i < scene.particles.size(); ++i) {
     const bool chosen = i == 0 || i == 5;
     const Particle& p = scene.particles[i];
@@ -306,16 +213,12 @@ material = "glass"
 }
 
 TEST(SceneAssign, ByBoxInFileOrder) {
-  const Scene scene = load_scene_text(kLatticeForAssign + R"(
-[[assign]]
-box = { min = [0.0, 0.0, -1.0], max = [0.004, 0.004, 1.0] }
-temperature = 350.0
-
-[[assign]]
-ids = [0]
-temperature = 360.0
-)",
-                                      "t");
+  const std::string text =
+      lattice_for_assign()
+          .add("assign", {{"box", raw("{ min = [0.0, 0.0, -1.0], max = [0.004, 0.004, 1.0] }")},
+                          {"temperature", 350.0}})
+          .add("assign", assign_ids({0}, {{"temperature", 360.0}}));
+  const Scene scene = load_scene_text(text, "t");
   // Centres inside the box: (1,1), (3,1), (1,3), (3,3) mm -> ids 0, 1, 4, 5; later assign wins.
   std::set<std::size_t> hot;
   for (std::size_t i = 0; i < scene.particles.size(); ++i)
@@ -326,12 +229,9 @@ temperature = 360.0
 }
 
 TEST(SceneAssign, ByNearest) {
-  const Scene scene = load_scene_text(kLatticeForAssign + R"(
-[[assign]]
-nearest = { point = [0.0085, 0.0, 0.0], count = 3 }
-temperature = 373.15
-)",
-                                      "t");
+  const std::string text = lattice_for_assign().add(
+      "assign", {{"nearest", raw("{ point = [0.0085, 0.0, 0.0], count = 3 }")}, {"temperature", 373.15}});
+  const Scene scene = load_scene_text(text, "t");
   // Nearest to (8.5, 0) mm: (7,1) id 3, then (5,1) id 2 and (7,3) id 7.
   std::set<std::size_t> hot;
   for (std::size_t i = 0; i < scene.particles.size(); ++i)

@@ -362,14 +362,8 @@ TEST(SceneRules, VectorShape) {
 }
 
 TEST(SceneRules, GeneratorErrors) {
-  const std::string triangle = kBaseScene + R"(
-[[generate]]
-kind = "triangular"
-rows = [3, 2]
-radius = 0.001
-origin = [0.0, 0.01, 0.0]
-material = "steel"
-)";
+  const std::string triangle =
+      base_scene().add("generate", triangular({3, 2}, {{"origin", {0.0, 0.01, 0.0}}}));
   EXPECT_NO_THROW(load_scene_text(triangle, "t"));
   expect_scene_error(triangle, {"generate[0].rows=[3, 0]"}, {"generate[0].rows[1]", "must be in [1, 10000000] (got 0)"});
   expect_scene_error(triangle, {"generate[0].radius=0"}, {"generate[0].radius", "> 0"});
@@ -386,15 +380,8 @@ material = "steel"
 }
 
 TEST(SceneRules, LatticeSpacingBelowDiameter) {
-  const std::string lattice = kBaseScene + R"(
-[[generate]]
-kind = "lattice"
-counts = [2, 2, 2]
-spacing = 0.002
-radius = 0.001
-origin = [0.0, 0.01, 0.0]
-material = "steel"
-)";
+  const std::string lattice =
+      base_scene().add("generate", tmdem::test::lattice({2, 2, 2}, {{"origin", {0.0, 0.01, 0.0}}}));
   EXPECT_NO_THROW(load_scene_text(lattice, "t"));
   expect_scene_error(lattice, {"generate[0].spacing=0.0019"},
                      {"generate[0].spacing", "must be >= 2 * radius"});
@@ -404,15 +391,9 @@ material = "steel"
 }
 
 TEST(SceneRules, RandomGeneratorKeys) {
-  const std::string random = kBaseScene + R"(
-[[generate]]
-kind = "random"
-count = 10
-box = { min = [0.0, 0.01, 0.0], max = [0.01, 0.02, 0.01] }
-radii = [0.0005, 0.001]
-fractions = [0.5, 0.5]
-material = "steel"
-)";
+  const std::string random = base_scene().add(
+      "generate", random_fill(10, "{ min = [0.0, 0.01, 0.0], max = [0.01, 0.02, 0.01] }",
+                              {{"radii", {0.0005, 0.001}}, {"fractions", {0.5, 0.5}}}));
   expect_scene_error(random, {"generate[0].fractions=[0.5, 0.4]"},
                      {"generate[0].fractions", "sum to 1"});
   expect_scene_error(random, {"generate[0].fractions=[1.0]"},

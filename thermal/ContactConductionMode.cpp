@@ -2,7 +2,7 @@
 // edge is exactly conservative (the flow one node gains is the flow the other loses, bit for bit).
 #include <memory>
 
-#include "thermal/HeatTransferMode.h"
+#include "thermal/ModeDescription.h"
 
 namespace tmdem::thermal {
 namespace {
@@ -41,8 +41,19 @@ class ContactConductionMode final : public HeatTransferMode {
 
 }  // namespace
 
-std::unique_ptr<HeatTransferMode> make_contact_conduction_mode(const ModeSettings&) {
-  return std::make_unique<ContactConductionMode>();
+const ModeDescription& contact_conduction_mode() {
+  static const ModeDescription mode{
+      .name = "contact_conduction",
+      .summary = "particle-particle contact conduction, H (T_b - T_a) per contact",
+      .effect = "conduction",
+      .effect_default = true,
+      .effect_description = "particle-particle and particle-wall contact conduction",
+      .uses_contact_conductance = true,
+      .make = [](const ModeParameters&) -> std::unique_ptr<HeatTransferMode> {
+        return std::make_unique<ContactConductionMode>();
+      },
+  };
+  return mode;
 }
 
 }  // namespace tmdem::thermal

@@ -1,15 +1,15 @@
 // Particle-fluid convection on the sphere surface: q_i += h A_i (T_f - T_i), A_i = 4 pi r_i^2.
 #include <memory>
 
-#include "thermal/HeatTransferMode.h"
+#include "thermal/ModeDescription.h"
 
 namespace tmdem::thermal {
 namespace {
 
 class ConvectionMode final : public HeatTransferMode {
  public:
-  explicit ConvectionMode(const ModeSettings& s)
-      : h_W_per_m2K_(s.convection_coefficient_W_per_m2K), fluid_K_(s.fluid_temperature_K) {}
+  explicit ConvectionMode(const ModeParameters& p)
+      : h_W_per_m2K_(p["coefficient"]), fluid_K_(p["fluid_temperature"]) {}
 
   std::string_view name() const override { return "convection"; }
 
@@ -36,8 +36,30 @@ class ConvectionMode final : public HeatTransferMode {
 
 }  // namespace
 
-std::unique_ptr<HeatTransferMode> make_convection_mode(const ModeSettings& s) {
-  return std::make_unique<ConvectionMode>(s);
+const ModeDescription& convection_mode() {
+  static const ModeDescription mode{
+      .name = "convection",
+      .summary = "particle-fluid convection, h 4 pi r^2 (T_f - T_i)",
+      .effect = "convection",
+      .effect_description = "particle-fluid convection, see [convection]",
+      .section = "convection",
+      .section_description = "particle-fluid convection; used when effects.convection = true",
+      .parameters = {{.key = "coefficient",
+                      .unit = "W/(m^2 K)",
+                      .default_value = 10.0,
+                      .range = ParameterRange::at_least(0.0),
+                      .description = "heat transfer coefficient h, on the sphere surface 4 pi r^2"},
+                     {.key = "fluid_temperature",
+                      .unit = "K",
+                      .default_value = 293.15,
+                      .range = ParameterRange::greater(0.0),
+                      .description = "fluid temperature T_f",
+                      .bounds_temperature = true}},
+      .make = [](const ModeParameters& p) -> std::unique_ptr<HeatTransferMode> {
+        return std::make_unique<ConvectionMode>(p);
+      },
+  };
+  return mode;
 }
 
 }  // namespace tmdem::thermal

@@ -1,7 +1,9 @@
 // Imposed heat sources: q_i += P_i (W). Constant in T, so nothing enters the Jacobian.
 #include <memory>
 
-#include "thermal/HeatTransferMode.h"
+#include <algorithm>
+
+#include "thermal/ModeDescription.h"
 
 namespace tmdem::thermal {
 namespace {
@@ -24,8 +26,20 @@ class HeatSourceMode final : public HeatTransferMode {
 
 }  // namespace
 
-std::unique_ptr<HeatTransferMode> make_heat_source_mode(const ModeSettings&) {
-  return std::make_unique<HeatSourceMode>();
+const ModeDescription& heat_source_mode() {
+  static const ModeDescription mode{
+      .name = "heat_source",
+      .summary = "imposed power P_i of the particles with a heat_source",
+      .in_use =
+          [](const ThermalNetwork& nodes) {
+            return std::any_of(nodes.heat_source_W.begin(), nodes.heat_source_W.end(),
+                               [](double P_W) { return P_W != 0.0; });
+          },
+      .make = [](const ModeParameters&) -> std::unique_ptr<HeatTransferMode> {
+        return std::make_unique<HeatSourceMode>();
+      },
+  };
+  return mode;
 }
 
 }  // namespace tmdem::thermal

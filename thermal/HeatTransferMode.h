@@ -1,7 +1,8 @@
 #pragma once
 // A heat-transfer mode adds its heat flow to each particle and its entries to the Jacobian.
 // Modes are built by name (ModeRegistry) only when the scene switches them on, so a mode that is
-// off is never constructed nor called.
+// off is never constructed nor called. What a mode declares (switch, section, parameters,
+// factory) is in thermal/ModeDescription.h.
 #include <span>
 #include <string_view>
 
@@ -14,14 +15,6 @@ namespace tmdem::thermal {
 struct JacobianView {
   std::span<double> diagonal_W_per_K;  // d q_i / d T_i, one per node
   std::span<double> edge_W_per_K;      // d q_a / d T_b = d q_b / d T_a, one per network edge
-};
-
-// Settings that modes read; each mode takes what it needs.
-struct ModeSettings {
-  double convection_coefficient_W_per_m2K = 0.0;
-  double fluid_temperature_K = 293.15;
-  double ambient_temperature_K = 293.15;
-  long fault_after_evaluations = 0;  // fault_injection (testing aid) only
 };
 
 class HeatTransferMode {

@@ -3,7 +3,7 @@
 // d q_i / d T_i = -4 eps_i sigma A_i T_i^3 for the Jacobian.
 #include <memory>
 
-#include "thermal/HeatTransferMode.h"
+#include "thermal/ModeDescription.h"
 
 namespace tmdem::thermal {
 namespace {
@@ -12,7 +12,7 @@ constexpr double kStefanBoltzmann_W_per_m2K4 = 5.670374419e-8;
 
 class RadiationMode final : public HeatTransferMode {
  public:
-  explicit RadiationMode(const ModeSettings& s) : ambient_K_(s.ambient_temperature_K) {}
+  explicit RadiationMode(const ModeParameters& p) : ambient_K_(p["ambient_temperature"]) {}
 
   std::string_view name() const override { return "radiation"; }
 
@@ -47,8 +47,26 @@ class RadiationMode final : public HeatTransferMode {
 
 }  // namespace
 
-std::unique_ptr<HeatTransferMode> make_radiation_mode(const ModeSettings& s) {
-  return std::make_unique<RadiationMode>(s);
+const ModeDescription& radiation_mode() {
+  static const ModeDescription mode{
+      .name = "radiation",
+      .summary = "radiation to the surroundings, eps_i sigma 4 pi r^2 (T_amb^4 - T_i^4)",
+      .effect = "radiation",
+      .effect_description = "particle-ambient radiation, see [radiation]",
+      .section = "radiation",
+      .section_description = "particle-ambient radiation; used when effects.radiation = true",
+      .parameters = {{.key = "ambient_temperature",
+                      .unit = "K",
+                      .default_value = 293.15,
+                      .range = ParameterRange::at_least(0.0),
+                      .description = "temperature of the surroundings; emissivity comes from each "
+                                     "particle's material",
+                      .bounds_temperature = true}},
+      .make = [](const ModeParameters& p) -> std::unique_ptr<HeatTransferMode> {
+        return std::make_unique<RadiationMode>(p);
+      },
+  };
+  return mode;
 }
 
 }  // namespace tmdem::thermal

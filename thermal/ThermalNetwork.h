@@ -14,6 +14,9 @@ struct ThermalNetwork {
   std::vector<double> emissivity;              // 0..1
   std::vector<double> heat_source_W;           // imposed power P_i
   std::vector<std::uint8_t> held;              // 1: temperature held for the whole run
+  // Walls held at a temperature, touching a particle now or not: wall edges come and go with
+  // the contacts, but whether wall conduction can ever matter is known from the start.
+  std::size_t isothermal_walls = 0;
 
   // Particle-particle edges (a != b; each unordered pair at most once).
   std::vector<std::int32_t> edge_a, edge_b;

@@ -2,7 +2,7 @@
 // Adiabatic walls have no edge in the network, so they exchange nothing.
 #include <memory>
 
-#include "thermal/HeatTransferMode.h"
+#include "thermal/ModeDescription.h"
 
 namespace tmdem::thermal {
 namespace {
@@ -31,8 +31,20 @@ class WallConductionMode final : public HeatTransferMode {
 
 }  // namespace
 
-std::unique_ptr<HeatTransferMode> make_wall_conduction_mode(const ModeSettings&) {
-  return std::make_unique<WallConductionMode>();
+const ModeDescription& wall_conduction_mode() {
+  static const ModeDescription mode{
+      .name = "wall_conduction",
+      .summary = "particle-wall contact conduction to isothermal walls, H (T_w - T_i)",
+      .effect = "conduction",
+      .effect_default = true,
+      .effect_description = "particle-particle and particle-wall contact conduction",
+      .uses_contact_conductance = true,
+      .in_use = [](const ThermalNetwork& nodes) { return nodes.isothermal_walls > 0; },
+      .make = [](const ModeParameters&) -> std::unique_ptr<HeatTransferMode> {
+        return std::make_unique<WallConductionMode>();
+      },
+  };
+  return mode;
 }
 
 }  // namespace tmdem::thermal

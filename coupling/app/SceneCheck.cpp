@@ -8,6 +8,7 @@
 #include "coupling/bridge/ThermalDiagnostics.h"
 #include "coupling/run/ThermalProblem.h"
 #include "mechanics/TouchingPairs.h"
+#include "thermal/ModeRegistry.h"
 
 namespace tmdem::coupling {
 
@@ -47,10 +48,10 @@ void check_scene(const Scene& scene, std::ostream& out) {
   std::size_t isothermal = 0;
   for (const auto& w : scene.walls) isothermal += w.temperature_K.has_value();
   out << " (" << isothermal << " isothermal)\n";
-  out << "effects: mechanics " << mechanics_name(scene.effects.mechanics) << ", conduction "
-      << (scene.effects.conduction ? "on" : "off") << ", convection "
-      << (scene.effects.convection ? "on" : "off") << ", radiation "
-      << (scene.effects.radiation ? "on" : "off") << "\n";
+  out << "effects: mechanics " << mechanics_name(scene.effects.mechanics);
+  for (const auto& e : thermal::heat_transfer_effects())
+    out << ", " << e.key << (scene.effects.on(e.key) ? " on" : " off");
+  out << "\n";
   out << "thermal: integrator " << scene.thermal.integrator << ", linear solver "
       << scene.thermal.linear_solver << ", conductance " << scene.thermal.conductance << "\n";
 

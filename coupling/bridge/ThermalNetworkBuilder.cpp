@@ -1,15 +1,18 @@
 #include "coupling/bridge/ThermalNetworkBuilder.h"
 
-#include <cstdlib>
 #include <limits>
 #include <numbers>
 
 #include "coupling/bridge/SceneToMechanics.h"
+#include "coupling/scene/HeatModes.h"
+#include "thermal/ModeRegistry.h"
 
 namespace tmdem::coupling {
 
 ThermalNetworkBuilder::ThermalNetworkBuilder(const Scene& scene)
-    : scene_(scene), law_(thermal::conductance_law_from_name(scene.thermal.conductance)) {}
+    : scene_(scene),
+      law_(thermal::conductance_law_from_name(scene.thermal.conductance)),
+      contacts_carry_heat_(contacts_carry_heat(scene.effects)) {}
 
 thermal::ThermalNetwork ThermalNetworkBuilder::nodes() const {
   thermal::ThermalNetwork net;
@@ -24,6 +27,7 @@ thermal::ThermalNetwork ThermalNetworkBuilder::nodes() const {
     net.heat_source_W[i] = p.heat_source_W;
     net.held[i] = p.fixed_temperature ? 1 : 0;
   }
+  for (const auto& w : scene_.walls) net.isothermal_walls += w.temperature_K.has_value();
   return net;
 }
 
@@ -54,11 +58,10 @@ double ThermalNetworkBuilder::conductance_W_per_K(std::int64_t i, std::int64_t j
 void ThermalNetworkBuilder::build_edges(ContactList& contacts, thermal::ThermalNetwork& edges,
                                         const std::vector<std::uint8_t>* is_active) const {
   edges.clear_edges();
-  const bool conduction = scene_.effects.conduction;
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     const auto i = contacts.pair[2 * c], j = contacts.pair[2 * c + 1];
     const bool isothermal_wall = j < 0 && scene_.walls[std::size_t(-1 - j)].temperature_K.has_value();
-    const bool carries_heat = conduction && (j >= 0 || isothermal_wall);
+    const bool carries_heat = contacts_carry_heat_ && (j >= 0 || isothermal_wall);
     const bool open = is_active && !(*is_active)[c];
     const double H =
         carries_heat && !open ? conductance_W_per_K(i, j, contacts.normal_force_N[c]) : 0.0;
@@ -71,34 +74,17 @@ void ThermalNetworkBuilder::build_edges(ContactList& contacts, thermal::ThermalN
   }
 }
 
-std::vector<std::string> ThermalNetworkBuilder::mode_names() const {
+std::vector<std::string> ThermalNetworkBuilder::mode_names(
+    const thermal::ThermalNetwork& nodes) const {
   std::vector<std::string> names;
-  if (scene_.effects.conduction) {
-    names.push_back("contact_conduction");
-    for (const auto& w : scene_.walls)
-      if (w.temperature_K) {
-        names.push_back("wall_conduction");
-        break;
-      }
-  }
-  if (scene_.effects.convection) names.push_back("convection");
-  if (scene_.effects.radiation) names.push_back("radiation");
-  for (const auto& p : scene_.particles)
-    if (p.heat_source_W != 0.0) {
-      names.push_back("heat_source");
-      break;
-    }
-  if (std::getenv("TMDEM_FAULT_AFTER_RHS_EVALS")) names.push_back("fault_injection");
+  for (const auto* mode : thermal::heat_transfer_modes())
+    if (switched_on(scene_.effects, *mode) && (mode->in_use == nullptr || mode->in_use(nodes)))
+      names.emplace_back(mode->name);
   return names;
 }
 
-thermal::ModeSettings ThermalNetworkBuilder::mode_settings() const {
-  thermal::ModeSettings s;
-  s.convection_coefficient_W_per_m2K = scene_.convection.coefficient_W_per_m2K;
-  s.fluid_temperature_K = scene_.convection.fluid_temperature_K;
-  s.ambient_temperature_K = scene_.radiation.ambient_temperature_K;
-  if (const char* n = std::getenv("TMDEM_FAULT_AFTER_RHS_EVALS")) s.fault_after_evaluations = std::atol(n);
-  return s;
+const thermal::ModeSettings& ThermalNetworkBuilder::mode_settings() const {
+  return scene_.heat_modes;
 }
 
 }  // namespace tmdem::coupling

@@ -8,7 +8,7 @@
 #include "coupling/bridge/ContactList.h"
 #include "coupling/scene/Scene.h"
 #include "thermal/ConductanceLaw.h"
-#include "thermal/HeatTransferMode.h"
+#include "thermal/ModeSettings.h"
 #include "thermal/ThermalNetwork.h"
 
 namespace tmdem::coupling {
@@ -21,7 +21,8 @@ class ThermalNetworkBuilder {
   thermal::ThermalNetwork nodes() const;
   // Fills contacts.conductance_W_per_K and writes the edge arrays of `edges` (node arrays are
   // left alone). A wall contact becomes an edge only for an isothermal wall; with conduction
-  // off, no contact carries heat and every conductance is 0.
+  // off (no switched-on mode reads conductances), no contact carries heat and every
+  // conductance is 0.
   // is_active (optional, one per contact): 0 marks a pattern-only pair, an edge of zero
   // conductance that keeps the sparsity pattern while the contact is open.
   void build_edges(ContactList& contacts, thermal::ThermalNetwork& edges,
@@ -29,15 +30,18 @@ class ThermalNetworkBuilder {
   // Conductance of one contact by the scene's law, W/K.
   double conductance_W_per_K(std::int64_t i, std::int64_t j, double normal_force_N) const;
 
-  // Names of the heat-transfer modes the scene switches on (registry names), in RHS order.
-  std::vector<std::string> mode_names() const;
-  thermal::ModeSettings mode_settings() const;
+  // Names of the registered heat-transfer modes the scene switches on and that are in use on
+  // these nodes (e.g. no heat_source mode without a source), in registry (RHS) order.
+  std::vector<std::string> mode_names(const thermal::ThermalNetwork& nodes) const;
+  // Every mode's parameters, as read from the scene's sections.
+  const thermal::ModeSettings& mode_settings() const;
 
  private:
   thermal::ContactBody body(std::int64_t id) const;  // id < 0: wall -1 - id
 
   const Scene& scene_;
   thermal::ConductanceLawKind law_;
+  bool contacts_carry_heat_;  // some switched-on mode reads the contact conductances
 };
 
 }  // namespace tmdem::coupling

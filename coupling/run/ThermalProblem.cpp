@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "coupling/bridge/SceneToMechanics.h"
+#include "coupling/scene/HeatModes.h"
 #include "mechanics/TouchingPairs.h"
 #include "thermal/ModeRegistry.h"
 
@@ -74,9 +75,8 @@ std::unique_ptr<thermal::ThermalSystem> build_thermal_system(const Scene& scene,
   auto network = builder.nodes();
   builder.build_edges(contacts, network);
   std::vector<std::unique_ptr<thermal::HeatTransferMode>> modes;
-  const auto settings = builder.mode_settings();
-  for (const auto& name : builder.mode_names())
-    modes.push_back(thermal::make_heat_transfer_mode(name, settings));
+  for (const auto& name : builder.mode_names(network))
+    modes.push_back(thermal::make_heat_transfer_mode(name, builder.mode_settings()));
   return std::make_unique<thermal::ThermalSystem>(std::move(network), std::move(modes));
 }
 
@@ -85,9 +85,7 @@ double max_scene_temperature_K(const Scene& scene) {
   for (const auto& p : scene.particles) T_max = std::max(T_max, p.temperature_K);
   for (const auto& w : scene.walls)
     if (w.temperature_K) T_max = std::max(T_max, *w.temperature_K);
-  if (scene.effects.convection) T_max = std::max(T_max, scene.convection.fluid_temperature_K);
-  if (scene.effects.radiation) T_max = std::max(T_max, scene.radiation.ambient_temperature_K);
-  return T_max;
+  return std::max(T_max, max_mode_temperature_K(scene));
 }
 
 thermal::IntegratorSettings integrator_settings(const Scene& scene) {

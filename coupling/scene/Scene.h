@@ -3,9 +3,14 @@
 // Field names follow contract section 2; units are SI and stated per field.
 #include <array>
 #include <cstdint>
+#include <functional>
+#include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
+
+#include "thermal/ModeSettings.h"
 
 namespace tmdem::coupling {
 
@@ -43,18 +48,13 @@ struct Wall {
 
 struct Effects {
   MechanicsMode mechanics = MechanicsMode::Settle;
-  bool conduction = true;
-  bool convection = false;
-  bool radiation = false;
-};
-
-struct ConvectionSettings {
-  double coefficient_W_per_m2K = 10.0;
-  double fluid_temperature_K = 293.15;
-};
-
-struct RadiationSettings {
-  double ambient_temperature_K = 293.15;
+  // effects.<key> of the heat-transfer modes ("conduction", "convection", ...), every key the
+  // registered modes declare (thermal/ModeDescription.h), defaults filled in by the loader.
+  std::map<std::string, bool, std::less<>> heat;
+  bool on(std::string_view key) const {
+    const auto it = heat.find(key);
+    return it != heat.end() && it->second;
+  }
 };
 
 struct MechanicsSettings {
@@ -97,8 +97,9 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<Particle> particles;  // ids: explicit [[particle]] first, then each [[generate]]
   std::vector<Wall> walls;
-  ConvectionSettings convection;
-  RadiationSettings radiation;
+  // Every registered mode's parameters from its own section (defaults filled in), by mode name
+  // and key: heat_modes.find("convection", "coefficient").
+  thermal::ModeSettings heat_modes;
   MechanicsSettings mechanics;
   ThermalSettings thermal;
   OutputSettings output;

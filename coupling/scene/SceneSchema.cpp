@@ -3,98 +3,275 @@
 #include <algorithm>
 #include <map>
 
+#include "mechanics/ContactSolverRegistry.h"
+#include "thermal/ModeRegistry.h"
+
 namespace tmdem::coupling {
 
 namespace {
 
 using Kind = SceneSchema::Kind;
 using Key = SceneSchema::Key;
+using Section = SceneSchema::Section;
+using Range = thermal::ParameterRange;
 
-const std::map<std::string_view, std::vector<Key>>& schema_map() {
-  static const std::map<std::string_view, std::vector<Key>> schema = {
-      {"",
-       {{"format"},
-        {"simulation", Kind::Table, "simulation"},
-        {"effects", Kind::Table, "effects"},
-        {"material", Kind::TableArray, "material"},
-        {"particle", Kind::TableArray, "particle"},
-        {"generate", Kind::TableArray, "generate"},
-        {"assign", Kind::TableArray, "assign"},
-        {"wall", Kind::TableArray, "wall"},
-        {"convection", Kind::Table, "convection"},
-        {"radiation", Kind::Table, "radiation"},
-        {"mechanics", Kind::Table, "mechanics"},
-        {"thermal", Kind::Table, "thermal"},
-        {"output", Kind::Table, "output"}}},
-      {"simulation", {{"duration"}, {"dimension"}, {"gravity"}, {"seed"}}},
-      {"effects", {{"mechanics"}, {"conduction"}, {"convection"}, {"radiation"}}},
-      {"material",
-       {{"name"},
-        {"density"},
-        {"young_modulus"},
-        {"poisson_ratio"},
-        {"friction"},
-        {"conductivity"},
-        {"heat_capacity"},
-        {"emissivity"}}},
-      {"particle",
-       {{"position"},
-        {"radius"},
-        {"material"},
-        {"temperature"},
-        {"fixed_temperature"},
-        {"heat_source"},
-        {"fixed"}}},
-      {"generate",
-       {{"kind"},
-        {"rows"},
-        {"count"},
-        {"counts"},
-        {"spacing"},
-        {"radius"},
-        {"radii"},
-        {"fractions"},
-        {"origin"},
-        {"box", Kind::Table, "box"},
-        {"material"},
-        {"temperature"},
-        {"fixed_temperature"},
-        {"heat_source"},
-        {"fixed"}}},
-      {"box", {{"min"}, {"max"}}},
+Key table(std::string name, Kind kind, std::string description, bool required = false) {
+  Key k;
+  k.table = name;
+  k.name = std::move(name);
+  k.kind = kind;
+  k.required = required;
+  k.description = std::move(description);
+  return k;
+}
+
+// A number the schema checks itself: range and default (none: required, or absent = unset).
+Key number(std::string name, std::string unit, std::optional<double> fallback, Range range,
+           std::string description, bool required = false) {
+  Key k;
+  k.name = std::move(name);
+  k.unit = std::move(unit);
+  k.range = range;
+  k.default_number = fallback;
+  if (fallback) k.default_text = thermal::parameter_text(*fallback);
+  k.required = required;
+  k.allowed = range.interval();
+  k.description = std::move(description);
+  return k;
+}
+
+Key required_number(std::string name, std::string unit, Range range, std::string description) {
+  return number(std::move(name), std::move(unit), std::nullopt, range, std::move(description), true);
+}
+
+Key value(std::string name, std::string unit, std::string default_text, std::string allowed,
+          std::string description, bool required = false) {
+  Key k;
+  k.name = std::move(name);
+  k.unit = std::move(unit);
+  k.default_text = std::move(default_text);
+  k.allowed = std::move(allowed);
+  k.description = std::move(description);
+  k.required = required;
+  return k;
+}
+
+Key boolean(std::string name, std::string default_text, std::string description) {
+  return value(std::move(name), "", std::move(default_text), "true, false", std::move(description));
+}
+
+Key choice(std::string name, std::string fallback, const std::vector<std::string>& choices,
+           std::string description) {
+  Key k = value(std::move(name), "", fallback.empty() ? "" : "\"" + fallback + "\"", "",
+                std::move(description), fallback.empty());
+  for (const auto& c : choices) {
+    if (!k.allowed.empty()) k.allowed += ", ";
+    k.allowed += '"';
+    k.allowed += c;
+    k.allowed += '"';
+    k.choices.push_back(c);
+  }
+  return k;
+}
+
+Key vector3(std::string name, std::string unit, std::string default_text, std::string description,
+            bool required = true) {
+  return value(std::move(name), std::move(unit), std::move(default_text),
+               "3 finite numbers (2 in 2D, z = 0)", std::move(description), required);
+}
+
+Key material_reference() {
+  return value("material", "", "", "a [[material]] name", "material of the body", true);
+}
+
+// temperature, fixed_temperature, heat_source, fixed: what [[particle]], [[generate]] and
+// [[assign]] may set on particles. New particles start at 293.15 K, not held, without a source,
+// free to move (SceneLoader's particle defaults); [[assign]] changes only what it gives.
+std::vector<Key> particle_settings(bool new_particles) {
+  std::vector<Key> keys{
+      number("temperature", "K", std::nullopt, Range::greater(0.0), "initial temperature"),
+      boolean("fixed_temperature", "", "held at its temperature for the whole run"),
+      number("heat_source", "W", std::nullopt, Range::any(), "imposed power"),
+      boolean("fixed", "", "does not move")};
+  if (new_particles) {
+    keys[0].default_text = "293.15";
+    keys[1].default_text = "false";
+    keys[2].default_text = "0";
+    keys[3].default_text = "false";
+  }
+  return keys;
+}
+
+std::vector<Key> concat(std::vector<Key> a, const std::vector<Key>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+// The sections the modes declare, one per section name, keys in declaration order.
+std::vector<Section> mode_sections() {
+  std::vector<Section> out;
+  for (const auto* mode : thermal::heat_transfer_modes()) {
+    if (mode->section.empty()) continue;
+    auto it = std::find_if(out.begin(), out.end(),
+                           [&](const Section& s) { return s.name == mode->section; });
+    if (it == out.end()) {
+      out.push_back({std::string(mode->section), std::string(mode->section_description), {}});
+      it = out.end() - 1;
+    }
+    for (const auto& p : mode->parameters)
+      if (std::none_of(it->keys.begin(), it->keys.end(), [&](const Key& k) { return k.name == p.key; }))
+        it->keys.push_back(number(std::string(p.key), std::string(p.unit), p.default_value,
+                                  p.range, std::string(p.description)));
+  }
+  return out;
+}
+
+std::vector<Section> build_sections() {
+  const auto modes = mode_sections();
+  std::vector<Key> top{
+      value("format", "", "", "\"tmdem-scene-1\"", "scene format version", true),
+      table("simulation", Kind::Table, "duration, dimension, gravity, seed", true),
+      table("effects", Kind::Table, "what is computed: mechanics and the heat-transfer modes"),
+      table("material", Kind::TableArray, "materials, referred to by name", true),
+      table("particle", Kind::TableArray, "one particle each"),
+      table("generate", Kind::TableArray, "many particles each"),
+      table("assign", Kind::TableArray, "changes selected particles after generation"),
+      table("wall", Kind::TableArray, "infinite planes")};
+  for (const auto& s : modes) top.push_back(table(s.name, Kind::Table, s.description));
+  for (const auto& k : {table("mechanics", Kind::Table, "NSCD contact dynamics"),
+                        table("thermal", Kind::Table, "thermal integrator and contact conductance"),
+                        table("output", Kind::Table, "result file, frames, checkpoints")})
+    top.push_back(k);
+
+  std::vector<Key> effects{choice("mechanics", "settle", {"dynamic", "settle", "off"},
+                                  "\"dynamic\": NSCD every step; \"settle\": NSCD until at rest "
+                                  "(before t = 0), then frozen; \"off\": contacts from geometry")};
+  for (const auto& e : thermal::heat_transfer_effects())
+    effects.push_back(boolean(std::string(e.key), e.default_on ? "true" : "false",
+                              std::string(e.description)));
+
+  std::vector<Section> sections{
+      {"", "the top level of the file", top},
+      {"simulation", "the run",
+       {required_number("duration", "s", Range::greater(0.0), "simulated time of the run"),
+        value("dimension", "", "3", "2 or 3", "2: motion in the xy-plane (particles are still spheres)"),
+        vector3("gravity", "m/s^2", "[0, 0, 0]", "gravitational acceleration; z = 0 in 2D", false),
+        value("seed", "", "1", "integer >= 0",
+              "seed of the random generators ([[generate]] number k draws with seed + k)")}},
+      {"effects", "only what is switched on is computed", effects},
+      {"material", "[[material]]: one material",
+       {value("name", "", "", "non-empty, unique", "name the bodies refer to", true),
+        required_number("density", "kg/m^3", Range::greater(0.0), "density"),
+        required_number("young_modulus", "Pa", Range::greater(0.0), "Young's modulus"),
+        required_number("poisson_ratio", "", Range::open(-1.0, 0.5), "Poisson ratio"),
+        number("friction", "", 0.3, Range::at_least(0.0), "Coulomb friction coefficient"),
+        required_number("conductivity", "W/(m K)", Range::greater(0.0), "thermal conductivity"),
+        required_number("heat_capacity", "J/(kg K)", Range::greater(0.0), "specific heat c"),
+        number("emissivity", "", 0.0, Range::closed(0.0, 1.0), "surface emissivity")}},
+      {"particle", "[[particle]]: one particle (ids: [[particle]] first, then [[generate]])",
+       concat({vector3("position", "m", "", "centre"),
+               required_number("radius", "m", Range::greater(0.0), "radius"),
+               material_reference()},
+              particle_settings(true))},
+      {"generate", "[[generate]]: many particles of one kind",
+       concat({choice("kind", "", {"triangular", "column", "lattice", "random"},
+                      "arrangement; each kind takes only its own keys below"),
+               value("rows", "", "", "integers >= 1",
+                     "triangular: particles per row, bottom row first, each row centred on the "
+                     "one below"),
+               value("count", "", "", "integer >= 1", "column, random: number of particles"),
+               value("counts", "", "", "3 integers >= 1 (nz = 1 in 2D)", "lattice: [nx, ny, nz]"),
+               number("spacing", "m", std::nullopt, Range::greater(0.0),
+                      "lattice: centre distance (>= 2 radius)"),
+               number("radius", "m", std::nullopt, Range::greater(0.0),
+                      "triangular, column, lattice, random: radius of every particle"),
+               value("radii", "m", "", "numbers > 0", "random: radius classes (with fractions)"),
+               value("fractions", "", "", "numbers in [0, 1], summing to 1",
+                     "random: share of the particles in each radius class"),
+               vector3("origin", "m", "",
+                       "triangular, column, lattice: centre of the first particle", false),
+               table("box", Kind::Table, "random: box = { min, max } the particles lie in"),
+               material_reference()},
+              particle_settings(true))},
+      {"box", "a box { min, max } (centres inside, inclusive)",
+       {vector3("min", "m", "", "lowest corner"),
+        vector3("max", "m", "", "highest corner (>= min)")}},
       {"assign",
-       {{"ids"},
-        {"box", Kind::Table, "box"},
-        {"nearest", Kind::Table, "nearest"},
-        {"temperature"},
-        {"fixed_temperature"},
-        {"heat_source"},
-        {"fixed"},
-        {"material"}}},
-      {"nearest", {{"point"}, {"count"}}},
-      {"wall", {{"point"}, {"normal"}, {"material"}, {"temperature"}}},
-      {"convection", {{"coefficient"}, {"fluid_temperature"}}},
-      {"radiation", {{"ambient_temperature"}}},
-      {"mechanics",
-       {{"time_step"},
-        {"theta"},
-        {"solver"},
-        {"tolerance"},
-        {"max_iterations"},
-        {"settle_time"},
-        {"settle_velocity"}}},
-      {"thermal",
-       {{"integrator"},
-        {"linear_solver"},
-        {"relative_tolerance"},
-        {"absolute_tolerance"},
-        {"explicit_step"},
-        {"conductance"},
-        {"constant_conductance"},
-        {"coupling"}}},
-      {"output", {{"file"}, {"interval"}, {"contacts"}, {"checkpoint_interval"}}},
-  };
-  return schema;
+       "[[assign]]: changes selected particles; exactly one of ids, box, nearest; at least one "
+       "setting",
+       concat({value("ids", "", "", "integers >= 0, existing ids", "select these particle ids"),
+               table("box", Kind::Table, "select the particles whose centre is inside"),
+               table("nearest", Kind::Table, "select the count particles nearest to point")},
+              concat(particle_settings(false),
+                     {value("material", "", "", "a [[material]] name", "new material")}))},
+      {"nearest", "nearest = { point, count }",
+       {vector3("point", "m", "", "the point distances are measured from"),
+        value("count", "", "", "integer in [1, number of particles]", "how many particles", true)}},
+      {"wall", "[[wall]]: an infinite plane",
+       {vector3("point", "m", "", "a point of the plane"),
+        vector3("normal", "", "", "normal, pointing into the domain (normalised; non-zero)"),
+        material_reference(),
+        number("temperature", "K", std::nullopt, Range::greater(0.0),
+               "isothermal wall exchanging heat by contact conduction; omitted: adiabatic")}}};
+  for (const auto& s : modes) sections.push_back(s);
+  sections.push_back(
+      {"mechanics", "NSCD (Moreau-Jean, Gauss-Seidel); range checks apply when mechanics is on",
+       {number("time_step", "s", 1.0e-3, Range::greater(0.0), "mechanical time step"),
+        number("theta", "", 0.5, Range::open_closed(0.0, 1.0), "Moreau-Jean theta"),
+        choice("solver", "nlgs", mechanics::contact_solver_names(),
+               "contact solver by name (mechanics::ContactSolverRegistry)"),
+        number("tolerance", "", 1.0e-6, Range::greater(0.0),
+               "relative contact-law residual of a Gauss-Seidel sweep that counts as converged"),
+        value("max_iterations", "", "10000", "integer >= 1", "Gauss-Seidel sweeps per step, at most"),
+        number("settle_time", "s", 5.0, Range::greater(0.0), "longest \"settle\" phase"),
+        number("settle_velocity", "m/s", 1.0e-4, Range::greater(0.0),
+               "every particle slower than this counts as at rest")}});
+  sections.push_back(
+      {"thermal", "the thermal integrator and the contact conductance",
+       {choice("integrator", "cvode", {"cvode", "ida", "explicit"},
+               "CVODE (BDF), IDA (DAE; held temperatures algebraic) or forward Euler"),
+        choice("linear_solver", "klu", {"klu", "pcg"},
+               "sparse direct (KLU) or preconditioned conjugate gradients"),
+        number("relative_tolerance", "", 1.0e-6, Range::greater(0.0), "integrator tolerance"),
+        number("absolute_tolerance", "K", 1.0e-6, Range::greater(0.0), "integrator tolerance"),
+        number("explicit_step", "s", 0.0, Range::at_least(0.0),
+               "explicit step; 0 = largest stable step, above the bound is refused"),
+        choice("conductance", "hertz", {"hertz", "constant"},
+               "contact conductance: H = 2 k a (Hertz radius a from the normal force), or "
+               "constant_conductance"),
+        number("constant_conductance", "W/K", 1.0e-4, Range::greater(0.0),
+               "H of every contact when conductance = \"constant\""),
+        choice("coupling", "continue", {"continue", "restart"},
+               "dynamic runs: keep the integrator history while only forces change, or "
+               "re-initialise every mechanical step")}});
+  sections.push_back(
+      {"output", "the result file",
+       {value("file", "", "\"result.h5\"", "non-empty path", "result file (HDF5; RESULT.xdmf beside it)"),
+        number("interval", "s", 0.1, Range::greater(0.0), "simulated time between frames"),
+        boolean("contacts", "true", "store the contact list of every frame"),
+        number("checkpoint_interval", "s", 0.0, Range::at_least(0.0),
+               "simulated time between checkpoints; 0 = none")}});
+  return sections;
+}
+
+struct Cache {
+  std::uint64_t registry_version = ~std::uint64_t{0};
+  std::vector<Section> sections;
+  std::map<std::string, const std::vector<Key>*, std::less<>> by_name;
+};
+
+// Rebuilt when a mode is registered (before any scene is read), so the pointers handed out stay
+// valid while scenes are read.
+const Cache& cache() {
+  static Cache c;
+  const auto version = thermal::heat_transfer_registry_version();
+  if (c.registry_version != version) {
+    c.sections = build_sections();
+    c.by_name.clear();
+    for (const auto& s : c.sections) c.by_name.emplace(s.name, &s.keys);
+    c.registry_version = version;
+  }
+  return c;
 }
 
 std::size_t edit_distance(std::string_view a, std::string_view b) {
@@ -114,10 +291,12 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
 
 }  // namespace
 
+const std::vector<Section>& SceneSchema::sections() { return cache().sections; }
+
 const std::vector<Key>* SceneSchema::keys(std::string_view schema) {
-  const auto& map = schema_map();
+  const auto& map = cache().by_name;
   const auto it = map.find(schema);
-  return it == map.end() ? nullptr : &it->second;
+  return it == map.end() ? nullptr : it->second;
 }
 
 const Key* SceneSchema::find(std::string_view schema, std::string_view name) {

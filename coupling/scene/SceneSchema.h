@@ -1,10 +1,17 @@
 #pragma once
-// The key schema of the scene file (contract section 2): which keys each table may hold and
-// whether a key holds a value, a table or an array of tables. Used both to refuse unknown keys
-// and to check --set KEY=VALUE paths against the schema before they are applied.
+// The key schema of the scene file (contract section 2): which keys each table may hold, whether
+// a key holds a value, a table or an array of tables, and for the scene reference (docs/scene.md,
+// `tmdem docs scene`) its unit, default, allowed values and a one-line description. The loader
+// validates with it: unknown keys, --set paths, and the range, default and choices of the keys
+// that state them (SceneTable reads them from here). The sections and effects switches of the
+// heat-transfer modes come from each mode's own declaration (thermal/ModeRegistry.h), so a new
+// mode appears here, in validation and in the docs without touching this file.
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "thermal/ModeDescription.h"
 
 namespace tmdem::coupling {
 
@@ -13,18 +20,36 @@ class SceneSchema {
   enum class Kind { Value, Table, TableArray };
 
   struct Key {
-    constexpr Key(std::string_view key_name, Kind key_kind = Kind::Value,
-                  std::string_view child_table = {})
-        : name(key_name), kind(key_kind), table(child_table) {}
-    std::string_view name;
+    std::string name;
     Kind kind = Kind::Value;
-    std::string_view table;  // schema name of the child table (Kind::Table / Kind::TableArray)
+    std::string table;  // schema name of the child table (Kind::Table / Kind::TableArray)
+    std::string unit;   // "m", "W/(m^2 K)"; "" for a pure number or a non-number
+    // Default as TOML text ("0.5", "\"cvode\"", "[0, 0, 0]"); "" with required: must be given;
+    // "" otherwise: absent means nothing (e.g. an adiabatic wall).
+    std::string default_text;
+    bool required = false;
+    std::string allowed;      // allowed values in words, for the reference
+    std::string description;  // one line
+    // Set for numbers the schema checks itself: SceneTable uses this range and default when the
+    // loader gives none.
+    std::optional<thermal::ParameterRange> range;
+    std::optional<double> default_number;
+    std::vector<std::string> choices;  // set for strings with a fixed set of values
+  };
+
+  struct Section {
+    std::string name;         // schema name: "", "simulation", "material", "convection", ...
+    std::string description;  // one line
+    std::vector<Key> keys;
   };
 
   // Schema names: "" (top level), "simulation", "effects", "material", "particle", "generate",
-  // "box", "assign", "nearest", "wall", "convection", "radiation", "mechanics", "thermal",
-  // "output". Returns nullptr for an unknown schema name.
+  // "box", "assign", "nearest", "wall", one per heat-transfer mode section ("convection",
+  // "radiation", ...), "mechanics", "thermal", "output". Returns nullptr for an unknown name.
   static const std::vector<Key>* keys(std::string_view schema);
+
+  // Every section, in file order (the order of the reference).
+  static const std::vector<Section>& sections();
 
   // The key `name` of `schema`, or nullptr.
   static const Key* find(std::string_view schema, std::string_view name);

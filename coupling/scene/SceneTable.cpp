@@ -3,37 +3,13 @@
 #include <charconv>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "coupling/common/ShortestNumber.h"
 #include "coupling/scene/SceneError.h"
 #include "coupling/scene/SceneSchema.h"
 
 namespace tmdem::coupling {
-
-bool Range::contains(double v) const {
-  switch (kind) {
-    case Kind::Any: return true;
-    case Kind::Greater: return v > lo;
-    case Kind::AtLeast: return v >= lo;
-    case Kind::Open: return v > lo && v < hi;
-    case Kind::OpenClosed: return v > lo && v <= hi;
-    case Kind::Closed: return v >= lo && v <= hi;
-  }
-  return true;
-}
-
-std::string Range::describe() const {
-  switch (kind) {
-    case Kind::Any: return "must be a finite number";
-    case Kind::Greater: return "must be > " + format_number(lo);
-    case Kind::AtLeast: return "must be >= " + format_number(lo);
-    case Kind::Open: return "must be in (" + format_number(lo) + ", " + format_number(hi) + ")";
-    case Kind::OpenClosed:
-      return "must be in (" + format_number(lo) + ", " + format_number(hi) + "]";
-    case Kind::Closed: return "must be in [" + format_number(lo) + ", " + format_number(hi) + "]";
-  }
-  return {};
-}
 
 std::string format_number(double value) { return shortest_number(value); }
 
@@ -71,6 +47,11 @@ std::string describe_value(const toml::node& node) {
   if (const auto* f = node.as_floating_point()) return format_number(f->get());
   if (const auto* b = node.as_boolean()) return b->get() ? "true" : "false";
   return describe_type(node);
+}
+
+Range schema_range(std::string_view schema, std::string_view key) {
+  const auto* spec = SceneSchema::find(schema, key);
+  return spec != nullptr && spec->range ? *spec->range : Range::any();
 }
 
 std::optional<double> as_number(const toml::node& node) {
@@ -142,7 +123,9 @@ void SceneTable::check_keys() const {
   }
 }
 
-std::optional<double> SceneTable::optional_number(std::string_view key, Range range) const {
+std::optional<double> SceneTable::optional_number(std::string_view key,
+                                                  std::optional<Range> given) const {
+  const Range range = given ? *given : schema_range(schema_, key);
   const toml::node* n = node(key);
   if (n == nullptr) return std::nullopt;
   const auto value = as_number(*n);
@@ -153,11 +136,18 @@ std::optional<double> SceneTable::optional_number(std::string_view key, Range ra
   return value;
 }
 
-double SceneTable::number(std::string_view key, double fallback, Range range) const {
+double SceneTable::number(std::string_view key, double fallback, std::optional<Range> range) const {
   return optional_number(key, range).value_or(fallback);
 }
 
-double SceneTable::required_number(std::string_view key, Range range) const {
+double SceneTable::number(std::string_view key) const {
+  const auto* spec = SceneSchema::find(schema_, key);
+  if (spec == nullptr || !spec->default_number)
+    throw std::logic_error("scene schema: " + key_path(key) + " has no default number");
+  return number(key, *spec->default_number);
+}
+
+double SceneTable::required_number(std::string_view key, std::optional<Range> range) const {
   const auto value = optional_number(key, range);
   if (!value) missing(key);
   return *value;
@@ -221,22 +211,20 @@ std::string SceneTable::required_string(std::string_view key) const {
   return *value;
 }
 
-std::string SceneTable::choice(std::string_view key, std::string_view fallback,
-                               std::initializer_list<std::string_view> choices) const {
-  return choice(key, fallback, std::vector<std::string>(choices.begin(), choices.end()));
-}
-
-std::string SceneTable::choice(std::string_view key, std::string_view fallback,
-                               const std::vector<std::string>& choices) const {
+std::string SceneTable::choice(std::string_view key) const {
+  const auto* spec = SceneSchema::find(schema_, key);
+  if (spec == nullptr || spec->choices.empty())
+    throw std::logic_error("scene schema: " + key_path(key) + " has no choices");
   const auto value = optional_string(key);
-  if (!value) return std::string(fallback);
-  for (const auto& c : choices)
+  if (!value) {
+    // default_text is TOML text: "\"cvode\"" -> cvode.
+    const std::string& fallback = spec->default_text;
+    return fallback.size() >= 2 ? fallback.substr(1, fallback.size() - 2) : std::string();
+  }
+  for (const auto& c : spec->choices)
     if (*value == c) return *value;
   std::string allowed;
-  for (const auto& c : choices) {
-    if (!allowed.empty()) allowed += ", ";
-    allowed += quote_text(c);
-  }
+  for (const auto& c : spec->choices) allowed += (allowed.empty() ? "" : ", ") + quote_text(c);
   fail(key, "must be one of " + allowed + " (got " + quote_text(*value) + ")");
 }
 

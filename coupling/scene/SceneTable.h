@@ -5,7 +5,6 @@
 // e.g. "bed.toml:14:17: material[1].young_modulus: must be > 0 (got -5)".
 // A value that came from --set KEY=VALUE is located as "--set KEY" instead of FILE:LINE:COLUMN.
 #include <cstdint>
-#include <initializer_list>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -14,26 +13,13 @@
 #include <toml++/toml.h>
 
 #include "coupling/scene/Scene.h"
+#include "thermal/ModeDescription.h"
 
 namespace tmdem::coupling {
 
-// An allowed range of a number, with its text for messages ("> 0", "in (-1, 0.5)").
-struct Range {
-  enum class Kind { Any, Greater, AtLeast, Open, OpenClosed, Closed };
-  Kind kind = Kind::Any;
-  double lo = 0.0;
-  double hi = 0.0;
-
-  static Range any() { return {}; }
-  static Range greater(double lo) { return {Kind::Greater, lo, 0.0}; }
-  static Range at_least(double lo) { return {Kind::AtLeast, lo, 0.0}; }
-  static Range open(double lo, double hi) { return {Kind::Open, lo, hi}; }
-  static Range open_closed(double lo, double hi) { return {Kind::OpenClosed, lo, hi}; }
-  static Range closed(double lo, double hi) { return {Kind::Closed, lo, hi}; }
-
-  bool contains(double v) const;
-  std::string describe() const;  // "must be > 0", "must be in (-1, 0.5)"
-};
+// An allowed range of a number, with its text for messages ("must be > 0"). One type with the
+// heat-transfer modes' parameter ranges, so a mode's declared range reads the same here.
+using Range = thermal::ParameterRange;
 
 // Shortest text that reads back as the same double ("0.001", "2.1e+11").
 std::string format_number(double value);
@@ -71,10 +57,15 @@ class SceneTable {
   bool has(std::string_view key) const { return node(key) != nullptr; }
   const toml::node* node(std::string_view key) const;
 
-  // Numbers: integer or floating point, always finite; range checked when enforce_ranges.
-  std::optional<double> optional_number(std::string_view key, Range range = Range::any()) const;
-  double number(std::string_view key, double fallback, Range range = Range::any()) const;
-  double required_number(std::string_view key, Range range = Range::any()) const;
+  // Numbers: integer or floating point, always finite; range checked when enforce_ranges. Without
+  // a range, the schema's range of the key applies (SceneSchema::Key::range; none: any number).
+  std::optional<double> optional_number(std::string_view key,
+                                        std::optional<Range> range = std::nullopt) const;
+  double number(std::string_view key, double fallback,
+                std::optional<Range> range = std::nullopt) const;
+  // The schema's default and range of the key.
+  double number(std::string_view key) const;
+  double required_number(std::string_view key, std::optional<Range> range = std::nullopt) const;
 
   // Integers in [lo, hi] (always checked: they size or index things).
   std::optional<std::int64_t> optional_integer(std::string_view key, std::int64_t lo,
@@ -88,12 +79,9 @@ class SceneTable {
 
   std::optional<std::string> optional_string(std::string_view key) const;
   std::string required_string(std::string_view key) const;
-  // One of `choices`; the message lists them.
-  std::string choice(std::string_view key, std::string_view fallback,
-                     std::initializer_list<std::string_view> choices) const;
-  // Same, for choices known at run time (a registry's names).
-  std::string choice(std::string_view key, std::string_view fallback,
-                     const std::vector<std::string>& choices) const;
+  // One of the schema's choices of the key (the message lists them); its default when absent
+  // ("" for a required key: the caller reports it missing).
+  std::string choice(std::string_view key) const;
 
   // A point or vector: 3 finite numbers, or 2 when dimension == 2 (then z = 0).
   std::optional<Vec3> optional_vec3(std::string_view key, int dimension) const;

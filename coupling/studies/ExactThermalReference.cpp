@@ -6,6 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "thermal/ModeRegistry.h"
+
 namespace tmdem::coupling {
 
 namespace {
@@ -39,12 +41,14 @@ std::optional<AffineThermalSystem> affine_thermal_system(const thermal::ThermalN
       K(i, i) -= net.wall_conductance_W_per_K[w];
       f(i) += net.wall_conductance_W_per_K[w] * net.wall_temperature_K[w];
     }
-  if (has(mode_names, "convection"))
+  if (has(mode_names, "convection")) {
+    const auto p = thermal::resolve_mode_parameters(*thermal::find_heat_transfer_mode("convection"), s);
     for (Eigen::Index i = 0; i < n; ++i) {
-      const double hA = s.convection_coefficient_W_per_m2K * net.surface_area_m2[std::size_t(i)];
+      const double hA = p["coefficient"] * net.surface_area_m2[std::size_t(i)];
       K(i, i) -= hA;
-      f(i) += hA * s.fluid_temperature_K;
+      f(i) += hA * p["fluid_temperature"];
     }
+  }
   if (has(mode_names, "heat_source"))
     for (Eigen::Index i = 0; i < n; ++i) f(i) += net.heat_source_W[std::size_t(i)];
 

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "thermal/HeatTransferMode.h"
+#include "thermal/ModeSettings.h"
 #include "thermal/ThermalNetwork.h"
 #include "thermal/ThermalSystem.h"
 
@@ -32,7 +32,9 @@ struct AffineThermalSystem {
 
 // A and b for the network with the named modes switched on (registry names, see
 // thermal/ModeList.h). Empty when a mode is not linear ("radiation") or not known here: such a
-// network has no exact reference.
+// network has no exact reference. The one place in coupling/ that names modes, on purpose: an
+// independent re-derivation of their physics is what makes it a reference; parameters come
+// from the modes' own declarations (defaults included).
 std::optional<AffineThermalSystem> affine_thermal_system(const thermal::ThermalNetwork& network,
                                                          const std::vector<std::string>& mode_names,
                                                          const thermal::ModeSettings& settings);

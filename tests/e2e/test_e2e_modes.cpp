@@ -4,6 +4,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <tuple>
+
 #include "E2eSupport.h"
 
 using namespace tmdem::e2e;
@@ -78,4 +83,54 @@ TEST(EndToEndModes, SectionsOfSwitchedOffModesChangeNothing) {
   EXPECT_EQ(r.output.find("convection"), std::string::npos) << "a switched-off mode was built: " << r.output;
   EXPECT_EQ(r.output.find("radiation"), std::string::npos) << r.output;
   EXPECT_EQ(final_temperatures(plain), final_temperatures(with));
+}
+
+TEST(EndToEndModes, ProductionBinaryNeitherContainsNorHonoursTheTestOnlyFaultMode) {
+  // The fault_injection mode is registered only by tmdem_testing.
+  std::ifstream binary(TMDEM_BINARY, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(binary)), std::istreambuf_iterator<char>());
+  ASSERT_GT(bytes.size(), 100000u);
+  EXPECT_EQ(bytes.find("after_rhs_evaluations"), std::string::npos);
+  EXPECT_EQ(bytes.find("TMDEM_FAULT_AFTER_RHS_EVALS"), std::string::npos);
+
+  const auto dir = scratch_dir("modes_fault_refused");
+  write_file(dir + "/s.toml", scene("fault_injection = true\n", ""));
+  const auto r = run_tmdem("check s.toml", dir);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("effects.fault_injection: unknown key"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("valid keys here: mechanics, conduction, convection, radiation"),
+            std::string::npos)
+      << r.output;
+}
+
+TEST(EndToEndModes, ARegisteredModeValidatesItsOwnKeysWithExitTwo) {
+  // tmdem_testing registers fault_injection: its section is read and checked by its own
+  // declaration (range >= 0, and its own check: a whole number).
+  const auto dir = scratch_dir("modes_fault_keys");
+  const std::string base = "fault_injection = true\n";
+  const std::string testing = std::string("'") + TMDEM_TESTING_BINARY + "' ";
+  auto run_testing = [&](const std::string& args) {
+    const std::string cmd = "cd '" + dir + "' && " + testing + args + " > log.txt 2>&1";
+    const int status = std::system(cmd.c_str());
+    std::ifstream in(dir + "/log.txt");
+    std::stringstream text;
+    text << in.rdbuf();
+    return std::pair{WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
+  };
+  write_file(dir + "/s.toml", scene(base, "[fault_injection]\nafter_rhs_evaluations = -3\n"));
+  auto [code, log] = run_testing("check s.toml");
+  EXPECT_EQ(code, 2) << log;
+  EXPECT_NE(log.find("fault_injection.after_rhs_evaluations: must be >= 0 (got -3)"),
+            std::string::npos) << log;
+  write_file(dir + "/s.toml", scene(base, "[fault_injection]\nafter_rhs_evaluations = 2.5\n"));
+  std::tie(code, log) = run_testing("check s.toml");
+  EXPECT_EQ(code, 2) << log;
+  EXPECT_NE(log.find("fault_injection.after_rhs_evaluations: must be a whole number (got 2.5)"),
+            std::string::npos) << log;
+  std::tie(code, log) = run_testing("check s.toml --set fault_injection.after_rhs_evaluations=7");
+  EXPECT_EQ(code, 0) << log;
+  EXPECT_NE(log.find("effects: mechanics off, conduction on, convection off, radiation off, "
+                     "fault_injection on"), std::string::npos) << log;
+  EXPECT_NE(log.find("modes: contact_conduction wall_conduction heat_source fault_injection"),
+            std::string::npos) << log;
 }

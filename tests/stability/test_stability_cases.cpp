@@ -87,9 +87,9 @@ TEST(Stability, RadiationFrom3000KWithStrongConvectionAndCapacities1e4Apart) {
   }
   for (int i = 0; i + 1 < n; ++i) net.add_edge(i, i + 1, 1e-3);
   tmdem::thermal::ModeSettings ms;
-  ms.convection_coefficient_W_per_m2K = 1e4;
-  ms.fluid_temperature_K = 300.0;
-  ms.ambient_temperature_K = 300.0;
+  ms.set("convection", "coefficient", 1e4);
+  ms.set("convection", "fluid_temperature", 300.0);
+  ms.set("radiation", "ambient_temperature", 300.0);
   auto sys = make_system(net, {"contact_conduction", "convection", "radiation"}, ms);
   std::vector<double> T0(n, 3000.0);
   T0[n / 2] = 300.0;

@@ -1,4 +1,5 @@
-// Stability suite: an injected right-hand-side failure stops the run cleanly.
+// Stability suite: an injected right-hand-side failure stops the run cleanly. The failure comes
+// from the test-only fault_injection mode, which only the test program tmdem_testing registers.
 #include <gtest/gtest.h>
 
 #include <H5Cpp.h>
@@ -23,10 +24,12 @@ TEST(StabilityFailure, InjectedRhsFailureExitsThreeKeepsFramesAndMarksFailed) {
                                          .set("simulation.duration", 50.0)
                                          .add("generate", column(4))
                                          .add("assign", assign_ids({0}, {{"temperature", 373.15}}))
-                                         .set(output("out.h5", 0.5));
+                                         .set(output("out.h5", 0.5))
+                                         .set("effects.fault_injection", true)
+                                         .set("fault_injection.after_rhs_evaluations", 40);
   }
-  const std::string cmd = "cd '" + dir.string() + "' && TMDEM_FAULT_AFTER_RHS_EVALS=40 '" +
-                          TMDEM_BINARY + "' run s.toml --summary s.json > log.txt 2>&1";
+  const std::string cmd = "cd '" + dir.string() + "' && '" + TMDEM_TESTING_BINARY +
+                          "' run s.toml --summary s.json > log.txt 2>&1";
   const int status = std::system(cmd.c_str());
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 3);

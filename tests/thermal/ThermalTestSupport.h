@@ -60,11 +60,12 @@ inline AffineSystem affine_system(const ThermalNetwork& net, const ModeSettings&
     K(i, i) -= net.wall_conductance_W_per_K[w];
     f(i) += net.wall_conductance_W_per_K[w] * net.wall_temperature_K[w];
   }
+  const auto convection_parameters = resolve_mode_parameters(*find_heat_transfer_mode("convection"), s);
   for (int i = 0; i < n; ++i) {
     if (convection) {
-      const double hA = s.convection_coefficient_W_per_m2K * net.surface_area_m2[i];
+      const double hA = convection_parameters["coefficient"] * net.surface_area_m2[i];
       K(i, i) -= hA;
-      f(i) += hA * s.fluid_temperature_K;
+      f(i) += hA * convection_parameters["fluid_temperature"];
     }
     f(i) += net.heat_source_W[i];
   }

@@ -54,9 +54,9 @@ MixedScene mixed_scene() {
   for (int i : {5, 11, 25, 20}) s.net.heat_source_W[i] = 2e-3;
   s.net.held[20] = 1;  // wall, source and free neighbours: none of it may count in Q
   s.net.held[31] = 1;
-  s.ms.convection_coefficient_W_per_m2K = 20.0;
-  s.ms.fluid_temperature_K = 300.0;
-  s.ms.ambient_temperature_K = 350.0;
+  s.ms.set("convection", "coefficient", 20.0);
+  s.ms.set("convection", "fluid_temperature", 300.0);
+  s.ms.set("radiation", "ambient_temperature", 350.0);
   s.T0.resize(n);
   for (auto& T : s.T0) T = 250.0 + 300.0 * uniform();
   s.T0[20] = 500.0;

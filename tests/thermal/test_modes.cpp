@@ -49,8 +49,8 @@ TEST_P(ModeTest, ConvectionCoolsOneParticleExponentially) {
   const double A = sphere_area(r), h = 100.0, Tf = 293.15, T0 = 573.15;
   const double k = h * A / C;
   ModeSettings ms;
-  ms.convection_coefficient_W_per_m2K = h;
-  ms.fluid_temperature_K = Tf;
+  ms.set("convection", "coefficient", h);
+  ms.set("convection", "fluid_temperature", Tf);
   auto sys = make_system(single_particle(C, A), {"convection"}, ms);
   auto s = tight_settings(solver);
   const double step = 1.0 / 64.0;  // a power of two: t accumulates without rounding
@@ -109,7 +109,7 @@ TEST_P(RadiationTest, OneParticleFollowsTheClosedForm) {
   const double C = 1e-3, eps = 0.8, A = sphere_area(1e-3);
   const double k = eps * kStefanBoltzmann * A / C;
   ModeSettings ms;
-  ms.ambient_temperature_K = rcase.Ta;
+  ms.set("radiation", "ambient_temperature", rcase.Ta);
   auto sys = make_system(single_particle(C, A, eps), {"radiation"}, ms);
   const std::vector<double> T0v{rcase.T0};
   const std::vector<double> times{0.5, 1.0, 2.0, 4.0, 8.0};
@@ -282,9 +282,9 @@ EquilibriumScene equilibrium_scene(double T_eq) {
   s.net.add_wall_edge(0, T_eq, 3e-4);
   s.net.add_wall_edge(5, T_eq, 2e-4);
   s.net.held[2] = 1;
-  s.ms.convection_coefficient_W_per_m2K = 50.0;
-  s.ms.fluid_temperature_K = T_eq;
-  s.ms.ambient_temperature_K = T_eq;
+  s.ms.set("convection", "coefficient", 50.0);
+  s.ms.set("convection", "fluid_temperature", T_eq);
+  s.ms.set("radiation", "ambient_temperature", T_eq);
   s.T0.assign(n, T_eq);
   return s;
 }
@@ -318,8 +318,8 @@ TEST(Equilibrium, EachBoundaryTemperatureIsWiredIn) {
   };
   const Lift lifts[] = {
       {"wall", [](EquilibriumScene& s) { s.net.wall_temperature_K[1] += 10.0; }},
-      {"fluid", [](EquilibriumScene& s) { s.ms.fluid_temperature_K += 10.0; }},
-      {"surroundings", [](EquilibriumScene& s) { s.ms.ambient_temperature_K += 10.0; }},
+      {"fluid", [](EquilibriumScene& s) { s.ms.set("convection", "fluid_temperature", *s.ms.find("convection", "fluid_temperature") + 10.0); }},
+      {"surroundings", [](EquilibriumScene& s) { s.ms.set("radiation", "ambient_temperature", *s.ms.find("radiation", "ambient_temperature") + 10.0); }},
       {"source", [](EquilibriumScene& s) { s.net.heat_source_W[4] = 1e-3; }},
   };
   for (const auto& lift : lifts) {
@@ -386,7 +386,7 @@ TEST(ModeRegistry, NamesAndUnknownNameMessage) {
 
 TEST(RadiationDomain, TrialTemperatureAtOrBelowZeroIsRefusedWithoutNaN) {
   ModeSettings ms;
-  ms.ambient_temperature_K = 300.0;
+  ms.set("radiation", "ambient_temperature", 300.0);
   const auto mode = make_heat_transfer_mode("radiation", ms);
   ThermalNetwork net;
   net.resize_nodes(2);
@@ -423,7 +423,7 @@ TEST_P(ModeTest, RadiationFrom3000KWithTinyCapacityStaysAboveAmbient) {
   const double C = 1e-9, A = sphere_area(1e-3), Ta = 300.0, T0 = 3000.0;
   const double k = kStefanBoltzmann * A / C;
   ModeSettings ms;
-  ms.ambient_temperature_K = Ta;
+  ms.set("radiation", "ambient_temperature", Ta);
   auto sys = make_system(single_particle(C, A, 1.0), {"radiation"}, ms);
   const std::vector<double> T0v{T0};
   auto integ = make_thermal_integrator(integrator, *sys, tight_settings(solver));
@@ -496,8 +496,8 @@ TEST_P(ModeTest, RefusedEvaluationsAreRetriedWithoutChangingTheAnswer) {
   const auto [integrator, solver] = GetParam();
   const double C = 0.015, A = sphere_area(1e-3), h = 100.0, Tf = 293.15, T0 = 573.15;
   ModeSettings ms;
-  ms.convection_coefficient_W_per_m2K = h;
-  ms.fluid_temperature_K = Tf;
+  ms.set("convection", "coefficient", h);
+  ms.set("convection", "fluid_temperature", Tf);
   auto flaky = std::make_unique<FlakyMode>(make_heat_transfer_mode("convection", ms),
                                            std::vector<long>{3, 40, 41, 200, 201, 202, 400});
   const auto* counter = flaky.get();
@@ -516,4 +516,42 @@ TEST_P(ModeTest, RefusedEvaluationsAreRetriedWithoutChangingTheAnswer) {
   EXPECT_EQ(counter->refused, 7);
   EXPECT_GT(integ->stats().convergence_failures, 0);
   expect_balance(sys, T0v, *integ, test_name());
+}
+
+TEST(ModeRegistry, RegistrationRefusesTakenNamesAndConflictingSwitchDefaults) {
+  const auto count = heat_transfer_modes().size();
+  const auto version = heat_transfer_registry_version();
+  EXPECT_THROW(register_heat_transfer_mode(*find_heat_transfer_mode("convection")),
+               std::invalid_argument);
+  // effects.conduction is on by default for both conduction modes: a mode may not say otherwise.
+  static const ModeDescription off_conduction{
+      .name = "conduction_off_by_default",
+      .effect = "conduction",
+      .effect_default = false,
+      .make = find_heat_transfer_mode("contact_conduction")->make};
+  EXPECT_THROW(register_heat_transfer_mode(off_conduction), std::invalid_argument);
+  EXPECT_EQ(heat_transfer_modes().size(), count);
+  EXPECT_EQ(heat_transfer_registry_version(), version);
+}
+
+TEST(ModeRegistry, ParametersOutsideTheirDeclaredRangeOrUndeclaredAreRefused) {
+  ModeSettings ms;
+  ms.set("convection", "coefficient", -1.0);
+  try {
+    make_heat_transfer_mode("convection", ms);
+    FAIL() << "a negative convection coefficient was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("convection.coefficient: must be >= 0 (got -1)"),
+              std::string::npos) << e.what();
+  }
+  ModeSettings typo;
+  typo.set("radiation", "ambient", 300.0);
+  try {
+    make_heat_transfer_mode("radiation", typo);
+    FAIL() << "an undeclared parameter was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("radiation.ambient: unknown parameter; valid parameters "
+                                         "of radiation: ambient_temperature"),
+              std::string::npos) << e.what();
+  }
 }

@@ -46,9 +46,9 @@ material = "m"
   EXPECT_EQ(scene.gravity_m_per_s2, (Vec3{0.0, 0.0, 0.0}));
   EXPECT_EQ(scene.seed, 1u);
   EXPECT_EQ(scene.effects.mechanics, MechanicsMode::Settle);
-  EXPECT_TRUE(scene.effects.conduction);
-  EXPECT_FALSE(scene.effects.convection);
-  EXPECT_FALSE(scene.effects.radiation);
+  EXPECT_TRUE(scene.effects.on("conduction"));
+  EXPECT_FALSE(scene.effects.on("convection"));
+  EXPECT_FALSE(scene.effects.on("radiation"));
   EXPECT_EQ(scene.materials[0].friction, 0.3);
   EXPECT_EQ(scene.materials[0].emissivity, 0.0);
   const Particle& p = scene.particles[0];
@@ -57,9 +57,9 @@ material = "m"
   EXPECT_EQ(p.heat_source_W, 0.0);
   EXPECT_FALSE(p.fixed);
   EXPECT_EQ(p.material, 0);
-  EXPECT_EQ(scene.convection.coefficient_W_per_m2K, 10.0);
-  EXPECT_EQ(scene.convection.fluid_temperature_K, 293.15);
-  EXPECT_EQ(scene.radiation.ambient_temperature_K, 293.15);
+  EXPECT_EQ(scene.heat_modes.find("convection", "coefficient").value(), 10.0);
+  EXPECT_EQ(scene.heat_modes.find("convection", "fluid_temperature").value(), 293.15);
+  EXPECT_EQ(scene.heat_modes.find("radiation", "ambient_temperature").value(), 293.15);
   EXPECT_EQ(scene.mechanics.time_step_s, 1e-3);
   EXPECT_EQ(scene.mechanics.theta, 0.5);
   EXPECT_EQ(scene.mechanics.tolerance, 1e-6);

@@ -68,8 +68,8 @@ TEST(SceneOverrides, MalformedOverride) {
 TEST(SceneOverrides, MissingSectionIsCreated) {
   const Scene scene = load_scene_text(kBaseScene, "t",
                                       {"effects.convection=true", "convection.coefficient=30"});
-  EXPECT_TRUE(scene.effects.convection);
-  EXPECT_EQ(scene.convection.coefficient_W_per_m2K, 30.0);
+  EXPECT_TRUE(scene.effects.on("convection"));
+  EXPECT_EQ(scene.heat_modes.find("convection", "coefficient").value(), 30.0);
 }
 
 TEST(SceneOverrides, BadValueIsLocatedAtTheOverride) {

@@ -330,9 +330,9 @@ TEST(SceneRules, ConvectionValuesWhenOn) {
                                                    "[convection]\ncoefficient = 25.0\n"
                                                    "fluid_temperature = 310.0\n",
                                       "t");
-  EXPECT_TRUE(scene.effects.convection);
-  EXPECT_DOUBLE_EQ(scene.convection.coefficient_W_per_m2K, 25.0);
-  EXPECT_DOUBLE_EQ(scene.convection.fluid_temperature_K, 310.0);
+  EXPECT_TRUE(scene.effects.on("convection"));
+  EXPECT_DOUBLE_EQ(scene.heat_modes.find("convection", "coefficient").value(), 25.0);
+  EXPECT_DOUBLE_EQ(scene.heat_modes.find("convection", "fluid_temperature").value(), 310.0);
 }
 
 TEST(SceneRules, NoParticles) {

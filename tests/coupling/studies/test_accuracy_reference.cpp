@@ -54,8 +54,8 @@ TEST(ExactThermalReference, AffineModesMatchClosedForm) {
   net.heat_source_W[0] = 0.05;
   net.add_wall_edge(0, 350.0, 4e-4);
   thermal::ModeSettings s;
-  s.convection_coefficient_W_per_m2K = 20.0;
-  s.fluid_temperature_K = 280.0;
+  s.set("convection", "coefficient", 20.0);
+  s.set("convection", "fluid_temperature", 280.0);
   const auto sys = affine_thermal_system(
       net, {"contact_conduction", "wall_conduction", "convection", "heat_source"}, s);
   ASSERT_TRUE(sys);

@@ -1,0 +1,152 @@
+#include "coupling/app/TmdemMain.h"
+
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "coupling/app/AccuracyCommand.h"
+#include "coupling/common/ExitCode.h"
+#include "coupling/run/CoupledRun.h"
+#include "coupling/studies/CouplingStudy.h"
+#include "coupling/scene/DefaultScene.h"
+#include "coupling/output/OutputError.h"
+#include "coupling/app/SceneCheck.h"
+#include "coupling/scene/SceneError.h"
+#include "coupling/scene/SceneLoader.h"
+
+namespace tmdem::coupling {
+
+namespace {
+
+// An argument as the shell needs it in the resume hint.
+std::string shell_quoted(const std::string& text) {
+  if (!text.empty() && text.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                              "0123456789_-+=./:,@") == std::string::npos)
+    return text;
+  std::string out = "'";
+  for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+Scene load(const std::string& path, const std::vector<std::string>& sets) {
+  return path.empty() ? load_default_scene(sets) : load_scene_file(path, sets);
+}
+
+}  // namespace
+
+int tmdem_main(int argc, char** argv) {
+  CLI::App app{"tmdem: heat flow through granular packings (NSCD mechanics, implicit thermal "
+               "network)"};
+  app.set_version_flag("--version", std::string("tmdem ") + TMDEM_VERSION);
+  app.require_subcommand(1);
+
+  std::string scene_path, output, summary, restart;
+  std::vector<std::string> sets;
+  bool quiet = false, overwrite = false;
+  auto* run = app.add_subcommand("run", "run a scene (default: the built-in paper bed)");
+  run->add_option("scene", scene_path, "scene file (TOML)");
+  auto* output_option =
+      run->add_option("-o,--output", output, "result file (overrides output.file)");
+  run->add_option("--set", sets, "override one scene value, KEY=VALUE (TOML value)")
+      ->take_all()->allow_extra_args(false);
+  run->add_option("--summary", summary, "write the run summary (JSON) here");
+  run->add_option("--restart", restart, "continue from a checkpoint file");
+  run->add_flag("--overwrite", overwrite, "replace an existing result file");
+  run->add_flag("--quiet", quiet, "no progress on stderr");
+
+  std::string check_path;
+  auto* check = app.add_subcommand("check", "validate a scene; print its contents and stiffness");
+  check->add_option("scene", check_path, "scene file (TOML)")->required();
+  check->add_option("--set", sets, "override one scene value, KEY=VALUE")->allow_extra_args(false);
+
+  auto* study = app.add_subcommand("study", "numerical studies");
+  std::string study_path;
+  auto* accuracy = study->add_subcommand("accuracy", "work-precision study of the thermal integrators");
+  accuracy->add_option("scene", study_path, "scene file (TOML)")->required();
+  AccuracyCommandOptions study_options;
+  accuracy->add_option("--csv", study_options.csv_path, "write the table as CSV here");
+  accuracy->add_option("--set", sets, "override one scene value, KEY=VALUE (TOML value)")
+      ->take_all()->allow_extra_args(false);
+  accuracy->add_flag("--quiet", study_options.quiet, "no progress on stderr");
+  accuracy->add_option("--explicit-rungs", study_options.study.explicit_rungs,
+                       "explicit steps: 0.9 x the stability bound, then / 4 per rung (default 12)")
+      ->check(CLI::Range(0, 30));
+  accuracy->add_option("--explicit-budget", study_options.study.explicit_work_budget,
+                       "skip explicit rungs whose steps x (particles + edges) exceed this "
+                       "(default 2e9, a few seconds)")
+      ->check(CLI::PositiveNumber);
+  std::string coupling_path, coupling_csv;
+  auto* coupling = study->add_subcommand(
+      "coupling", "compare how the thermal side follows a dynamic packing (continue, restart, explicit)");
+  coupling->add_option("scene", coupling_path, "scene file (TOML) with effects.mechanics = \"dynamic\"")
+      ->required();
+  coupling->add_option("--csv", coupling_csv, "write the table as CSV here");
+  coupling->add_option("--set", sets, "override one scene value, KEY=VALUE")->allow_extra_args(false);
+  study->require_subcommand(1);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? kExitOk : kExitInvalid;
+  }
+
+  try {
+    if (*run) {
+      if (output_option->count() > 0 && output.empty()) {
+        std::cerr << "error: -o needs a file name (got an empty one)" << std::endl;
+        return kExitInvalid;
+      }
+      const Scene scene = load(scene_path, sets);
+      RunOptions options;
+      options.output_path = output.empty()
+                                ? (scene_path.empty() && scene.output.file.empty() ? "tmdem-default.h5"
+                                                                                   : scene.output.file)
+                                : output;
+      options.scene_path = scene_path;
+      options.overwrite = overwrite;
+      options.handle_signals = true;
+      options.resume_command = "tmdem run" + (scene_path.empty() ? "" : " " + shell_quoted(scene_path));
+      for (const auto& set : sets) options.resume_command += " --set " + shell_quoted(set);
+      options.resume_command += " -o " + shell_quoted(options.output_path);
+      options.summary_path = summary;
+      options.restart_path = restart;
+      options.quiet = quiet;
+      options.terminal = isatty(STDERR_FILENO);
+      const auto outcome = run_scene(scene, options, std::cerr);
+      if (outcome.exit_code == 0 && !quiet)
+        std::cerr << "wrote " << options.output_path << " (" << outcome.summary.wall_time_s
+                  << " s wall time, energy balance error "
+                  << outcome.summary.energy.balance_error_rel << ")" << std::endl;
+      return outcome.exit_code;
+    }
+    if (*check) {
+      const Scene scene = load(check_path, sets);
+      check_scene(scene, std::cout);
+      std::cout << "scene is valid" << std::endl;
+      return kExitOk;
+    }
+    if (*coupling) {
+      const Scene scene = load_scene_file(coupling_path, sets);
+      return run_coupling_study(scene, coupling_csv, std::cout, std::cerr);
+    }
+    if (*accuracy) {
+      const Scene scene = load_scene_file(study_path, sets);
+      study_options.terminal = isatty(STDERR_FILENO);
+      return run_accuracy_command(scene, study_options, std::cout, std::cerr);
+    }
+  } catch (const SceneError& e) {
+    std::cerr << "error: " << e.what() << std::endl;
+    return kExitInvalid;
+  } catch (const OutputError& e) {
+    std::cerr << "error: " << e.what() << std::endl;
+    return kExitIo;
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << std::endl;
+    return kExitSolverFailed;
+  }
+  return kExitOk;
+}
+
+}  // namespace tmdem::coupling

@@ -1,0 +1,20 @@
+#pragma once
+// The scene's view of the registered heat-transfer modes (thermal/ModeRegistry.h): which ones
+// its effects switch on, whether contacts carry heat, the reservoir temperatures they bring.
+// Generic on purpose: nothing here (or anywhere in coupling/) names a mode.
+#include "coupling/scene/Scene.h"
+#include "thermal/ModeDescription.h"
+
+namespace tmdem::coupling {
+
+// The mode's effects.<key> is on (a mode without a switch counts as on; whether it is in use is
+// up to its own in_use test on the network).
+bool switched_on(const Effects& effects, const thermal::ModeDescription& mode);
+
+// Some switched-on mode reads the contact conductances: contacts become network edges.
+bool contacts_carry_heat(const Effects& effects);
+
+// Largest reservoir temperature (fluid, surroundings, ...) of the switched-on modes, K; 0 if none.
+double max_mode_temperature_K(const Scene& scene);
+
+}  // namespace tmdem::coupling

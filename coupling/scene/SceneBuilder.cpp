@@ -1,0 +1,150 @@
+#include "coupling/scene/SceneBuilder.h"
+
+#include "coupling/scene/HeatModes.h"
+#include "coupling/scene/SceneLimits.h"
+#include "coupling/scene/SceneValidation.h"
+#include "thermal/ModeRegistry.h"
+
+namespace tmdem::coupling {
+
+namespace {
+constexpr std::string_view kFormat = "tmdem-scene-1";
+}  // namespace
+
+std::string format_vec3(const Vec3& v) {
+  // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string.
+  std::string out = "[";
+  for (int d = 0; d < 3; ++d) {
+    if (d > 0) out += ", ";
+    out += format_number(v[d]);
+  }
+  out += "]";
+  return out;
+}
+
+Scene SceneBuilder::build() {
+  root_.check_keys();
+  read_format();
+  read_simulation();
+  read_effects();
+  read_materials();
+  read_particles();
+  read_generators();
+  if (scene_.particles.empty())
+    throw SceneError(source_ +
+                     ": the scene has no particles (add [[particle]] or [[generate]] entries)");
+  read_walls();
+  read_assigns();
+  read_heat_modes();
+  read_settings();
+  check_scene_limits(scene_, origins_, source_);
+  check_overlaps(scene_, origins_, source_);
+  return std::move(scene_);
+}
+
+void SceneBuilder::read_format() {
+  const auto format = root_.optional_string("format");
+  if (!format)
+    root_.fail("format", "required key is missing (must be " + quote_text(kFormat) + ")");
+  if (*format != kFormat)
+    root_.fail("format", "must be " + quote_text(kFormat) + " (got " + quote_text(*format) + ")");
+}
+
+SceneTable SceneBuilder::section(std::string_view key, bool enforce) const {
+  if (auto table = root_.optional_table(key, enforce)) return *table;
+  return SceneTable(nullptr, std::string(key), key, source_, enforce);
+}
+
+void SceneBuilder::read_simulation() {
+  const SceneTable t = section("simulation", true);
+  if (!t.present()) t.fail("duration", "required key is missing (no [simulation] table)");
+  scene_.duration_s = t.required_number("duration");
+  scene_.dimension = static_cast<int>(t.integer("dimension", 3, 2, 3));
+  scene_.gravity_m_per_s2 = t.optional_vec3("gravity", scene_.dimension).value_or(Vec3{});
+  if (scene_.dimension == 2 && scene_.gravity_m_per_s2[2] != 0.0)
+    t.fail("gravity", "in 2D (dimension = 2) motion is in the xy-plane: the z component must "
+                      "be 0 (got " + format_vec3(scene_.gravity_m_per_s2) + ")");
+  scene_.seed = static_cast<std::uint64_t>(t.integer("seed", 1, 0, kIntMax));
+}
+
+void SceneBuilder::read_effects() {
+  const SceneTable t = section("effects", true);
+  const std::string mechanics = t.choice("mechanics");
+  scene_.effects.mechanics = mechanics == "dynamic"  ? MechanicsMode::Dynamic
+                             : mechanics == "settle" ? MechanicsMode::Settle
+                                                     : MechanicsMode::Off;
+  // The heat-transfer modes' switches, as each mode declares them.
+  for (const auto& e : thermal::heat_transfer_effects())
+    scene_.effects.heat[std::string(e.key)] = t.boolean(e.key, e.default_on);
+}
+
+// Every registered mode reads its own section by its own declaration: ranges (and the mode's own
+// check) apply only when its effect is on; unknown keys and types are refused always.
+void SceneBuilder::read_heat_modes() {
+  for (const auto* mode : thermal::heat_transfer_modes()) {
+    if (mode->section.empty()) continue;
+    const bool on = switched_on(scene_.effects, *mode);
+    const SceneTable t = section(mode->section, on);
+    std::vector<double> values;
+    for (const auto& p : mode->parameters) {
+      values.push_back(t.number(p.key, p.default_value, p.range));
+      scene_.heat_modes.set(mode->name, p.key, values.back());
+    }
+    if (on && mode->check)
+      if (const auto problem = mode->check(thermal::ModeParameters(*mode, std::move(values))))
+        t.fail(problem->key, problem->problem);
+  }
+}
+
+// Defaults, ranges and choices of these sections are the schema's (SceneSchema.cpp), so the
+// scene reference shows exactly what is checked here.
+void SceneBuilder::read_settings() {
+  const bool mechanics_on = scene_.effects.mechanics != MechanicsMode::Off;
+  {
+    const SceneTable t = section("mechanics", mechanics_on);
+    auto& m = scene_.mechanics;
+    m.time_step_s = t.number("time_step");
+    m.theta = t.number("theta");
+    m.solver = t.choice("solver");
+    m.tolerance = t.number("tolerance");
+    const auto iterations = t.integer("max_iterations", m.max_iterations,
+                                      mechanics_on ? 1 : std::numeric_limits<int>::min(),
+                                      std::numeric_limits<int>::max());
+    m.max_iterations = static_cast<int>(iterations);
+    m.settle_time_s = t.number("settle_time");
+    m.settle_velocity_m_per_s = t.number("settle_velocity");
+  }
+  {
+    const SceneTable t = section("thermal", true);
+    auto& th = scene_.thermal;
+    th.integrator = t.choice("integrator");
+    th.linear_solver = t.choice("linear_solver");
+    th.relative_tolerance = t.number("relative_tolerance");
+    th.absolute_tolerance_K = t.number("absolute_tolerance");
+    th.explicit_step_s = t.number("explicit_step");
+    th.conductance = t.choice("conductance");
+    th.constant_conductance_W_per_K = t.number("constant_conductance");
+    th.coupling = t.choice("coupling");
+    if (contacts_carry_heat(scene_.effects) && !mechanics_on && th.conductance == "hertz") {
+      if (t.has("conductance"))
+        t.fail("conductance",
+               "\"hertz\" needs contact forces but effects.mechanics = \"off\"; use "
+               "conductance = \"constant\" or mechanics = \"settle\" or \"dynamic\"");
+      const SceneTable effects = section("effects", true);
+      effects.fail("mechanics",
+                   "\"off\" leaves no contact forces for thermal.conductance = \"hertz\" "
+                   "(the default); set thermal.conductance = \"constant\"");
+    }
+  }
+  {
+    const SceneTable t = section("output", true);
+    auto& o = scene_.output;
+    o.file = t.optional_string("file").value_or(o.file);
+    if (o.file.empty()) t.fail("file", "must not be empty");
+    o.interval_s = t.number("interval");
+    o.contacts = t.boolean("contacts", o.contacts);
+    o.checkpoint_interval_s = t.number("checkpoint_interval");
+  }
+}
+
+}  // namespace tmdem::coupling

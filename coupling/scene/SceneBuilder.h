@@ -1,0 +1,89 @@
+#pragma once
+// Builds a Scene from a parsed scene table (the build step of SceneLoader: parse -> overrides ->
+// build -> validate). Internal to coupling/scene; its members live in three files by what they
+// read: SceneBuilder.cpp (the settings sections, the effects and the heat-transfer modes'
+// sections), SceneBuilderBodies.cpp (materials, particles, walls, [[assign]]) and
+// SceneBuilderGenerators.cpp ([[generate]]). Checks across the whole scene are in
+// SceneValidation.h.
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <toml++/toml.h>
+
+#include "coupling/scene/Scene.h"
+#include "coupling/scene/SceneError.h"
+#include "coupling/scene/SceneTable.h"
+
+namespace tmdem::coupling {
+
+inline constexpr std::int64_t kMaxParticles = 10'000'000;  // sanity bound on generated counts
+inline constexpr std::int64_t kIntMax = std::numeric_limits<std::int64_t>::max();
+inline constexpr double kOverlapTolerance = 1e-9;  // of the smaller radius (contract section 2)
+
+// "[x, y, z]" for messages.
+std::string format_vec3(const Vec3& v);
+
+// Per-particle settings shared by [[particle]], [[generate]] and [[assign]].
+struct ParticleSettings {
+  std::optional<double> temperature_K;
+  std::optional<bool> fixed_temperature;
+  std::optional<double> heat_source_W;
+  std::optional<bool> fixed;
+  std::optional<int> material;
+
+  bool any() const {
+    return temperature_K || fixed_temperature || heat_source_W || fixed || material;
+  }
+  void apply_to(Particle& p) const {
+    if (temperature_K) p.temperature_K = *temperature_K;
+    if (fixed_temperature) p.fixed_temperature = *fixed_temperature;
+    if (heat_source_W) p.heat_source_W = *heat_source_W;
+    if (fixed) p.fixed = *fixed;
+    if (material) p.material = *material;
+  }
+};
+
+class SceneBuilder {
+ public:
+  SceneBuilder(const toml::table& root, std::string source)
+      : root_(&root, "", "", source), source_(std::move(source)) {}
+
+  // The scene, every value checked; throws SceneError naming the first problem.
+  Scene build();
+
+ private:
+  // SceneBuilder.cpp
+  void read_format();
+  SceneTable section(std::string_view key, bool enforce) const;
+  void read_simulation();
+  void read_effects();
+  void read_heat_modes();
+  void read_settings();
+  // SceneBuilderBodies.cpp
+  void read_materials();
+  int material_of(const SceneTable& t, std::string_view key) const;
+  ParticleSettings read_settings_of(const SceneTable& t) const;
+  void add_particle(const Vec3& position, double radius, const ParticleSettings& settings,
+                    const std::string& origin, const SceneTable& t);
+  void read_particles();
+  void read_walls();
+  void read_assigns();
+  // SceneBuilderGenerators.cpp
+  void read_generators();
+  void check_total(const SceneTable& t, std::string_view key, std::int64_t count) const;
+  void read_random(const SceneTable& t, std::size_t index, std::vector<Vec3>& positions,
+                   std::vector<double>& radii);
+
+  SceneTable root_;
+  std::string source_;
+  Scene scene_;
+  std::vector<std::string> origins_;  // per particle: "particle[3]" or "generate[0]"
+  std::map<std::string, int> material_ids_;
+};
+
+}  // namespace tmdem::coupling

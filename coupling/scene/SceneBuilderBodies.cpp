@@ -1,0 +1,155 @@
+#include <cmath>
+
+#include "coupling/scene/SceneBuilder.h"
+
+namespace tmdem::coupling {
+
+namespace {
+constexpr double kDefaultTemperature_K = 293.15;  // new particles without a temperature
+}  // namespace
+
+void SceneBuilder::read_materials() {
+  // Required: name, density, young_modulus, poisson_ratio, conductivity, heat_capacity.
+  // Optional: friction (default 0.3), emissivity (default 0.0).
+  const auto tables = root_.table_array("material", true);
+  for (const SceneTable& t : tables) {
+    Material m;
+    m.name = t.required_string("name");
+    if (m.name.empty()) t.fail("name", "must not be empty");
+    if (const auto it = material_ids_.find(m.name); it != material_ids_.end())
+      t.fail("name", "duplicate material name " + quote_text(m.name) + " (also material[" +
+                         std::to_string(it->second) + "])");
+    m.density_kg_per_m3 = t.required_number("density");
+    m.young_modulus_Pa = t.required_number("young_modulus");
+    m.poisson_ratio = t.required_number("poisson_ratio");
+    m.friction = t.number("friction");
+    m.conductivity_W_per_mK = t.required_number("conductivity");
+    m.heat_capacity_J_per_kgK = t.required_number("heat_capacity");
+    m.emissivity = t.number("emissivity");
+    material_ids_.emplace(m.name, static_cast<int>(scene_.materials.size()));
+    scene_.materials.push_back(std::move(m));
+  }
+}
+
+int SceneBuilder::material_of(const SceneTable& t, std::string_view key) const {
+  const std::string name = t.required_string(key);
+  if (const auto it = material_ids_.find(name); it != material_ids_.end()) return it->second;
+  std::string known;
+  for (const auto& m : scene_.materials) known += (known.empty() ? "" : ", ") + quote_text(m.name);
+  t.fail(key, "unknown material " + quote_text(name) +
+                  (known.empty() ? " (the scene defines no [[material]])"
+                                 : " (materials: " + known + ")"));
+}
+
+ParticleSettings SceneBuilder::read_settings_of(const SceneTable& t) const {
+  ParticleSettings s;
+  s.temperature_K = t.optional_number("temperature");
+  s.fixed_temperature = t.optional_boolean("fixed_temperature");
+  s.heat_source_W = t.optional_number("heat_source");
+  s.fixed = t.optional_boolean("fixed");
+  if (t.has("material")) s.material = material_of(t, "material");
+  return s;
+}
+
+void SceneBuilder::add_particle(const Vec3& position, double radius, const ParticleSettings& settings,
+                  const std::string& origin, const SceneTable& t) {
+  if (static_cast<std::int64_t>(scene_.particles.size()) >= kMaxParticles)
+    t.fail_here("too many particles (at most " + std::to_string(kMaxParticles) + ")");
+  Particle p;
+  p.position_m = position;
+  p.radius_m = radius;
+  p.temperature_K = kDefaultTemperature_K;
+  settings.apply_to(p);
+  scene_.particles.push_back(p);
+  origins_.push_back(origin);
+}
+
+void SceneBuilder::read_particles() {
+  const auto tables = root_.table_array("particle", true);
+  for (const SceneTable& t : tables) {
+    const Vec3 position = t.required_vec3("position", scene_.dimension);
+    const double radius = t.required_number("radius");
+    if (!t.has("material")) t.missing("material");
+    add_particle(position, radius, read_settings_of(t), t.path(), t);
+  }
+}
+
+void SceneBuilder::read_walls() {
+  const auto tables = root_.table_array("wall", true);
+  for (const SceneTable& t : tables) {
+    Wall w;
+    w.point_m = t.required_vec3("point", scene_.dimension);
+    const Vec3 n = t.required_vec3("normal", scene_.dimension);
+    const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (!(length > 0.0) || !std::isfinite(length))
+      t.fail("normal", "must be a non-zero vector (got " + format_vec3(n) + ")");
+    w.normal = {n[0] / length, n[1] / length, n[2] / length};
+    w.material = material_of(t, "material");
+    w.temperature_K = t.optional_number("temperature");
+    scene_.walls.push_back(w);
+  }
+}
+
+void SceneBuilder::read_assigns() {
+  const auto tables = root_.table_array("assign", true);
+  const std::int64_t n = static_cast<std::int64_t>(scene_.particles.size());
+  for (const SceneTable& t : tables) {
+    const int selectors = int(t.has("ids")) + int(t.has("box")) + int(t.has("nearest"));
+    if (selectors != 1)
+      t.fail_here("give exactly one selector: ids, box or nearest (got " +
+                  std::to_string(selectors) + ")");
+    std::vector<std::size_t> selected;
+    if (t.has("ids")) {
+      const auto ids = t.required_integers("ids", 0, kIntMax);
+      const auto* array = t.node("ids")->as_array();
+      for (std::size_t i = 0; i < ids.size(); ++i) {
+        if (ids[i] >= n)
+          t.fail_at(array->get(i), t.key_path("ids") + "[" + std::to_string(i) + "]",
+                    "particle id " + std::to_string(ids[i]) + " does not exist (the scene has " +
+                        std::to_string(n) + " particles, ids 0 to " + std::to_string(n - 1) +
+                        ")");
+        selected.push_back(static_cast<std::size_t>(ids[i]));
+      }
+    } else if (t.has("box")) {
+      const auto box = t.optional_table("box", true);
+      const Vec3 lo = box->required_vec3("min", scene_.dimension);
+      const Vec3 hi = box->required_vec3("max", scene_.dimension);
+      const int dims = scene_.dimension;  // in 2D the z range is ignored
+      for (std::size_t i = 0; i < scene_.particles.size(); ++i) {
+        const Vec3& x = scene_.particles[i].position_m;
+        bool inside = true;
+        for (int d = 0; d < dims; ++d) inside = inside && x[d] >= lo[d] && x[d] <= hi[d];
+        if (inside) selected.push_back(i);
+      }
+      if (selected.empty())
+        t.fail("box", "selects no particle (min = " + format_vec3(lo) + ", max = " +
+                          format_vec3(hi) + "; a particle is selected when its centre is "
+                          "inside)");
+    } else {
+      const auto nearest = t.optional_table("nearest", true);
+      const Vec3 point = nearest->required_vec3("point", scene_.dimension);
+      const auto count = nearest->required_integer("count", 1, kIntMax);
+      if (count > n)
+        nearest->fail("count", "must be at most the number of particles, " + std::to_string(n) +
+                                   " (got " + std::to_string(count) + ")");
+      const int dims = scene_.dimension;  // in 2D distances are measured in the xy-plane
+      std::vector<std::pair<double, std::size_t>> order;
+      order.reserve(scene_.particles.size());
+      for (std::size_t i = 0; i < scene_.particles.size(); ++i) {
+        const Vec3& x = scene_.particles[i].position_m;
+        double d2 = 0.0;
+        for (int d = 0; d < dims; ++d) d2 += (x[d] - point[d]) * (x[d] - point[d]);
+        order.emplace_back(d2, i);
+      }
+      std::partial_sort(order.begin(), order.begin() + count, order.end());
+      for (std::int64_t k = 0; k < count; ++k) selected.push_back(order[std::size_t(k)].second);
+    }
+    const ParticleSettings settings = read_settings_of(t);
+    if (!settings.any())
+      t.fail_here("sets nothing: give any of temperature, fixed_temperature, heat_source, "
+                  "fixed, material");
+    for (const std::size_t i : selected) settings.apply_to(scene_.particles[i]);
+  }
+}
+
+}  // namespace tmdem::coupling

@@ -1,0 +1,9 @@
+#pragma once
+// The test-only fault_injection heat-transfer mode (see FaultInjectionMode.cpp).
+#include "thermal/ModeDescription.h"
+
+namespace tmdem::testing {
+
+const thermal::ModeDescription& fault_injection_mode();
+
+}  // namespace tmdem::testing

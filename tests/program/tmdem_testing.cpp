@@ -1,0 +1,10 @@
+// tmdem_testing: the tmdem program plus the test-only heat-transfer modes. The production
+// binary never registers them, so it neither contains nor honours them.
+#include "FaultInjectionMode.h"
+#include "coupling/app/TmdemMain.h"
+#include "thermal/ModeRegistry.h"
+
+int main(int argc, char** argv) {
+  tmdem::thermal::register_heat_transfer_mode(tmdem::testing::fault_injection_mode());
+  return tmdem::coupling::tmdem_main(argc, argv);
+}

@@ -94,7 +94,7 @@ TEST(EndToEndModes, ProductionBinaryNeitherContainsNorHonoursTheTestOnlyFaultMod
   EXPECT_EQ(bytes.find("TMDEM_FAULT_AFTER_RHS_EVALS"), std::string::npos);
 
   const auto dir = scratch_dir("modes_fault_refused");
-  write_file(dir + "/s.toml", scene("fault_injection = true\n", ""));
+  write_file(dir + "/s.toml", scene().set("effects.fault_injection", true));
   const auto r = run_tmdem("check s.toml", dir);
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("effects.fault_injection: unknown key"), std::string::npos) << r.output;
@@ -107,7 +107,6 @@ TEST(EndToEndModes, ARegisteredModeValidatesItsOwnKeysWithExitTwo) {
   // tmdem_testing registers fault_injection: its section is read and checked by its own
   // declaration (range >= 0, and its own check: a whole number).
   const auto dir = scratch_dir("modes_fault_keys");
-  const std::string base = "fault_injection = true\n";
   const std::string testing = std::string("'") + TMDEM_TESTING_BINARY + "' ";
   auto run_testing = [&](const std::string& args) {
     const std::string cmd = "cd '" + dir + "' && " + testing + args + " > log.txt 2>&1";
@@ -117,12 +116,16 @@ TEST(EndToEndModes, ARegisteredModeValidatesItsOwnKeysWithExitTwo) {
     text << in.rdbuf();
     return std::pair{WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
   };
-  write_file(dir + "/s.toml", scene(base, "[fault_injection]\nafter_rhs_evaluations = -3\n"));
+  write_file(dir + "/s.toml", scene()
+                                  .set("effects.fault_injection", true)
+                                  .set("fault_injection.after_rhs_evaluations", -3));
   auto [code, log] = run_testing("check s.toml");
   EXPECT_EQ(code, 2) << log;
   EXPECT_NE(log.find("fault_injection.after_rhs_evaluations: must be >= 0 (got -3)"),
             std::string::npos) << log;
-  write_file(dir + "/s.toml", scene(base, "[fault_injection]\nafter_rhs_evaluations = 2.5\n"));
+  write_file(dir + "/s.toml", scene()
+                                  .set("effects.fault_injection", true)
+                                  .set("fault_injection.after_rhs_evaluations", 2.5));
   std::tie(code, log) = run_testing("check s.toml");
   EXPECT_EQ(code, 2) << log;
   EXPECT_NE(log.find("fault_injection.after_rhs_evaluations: must be a whole number (got 2.5)"),

@@ -14,6 +14,7 @@
 #include "coupling/app/SceneCheck.h"
 #include "coupling/scene/SceneError.h"
 #include "coupling/scene/SceneLoader.h"
+#include "coupling/scene/SceneReference.h"
 
 namespace tmdem::coupling {
 
@@ -85,6 +86,11 @@ int tmdem_main(int argc, char** argv) {
   coupling->add_option("--set", sets, "override one scene value, KEY=VALUE")->allow_extra_args(false);
   study->require_subcommand(1);
 
+  auto* docs = app.add_subcommand("docs", "print generated reference documentation");
+  auto* docs_scene = docs->add_subcommand(
+      "scene", "the scene file reference (Markdown): every key with unit, default, range");
+  docs->require_subcommand(1);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -120,6 +126,10 @@ int tmdem_main(int argc, char** argv) {
                   << " s wall time, energy balance error "
                   << outcome.summary.energy.balance_error_rel << ")" << std::endl;
       return outcome.exit_code;
+    }
+    if (*docs_scene) {
+      std::cout << scene_reference_markdown();
+      return kExitOk;
     }
     if (*check) {
       const Scene scene = load(check_path, sets);

@@ -137,3 +137,15 @@ TEST(EndToEndModes, ARegisteredModeValidatesItsOwnKeysWithExitTwo) {
   EXPECT_NE(log.find("modes: contact_conduction wall_conduction heat_source fault_injection"),
             std::string::npos) << log;
 }
+
+TEST(EndToEndModes, DocsSceneCommandPrintsTheCommittedReference) {
+  const auto dir = scratch_dir("docs_scene");
+  const auto r = run_tmdem("docs scene", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream in(std::string(TMDEM_SOURCE_DIR) + "/docs/scene.md");
+  std::stringstream committed;
+  committed << in.rdbuf();
+  EXPECT_TRUE(r.output == committed.str())
+      << "docs/scene.md differs from `tmdem docs scene`; regenerate it with:\n"
+         "  build/tmdem docs scene > docs/scene.md";
+}

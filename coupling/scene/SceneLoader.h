@@ -1,6 +1,7 @@
 #pragma once
 // Scene loading and validation (contract section 2): TOML text -> --set overrides -> checked,
-// generated, assigned Scene. Every problem is a SceneError (exit code 2) whose message names
+// generated, assigned Scene (parse: SceneLoader.cpp; build: SceneBuilder; validate:
+// SceneValidation, SceneLimits). Every problem is a SceneError (exit code 2) whose message names
 // what is wrong:
 //   TOML syntax         "bed.toml:12:7: TOML syntax error: <description>"
 //   bad value           "bed.toml:14:17: material[1].young_modulus: must be > 0 (got -5)"
@@ -30,12 +31,13 @@
 //   material; a box that selects nothing is an error. In 2D, box and nearest ignore z.
 // - Vectors have 3 components, or 2 in 2D (z = 0). In 2D gravity z must be 0 and a lattice's
 //   nz must be 1.
-// - Temperatures > 0 K (radiation.ambient_temperature >= 0); convection.coefficient >= 0;
+// - Every key's range, default and choices: docs/scene.md (generated from SceneSchema, the
+//   heat-transfer modes' sections from each mode's own declaration). Temperatures > 0 K;
 //   max_iterations >= 1; settle_time, settle_velocity, constant_conductance > 0;
 //   checkpoint_interval >= 0; output.file non-empty.
 // - effects.mechanics = "off" with conductance = "hertz" is an error when conduction is on.
-// - Range checks of [convection], [radiation] and [mechanics] apply only when their effect is
-//   on; unknown keys and types are checked always.
+// - Range checks of a heat-transfer mode's section (and its own check) and of [mechanics] apply
+//   only when their effect is on; unknown keys and types are checked always.
 // - Particles overlapping each other (mechanics::find_overlaps) or a wall at start
 //   (gap < -1e-9 r) are errors naming the particle ids (and wall index). A scene needs at
 //   least one particle.

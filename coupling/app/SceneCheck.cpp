@@ -7,6 +7,7 @@
 #include "coupling/bridge/SceneToMechanics.h"
 #include "coupling/bridge/ThermalDiagnostics.h"
 #include "coupling/run/ThermalProblem.h"
+#include "coupling/scene/SceneLimits.h"
 #include "mechanics/TouchingPairs.h"
 #include "thermal/ModeRegistry.h"
 
@@ -52,6 +53,11 @@ void check_scene(const Scene& scene, std::ostream& out) {
   for (const auto& e : thermal::heat_transfer_effects())
     out << ", " << e.key << (scene.effects.on(e.key) ? " on" : " off");
   out << "\n";
+  const SceneResources resources = estimate_resources(scene);
+  out << "estimated output: " << resources.frames << " frames, about "
+      << resources.output_bytes / 1e6 << " MB (result file and XDMF"
+      << (scene.output.contacts ? ", contacts estimated at 3 per particle" : "")
+      << "); memory about " << resources.memory_bytes / 1e6 << " MB\n";
   out << "thermal: integrator " << scene.thermal.integrator << ", linear solver "
       << scene.thermal.linear_solver << ", conductance " << scene.thermal.conductance << "\n";
 

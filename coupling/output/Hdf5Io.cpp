@@ -5,6 +5,15 @@
 namespace tmdem::coupling::hdf5 {
 namespace {
 
+// HDF5 closes every file still registered from an atexit handler (H5close). A file whose last
+// flush failed (disk full) stays registered half-closed, and that handler then crashes inside
+// H5F__close_cb (exit 139 after the right error message). tmdem closes every id itself
+// (Hdf5Handle), so the handler has nothing to do: switch it off before the library starts.
+const bool kNoTeardownAtExit = [] {
+  H5dont_atexit();
+  return true;
+}();
+
 herr_t keep_innermost(unsigned n, const H5E_error2_t* error, void* data) {
   if (n == 0 && error->desc != nullptr) *static_cast<std::string*>(data) = error->desc;
   return 0;

@@ -366,7 +366,10 @@ RunOutcome CoupledRun::run() {
     progress_.done();
     if (!message.empty()) log_ << "error: " << message << std::endl;
     auto report = [&](const OutputError& e) {
-      if (message.empty() || message != e.what()) log_ << "error: " << e.what() << std::endl;
+      // After a failure of the result file, closing it fails for the same reason: one line.
+      const bool same_file = code != kExitOk && std::string(e.what()).find(
+                                                    "'" + options_.output_path + "'") != std::string::npos;
+      if (!same_file) log_ << "error: " << e.what() << std::endl;
       if (code == kExitOk) code = kExitIo, status = "failed";
     };
     summary_.status = status;

@@ -1,0 +1,118 @@
+// End to end: SIGTERM to a running dynamic scene finishes the step, writes a last frame and a
+// checkpoint, marks result and summary "interrupted", says how to resume and exits 143; a second
+// writer of the same result meanwhile is refused; the checkpoint resumes to a completed run.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "E2eSupport.h"
+
+using namespace tmdem::e2e;
+namespace fs = std::filesystem;
+
+namespace {
+
+pid_t spawn_tmdem(const std::vector<std::string>& args, const std::string& dir) {
+  const pid_t pid = fork();
+  if (pid != 0) return pid;
+  if (chdir(dir.c_str()) != 0) _exit(127);
+  const int fd = open("child.log", O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  dup2(fd, 1);
+  dup2(fd, 2);
+  std::vector<char*> argv{const_cast<char*>(TMDEM_BINARY)};
+  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  execv(TMDEM_BINARY, argv.data());
+  _exit(127);
+}
+
+std::string text_of(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::size_t frames_in_xdmf(const std::string& path) {
+  const std::string text = text_of(path);
+  std::size_t n = 0;
+  for (auto at = text.find("<Grid Name=\"frame_"); at != std::string::npos;
+       at = text.find("<Grid Name=\"frame_", at + 1))
+    ++n;
+  return n;
+}
+
+TEST(EndToEndInterrupt, SigtermLeavesInterruptedResultSummaryCheckpointAndExit143) {
+  const auto dir = scratch_dir("interrupt");
+  fs::copy_file(fs::path(TMDEM_SOURCE_DIR) / "examples" / "poured_bed.toml", dir + "/bed.toml");
+  const pid_t child = spawn_tmdem({"run", "bed.toml", "--quiet", "-o", "out.h5", "--summary",
+                                   "s.json", "--set", "simulation.duration=50"},
+                                  dir);
+  ASSERT_GT(child, 0);
+  // Wait until the run has written a few frames (the XDMF follows every frame).
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (frames_in_xdmf(dir + "/out.xdmf") < 3 && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  ASSERT_GE(frames_in_xdmf(dir + "/out.xdmf"), 3u) << text_of(dir + "/child.log");
+
+  // A second writer of the same file is refused while the first runs, naming the file.
+  const auto second = run_tmdem("run bed.toml --quiet --overwrite -o out.h5 "
+                                "--set simulation.duration=50",
+                                dir);
+  EXPECT_EQ(second.exit_code, 4) << second.output;
+  EXPECT_NE(second.output.find("out.h5"), std::string::npos) << second.output;
+  EXPECT_NE(second.output.find("another process"), std::string::npos) << second.output;
+
+  ASSERT_EQ(kill(child, SIGTERM), 0);
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  const std::string log = text_of(dir + "/child.log");
+  ASSERT_TRUE(WIFEXITED(status)) << log;
+  EXPECT_EQ(WEXITSTATUS(status), 143) << log;
+  EXPECT_NE(log.find("interrupted by SIGTERM"), std::string::npos) << log;
+  EXPECT_NE(log.find("--restart out.checkpoint.h5"), std::string::npos) << log;
+
+  double interrupted_at_s = 0.0;
+  std::size_t frames = 0;
+  {
+    H5::H5File file(dir + "/out.h5", H5F_ACC_RDONLY);
+    EXPECT_EQ(read_string_attribute(file, "status"), "interrupted");
+    const auto times = read_doubles(file, "/frames/time");
+    ASSERT_GE(times.size(), 3u);
+    frames = times.size();
+    interrupted_at_s = times.back();
+    H5::H5File checkpoint(dir + "/out.checkpoint.h5", H5F_ACC_RDONLY);
+    double checkpoint_time_s = -1.0;
+    checkpoint.openAttribute("time_s").read(H5::PredType::NATIVE_DOUBLE, &checkpoint_time_s);
+    EXPECT_EQ(checkpoint_time_s, interrupted_at_s);  // the last frame is the checkpoint's moment
+    EXPECT_LT(interrupted_at_s, 50.0);
+  }
+  EXPECT_EQ(frames_in_xdmf(dir + "/out.xdmf"), frames);
+  const auto summary = read_summary(dir + "/s.json");
+  EXPECT_EQ(summary["status"], "interrupted");
+  EXPECT_DOUBLE_EQ(summary["simulated_time_s"].get<double>(), interrupted_at_s);
+
+  // The checkpoint resumes: a little further, then the run completes.
+  std::ostringstream end;
+  end << interrupted_at_s + 0.03;
+  const auto resumed = run_tmdem("run bed.toml --quiet -o out.h5 --restart out.checkpoint.h5 "
+                                 "--set simulation.duration=" + end.str(),
+                                 dir);
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  H5::H5File file(dir + "/out.h5", H5F_ACC_RDONLY);
+  EXPECT_EQ(read_string_attribute(file, "status"), "ok");
+  const auto times = read_doubles(file, "/frames/time");
+  EXPECT_GT(times.size(), frames);
+  for (std::size_t f = 1; f < times.size(); ++f) EXPECT_LT(times[f - 1], times[f]) << f;
+  EXPECT_NEAR(times.back(), interrupted_at_s + 0.03, 1e-9);
+}
+
+}  // namespace

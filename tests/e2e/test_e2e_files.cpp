@@ -21,30 +21,16 @@ namespace {
 
 // A small thermal-only lattice (mechanics off): runs in milliseconds.
 std::string lattice_scene(int nx, double conductance_W_per_K) {
-  return R"(format = "tmdem-scene-1"
-[simulation]
-duration = 4.0
-[effects]
-mechanics = "off"
-)" + kSteelMaterial + R"([[generate]]
-kind = "lattice"
-counts = [)" + std::to_string(nx) + R"(, 2, 2]
-spacing = 0.002
-radius = 0.001
-origin = [0.001, 0.001, 0.001]
-material = "steel"
-temperature = 293.15
-[[assign]]
-ids = [0]
-temperature = 373.15
-[thermal]
-conductance = "constant"
-constant_conductance = )" + std::to_string(conductance_W_per_K) + R"(
-[output]
-file = "out.h5"
-interval = 1.0
-checkpoint_interval = 2.0
-)";
+  using namespace tmdem::test;
+  return thermal_scene()
+      .set({{"simulation.duration", 4.0},
+            {"thermal.constant_conductance", conductance_W_per_K},
+            {"output.file", "out.h5"},
+            {"output.interval", 1.0},
+            {"output.checkpoint_interval", 2.0}})
+      .add("generate", lattice({nx, 2, 2}))
+      .add("assign", assign_ids({0}, {{"temperature", 373.15}}))
+      .str();
 }
 
 std::string bytes_of(const std::string& path) {
@@ -140,7 +126,7 @@ ProgramResult run_with_file_limit(const std::string& args, const std::string& di
 
 TEST(EndToEndFiles, FullDiskEndsWithExit4AndOneMessageNeverACrash) {
   const auto dir = scratch_dir("files_full");
-  write_file(dir + "/s.toml", lattice_scene(20, 1e-3) + "contacts = true\n");
+  write_file(dir + "/s.toml", lattice_scene(20, 1e-3));
   for (int limit_kb : {4, 12, 40, 200}) {
     SCOPED_TRACE(limit_kb);
     for (const auto& name : outputs_in(dir)) fs::remove(dir + "/" + name);

@@ -16,32 +16,20 @@ TEST(EndToEndTangential, SlidingSphereOnInclineCarriesMuTimesNormalForce) {
   const double theta = M_PI / 6.0, mu = 0.1, r = 0.001, rho = 7800.0, g = 9.81;
   const double n[3] = {-std::sin(theta), std::cos(theta), 0.0};  // wall normal, into the domain
   const double up[3] = {std::cos(theta), std::sin(theta), 0.0};  // up the slope
-  char position[160];
-  std::snprintf(position, sizeof position, "[%.17g, %.17g, 0.0]", n[0] * r * (1 + 1e-12),
-                n[1] * r * (1 + 1e-12));
-  char normal[160];
-  std::snprintf(normal, sizeof normal, "[%.17g, %.17g, 0.0]", n[0], n[1]);
-  const std::string scene = std::string(R"(format = "tmdem-scene-1"
-[simulation]
-duration = 0.02
-gravity = [0.0, -9.81, 0.0]
-[effects]
-mechanics = "dynamic"
-)") + kSteelMaterial + "friction = 0.1\n" + R"([[particle]]
-position = )" + position + R"(
-radius = 0.001
-material = "steel"
-[[wall]]
-point = [0.0, 0.0, 0.0]
-normal = )" + normal + R"(
-material = "steel"
-[mechanics]
-time_step = 1.0e-4
-tolerance = 1.0e-10
-[output]
-file = "out.h5"
-interval = 0.005
-)";
+  using namespace tmdem::test;
+  const std::string scene =
+      SceneBuilder()
+          .set({{"simulation.duration", 0.02},
+                {"simulation.gravity", {0.0, -g, 0.0}},
+                {"effects.mechanics", "dynamic"},
+                {"mechanics.time_step", 1.0e-4},
+                {"mechanics.tolerance", 1.0e-10},
+                {"output.file", "out.h5"},
+                {"output.interval", 0.005}})
+          .add("material", steel({{"friction", mu}}))
+          .add("particle", particle({n[0] * r * (1 + 1e-12), n[1] * r * (1 + 1e-12), 0.0}))
+          .add("wall", plane_wall({0.0, 0.0, 0.0}, {n[0], n[1], 0.0}))
+          .str();
   const auto dir = scratch_dir("tangential");
   write_file(dir + "/s.toml", scene);
   const auto run = run_tmdem("run s.toml --quiet", dir);
@@ -73,23 +61,11 @@ interval = 0.005
 
 TEST(EndToEndTangential, WithoutMechanicsTangentialForceIsZero) {
   const auto dir = scratch_dir("tangential_off");
-  write_file(dir + "/s.toml", R"(format = "tmdem-scene-1"
-[simulation]
-duration = 1.0
-[effects]
-mechanics = "off"
-)" + kSteelMaterial + R"([[generate]]
-kind = "column"
-count = 3
-radius = 0.001
-origin = [0.0, 0.001, 0.0]
-material = "steel"
-[thermal]
-conductance = "constant"
-[output]
-file = "out.h5"
-interval = 0.5
-)");
+  using namespace tmdem::test;
+  write_file(dir + "/s.toml", thermal_scene()
+                                  .set(output("out.h5", 0.5))
+                                  .add("generate", column(3))
+                                  .str());
   ASSERT_EQ(run_tmdem("run s.toml --quiet", dir).exit_code, 0);
   H5::H5File file(dir + "/out.h5", H5F_ACC_RDONLY);
   std::vector<hsize_t> dims;

@@ -1,10 +1,27 @@
 #!/usr/bin/env bash
-# Install what is missing, build in build/, then run the whole ctest suite.
-# Extra arguments go to ctest, e.g. ./test.sh -L thermal  or  ./test.sh -LE stability
+# Install what is missing, build in build/, then run the whole ctest suite; then build the fast
+# tests and the scene fuzzer with ASan+UBSan (clang) in build-asan/ and run them there (labels
+# fast and fuzz; any leak, sanitizer or UB report fails them).
+# Extra arguments go to the first ctest, e.g. ./test.sh -L thermal  or  ./test.sh -LE stability
+# TMDEM_SKIP_SANITIZE=1 skips the second build; TMDEM_FUZZ_SECONDS sets the fuzzing budget (60).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+jobs="$(nproc)"
 "$root/scripts/setup.sh"
 # Layering: mechanics and thermal never include each other; coupling rooms include downwards only.
 "$root/scripts/check_layers.sh"
-cd "$root/build"
-ctest --output-on-failure -j "$(nproc)" --timeout 600 "$@"
+(cd "$root/build" && ctest --output-on-failure -j "$jobs" --timeout 600 "$@")
+
+[ "${TMDEM_SKIP_SANITIZE:-0}" = 1 ] && exit 0
+# -O1 keeps the sanitizer build quick to compile and run; asserts stay on (no NDEBUG).
+CC=clang-14 CXX=clang++-14 cmake -S "$root" -B "$root/build-asan" -DCMAKE_BUILD_TYPE=Debug \
+  "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -g1" "-DCMAKE_C_FLAGS_DEBUG=-O1 -g1" \
+  -DTMDEM_SANITIZE=ON -DTMDEM_FUZZ=ON -DTMDEM_FUZZ_SECONDS="${TMDEM_FUZZ_SECONDS:-60}" >&2
+cmake --build "$root/build-asan" -j "$jobs" --target \
+  test_mechanics test_thermal test_coupling_scene test_coupling_output fuzz_scene >&2
+export ASAN_OPTIONS="halt_on_error=1:abort_on_error=1:detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1"
+export UBSAN_OPTIONS="halt_on_error=1:abort_on_error=1:print_stacktrace=1"
+cd "$root/build-asan"
+# The long settling runs of NscdPile take 30-190 s each under ASan; the Release suite runs them.
+ctest --output-on-failure -j "$jobs" --timeout 600 -L 'fast|fuzz' \
+  -E '^NscdPile\.(MechanicalEnergyNeverGrows|TwoDimensionalRunStaysExactlyInPlane|SettlesBelowSettleVelocity)'

@@ -6,7 +6,8 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 
 packages=(build-essential cmake pkg-config libsundials-dev libsuitesparse-dev libeigen3-dev
           libhdf5-dev libgtest-dev libbenchmark-dev libtomlplusplus-dev libcli11-dev
-          nlohmann-json3-dev python3-matplotlib python3-h5py)
+          nlohmann-json3-dev python3-matplotlib python3-h5py
+          clang-14 libclang-rt-14-dev)  # clang: the sanitizer build and libFuzzer (build-asan/)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

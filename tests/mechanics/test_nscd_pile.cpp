@@ -21,12 +21,20 @@ void* operator new(std::size_t size) {
   if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
   throw std::bad_alloc();
 }
+// The nothrow form too (std::stable_sort's temporary buffer uses it): otherwise its memory
+// comes from the library's operator new and goes back through the free() below, which ASan
+// reports as an alloc-dealloc mismatch.
+void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
+  if (g_count_allocations.load(std::memory_order_relaxed)) ++g_allocations;
+  return std::malloc(size == 0 ? 1 : size);
+}
 // The replaced operator new uses malloc, so free is the matching release (GCC cannot see
 // the replacement and warns otherwise).
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmismatched-new-delete"
 void operator delete(void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
 #pragma GCC diagnostic pop
 
 // The properties below do not depend on how tightly each step is solved, so most tests use

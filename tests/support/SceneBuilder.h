@@ -106,8 +106,9 @@ class SceneBuilder {
     return *this;
   }
   SceneBuilder& erase(std::string_view path) {
-    auto [block, key] = locate(path, false);
-    std::erase_if(block->keys, [&](const auto& entry) { return entry.first == key; });
+    const auto [block, key] = locate(path, false);
+    const std::string_view name = key;  // clang 14 cannot capture a structured binding
+    std::erase_if(block->keys, [name](const auto& entry) { return entry.first == name; });
     return *this;
   }
   // Sets each "section.key" of a list, in order.

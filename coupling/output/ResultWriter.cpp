@@ -2,6 +2,7 @@
 
 #include <hdf5.h>
 
+#include <chrono>
 #include <filesystem>
 #include <stdexcept>
 #include <system_error>
@@ -41,6 +42,8 @@ struct ResultWriter::Impl {
   std::size_t particles = 0;
   std::vector<double> times;      // of the frames written, for the XDMF
   std::int64_t contact_rows = 0;  // rows in /contacts/*
+  std::size_t xdmf_frames = 0;    // frames in the last XDMF written
+  std::chrono::steady_clock::time_point xdmf_time = std::chrono::steady_clock::now();
   bool finished = true;           // false once the file is complete and open
 
   Impl() = default;
@@ -56,6 +59,22 @@ struct ResultWriter::Impl {
       close_with_status("failed");
     } catch (...) {
       // Best effort only: a destructor never throws.
+    }
+  }
+
+  // The XDMF lists every frame, so rewriting it costs O(frames): rewriting it after every frame
+  // made 4,000 frames take 28 s instead of 2 s. It is rewritten after each of the first 1024
+  // frames, then when the frame count has grown by 1/32 or one second of wall time has passed
+  // since the last rewrite: the overhead stays a few percent, and after a crash the XDMF misses
+  // at most the frames of the last second (it never lists a frame the .h5 does not hold).
+  void rewrite_xdmf_if_due() {
+    const std::size_t frames = times.size();
+    const auto now = std::chrono::steady_clock::now();
+    if (frames <= 1024 || (frames - xdmf_frames) * 32 >= frames ||
+        now - xdmf_time >= std::chrono::seconds(1)) {
+      write_xdmf(path, particles, times);
+      xdmf_frames = frames;
+      xdmf_time = now;
     }
   }
 
@@ -257,7 +276,7 @@ void ResultWriter::write_frame(const FrameView& frame) {
   }
   w.times.push_back(frame.time_s);
   w.contact_rows = total;
-  write_xdmf(w.path, w.particles, w.times);
+  w.rewrite_xdmf_if_due();
 }
 
 void ResultWriter::finish(std::string_view status) {

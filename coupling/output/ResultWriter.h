@@ -27,8 +27,10 @@
 // changes a byte. Every HDF5 identifier is owned and closed on every path (also when the disk
 // is full), so HDF5's teardown at exit finds nothing open.
 //
-// RESULT.xdmf is rewritten (atomically: temporary file then rename) after every frame, so after
-// any crash it lists exactly the frames the .h5 holds (see XdmfWriter.h for the cost).
+// RESULT.xdmf is rewritten (atomically: temporary file then rename) after each of the first 1024
+// frames, then whenever the frame count has grown by 1/32 or a second of wall time has passed,
+// and always in finish() and in the destructor: after a crash it lists only frames the .h5
+// holds, and misses at most those of the last second.
 #include <cstdint>
 #include <memory>
 #include <span>

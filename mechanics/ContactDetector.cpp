@@ -61,7 +61,7 @@ void ContactDetector::rebuild(const ParticleSet& particles, const std::vector<Wa
     if (fixed[i]) continue;
     for (std::size_t w = 0; w < walls.size(); ++w) {
       if (walls[w].signed_distance(x[i]) - r[i] <= margin_) {
-        pairs_.push_back({static_cast<std::int32_t>(i), -1 - static_cast<std::int32_t>(w)});
+        pairs_.push_back({static_cast<std::int32_t>(i), wall_code<std::int32_t>(w)});
       }
     }
   }

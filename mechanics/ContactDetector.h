@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "mechanics/CellGrid.h"
+#include "mechanics/PairIndex.h"
 #include "mechanics/ParticleSet.h"
 #include "mechanics/Wall.h"
 
@@ -23,7 +24,7 @@ namespace tmdem::mechanics {
 
 struct CandidatePair {
   std::int32_t i = 0;  // particle
-  std::int32_t j = 0;  // particle (> i), or -1 - wall index
+  std::int32_t j = 0;  // particle (> i), or wall_code(wall) (PairIndex.h)
 };
 
 class ContactDetector {

@@ -8,7 +8,7 @@ namespace tmdem::mechanics {
 
 struct ContactForce {
   std::int64_t i = 0;                     // particle id
-  std::int64_t j = 0;                     // particle id (> i), or -1 - wall index
+  std::int64_t j = 0;                     // particle id (> i), or wall_code(wall) (PairIndex.h)
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // unit, from j to i (wall: wall normal)
   double gap_m = 0.0;                     // at the start of the step; < 0 = penetration
   double normal_impulse_Ns = 0.0;         // r_n over the step, >= 0

@@ -15,6 +15,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "mechanics/PairIndex.h"
+
 namespace tmdem::mechanics {
 
 struct ContactProblem {
@@ -28,7 +30,7 @@ struct ContactProblem {
 
   // Contacts.
   std::vector<std::int32_t> body_i;     // particle
-  std::vector<std::int32_t> body_j;     // particle, or -1 - wall index (a wall is immobile)
+  std::vector<std::int32_t> body_j;     // particle, or wall_code(wall) (PairIndex.h; a wall is immobile)
   std::vector<Eigen::Vector3d> normal;  // unit, from j to i
   std::vector<Eigen::Vector3d> tangent1, tangent2;
   std::vector<double> lever_i, lever_j; // m, contact point offsets (radii; 0 for a wall)
@@ -73,7 +75,7 @@ inline Eigen::Vector3d ContactProblem::local_velocity(
   const Eigen::Vector3d& n = normal[c];
   const std::int32_t i = body_i[c], j = body_j[c];
   Eigen::Vector3d u;
-  if (j >= 0) {
+  if (!is_wall(j)) {
     u = velocity[i] - velocity[j] - (lever_i[c] * angular_velocity[i] + lever_j[c] * angular_velocity[j]).cross(n);
   } else {
     u = velocity[i] - (lever_i[c] * angular_velocity[i]).cross(n);
@@ -91,7 +93,7 @@ inline void ContactProblem::apply_impulse(std::size_t c, const Eigen::Vector3d& 
   const std::int32_t i = body_i[c], j = body_j[c];
   velocity[i] += inverse_mass[i] * p;
   angular_velocity[i] -= (inverse_inertia[i] * lever_i[c]) * nxp;
-  if (j >= 0) {
+  if (!is_wall(j)) {
     velocity[j] -= inverse_mass[j] * p;
     angular_velocity[j] -= (inverse_inertia[j] * lever_j[c]) * nxp;
   }

@@ -9,7 +9,7 @@
 
 #include "mechanics/ContactSolverRegistry.h"
 #include "mechanics/CoulombCone.h"
-#include "mechanics/TouchingPairs.h"
+#include "mechanics/PairIndex.h"
 
 namespace tmdem::mechanics {
 namespace {
@@ -159,7 +159,7 @@ void NscdIntegrator::setup_contacts(double h) {
     int other_material;
     Eigen::Vector3d n;
     double gap;
-    if (j >= 0) {
+    if (!is_wall(j)) {
       const Eigen::Vector3d d = xi - particles_.position[j];
       const double distance = d.norm();
       // Coincident centres have no defined normal; any unit vector in the plane will do.
@@ -194,7 +194,7 @@ void NscdIntegrator::setup_contacts(double h) {
 
     // Position term P / h, with the normal velocity at the start of the step.
     Eigen::Vector3d u_old = old_velocity_[i] - (lever_i * old_angular_velocity_[i]).cross(n);
-    if (j >= 0) u_old -= old_velocity_[j] + (lever_j * old_angular_velocity_[j]).cross(n);
+    if (!is_wall(j)) u_old -= old_velocity_[j] + (lever_j * old_angular_velocity_[j]).cross(n);
     p.bias[k] = (gap + h * (1.0 - theta) * u_old.dot(n)) / h;
 
     // Warm start: last step's force of this pair, in the new frame, as an impulse.
@@ -245,7 +245,7 @@ StepReport NscdIntegrator::step(double h) {
     const std::int32_t i = problem_.body_i[k], j = problem_.body_j[k];
     force_[k] = problem_.to_global(k, r) / h;
     double gap;
-    if (j >= 0) {
+    if (!is_wall(j)) {
       gap = (particles_.position[i] - particles_.position[j]).norm() - problem_.lever_i[k] -
             problem_.lever_j[k];
     } else {

@@ -55,7 +55,9 @@ class NscdIntegrator {
   StepReport step();          // one step of parameters().time_step
   StepReport step(double h);  // one step of h seconds
 
-  // Contacts with r_n > 0 after the last step (forces are the step means, impulse / h).
+  // Contacts with r_n > 0 after the last step (forces are the step means, impulse / h), in
+  // strictly increasing (i, j) order, j signed (walls first for each i), as the candidates are.
+  // The coupling relies on this order (gather_contacts does not sort).
   const std::vector<ContactForce>& contacts() const { return contacts_; }
   const MechanicsStats& stats() const { return stats_; }
   void restore_stats(const MechanicsStats& stats) { stats_ = stats; }  // after a restart

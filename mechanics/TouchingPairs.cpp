@@ -42,8 +42,7 @@ std::vector<TouchingPair> find_touching_pairs(const ParticleSet& particles,
     for (std::size_t w = 0; w < walls.size(); ++w) {
       const double gap = walls[w].signed_distance(particles.position[i]) - particles.radius[i];
       if (gap <= gap_fraction * particles.radius[i]) {
-        pairs.push_back({static_cast<std::int64_t>(i),
-                         wall_pair_id(static_cast<std::int64_t>(w)), gap});
+        pairs.push_back({static_cast<std::int64_t>(i), wall_code<std::int64_t>(w), gap});
       }
     }
   }

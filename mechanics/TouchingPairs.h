@@ -2,12 +2,13 @@
 // Geometry-only contact search, for runs without mechanics (effects.mechanics = "off") and
 // for rejecting scenes whose particles overlap at start. Uses the cell grid: O(N).
 //
-// Pair convention (same as the result file): i is a particle id; j >= 0 is a particle id
-// with i < j; j < 0 is wall number (-1 - j).
+// Pair convention (same as the result file): i is a particle id; j is a particle id with
+// i < j, or a wall encoded as in mechanics/PairIndex.h.
 
 #include <cstdint>
 #include <vector>
 
+#include "mechanics/PairIndex.h"
 #include "mechanics/ParticleSet.h"
 #include "mechanics/Wall.h"
 
@@ -15,13 +16,9 @@ namespace tmdem::mechanics {
 
 struct TouchingPair {
   std::int64_t i = 0;  // particle id
-  std::int64_t j = 0;  // particle id (> i) or -1 - wall index
+  std::int64_t j = 0;  // particle id (> i) or wall_code(wall) (PairIndex.h)
   double gap_m = 0.0;  // distance - r_i - r_j (wall: signed distance - r_i); < 0 = overlap
 };
-
-// Wall index of a pair whose j is negative.
-inline std::int64_t wall_index(std::int64_t j) { return -1 - j; }
-inline std::int64_t wall_pair_id(std::int64_t wall) { return -1 - wall; }
 
 // Pairs that touch: particle pairs whose gap is at most gap_fraction * min(r_i, r_j) and
 // particle-wall pairs whose gap is at most gap_fraction * r_i (overlapping pairs included).

@@ -5,6 +5,8 @@
 #include <numbers>
 #include <vector>
 
+#include "mechanics/PairIndex.h"
+
 namespace tmdem::coupling {
 
 ThermalDiagnostics diagnose(const Scene& scene, const ContactList& contacts,
@@ -18,7 +20,7 @@ ThermalDiagnostics diagnose(const Scene& scene, const ContactList& contacts,
     ++d.heat_carrying_contacts;
     const auto i = contacts.pair[2 * c], j = contacts.pair[2 * c + 1];
     for (auto id : {i, j}) {
-      if (id < 0) continue;
+      if (mechanics::is_wall(id)) continue;
       sum_H[std::size_t(id)] += H;
       const auto& p = scene.particles[std::size_t(id)];
       const double k = scene.materials[std::size_t(p.material)].conductivity_W_per_mK;

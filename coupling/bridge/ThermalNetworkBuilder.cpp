@@ -5,6 +5,7 @@
 
 #include "coupling/bridge/SceneToMechanics.h"
 #include "coupling/scene/HeatModes.h"
+#include "mechanics/PairIndex.h"
 #include "thermal/ModeRegistry.h"
 
 namespace tmdem::coupling {
@@ -34,12 +35,12 @@ thermal::ThermalNetwork ThermalNetworkBuilder::nodes() const {
 thermal::ContactBody ThermalNetworkBuilder::body(std::int64_t id) const {
   thermal::ContactBody b;
   int material = 0;
-  if (id >= 0) {
+  if (!mechanics::is_wall(id)) {
     b.radius_m = scene_.particles[std::size_t(id)].radius_m;
     material = scene_.particles[std::size_t(id)].material;
   } else {
     b.radius_m = std::numeric_limits<double>::infinity();
-    material = scene_.walls[std::size_t(-1 - id)].material;
+    material = scene_.walls[mechanics::wall_index(id)].material;
   }
   const auto& m = scene_.materials[std::size_t(material)];
   b.conductivity_W_per_mK = m.conductivity_W_per_mK;
@@ -60,17 +61,18 @@ void ThermalNetworkBuilder::build_edges(ContactList& contacts, thermal::ThermalN
   edges.clear_edges();
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     const auto i = contacts.pair[2 * c], j = contacts.pair[2 * c + 1];
-    const bool isothermal_wall = j < 0 && scene_.walls[std::size_t(-1 - j)].temperature_K.has_value();
-    const bool carries_heat = contacts_carry_heat_ && (j >= 0 || isothermal_wall);
+    const bool isothermal_wall =
+        mechanics::is_wall(j) && scene_.walls[mechanics::wall_index(j)].temperature_K.has_value();
+    const bool carries_heat = contacts_carry_heat_ && (!mechanics::is_wall(j) || isothermal_wall);
     const bool open = is_active && !(*is_active)[c];
     const double H =
         carries_heat && !open ? conductance_W_per_K(i, j, contacts.normal_force_N[c]) : 0.0;
     contacts.conductance_W_per_K[c] = H;
     if (!carries_heat) continue;
-    if (j >= 0)
+    if (!mechanics::is_wall(j))
       edges.add_edge(std::int32_t(i), std::int32_t(j), H);
     else
-      edges.add_wall_edge(std::int32_t(i), *scene_.walls[std::size_t(-1 - j)].temperature_K, H);
+      edges.add_wall_edge(std::int32_t(i), *scene_.walls[mechanics::wall_index(j)].temperature_K, H);
   }
 }
 

@@ -37,7 +37,7 @@ class ThermalNetworkBuilder {
   const thermal::ModeSettings& mode_settings() const;
 
  private:
-  thermal::ContactBody body(std::int64_t id) const;  // id < 0: wall -1 - id
+  thermal::ContactBody body(std::int64_t id) const;  // id: particle, or a wall (mechanics/PairIndex.h)
 
   const Scene& scene_;
   thermal::ConductanceLawKind law_;

@@ -1,7 +1,6 @@
 #include "coupling/run/ThermalProblem.h"
 
 #include <algorithm>
-#include <numeric>
 #include <sstream>
 #include <stdexcept>
 
@@ -54,16 +53,17 @@ bool settle_packing(mechanics::NscdIntegrator& nscd, const Scene& scene, Progres
 }
 
 void gather_contacts(const std::vector<mechanics::ContactForce>& forces, ContactList& out) {
-  // Called every mechanical step of a dynamic run: the permutation buffer is kept between calls
-  // so that the step loop does not allocate once warm.
-  static thread_local std::vector<std::size_t> order;
-  order.resize(forces.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return std::pair(forces[a].i, forces[a].j) < std::pair(forces[b].i, forces[b].j);
-  });
+  // NscdIntegrator::contacts() already lists its contacts in canonical (i, j) order; a copy in
+  // any other order would silently change edge numbering and defeat the values-only updates of
+  // DynamicNetwork, so an out-of-order list is a bug worth stopping for (O(C), no allocation).
   out.clear();
-  for (auto k : order) {
+  for (std::size_t k = 0; k < forces.size(); ++k) {
+    if (k > 0 && !(std::pair(forces[k - 1].i, forces[k - 1].j) < std::pair(forces[k].i, forces[k].j))) {
+      std::ostringstream msg;
+      msg << "gather_contacts: contacts not in strictly increasing (i, j) order: (" << forces[k - 1].i
+          << ", " << forces[k - 1].j << ") before (" << forces[k].i << ", " << forces[k].j << ")";
+      throw std::logic_error(msg.str());
+    }
     const auto& t = forces[k].tangential_force_N;
     out.add(forces[k].i, forces[k].j, forces[k].normal_force_N, {t.x(), t.y(), t.z()});
   }

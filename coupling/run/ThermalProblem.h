@@ -21,8 +21,9 @@ namespace tmdem::coupling {
 // packing came to rest.
 bool settle_packing(mechanics::NscdIntegrator& nscd, const Scene& scene, ProgressReporter& progress);
 
-// The mechanics' contacts in canonical (i, j) order, so that the same graph always gives the
-// same edge list and the thermal side can tell a values-only change from a new shape.
+// The mechanics' contacts, which arrive in canonical (i, j) order, copied in that order, so that
+// the same graph always gives the same edge list and the thermal side can tell a values-only
+// change from a new shape. Throws std::logic_error if `forces` is not strictly (i, j)-sorted.
 void gather_contacts(const std::vector<mechanics::ContactForce>& forces, ContactList& out);
 
 // Network nodes from the scene, edges from `contacts` (conductances filled in), and the modes

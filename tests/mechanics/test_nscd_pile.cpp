@@ -7,6 +7,9 @@
 #include <cmath>
 #include <cstdlib>
 #include <new>
+#include <utility>
+
+#include "mechanics/PairIndex.h"
 
 #include "MechanicsTestScenes.h"
 
@@ -145,4 +148,23 @@ TEST(NscdPile, SettlesBelowSettleVelocity) {
     if (c.j >= 0) ++count[c.j];
   }
   for (std::size_t i = 0; i < count.size(); ++i) EXPECT_GE(count[i], 1) << "particle " << i;
+}
+
+// The coupling copies contacts() as they come (gather_contacts does not sort), so the order is
+// a promise: strictly increasing (i, j), j signed, over every step of a pile with wall contacts.
+TEST(NscdPile, ContactsComeInCanonicalOrder) {
+  auto sim = random_pile(60, 3, 0.3, 5, loose());
+  std::size_t wall_contacts = 0, checked = 0;
+  for (int step = 0; step < 300; ++step) {
+    sim.step();
+    const auto& c = sim.contacts();
+    for (std::size_t k = 0; k < c.size(); ++k) {
+      if (is_wall(c[k].j)) ++wall_contacts;
+      if (k == 0) continue;
+      ASSERT_LT(std::pair(c[k - 1].i, c[k - 1].j), std::pair(c[k].i, c[k].j)) << "step " << step;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 5000u);
+  EXPECT_GT(wall_contacts, 100u);  // walls-first ordering was exercised
 }

@@ -45,7 +45,7 @@ TEST(TouchingPairs, RowOfTouchingSpheresAndWall) {
   EXPECT_EQ(pairs[3].i, 1); EXPECT_EQ(pairs[3].j, -1);
   EXPECT_EQ(pairs[4].i, 2); EXPECT_EQ(pairs[4].j, -1);
   for (const auto& p : pairs) EXPECT_EQ(p.gap_m, 0.0);
-  EXPECT_EQ(wall_index(pairs[2].j), 0);
+  EXPECT_EQ(wall_index(pairs[2].j), 0u);
 }
 
 TEST(TouchingPairs, GapThresholdIsRelativeToSmallerRadius) {

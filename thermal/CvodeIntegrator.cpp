@@ -12,9 +12,7 @@ namespace tmdem::thermal {
 CvodeIntegrator::CvodeIntegrator(ThermalSystem& system, const IntegratorSettings& settings)
     : SundialsIntegratorBase(system, settings) {}
 
-CvodeIntegrator::~CvodeIntegrator() {
-  if (mem_) CVodeFree(&mem_);
-}
+void CvodeIntegrator::MemoryFree::operator()(void* mem) const { CVodeFree(&mem); }
 
 void CvodeIntegrator::check(int flag, const char* call) const {
   if (flag < 0) fail(flag, call);
@@ -24,40 +22,40 @@ void CvodeIntegrator::fail(int flag, const char* call) const {
   sunrealtype h = 0.0;
   long steps = -1;
   if (mem_) {
-    CVodeGetCurrentStep(mem_, &h);
-    CVodeGetNumSteps(mem_, &steps);
+    CVodeGetCurrentStep(mem_.get(), &h);
+    CVodeGetNumSteps(mem_.get(), &steps);
   }
   throw_failure("CVODE", CVodeGetReturnFlagName(flag), flag, call, h, steps);
 }
 
 void CvodeIntegrator::initialize(double t0_s, std::span<const double> T0_K, double boundary_heat0_J) {
-  if (mem_) CVodeFree(&mem_);
+  mem_.reset();  // before begin() frees the linear solver it uses
   if (!begin(t0_s, T0_K, boundary_heat0_J)) return;
 
-  mem_ = CVodeCreate(CV_BDF, ctx_);
+  mem_.reset(CVodeCreate(CV_BDF, ctx_));
   if (!mem_) throw ThermalSolverError("CVodeCreate failed");
-  check(CVodeSetErrHandlerFn(mem_, &SundialsIntegratorBase::error_handler,
+  check(CVodeSetErrHandlerFn(mem_.get(), &SundialsIntegratorBase::error_handler,
                              static_cast<SundialsIntegratorBase*>(this)),
         "CVodeSetErrHandlerFn");
-  check(CVodeInit(mem_, &CvodeIntegrator::rhs, t0_s, y_), "CVodeInit");
-  check(CVodeSetUserData(mem_, this), "CVodeSetUserData");
-  check(CVodeSVtolerances(mem_, settings_.relative_tolerance, abstol_), "CVodeSVtolerances");
-  check(CVodeSetMaxNumSteps(mem_, settings_.max_steps_per_call), "CVodeSetMaxNumSteps");
+  check(CVodeInit(mem_.get(), &CvodeIntegrator::rhs, t0_s, y_.get()), "CVodeInit");
+  check(CVodeSetUserData(mem_.get(), this), "CVodeSetUserData");
+  check(CVodeSVtolerances(mem_.get(), settings_.relative_tolerance, abstol_.get()), "CVodeSVtolerances");
+  check(CVodeSetMaxNumSteps(mem_.get(), settings_.max_steps_per_call), "CVodeSetMaxNumSteps");
   // The boundary heat rides along as a quadrature: same steps, no say in step-size control.
-  check(CVodeQuadInit(mem_, &CvodeIntegrator::boundary_rhs, yQ_), "CVodeQuadInit");
-  check(CVodeSetQuadErrCon(mem_, SUNFALSE), "CVodeSetQuadErrCon");
+  check(CVodeQuadInit(mem_.get(), &CvodeIntegrator::boundary_rhs, yQ_.get()), "CVodeQuadInit");
+  check(CVodeSetQuadErrCon(mem_.get(), SUNFALSE), "CVodeSetQuadErrCon");
 
   create_linear_solver();
-  check(CVodeSetLinearSolver(mem_, LS_, A_), "CVodeSetLinearSolver");
+  check(CVodeSetLinearSolver(mem_.get(), LS_.get(), A_.get()), "CVodeSetLinearSolver");
   if (pcg_) {
-    check(CVodeSetJacTimes(mem_, &CvodeIntegrator::jtimes_setup, &CvodeIntegrator::jtimes),
+    check(CVodeSetJacTimes(mem_.get(), &CvodeIntegrator::jtimes_setup, &CvodeIntegrator::jtimes),
           "CVodeSetJacTimes");
-    check(CVodeSetEpsLin(mem_, kPcgEpsLin), "CVodeSetEpsLin");
-    check(CVodeSetPreconditioner(mem_, &CvodeIntegrator::precond_setup,
+    check(CVodeSetEpsLin(mem_.get(), kPcgEpsLin), "CVodeSetEpsLin");
+    check(CVodeSetPreconditioner(mem_.get(), &CvodeIntegrator::precond_setup,
                                  &CvodeIntegrator::precond_solve),
           "CVodeSetPreconditioner");
   } else {
-    check(CVodeSetJacFn(mem_, &CvodeIntegrator::jacobian), "CVodeSetJacFn");
+    check(CVodeSetJacFn(mem_.get(), &CvodeIntegrator::jacobian), "CVodeSetJacFn");
   }
 }
 
@@ -65,8 +63,8 @@ void CvodeIntegrator::reinit_at_current_state() {
   record_reinitialization(stats());
   // yQ_ already holds the boundary heat at t_ (read after every advance); asking CVODES again
   // before its first step would interpolate with h = 0.
-  check(CVodeReInit(mem_, t_, y_), "CVodeReInit");
-  check(CVodeQuadReInit(mem_, yQ_), "CVodeQuadReInit");
+  check(CVodeReInit(mem_.get(), t_, y_.get()), "CVodeReInit");
+  check(CVodeQuadReInit(mem_.get(), yQ_.get()), "CVodeQuadReInit");
 }
 
 void CvodeIntegrator::restart() {
@@ -80,36 +78,36 @@ void CvodeIntegrator::advance_to(double t_s) {
   }
   if (t_s <= t_) return;
   if (pattern_changed()) reinit_at_current_state();
-  if (settings_.stop_at_each_time) check(CVodeSetStopTime(mem_, t_s), "CVodeSetStopTime");
+  if (settings_.stop_at_each_time) check(CVodeSetStopTime(mem_.get(), t_s), "CVodeSetStopTime");
   sunrealtype t_reached = t_;
   last_error_.clear();
-  const int flag = CVode(mem_, t_s, y_, &t_reached, CV_NORMAL);
+  const int flag = CVode(mem_.get(), t_s, y_.get(), &t_reached, CV_NORMAL);
   if (flag < 0) {
     sunrealtype t_internal = t_;
-    CVodeGetCurrentTime(mem_, &t_internal);
+    CVodeGetCurrentTime(mem_.get(), &t_internal);
     t_ = t_internal;
     fail(flag, "CVode");
   }
   t_ = t_reached;
-  unscale(y_);
+  unscale(y_.get());
   T_out_ = T_work_;
   sunrealtype tq = t_;
-  check(CVodeGetQuad(mem_, &tq, yQ_), "CVodeGetQuad");
+  check(CVodeGetQuad(mem_.get(), &tq, yQ_.get()), "CVodeGetQuad");
 }
 
 IntegratorStats CvodeIntegrator::stats() const {
   IntegratorStats s;
   if (mem_) {
     long v = 0;
-    CVodeGetNumSteps(mem_, &v);               s.steps = v;
-    CVodeGetNumRhsEvals(mem_, &v);            s.rhs_evals = v;
-    CVodeGetNumLinRhsEvals(mem_, &v);         s.rhs_evals += v;
-    if (pcg_) { CVodeGetNumPrecEvals(mem_, &v); } else { CVodeGetNumJacEvals(mem_, &v); }
+    CVodeGetNumSteps(mem_.get(), &v);               s.steps = v;
+    CVodeGetNumRhsEvals(mem_.get(), &v);            s.rhs_evals = v;
+    CVodeGetNumLinRhsEvals(mem_.get(), &v);         s.rhs_evals += v;
+    if (pcg_) { CVodeGetNumPrecEvals(mem_.get(), &v); } else { CVodeGetNumJacEvals(mem_.get(), &v); }
     s.jacobian_evals = v;
-    CVodeGetNumLinSolvSetups(mem_, &v);       s.linear_setups = v;
-    CVodeGetNumLinIters(mem_, &v);            s.linear_iterations = v;
-    CVodeGetNumErrTestFails(mem_, &v);        s.error_test_failures = v;
-    CVodeGetNumNonlinSolvConvFails(mem_, &v); s.convergence_failures = v;
+    CVodeGetNumLinSolvSetups(mem_.get(), &v);       s.linear_setups = v;
+    CVodeGetNumLinIters(mem_.get(), &v);            s.linear_iterations = v;
+    CVodeGetNumErrTestFails(mem_.get(), &v);        s.error_test_failures = v;
+    CVodeGetNumNonlinSolvConvFails(mem_.get(), &v); s.convergence_failures = v;
   }
   return with_history(s);
 }
@@ -147,14 +145,14 @@ int CvodeIntegrator::jacobian(sunrealtype, N_Vector y, N_Vector, SUNMatrix J, vo
 int CvodeIntegrator::jtimes_setup(sunrealtype, N_Vector y, N_Vector, void* self) {
   auto* me = static_cast<CvodeIntegrator*>(self);
   me->unscale(y);
-  me->system_.prepare_jacobian(me->T_work_);
+  me->system_.evaluate_jacobian(me->T_work_, me->mode_jacobian_);
   return 0;
 }
 
 int CvodeIntegrator::jtimes(N_Vector v, N_Vector Jv, sunrealtype, N_Vector, N_Vector, void* self,
                             N_Vector) {
   auto* me = static_cast<CvodeIntegrator*>(self);
-  me->system_.jacobian_times(nvector_view(v), nvector_view(Jv), me->scale_);
+  me->system_.jacobian_times(me->mode_jacobian_, nvector_view(v), nvector_view(Jv), me->scale_);
   return 0;
 }
 

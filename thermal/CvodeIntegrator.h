@@ -6,6 +6,8 @@
 //
 // CG needs a symmetric Newton matrix; I - gamma C^-1 K is not (C varies), but its similarity
 // transform in y = sqrt(C) T is. So with "pcg" the state is y = sqrt(C) T, with "klu" y = T.
+#include <memory>
+
 #include "thermal/SundialsIntegratorBase.h"
 
 namespace tmdem::thermal {
@@ -13,7 +15,6 @@ namespace tmdem::thermal {
 class CvodeIntegrator final : public SundialsIntegratorBase {
  public:
   CvodeIntegrator(ThermalSystem& system, const IntegratorSettings& settings);
-  ~CvodeIntegrator() override;
 
   std::string_view name() const override { return "cvode"; }
   void initialize(double t0_s, std::span<const double> T0_K, double boundary_heat0_J) override;
@@ -39,7 +40,12 @@ class CvodeIntegrator final : public SundialsIntegratorBase {
   void check(int flag, const char* call) const;
   [[noreturn]] void fail(int flag, const char* call) const;
 
-  void* mem_ = nullptr;
+  struct MemoryFree {
+    void operator()(void* mem) const;  // CVodeFree
+  };
+  // A derived member, so it is destroyed before the base's linear solver, matrix, vectors and
+  // context, which is the order SUNDIALS needs.
+  std::unique_ptr<void, MemoryFree> mem_;
 };
 
 }  // namespace tmdem::thermal

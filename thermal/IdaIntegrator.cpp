@@ -13,11 +13,7 @@ namespace tmdem::thermal {
 IdaIntegrator::IdaIntegrator(ThermalSystem& system, const IntegratorSettings& settings)
     : SundialsIntegratorBase(system, settings) {}
 
-IdaIntegrator::~IdaIntegrator() {
-  if (mem_) IDAFree(&mem_);
-  for (N_Vector v : {yp_, id_})
-    if (v) N_VDestroy(v);
-}
+void IdaIntegrator::MemoryFree::operator()(void* mem) const { IDAFree(&mem); }
 
 void IdaIntegrator::check(int flag, const char* call) const {
   if (flag < 0) fail(flag, call);
@@ -27,16 +23,16 @@ void IdaIntegrator::fail(int flag, const char* call) const {
   sunrealtype h = 0.0;
   long steps = -1;
   if (mem_) {
-    IDAGetCurrentStep(mem_, &h);
-    IDAGetNumSteps(mem_, &steps);
+    IDAGetCurrentStep(mem_.get(), &h);
+    IDAGetNumSteps(mem_.get(), &steps);
   }
   throw_failure("IDA", IDAGetReturnFlagName(flag), flag, call, h, steps);
 }
 
 void IdaIntegrator::consistent_derivative() {
-  unscale(y_);
+  unscale(y_.get());
   double boundary_W = 0.0;
-  auto yp = nvector_view(yp_);
+  auto yp = nvector_view(yp_.get());
   if (!system_.time_derivative(T_work_, yp, boundary_W))
     throw ThermalSolverError("IDA: heat flow undefined at the initial temperatures", 0, t_);
   if (!scale_.empty())
@@ -44,15 +40,15 @@ void IdaIntegrator::consistent_derivative() {
 }
 
 void IdaIntegrator::initialize(double t0_s, std::span<const double> T0_K, double boundary_heat0_J) {
-  if (mem_) IDAFree(&mem_);
+  mem_.reset();  // before begin() frees the linear solver it uses
   held_value_.assign(system_.size(), 0.0);
   if (!begin(t0_s, T0_K, boundary_heat0_J)) return;
   const std::size_t n = system_.size();
   if (!yp_) {
-    yp_ = N_VNew_Serial(sunindextype(n), ctx_);
-    id_ = N_VNew_Serial(sunindextype(n), ctx_);
+    yp_ = make_serial_vector(sunindextype(n), ctx_, "state derivative y'");
+    id_ = make_serial_vector(sunindextype(n), ctx_, "differential/algebraic ids");
   }
-  auto y = nvector_view(y_), id = nvector_view(id_);
+  auto y = nvector_view(y_.get()), id = nvector_view(id_.get());
   const auto& held = system_.network().held;
   for (std::size_t i = 0; i < n; ++i) {
     held_value_[i] = y[i];
@@ -60,31 +56,31 @@ void IdaIntegrator::initialize(double t0_s, std::span<const double> T0_K, double
   }
   consistent_derivative();
 
-  mem_ = IDACreate(ctx_);
+  mem_.reset(IDACreate(ctx_));
   if (!mem_) throw ThermalSolverError("IDACreate failed");
-  check(IDASetErrHandlerFn(mem_, &SundialsIntegratorBase::error_handler,
+  check(IDASetErrHandlerFn(mem_.get(), &SundialsIntegratorBase::error_handler,
                             static_cast<SundialsIntegratorBase*>(this)),
         "IDASetErrHandlerFn");
-  check(IDAInit(mem_, &IdaIntegrator::residual, t0_s, y_, yp_), "IDAInit");
-  check(IDASetUserData(mem_, this), "IDASetUserData");
-  check(IDASVtolerances(mem_, settings_.relative_tolerance, abstol_), "IDASVtolerances");
-  check(IDASetMaxNumSteps(mem_, settings_.max_steps_per_call), "IDASetMaxNumSteps");
-  check(IDASetId(mem_, id_), "IDASetId");
+  check(IDAInit(mem_.get(), &IdaIntegrator::residual, t0_s, y_.get(), yp_.get()), "IDAInit");
+  check(IDASetUserData(mem_.get(), this), "IDASetUserData");
+  check(IDASVtolerances(mem_.get(), settings_.relative_tolerance, abstol_.get()), "IDASVtolerances");
+  check(IDASetMaxNumSteps(mem_.get(), settings_.max_steps_per_call), "IDASetMaxNumSteps");
+  check(IDASetId(mem_.get(), id_.get()), "IDASetId");
   // Held values are exact by construction; keep them out of the local error test.
-  check(IDASetSuppressAlg(mem_, SUNTRUE), "IDASetSuppressAlg");
-  check(IDAQuadInit(mem_, &IdaIntegrator::boundary_rhs, yQ_), "IDAQuadInit");
-  check(IDASetQuadErrCon(mem_, SUNFALSE), "IDASetQuadErrCon");
+  check(IDASetSuppressAlg(mem_.get(), SUNTRUE), "IDASetSuppressAlg");
+  check(IDAQuadInit(mem_.get(), &IdaIntegrator::boundary_rhs, yQ_.get()), "IDAQuadInit");
+  check(IDASetQuadErrCon(mem_.get(), SUNFALSE), "IDASetQuadErrCon");
 
   create_linear_solver();
-  check(IDASetLinearSolver(mem_, LS_, A_), "IDASetLinearSolver");
+  check(IDASetLinearSolver(mem_.get(), LS_.get(), A_.get()), "IDASetLinearSolver");
   if (pcg_) {
-    check(IDASetJacTimes(mem_, &IdaIntegrator::jtimes_setup, &IdaIntegrator::jtimes),
+    check(IDASetJacTimes(mem_.get(), &IdaIntegrator::jtimes_setup, &IdaIntegrator::jtimes),
           "IDASetJacTimes");
-    check(IDASetEpsLin(mem_, kPcgEpsLin), "IDASetEpsLin");
-    check(IDASetPreconditioner(mem_, &IdaIntegrator::precond_setup, &IdaIntegrator::precond_solve),
+    check(IDASetEpsLin(mem_.get(), kPcgEpsLin), "IDASetEpsLin");
+    check(IDASetPreconditioner(mem_.get(), &IdaIntegrator::precond_setup, &IdaIntegrator::precond_solve),
           "IDASetPreconditioner");
   } else {
-    check(IDASetJacFn(mem_, &IdaIntegrator::jacobian), "IDASetJacFn");
+    check(IDASetJacFn(mem_.get(), &IdaIntegrator::jacobian), "IDASetJacFn");
   }
 }
 
@@ -93,8 +89,8 @@ void IdaIntegrator::reinit_at_current_state() {
   // yQ_ already holds the boundary heat at t_ (read after every advance); asking SUNDIALS
   // again before its first step would interpolate with h = 0.
   consistent_derivative();
-  check(IDAReInit(mem_, t_, y_, yp_), "IDAReInit");
-  check(IDAQuadReInit(mem_, yQ_), "IDAQuadReInit");
+  check(IDAReInit(mem_.get(), t_, y_.get(), yp_.get()), "IDAReInit");
+  check(IDAQuadReInit(mem_.get(), yQ_.get()), "IDAQuadReInit");
 }
 
 void IdaIntegrator::restart() {
@@ -108,36 +104,36 @@ void IdaIntegrator::advance_to(double t_s) {
   }
   if (t_s <= t_) return;
   if (pattern_changed()) reinit_at_current_state();
-  if (settings_.stop_at_each_time) check(IDASetStopTime(mem_, t_s), "IDASetStopTime");
+  if (settings_.stop_at_each_time) check(IDASetStopTime(mem_.get(), t_s), "IDASetStopTime");
   sunrealtype t_reached = t_;
   last_error_.clear();
-  const int flag = IDASolve(mem_, t_s, &t_reached, y_, yp_, IDA_NORMAL);
+  const int flag = IDASolve(mem_.get(), t_s, &t_reached, y_.get(), yp_.get(), IDA_NORMAL);
   if (flag < 0) {
     sunrealtype t_internal = t_;
-    IDAGetCurrentTime(mem_, &t_internal);
+    IDAGetCurrentTime(mem_.get(), &t_internal);
     t_ = t_internal;
     fail(flag, "IDASolve");
   }
   t_ = t_reached;
-  unscale(y_);
+  unscale(y_.get());
   T_out_ = T_work_;
   sunrealtype tq = t_;
-  check(IDAGetQuad(mem_, &tq, yQ_), "IDAGetQuad");
+  check(IDAGetQuad(mem_.get(), &tq, yQ_.get()), "IDAGetQuad");
 }
 
 IntegratorStats IdaIntegrator::stats() const {
   IntegratorStats s;
   if (mem_) {
     long v = 0;
-    IDAGetNumSteps(mem_, &v);               s.steps = v;
-    IDAGetNumResEvals(mem_, &v);            s.rhs_evals = v;
-    IDAGetNumLinResEvals(mem_, &v);         s.rhs_evals += v;
-    if (pcg_) { IDAGetNumPrecEvals(mem_, &v); } else { IDAGetNumJacEvals(mem_, &v); }
+    IDAGetNumSteps(mem_.get(), &v);               s.steps = v;
+    IDAGetNumResEvals(mem_.get(), &v);            s.rhs_evals = v;
+    IDAGetNumLinResEvals(mem_.get(), &v);         s.rhs_evals += v;
+    if (pcg_) { IDAGetNumPrecEvals(mem_.get(), &v); } else { IDAGetNumJacEvals(mem_.get(), &v); }
     s.jacobian_evals = v;
-    IDAGetNumLinSolvSetups(mem_, &v);       s.linear_setups = v;
-    IDAGetNumLinIters(mem_, &v);            s.linear_iterations = v;
-    IDAGetNumErrTestFails(mem_, &v);        s.error_test_failures = v;
-    IDAGetNumNonlinSolvConvFails(mem_, &v); s.convergence_failures = v;
+    IDAGetNumLinSolvSetups(mem_.get(), &v);       s.linear_setups = v;
+    IDAGetNumLinIters(mem_.get(), &v);            s.linear_iterations = v;
+    IDAGetNumErrTestFails(mem_.get(), &v);        s.error_test_failures = v;
+    IDAGetNumNonlinSolvConvFails(mem_.get(), &v); s.convergence_failures = v;
   }
   return with_history(s);
 }
@@ -185,7 +181,7 @@ int IdaIntegrator::jtimes_setup(sunrealtype, N_Vector y, N_Vector, N_Vector, sun
                                 void* self) {
   auto* me = static_cast<IdaIntegrator*>(self);
   me->unscale(y);
-  me->system_.prepare_jacobian(me->T_work_);
+  me->system_.evaluate_jacobian(me->T_work_, me->mode_jacobian_);
   return 0;
 }
 
@@ -193,7 +189,7 @@ int IdaIntegrator::jtimes(sunrealtype, N_Vector, N_Vector, N_Vector, N_Vector v,
                           sunrealtype cj, void* self, N_Vector, N_Vector) {
   auto* me = static_cast<IdaIntegrator*>(self);
   auto vv = nvector_view(v), out = nvector_view(Jv);
-  me->system_.jacobian_times(vv, out, me->scale_);
+  me->system_.jacobian_times(me->mode_jacobian_, vv, out, me->scale_);
   const auto& held = me->system_.network().held;
   for (std::size_t i = 0; i < out.size(); ++i) out[i] = (held[i] ? 1.0 : cj) * vv[i] - out[i];
   return 0;

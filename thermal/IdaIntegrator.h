@@ -4,6 +4,8 @@
 // CvodeIntegrator (KLU on the sparse Jacobian cj I - J, or IC(0)-preconditioned CG in
 // y = sqrt(C) T); the boundary heat is an IDAS quadrature. Initial conditions are consistent by
 // construction (y' = f(y), held y' = 0), so IDACalcIC is not needed.
+#include <memory>
+
 #include "thermal/SundialsIntegratorBase.h"
 
 namespace tmdem::thermal {
@@ -11,7 +13,6 @@ namespace tmdem::thermal {
 class IdaIntegrator final : public SundialsIntegratorBase {
  public:
   IdaIntegrator(ThermalSystem& system, const IntegratorSettings& settings);
-  ~IdaIntegrator() override;
 
   std::string_view name() const override { return "ida"; }
   void initialize(double t0_s, std::span<const double> T0_K, double boundary_heat0_J) override;
@@ -38,8 +39,13 @@ class IdaIntegrator final : public SundialsIntegratorBase {
   void check(int flag, const char* call) const;
   [[noreturn]] void fail(int flag, const char* call) const;
 
-  void* mem_ = nullptr;
-  N_Vector yp_ = nullptr, id_ = nullptr;
+  struct MemoryFree {
+    void operator()(void* mem) const;  // IDAFree
+  };
+  // Destroyed in reverse order: the IDAS memory (refers to yp_ and id_) before the vectors, and
+  // all of them before the base's linear solver, matrix, vectors and context.
+  NVectorPtr yp_, id_;
+  std::unique_ptr<void, MemoryFree> mem_;
   std::vector<double> held_value_;      // scaled held temperatures
 };
 

@@ -1,15 +1,19 @@
 #pragma once
-// Owns a SUNDIALS 6 context for the lifetime of one integrator.
+// Owns a SUNDIALS 6 context for the lifetime of one integrator. Everything created in it must be
+// freed before it: declare it before the other SUNDIALS owners (SundialsHandles.h).
 #include <sundials/sundials_context.h>
 
-#include <stdexcept>
+#include <string>
+
+#include "thermal/ThermalSolverError.h"
 
 namespace tmdem::thermal {
 
 class SundialsContext {
  public:
   SundialsContext() {
-    if (SUNContext_Create(nullptr, &ctx_) != 0) throw std::runtime_error("SUNContext_Create failed");
+    if (const int flag = SUNContext_Create(nullptr, &ctx_); flag != 0 || !ctx_)
+      throw ThermalSolverError("SUNContext_Create failed (" + std::to_string(flag) + ")", flag);
   }
   ~SundialsContext() { SUNContext_Free(&ctx_); }
   SundialsContext(const SundialsContext&) = delete;

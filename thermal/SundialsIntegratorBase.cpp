@@ -23,20 +23,13 @@ SundialsIntegratorBase::SundialsIntegratorBase(ThermalSystem& system,
   }
 }
 
-SundialsIntegratorBase::~SundialsIntegratorBase() {
-  if (LS_) SUNLinSolFree(LS_);
-  if (A_) SUNMatDestroy(A_);
-  for (N_Vector v : {y_, yQ_, abstol_})
-    if (v) N_VDestroy(v);
-}
-
 bool SundialsIntegratorBase::begin(double t0_s, std::span<const double> T0_K,
                                    double boundary_heat0_J) {
   const std::size_t n = system_.size();
   if (T0_K.size() != n)
     throw std::invalid_argument(std::string(name()) + ": initial temperatures have the wrong size");
-  if (LS_) { SUNLinSolFree(LS_); LS_ = nullptr; }
-  if (A_) { SUNMatDestroy(A_); A_ = nullptr; }
+  LS_.reset();  // the solver before the matrix it refers to
+  A_.reset();
   t_ = t0_s;
   boundary_heat0_J_ = boundary_heat0_J;
   T_out_.assign(T0_K.begin(), T0_K.end());
@@ -48,41 +41,44 @@ bool SundialsIntegratorBase::begin(double t0_s, std::span<const double> T0_K,
   reinitializations_ = 0;
   if (n == 0) return false;
   if (!y_) {
-    y_ = N_VNew_Serial(sunindextype(n), ctx_);
-    abstol_ = N_VNew_Serial(sunindextype(n), ctx_);
-    yQ_ = N_VNew_Serial(1, ctx_);
+    y_ = make_serial_vector(sunindextype(n), ctx_, "state y");
+    abstol_ = make_serial_vector(sunindextype(n), ctx_, "absolute tolerances");
+    yQ_ = make_serial_vector(1, ctx_, "boundary-heat quadrature");
   }
-  auto y = nvector_view(y_), atol = nvector_view(abstol_);
+  auto y = nvector_view(y_.get()), atol = nvector_view(abstol_.get());
   for (std::size_t i = 0; i < n; ++i) {
     const double s = scale_.empty() ? 1.0 : scale_[i];
     y[i] = s * T0_K[i];
     atol[i] = s * settings_.absolute_tolerance_K;
   }
-  NV_Ith_S(yQ_, 0) = 0.0;
+  NV_Ith_S(yQ_.get(), 0) = 0.0;
   return true;
 }
 
 void SundialsIntegratorBase::create_linear_solver() {
   const auto n = sunindextype(system_.size());
   if (pcg_) {
-    LS_ = SUNLinSol_PCG(y_, SUN_PREC_LEFT, std::min<int>(kMaxPcgIterations, int(n) + 1), ctx_);
-    if (!LS_) throw ThermalSolverError("SUNLinSol_PCG failed");
+    LS_ = checked_sundials_object<LinearSolverPtr>(
+        SUNLinSol_PCG(y_.get(), SUN_PREC_LEFT, std::min<int>(kMaxPcgIterations, int(n) + 1), ctx_),
+        "SUNLinSol_PCG");
     return;
   }
-  A_ = SUNSparseMatrix(n, n, sunindextype(system_.pattern().nonzeros()), CSC_MAT, ctx_);
-  LS_ = SUNLinSol_KLU(y_, A_, ctx_);
-  if (!A_ || !LS_) throw ThermalSolverError("SUNSparseMatrix/SUNLinSol_KLU failed");
+  A_ = checked_sundials_object<MatrixPtr>(
+      SUNSparseMatrix(n, n, sunindextype(system_.pattern().nonzeros()), CSC_MAT, ctx_),
+      "SUNSparseMatrix");
+  LS_ = checked_sundials_object<LinearSolverPtr>(SUNLinSol_KLU(y_.get(), A_.get(), ctx_),
+                                                 "SUNLinSol_KLU");
   // The Newton matrix has the symmetric pattern of the conductance Laplacian: AMD, not the
   // SUNDIALS default COLAMD (meant for unsymmetric patterns). On a 22^3 lattice it cuts the
   // factor time 5x and the memory 2x (bench/bench_thermal.cpp).
-  if (SUNLinSol_KLUSetOrdering(LS_, 0) != 0) throw ThermalSolverError("SUNLinSol_KLUSetOrdering failed");
+  if (SUNLinSol_KLUSetOrdering(LS_.get(), 0) != 0) throw ThermalSolverError("SUNLinSol_KLUSetOrdering failed");
 }
 
 bool SundialsIntegratorBase::pattern_changed() {
   if (system_.topology_version() == topology_seen_) return false;
   if (!pcg_) {
     const auto nnz = sunindextype(system_.pattern().nonzeros());
-    if (SUNLinSol_KLUReInit(LS_, A_, nnz, SUNKLU_REINIT_FULL) != 0)
+    if (SUNLinSol_KLUReInit(LS_.get(), A_.get(), nnz, SUNKLU_REINIT_FULL) != 0)
       throw ThermalSolverError("SUNLinSol_KLUReInit failed for " + std::to_string(nnz) +
                                " non-zeros", 0, t_);
   }
@@ -103,11 +99,11 @@ bool SundialsIntegratorBase::fill_jacobian(N_Vector y, SUNMatrix J) {
   const auto& p = system_.pattern();
   if (SM_NNZ_S(J) < sunindextype(p.nonzeros())) return false;
   unscale(y);
-  system_.prepare_jacobian(T_work_);
+  system_.evaluate_jacobian(T_work_, mode_jacobian_);
   // SUNDIALS zeroes the whole matrix (pattern included) before each evaluation: rewrite it.
   std::copy(p.column_start.begin(), p.column_start.end(), SM_INDEXPTRS_S(J));
   std::copy(p.row_index.begin(), p.row_index.end(), SM_INDEXVALS_S(J));
-  system_.jacobian_values({SM_DATA_S(J), p.nonzeros()}, scale_);
+  system_.jacobian_values(mode_jacobian_, {SM_DATA_S(J), p.nonzeros()}, scale_);
   return true;
 }
 
@@ -123,8 +119,8 @@ bool SundialsIntegratorBase::setup_preconditioner(N_Vector y, bool reuse_jacobia
   }
   if (!reuse_jacobian) {
     unscale(y);
-    system_.prepare_jacobian(T_work_);
-    system_.jacobian_values(jacobian_values_, scale_);
+    system_.evaluate_jacobian(T_work_, mode_jacobian_);
+    system_.jacobian_values(mode_jacobian_, jacobian_values_, scale_);
   }
   const auto& held = system_.network().held;
   newton_shift_.resize(held.size());
@@ -137,7 +133,7 @@ void SundialsIntegratorBase::apply_preconditioner(N_Vector r, N_Vector z) const 
 }
 
 double SundialsIntegratorBase::boundary_heat_J() const {
-  return boundary_heat0_J_ + (yQ_ ? NV_Ith_S(yQ_, 0) : 0.0);
+  return boundary_heat0_J_ + (yQ_ ? NV_Ith_S(yQ_.get(), 0) : 0.0);
 }
 
 void SundialsIntegratorBase::record_reinitialization(const IntegratorStats& current) {

@@ -13,6 +13,7 @@
 
 #include "thermal/IncompleteCholesky.h"
 #include "thermal/SundialsContext.h"
+#include "thermal/SundialsHandles.h"
 #include "thermal/ThermalIntegrator.h"
 #include "thermal/ThermalSystem.h"
 
@@ -30,7 +31,9 @@ class SundialsIntegratorBase : public ThermalIntegrator {
 
  protected:
   SundialsIntegratorBase(ThermalSystem& system, const IntegratorSettings& settings);
-  ~SundialsIntegratorBase() override;  // the derived class frees its solver memory first
+  // Members go in reverse declaration order, and a derived class's (its solver memory) before
+  // these: see the owners' order below.
+  ~SundialsIntegratorBase() override = default;
   SundialsIntegratorBase(const SundialsIntegratorBase&) = delete;
   SundialsIntegratorBase& operator=(const SundialsIntegratorBase&) = delete;
 
@@ -73,12 +76,15 @@ class SundialsIntegratorBase : public ThermalIntegrator {
   ThermalSystem& system_;
   IntegratorSettings settings_;
   bool pcg_ = false;
+  // Declaration order is destruction order reversed: the solver (refers to A_ and y_) goes
+  // first, then the matrix, the vectors, and the context they were all created in last.
   SundialsContext ctx_;
-  N_Vector y_ = nullptr, yQ_ = nullptr, abstol_ = nullptr;
-  SUNMatrix A_ = nullptr;
-  SUNLinearSolver LS_ = nullptr;
+  NVectorPtr y_, yQ_, abstol_;
+  MatrixPtr A_;
+  LinearSolverPtr LS_;
   std::vector<double> scale_;  // sqrt(C) for pcg, empty for klu
   std::vector<double> T_work_, dT_work_;
+  JacobianEvaluation mode_jacobian_;     // d q / d T at the last Jacobian or preconditioner setup
   IncompleteCholesky preconditioner_;
   std::vector<double> jacobian_values_;  // pattern order, scaled
   std::vector<double> newton_shift_;     // diagonal added to scale * J, per particle

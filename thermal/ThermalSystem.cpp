@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 namespace tmdem::thermal {
 
@@ -11,8 +13,6 @@ ThermalSystem::ThermalSystem(ThermalNetwork network,
     : network_(std::move(network)), modes_(std::move(modes)) {
   network_.validate();
   pattern_.build(network_);
-  diagonal_W_per_K_.assign(network_.node_count(), 0.0);
-  edge_W_per_K_.assign(network_.edge_count(), 0.0);
 }
 
 void ThermalSystem::replace_edges(const ThermalNetwork& edges) {
@@ -28,7 +28,6 @@ void ThermalSystem::replace_edges(const ThermalNetwork& edges) {
     ++values_version_;
   } else {
     pattern_.build(network_);
-    edge_W_per_K_.assign(network_.edge_count(), 0.0);
     ++topology_version_;
     ++values_version_;
   }
@@ -52,57 +51,68 @@ bool ThermalSystem::time_derivative(std::span<const double> T, std::span<double>
   return true;
 }
 
-void ThermalSystem::prepare_jacobian(std::span<const double> T) const {
-  std::fill(diagonal_W_per_K_.begin(), diagonal_W_per_K_.end(), 0.0);
-  std::fill(edge_W_per_K_.begin(), edge_W_per_K_.end(), 0.0);
+void ThermalSystem::evaluate_jacobian(std::span<const double> T, JacobianEvaluation& J) const {
+  J.diagonal_W_per_K.assign(network_.node_count(), 0.0);
+  J.edge_W_per_K.assign(network_.edge_count(), 0.0);
   for (const auto& mode : modes_)
-    mode->add_jacobian(network_, T, JacobianView{diagonal_W_per_K_, edge_W_per_K_});
+    mode->add_jacobian(network_, T, JacobianView{J.diagonal_W_per_K, J.edge_W_per_K});
 }
 
-void ThermalSystem::jacobian_values(std::span<double> values, std::span<const double> scale) const {
+void ThermalSystem::check_evaluation(const JacobianEvaluation& J) const {
+  if (J.diagonal_W_per_K.size() != size() || J.edge_W_per_K.size() != network_.edge_count())
+    throw std::logic_error("ThermalSystem: Jacobian evaluated for another contact graph (" +
+                           std::to_string(J.edge_W_per_K.size()) + " edges, network has " +
+                           std::to_string(network_.edge_count()) + "); call evaluate_jacobian");
+}
+
+void ThermalSystem::jacobian_values(const JacobianEvaluation& J, std::span<double> values,
+                                    std::span<const double> scale) const {
+  check_evaluation(J);
   const auto& C = network_.heat_capacity_J_per_K;
   const auto& held = network_.held;
   std::fill(values.begin(), values.end(), 0.0);
   for (std::size_t i = 0; i < size(); ++i)
-    if (!held[i]) values[pattern_.diagonal_slot[i]] += diagonal_W_per_K_[i] / C[i];
+    if (!held[i]) values[pattern_.diagonal_slot[i]] += J.diagonal_W_per_K[i] / C[i];
   for (std::size_t e = 0; e < network_.edge_count(); ++e) {
     const auto a = network_.edge_a[e], b = network_.edge_b[e];
     if (held[a] || held[b]) continue;
-    const double h = edge_W_per_K_[e];
+    const double h = J.edge_W_per_K[e];
     const double sab = scale.empty() ? 1.0 : scale[a] / scale[b];
     values[pattern_.slot_ab[e]] += h / C[a] * sab;
     values[pattern_.slot_ba[e]] += h / C[b] / sab;
   }
 }
 
-void ThermalSystem::jacobian_times(std::span<const double> v, std::span<double> Jv,
-                                   std::span<const double> scale) const {
+void ThermalSystem::jacobian_times(const JacobianEvaluation& J, std::span<const double> v,
+                                   std::span<double> Jv, std::span<const double> scale) const {
+  check_evaluation(J);
   const auto& C = network_.heat_capacity_J_per_K;
   const auto& held = network_.held;
   // Work in unscaled variables: u = S^-1 v, w = J u, Jv = S w.
   for (std::size_t i = 0; i < size(); ++i) {
     const double u = scale.empty() ? v[i] : v[i] / scale[i];
-    Jv[i] = held[i] ? 0.0 : diagonal_W_per_K_[i] * u;
+    Jv[i] = held[i] ? 0.0 : J.diagonal_W_per_K[i] * u;
   }
   for (std::size_t e = 0; e < network_.edge_count(); ++e) {
     const auto a = network_.edge_a[e], b = network_.edge_b[e];
     if (held[a] || held[b]) continue;
     const double ua = scale.empty() ? v[a] : v[a] / scale[a];
     const double ub = scale.empty() ? v[b] : v[b] / scale[b];
-    Jv[a] += edge_W_per_K_[e] * ub;
-    Jv[b] += edge_W_per_K_[e] * ua;
+    Jv[a] += J.edge_W_per_K[e] * ub;
+    Jv[b] += J.edge_W_per_K[e] * ua;
   }
   for (std::size_t i = 0; i < size(); ++i) Jv[i] *= (scale.empty() ? 1.0 : scale[i]) / C[i];
 }
 
 double ThermalSystem::explicit_stability_bound_s(double T_max_K) const {
   const std::vector<double> T(size(), T_max_K);
-  prepare_jacobian(T);
+  JacobianEvaluation J;
+  evaluate_jacobian(T, J);
   std::vector<double> row_sum(size(), 0.0);  // sum_j |J_ij| C_i, W/K
-  for (std::size_t i = 0; i < size(); ++i) row_sum[i] = std::abs(diagonal_W_per_K_[i]);
+  for (std::size_t i = 0; i < size(); ++i) row_sum[i] = std::abs(J.diagonal_W_per_K[i]);
   for (std::size_t e = 0; e < network_.edge_count(); ++e) {
-    row_sum[network_.edge_a[e]] += std::abs(edge_W_per_K_[e]);
-    row_sum[network_.edge_b[e]] += std::abs(edge_W_per_K_[e]);
+    row_sum[network_.edge_a[e]] += std::abs(J.edge_W_per_K[e]);
+    row_sum[network_.edge_b[e]] += std::abs(J.edge_W_per_K[e]);
   }
   double lambda_max = 0.0;
   for (std::size_t i = 0; i < size(); ++i)

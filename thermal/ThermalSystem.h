@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "thermal/HeatTransferMode.h"
+#include "thermal/JacobianEvaluation.h"
 #include "thermal/JacobianPattern.h"
 #include "thermal/ThermalNetwork.h"
 
@@ -41,30 +42,34 @@ class ThermalSystem {
                        double& boundary_W) const;
 
   const JacobianPattern& pattern() const { return pattern_; }
-  // Evaluates d q / d T of every mode at T and keeps it for the calls below.
-  void prepare_jacobian(std::span<const double> T_K) const;
+  // Evaluates d q / d T of every mode at T into J (resized to the current network; no
+  // allocation once J has seen the largest edge count).
+  void evaluate_jacobian(std::span<const double> T_K, JacobianEvaluation& J) const;
   // Values of J = d(dT/dt)/dT in pattern order, scaled as S J S^-1 with S = diag(scale)
-  // (empty scale: none). Uses the last prepare_jacobian.
-  void jacobian_values(std::span<double> values, std::span<const double> scale = {}) const;
-  // Jv = S J S^-1 v, matrix-free, from the last prepare_jacobian.
-  void jacobian_times(std::span<const double> v, std::span<double> Jv,
+  // (empty scale: none), from an evaluation of the current contact graph.
+  void jacobian_values(const JacobianEvaluation& J, std::span<double> values,
+                       std::span<const double> scale = {}) const;
+  // Jv = S J S^-1 v, matrix-free, from an evaluation of the current contact graph.
+  void jacobian_times(const JacobianEvaluation& J, std::span<const double> v, std::span<double> Jv,
                       std::span<const double> scale = {}) const;
 
   // Largest stable forward-Euler step, s: 2 / lambda_max with lambda_max bounded by Gershgorin
   // row sums of J evaluated at T = T_max everywhere (T_max bounds the run's temperatures: the
   // nonlinear radiation term is largest there). Infinity when nothing couples or exchanges heat.
+  // Uses its own evaluation: a caller's JacobianEvaluation is never touched.
   double explicit_stability_bound_s(double T_max_K) const;
 
   double thermal_energy_J(std::span<const double> T_K) const;
 
  private:
+  // Throws std::logic_error when J was evaluated before the contact graph changed shape.
+  void check_evaluation(const JacobianEvaluation& J) const;
+
   ThermalNetwork network_;
   std::vector<std::unique_ptr<HeatTransferMode>> modes_;
   JacobianPattern pattern_;
   std::uint64_t topology_version_ = 0;
   std::uint64_t values_version_ = 0;
-  mutable std::vector<double> diagonal_W_per_K_;  // from prepare_jacobian
-  mutable std::vector<double> edge_W_per_K_;
 };
 
 }  // namespace tmdem::thermal

@@ -17,10 +17,11 @@ namespace {
 std::vector<double> scaled_jacobian(const ThermalSystem& sys) {
   std::vector<double> v(sys.pattern().nonzeros());
   std::vector<double> T(sys.size(), 300.0);
-  sys.prepare_jacobian(T);
+  JacobianEvaluation J;
+  sys.evaluate_jacobian(T, J);
   std::vector<double> scale(sys.size());
   for (std::size_t i = 0; i < scale.size(); ++i) scale[i] = std::sqrt(sys.network().heat_capacity_J_per_K[i]);
-  sys.jacobian_values(v, scale);
+  sys.jacobian_values(J, v, scale);
   return v;
 }
 

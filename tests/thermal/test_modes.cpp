@@ -198,14 +198,23 @@ TEST_P(ModeTest, ChainBetweenIsothermalWallsReachesTheSteadyProfile) {
 
 // ---- held particle and heat source --------------------------------------------------------
 
+namespace {
+// A chain of n with unequal capacities (1 mJ/K rising 10% a node), 0.2 mW/K links, node `held`
+// held, 5 mW into the last node.
+ThermalNetwork held_and_source_chain(int n, int held) {
+  auto net = chain_network(n, 1e-3, 2e-4);
+  for (int i = 0; i < n; ++i) net.heat_capacity_J_per_K[i] = 1e-3 * (1.0 + 0.1 * i);
+  net.held[held] = 1;
+  net.heat_source_W[n - 1] = 5e-3;
+  return net;
+}
+}  // namespace
+
 TEST(HeldAndSource, ImplicitIntegratorsAgreeWithTheMatrixExponential) {
   // Chain of 8 with unequal capacities; node 3 held at 360 K; 5 mW into the last node. Its heat
   // flows through nodes 4..6 into the held one (a reservoir); nodes 0..2 relax towards 360 K.
   const int N = 8, held = 3;
-  auto net = chain_network(N, 1e-3, 2e-4);
-  for (int i = 0; i < N; ++i) net.heat_capacity_J_per_K[i] = 1e-3 * (1.0 + 0.1 * i);
-  net.held[held] = 1;
-  net.heat_source_W[N - 1] = 5e-3;
+  const auto net = held_and_source_chain(N, held);
   auto sys = make_system(net, {"contact_conduction", "heat_source"});
   std::vector<double> T0(N, 300.0);
   T0[held] = 360.0;
@@ -236,10 +245,7 @@ TEST(HeldAndSource, ImplicitIntegratorsAgreeWithTheMatrixExponential) {
 
 TEST(HeldAndSource, ExplicitAgreesWithTheMatrixExponential) {
   const int N = 8, held = 3;
-  auto net = chain_network(N, 1e-3, 2e-4);
-  for (int i = 0; i < N; ++i) net.heat_capacity_J_per_K[i] = 1e-3 * (1.0 + 0.1 * i);
-  net.held[held] = 1;
-  net.heat_source_W[N - 1] = 5e-3;
+  const auto net = held_and_source_chain(N, held);
   auto sys = make_system(net, {"contact_conduction", "heat_source"});
   std::vector<double> T0(N, 300.0);
   T0[held] = 360.0;

@@ -40,7 +40,11 @@ bool ContactDetector::update(const ParticleSet& particles, const std::vector<Wal
 void ContactDetector::rebuild(const ParticleSet& particles, const std::vector<Wall>& walls,
                               double lookahead_max) {
   const std::size_t n = particles.size();
-  margin_ = std::clamp(4.0 * lookahead_max, min_margin_, max_margin_);
+  // Two particles can close by at most the sum of their look-aheads before the next check,
+  // so the margin is never below twice the largest one, whatever max_margin says: a fast
+  // particle widens the table rather than tunnel through an unlisted neighbour or wall.
+  margin_ = std::max(std::clamp(4.0 * lookahead_max, min_margin_, max_margin_),
+                     2.0 * lookahead_max);
   std::swap(pairs_, previous_pairs_);
   pairs_.clear();
   const auto& x = particles.position;

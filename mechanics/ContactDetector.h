@@ -30,6 +30,7 @@ struct CandidatePair {
 class ContactDetector {
  public:
   // margin bounds, m: the margin used at a rebuild is 4 * (largest look-ahead) clamped to
+  // (never below 2 * the largest look-ahead, so fast particles cannot tunnel)
   // [min_margin_m, max_margin_m] (wider when particles are fast, so rebuilds stay rare).
   ContactDetector(double min_margin_m, double max_margin_m);
 

@@ -20,12 +20,14 @@ struct SolverSettings {
   double tolerance = 1.0e-6;  // stop when the solver's residual is at most this
   int max_iterations = 10000; // sweeps (or iterations) per solve
   double relaxation = 1.0;    // over-relaxation factor, where the solver has one
+  int stall_sweeps = 500;     // stop when the residual made no progress over this many sweeps
 };
 
 struct SolveReport {
   int sweeps = 0;          // iterations used
   double residual = 0.0;   // at the last iteration (meaning: see the solver)
   bool converged = false;  // residual <= tolerance within max_iterations
+  bool stalled = false;    // stopped early: no progress over stall_sweeps (not converged)
 };
 
 class ContactSolver {

@@ -1,5 +1,7 @@
 #include "mechanics/GaussSeidelSolver.h"
 
+#include <limits>
+
 #include "mechanics/CoulombCone.h"
 
 namespace tmdem::mechanics {
@@ -15,6 +17,9 @@ SolveReport GaussSeidelSolver::solve(const ContactProblem& problem,
   const double relaxation = settings_.relaxation;
   const std::size_t count = problem.size();
   SolveReport report;
+  // Stall watch: the best residual so far and the sweep at which it last fell by 10%.
+  double best = std::numeric_limits<double>::infinity();
+  int best_sweep = 0;
   while (report.sweeps < settings_.max_iterations) {
     ++report.sweeps;
     double change = 0.0, total = 0.0;
@@ -47,6 +52,13 @@ SolveReport GaussSeidelSolver::solve(const ContactProblem& problem,
     report.residual = total > 0.0 ? change / total : 0.0;
     if (change <= settings_.tolerance * total) {
       report.converged = true;
+      break;
+    }
+    if (report.residual < 0.9 * best) {
+      best = report.residual;
+      best_sweep = report.sweeps;
+    } else if (report.sweeps - best_sweep >= settings_.stall_sweeps) {
+      report.stalled = true;
       break;
     }
   }

@@ -99,6 +99,7 @@ NscdIntegrator::NscdIntegrator(ParticleSet particles, std::vector<Material> mate
   settings.tolerance = parameters_.tolerance;
   settings.max_iterations = parameters_.max_iterations;
   settings.relaxation = parameters_.relaxation;
+  settings.stall_sweeps = parameters_.stall_sweeps;
   solver_ = make_contact_solver(parameters_.solver, settings);
   problem_.dimension = dimension_;
   problem_.inverse_mass = inverse_mass_;
@@ -228,6 +229,7 @@ StepReport NscdIntegrator::step(double h) {
   report.sweeps = solved.sweeps;
   report.residual = solved.residual;
   report.converged = solved.converged;
+  report.stalled = solved.stalled;
   keep_in_plane();
 
   // Positions: q_{n+1} = q_n + h (theta v_{n+1} + (1 - theta) v_n).

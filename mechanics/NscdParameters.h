@@ -21,6 +21,9 @@ struct NscdParameters {
   // Gauss-Seidel. On frictional piles over-relaxation does not pay (default 256-particle 2D
   // scene: w = 1.3, 1.6, 1.8 gave more unconverged steps and more sweeps than w = 1).
   double relaxation = 1.0;
+  // Gauss-Seidel stops early (stalled, counted as unconverged) when its residual has not
+  // fallen below 0.9x its best value over this many sweeps.
+  int stall_sweeps = 500;
   // Candidate margin, as fractions of the largest radius (see ContactDetector).
   double min_margin_fraction = 0.1;
   double max_margin_fraction = 2.0;

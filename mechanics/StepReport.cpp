@@ -9,6 +9,7 @@ void MechanicsStats::add(const StepReport& report) {
   total_sweeps += report.sweeps;
   max_sweeps = std::max(max_sweeps, report.sweeps);
   if (!report.converged) ++unconverged_steps;
+  if (report.stalled) ++stalled_steps;
   max_penetration_m = std::max(max_penetration_m, report.max_penetration_m);
 }
 

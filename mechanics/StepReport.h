@@ -10,6 +10,7 @@ struct StepReport {
   int sweeps = 0;                  // Gauss-Seidel sweeps used
   double residual = 0.0;           // sum |dr| / sum |r| of the last sweep (see NscdParameters)
   bool converged = true;           // residual <= tolerance within max_iterations
+  bool stalled = false;            // the solver gave up early: no progress (not converged)
   double max_penetration_m = 0.0;  // largest overlap after the step, >= 0
   std::size_t candidates = 0;      // contacts handed to the solver
   std::size_t active_contacts = 0; // contacts with r_n > 0
@@ -21,6 +22,7 @@ struct MechanicsStats {
   std::int64_t total_sweeps = 0;
   int max_sweeps = 0;                  // "max_iterations" in the run summary
   std::int64_t unconverged_steps = 0;
+  std::int64_t stalled_steps = 0;      // of the unconverged ones, stopped early for no progress
   double max_penetration_m = 0.0;
 
   double mean_sweeps() const {         // "mean_iterations" in the run summary

@@ -79,3 +79,4 @@ TEST(GaussSeidelSolver, StackCarriesTheWeightAboveAndStops) {
   EXPECT_TRUE(warm.converged);
   EXPECT_LE(warm.sweeps, 2);
 }
+

@@ -211,3 +211,41 @@ TEST(NscdExact, RejectsInconsistentInput) {
   set.radius[0] = -1.0;
   EXPECT_THROW(NscdIntegrator(set, {steel(0.3)}, {}, Vector3d(0, -kG, 0), 3), std::invalid_argument);
 }
+
+namespace {
+
+// A sphere of radius R flying at 2 m/s (no gravity) with a step that moves it 1.5 R per step,
+// towards `target` (a wall, or a fixed sphere); returns the smallest gap seen, m.
+double smallest_gap_of_fast_sphere(bool towards_sphere) {
+  const double speed = 2.0, h = 1.5 * kRadius / speed;
+  ParticleSet set;
+  const double m = sphere_mass(kRadius, kDensity);
+  set.add(Vector3d(20.3 * kRadius, 0, 0), kRadius, m, 0);
+  std::vector<Wall> walls;
+  if (towards_sphere) {
+    set.add(Vector3d(0, 0, 0), kRadius, m, 0, /*fixed=*/true);
+  } else {
+    walls.push_back(Wall::through({0, 0, 0}, {1, 0, 0}, 0));
+  }
+  set.velocity[0] = Vector3d(-speed, 0, 0);
+  NscdParameters parameters;
+  parameters.time_step = h;
+  NscdIntegrator sim(std::move(set), {steel(0.3)}, walls, Vector3d::Zero(), 3, parameters);
+  double smallest = 1.0;
+  for (int step = 0; step < 60; ++step) {
+    sim.step();
+    const double x = sim.particles().position[0].x();
+    smallest = std::min(smallest, towards_sphere ? x - 2 * kRadius : x - kRadius);
+  }
+  return smallest;
+}
+
+}  // namespace
+
+TEST(NscdExact, FastSphereNeverPassesAWall) {
+  EXPECT_GE(smallest_gap_of_fast_sphere(false), -1e-9 * kRadius);
+}
+
+TEST(NscdExact, FastSphereNeverPassesAnotherSphere) {
+  EXPECT_GE(smallest_gap_of_fast_sphere(true), -1e-9 * kRadius);
+}

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "mechanics/ApgdSolver.h"
 #include "mechanics/GaussSeidelSolver.h"
 
 namespace tmdem::mechanics {
@@ -20,6 +21,7 @@ std::unique_ptr<ContactSolver> make(const SolverSettings& settings) {
 const std::vector<Entry>& entries() {
   static const std::vector<Entry> table = {
       {"nlgs", &make<GaussSeidelSolver>},
+      {"apgd", &make<ApgdSolver>},
   };
   return table;
 }

@@ -1,0 +1,71 @@
+#pragma once
+// Accelerated projected gradient with Nesterov momentum and adaptive restart (APGD, Mazhar,
+// Heyn, Negrut and Tasora 2015, the scheme of Chrono), registered as "apgd". A Jacobi-type
+// method: every contact of an iteration is updated from the same iterate, so the per-contact
+// loops run in parallel (OpenMP) and W r comes from one body gather per iteration.
+//
+// The law it solves is the bipotential (non-associated) Coulomb law of CoulombCone.h, not the
+// convex relaxation APGD was designed for. APGD minimises f(r) = 1/2 r.W r + b.r over the
+// cones, whose optimality condition is the associated law -(W r + b) in N_K(r): sliding then
+// makes the contact separate at u_n = mu |u_t| (the cone complementarity problem of Anitescu
+// and Tasora). The bipotential law asks -u~ in N_K(r) with u~ = u + mu |u_t| n, i.e. u_n = 0
+// while sliding. Remedy used here: a fixed point on s_c = mu |u_t,c|, the normal bias shift.
+// For frozen s the problem is convex with b shifted by s n; s is refreshed from the newest
+// iterate at every iteration (the "few outer iterations" merged into the inner loop), so a
+// fixed point of the iteration is exactly r = proj_K(r - rho u~), the bipotential law.
+// Because the objective moves with s, f is never evaluated: the step-size test only needs
+// the curvature (x - y).W(x - y) <= L |x - y|^2, which does not depend on b, and the restart
+// uses the gradient test g(y).(x_new - x) > 0 (O'Donoghue and Candes 2015).
+//
+// Metric: the Delassus diagonal D_c = diag(w_n, w_t, w_t), so that the scaled operator has a
+// unit diagonal (L >= 1, about the largest number of contacts of a body); the projection in
+// that metric is the projection onto the scaled cone mu' = mu sqrt(w_t / w_n).
+//
+// Stop test: the same measure as "nlgs" evaluated for a Jacobi pass, sum_c |r_c - R_c(r)| /
+// sum_c |R_c(r)|, where R_c is the exact local solve of CoulombCone.h with the others frozen;
+// R_c(r) = r_c is the bipotential law itself, so this is a natural-map residual
+// (NaturalMapResidual.h) with the local step rho_c = D_c^-1. The best iterate is returned.
+//
+// Determinism: every reduction sums fixed blocks of contacts, then the block sums in block
+// order; body velocities are gathered contact by contact in a fixed order. Results are
+// therefore bitwise identical for any thread count (static schedules, no atomics).
+
+#include <cstddef>
+#include <cstdint>
+
+#include "mechanics/ContactSolver.h"
+
+namespace tmdem::mechanics {
+
+class ApgdSolver final : public ContactSolver {
+ public:
+  // parallel_from: contacts from which the loops use OpenMP threads (below, waking them
+  // costs more than an iteration); 0 parallelises every problem (tests).
+  explicit ApgdSolver(const SolverSettings& settings, std::ptrdiff_t parallel_from = 4096);
+  std::string_view name() const override { return "apgd"; }
+  SolveReport solve(const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
+                    std::vector<Eigen::Vector3d>& velocity,
+                    std::vector<Eigen::Vector3d>& angular_velocity) override;
+
+ private:
+  void build_body_lists(const ContactProblem& problem);
+  // velocity = v_free + M^-1 H x, then u[c] = local velocity of every contact (with bias).
+  void local_velocities(const ContactProblem& problem, const std::vector<Eigen::Vector3d>& x,
+                        std::vector<Eigen::Vector3d>& velocity,
+                        std::vector<Eigen::Vector3d>& angular_velocity,
+                        std::vector<Eigen::Vector3d>& u);
+
+  SolverSettings settings_;
+  std::ptrdiff_t parallel_from_;
+  double lipschitz_ = 1.0;  // of D^-1/2 W D^-1/2, kept between solves (dimensionless)
+
+  // Reused between solves: no allocation once warm.
+  std::vector<Eigen::Vector3d> x_, x_old_, y_, ux_, ux_old_, uy_, best_;
+  std::vector<Eigen::Vector3d> impulse_, torque_arm_;  // global p_c and n x p_c, N s
+  std::vector<double> slip_bias_;                      // s_c = mu |u_t|, m/s
+  std::vector<std::int32_t> body_start_, body_fill_;   // contacts of each body (CSR)
+  std::vector<std::int32_t> body_contact_;             // contact index, negated-1 when j
+  std::vector<double> partial_a_, partial_b_;          // per-block sums
+};
+
+}  // namespace tmdem::mechanics

@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "BenchLattice.h"
 #include "mechanics/ContactDetector.h"
 #include "mechanics/NscdIntegrator.h"
 #include "mechanics/TouchingPairs.h"
@@ -19,27 +20,9 @@ using Eigen::Vector3d;
 
 namespace {
 
-constexpr double kRadius = 1e-3;
-
-// nx * nx * layers spheres on a simple cubic lattice of spacing 2R resting on y = 0.
-ParticleSet lattice(int nx, int layers, double spacing_factor = 1.0) {
-  ParticleSet set;
-  const double m = sphere_mass(kRadius, 7800.0);
-  const double d = 2.0 * kRadius * spacing_factor;
-  set.reserve(static_cast<std::size_t>(nx) * nx * layers);
-  for (int y = 0; y < layers; ++y) {
-    for (int z = 0; z < nx; ++z) {
-      for (int x = 0; x < nx; ++x) {
-        set.add(Vector3d(kRadius + x * d, kRadius + y * d, kRadius + z * d), kRadius, m, 0);
-      }
-    }
-  }
-  return set;
-}
-
-int width_for(std::int64_t count, int layers) {
-  return static_cast<int>(std::lround(std::sqrt(static_cast<double>(count) / layers)));
-}
+using tmdem::bench::kRadius;
+using tmdem::bench::lattice;
+using tmdem::bench::width_for;
 
 // Candidate-table rebuild (grid + pair list + sort + warm-start map) for a dense packing.
 void BM_DetectionRebuild(benchmark::State& state) {

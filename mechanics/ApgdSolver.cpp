@@ -145,7 +145,14 @@ SolveReport ApgdSolver::solve(const ContactProblem& problem, std::vector<Eigen::
   y_.assign(x_.begin(), x_.end());
   uy_.assign(ux_.begin(), ux_.end());
   double theta = 1.0;
+  // Stall watch, as nlgs: the sweep at which the best residual last fell by 10%.
+  double progress = best_residual;
+  int progress_sweep = 0;
   while (best_residual > settings_.tolerance && report.sweeps < settings_.max_iterations) {
+    if (report.sweeps - progress_sweep >= settings_.stall_sweeps) {
+      report.stalled = true;
+      break;
+    }
     ++report.sweeps;
     std::swap(x_, x_old_);
     std::swap(ux_, ux_old_);
@@ -199,6 +206,10 @@ SolveReport ApgdSolver::solve(const ContactProblem& problem, std::vector<Eigen::
       best_residual = residual;
       best_sweep = report.sweeps;
       best_.assign(x_.begin(), x_.end());
+    }
+    if (residual < 0.9 * progress) {
+      progress = residual;
+      progress_sweep = report.sweeps;
     }
     // The scaled operator has a unit diagonal, so its largest eigenvalue is at least 1.
     lipschitz_ = std::max(1.0, 0.9 * lipschitz);

@@ -1,0 +1,72 @@
+// Contact solvers side by side ("nlgs" vs "apgd") on the same settled 3D pile: residual
+// reached, wall time and ns per contact per iteration, at 1 and 2 OpenMP threads.
+//
+// Pile: BenchLattice.h, 10 layers of touching spheres, mu = 0.3, after one step; each timed
+// solve starts cold (reactions zero), the hard case: warm-started from the last step's
+// reactions a pile at rest converges in one or two sweeps whichever the solver. Every solver
+// stops on its own test at tolerance 1e-6; "residual" is the common measure of both answers
+// (NaturalMapResidual.h), so the columns compare like with like.
+#include <benchmark/benchmark.h>
+#include <omp.h>
+
+#include <chrono>
+
+#include "BenchLattice.h"
+#include "mechanics/ContactSolverRegistry.h"
+#include "mechanics/NaturalMapResidual.h"
+#include "mechanics/NscdIntegrator.h"
+
+using namespace tmdem::mechanics;
+
+namespace {
+
+// Args: solver (index into contact_solver_names()), spheres, threads.
+void BM_ColdSolve(benchmark::State& state) {
+  const std::string name = contact_solver_names().at(static_cast<std::size_t>(state.range(0)));
+  const int layers = 10;
+  NscdParameters parameters;
+  parameters.max_iterations = 100000;
+  NscdIntegrator sim(tmdem::bench::lattice(tmdem::bench::width_for(state.range(1), layers), layers),
+                     {Material{7800.0, 2.1e11, 0.3, 0.3}},
+                     {Wall::through({0, 0, 0}, {0, 1, 0}, 0)}, Eigen::Vector3d(0, -9.81, 0), 3,
+                     parameters);
+  sim.step();
+  const ContactProblem& problem = sim.problem();
+  SolverSettings settings;
+  settings.tolerance = 1e-6;
+  settings.max_iterations = 100000;
+  const int threads_before = omp_get_max_threads();
+  omp_set_num_threads(static_cast<int>(state.range(2)));
+  std::vector<Eigen::Vector3d> r, v, w;
+  double seconds = 0.0, residual = 0.0;
+  std::int64_t iterations = 0, solves = 0, converged = 0;
+  for (auto _ : state) {
+    auto solver = make_contact_solver(name, settings);  // fresh: no state from the last solve
+    r.assign(problem.size(), Eigen::Vector3d::Zero());
+    const auto start = std::chrono::steady_clock::now();
+    const SolveReport report = solver->solve(problem, r, v, w);
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    iterations += report.sweeps;
+    converged += report.converged ? 1 : 0;
+    ++solves;
+    residual = natural_map_residual(problem, r, v, w);
+  }
+  omp_set_num_threads(threads_before);
+  state.SetLabel(name);
+  state.counters["contacts"] = static_cast<double>(problem.size());
+  state.counters["threads"] = static_cast<double>(state.range(2));
+  state.counters["iterations"] = static_cast<double>(iterations) / static_cast<double>(solves);
+  state.counters["converged"] = static_cast<double>(converged) / static_cast<double>(solves);
+  state.counters["residual"] = residual;
+  state.counters["ms_per_solve"] = seconds * 1e3 / static_cast<double>(solves);
+  state.counters["ns_per_contact_iteration"] =
+      seconds * 1e9 / (static_cast<double>(iterations) * static_cast<double>(problem.size()));
+}
+BENCHMARK(BM_ColdSolve)
+    ->ArgsProduct({{0, 1}, {1000, 10000}, {1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
+
+}  // namespace
+
+BENCHMARK_MAIN();

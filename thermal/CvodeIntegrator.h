@@ -16,7 +16,7 @@ class CvodeIntegrator final : public SundialsIntegratorBase {
  public:
   CvodeIntegrator(ThermalSystem& system, const IntegratorSettings& settings);
 
-  std::string_view name() const override { return "cvode"; }
+  IntegratorKind kind() const override { return IntegratorKind::Cvode; }
   void initialize(double t0_s, std::span<const double> T0_K, double boundary_heat0_J) override;
   void advance_to(double t_s) override;
   void restart() override;

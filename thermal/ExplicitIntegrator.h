@@ -12,7 +12,7 @@ class ExplicitIntegrator final : public ThermalIntegrator {
  public:
   ExplicitIntegrator(ThermalSystem& system, const IntegratorSettings& settings);
 
-  std::string_view name() const override { return "explicit"; }
+  IntegratorKind kind() const override { return IntegratorKind::Explicit; }
   // Throws std::invalid_argument, naming the bound, when explicit_step_s exceeds it.
   void initialize(double t0_s, std::span<const double> T0_K, double boundary_heat0_J) override;
   void advance_to(double t_s) override;

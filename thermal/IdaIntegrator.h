@@ -14,7 +14,7 @@ class IdaIntegrator final : public SundialsIntegratorBase {
  public:
   IdaIntegrator(ThermalSystem& system, const IntegratorSettings& settings);
 
-  std::string_view name() const override { return "ida"; }
+  IntegratorKind kind() const override { return IntegratorKind::Ida; }
   void initialize(double t0_s, std::span<const double> T0_K, double boundary_heat0_J) override;
   void advance_to(double t_s) override;
   void restart() override;

@@ -9,13 +9,14 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "thermal/IntegratorKind.h"
 #include "thermal/ThermalSolverError.h"
 
 namespace tmdem::thermal {
 
 SundialsIntegratorBase::SundialsIntegratorBase(ThermalSystem& system,
                                                const IntegratorSettings& settings)
-    : system_(system), settings_(settings), pcg_(settings.linear_solver == "pcg") {
+    : system_(system), settings_(settings), pcg_(parse_linear_solver_kind(settings.linear_solver) == LinearSolverKind::Pcg) {
   if (pcg_) {
     scale_.resize(system_.size());
     for (std::size_t i = 0; i < scale_.size(); ++i)

@@ -5,6 +5,8 @@
 #include <string>
 #include <string_view>
 
+#include "thermal/IntegratorKind.h"
+
 namespace tmdem::thermal {
 
 struct IntegratorStats {
@@ -35,7 +37,9 @@ struct IntegratorSettings {
 class ThermalIntegrator {
  public:
   virtual ~ThermalIntegrator() = default;
-  virtual std::string_view name() const = 0;
+  virtual IntegratorKind kind() const = 0;
+  std::string_view name() const { return name_of(kind()); }
+  bool is_explicit() const { return kind() == IntegratorKind::Explicit; }
 
   // Starts at t0 with temperatures T0 (held particles keep theirs) and a boundary-heat counter
   // that starts at boundary_heat0 (non-zero on restart from a checkpoint).

@@ -48,7 +48,7 @@ int run_accuracy_command(const Scene& scene, const AccuracyCommandOptions& optio
       study.stability_bound_s = replay.min_stability_bound_s(base.max_temperature_K);
       study.max_explicit_step_s = scene.mechanics.time_step_s;
       const ThermalDriver driver = [&](thermal::ThermalIntegrator& integ, std::span<const double> T,
-                                       double, const std::string& coupling) {
+                                       double, CouplingStrategy coupling) {
         replay.run(integ, T, coupling);
       };
       result = run_accuracy_study(*system, T0, scene.duration_s, base, modes, study,
@@ -69,7 +69,7 @@ int run_accuracy_command(const Scene& scene, const AccuracyCommandOptions& optio
   for (const auto& r : result.runs)
     if (!r.ok)
       log << "warning: " << r.label() << " "
-          << (r.method == "explicit" ? "h = " : "rtol = ") << shortest_number(r.parameter)
+          << (r.is_explicit() ? "h = " : "rtol = ") << shortest_number(r.parameter)
           << " failed (left out of the CSV): " << r.message << std::endl;
 
   out << "accuracy study: " << scene.source << "\n";

@@ -18,7 +18,7 @@ void DynamicNetwork::load(const ContactList& active) {
 }
 
 void DynamicNetwork::update(ContactList& active, thermal::ThermalIntegrator& integrator,
-                            const std::string& coupling) {
+                            CouplingStrategy coupling) {
   const auto shape_before = system_.topology_version();
   load(active);
   // The output lists the active contacts only; their conductances come from the pattern list
@@ -30,7 +30,7 @@ void DynamicNetwork::update(ContactList& active, thermal::ThermalIntegrator& int
     active.conductance_W_per_K[c] = pattern_contacts_.conductance_W_per_K[p];
   }
   // A new shape re-initialises inside advance_to anyway; "restart" also does it otherwise.
-  if (coupling == "restart" && system_.topology_version() == shape_before) integrator.restart();
+  if (coupling == CouplingStrategy::Restart && system_.topology_version() == shape_before) integrator.restart();
 }
 
 }  // namespace tmdem::coupling

@@ -9,6 +9,7 @@
 
 #include "coupling/bridge/ContactList.h"
 #include "coupling/bridge/ContactPattern.h"
+#include "coupling/bridge/CouplingStrategy.h"
 #include "coupling/scene/Scene.h"
 #include "coupling/bridge/ThermalNetworkBuilder.h"
 #include "thermal/ThermalIntegrator.h"
@@ -24,7 +25,7 @@ class DynamicNetwork {
   void reset();
   // active: this step's contacts in canonical order; their conductances are filled in.
   void update(ContactList& active, thermal::ThermalIntegrator& integrator,
-              const std::string& coupling);
+              CouplingStrategy coupling);
   // As update, without an integrator (e.g. to inspect the network of a step).
   void load(const ContactList& active);
 

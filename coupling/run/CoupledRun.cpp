@@ -56,7 +56,8 @@ class CoupledRun {
  public:
   CoupledRun(const Scene& scene, const RunOptions& options, std::ostream& log)
       : scene_(scene), options_(options), log_(log),
-        progress_(log, options.quiet, options.terminal) {}
+        progress_(log, options.quiet, options.terminal),
+        coupling_(parse_coupling_strategy(scene.thermal.coupling)) {}
 
   RunOutcome run();
 
@@ -81,6 +82,7 @@ class CoupledRun {
   RunOptions options_;
   std::ostream& log_;
   ProgressReporter progress_;
+  CouplingStrategy coupling_;  // thermal.coupling, parsed once
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 
   mechanics::ParticleSet particles_;                  // used when mechanics is off or settled
@@ -183,7 +185,7 @@ void CoupledRun::prepare_thermal() {
   if (!options_.quiet) {
     std::ostringstream report;
     report << "thermal: integrator " << scene_.thermal.integrator;
-    if (scene_.thermal.integrator != "explicit") report << " (" << scene_.thermal.linear_solver << ")";
+    if (!integrator_->is_explicit()) report << " (" << scene_.thermal.linear_solver << ")";
     report << ", modes:";
     for (const auto& m : system_->modes()) report << " " << m->name();
     report << "\n";
@@ -307,7 +309,7 @@ void CoupledRun::run_dynamic() {
     }
     gather_contacts(nscd_->contacts(), contacts_);
     const auto thermal_start = std::chrono::steady_clock::now();
-    dynamic_network_->update(contacts_, *integrator_, scene_.thermal.coupling);
+    dynamic_network_->update(contacts_, *integrator_, coupling_);
     integrator_->advance_to(t_next);
     thermal_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - thermal_start).count();
     t = t_next;
@@ -337,7 +339,9 @@ void CoupledRun::fill_summary() {
     summary_.mechanics.max_penetration_m = ms.max_penetration_m;
   }
   summary_.thermal.integrator = scene_.thermal.integrator;
-  summary_.thermal.linear_solver = scene_.thermal.integrator == "explicit" ? "" : scene_.thermal.linear_solver;
+  const bool explicit_update =
+      thermal::parse_integrator_kind(scene_.thermal.integrator) == thermal::IntegratorKind::Explicit;
+  summary_.thermal.linear_solver = explicit_update ? "" : scene_.thermal.linear_solver;
   if (integrator_) {
     const auto st = integrator_->stats();
     summary_.thermal.steps = st.steps;

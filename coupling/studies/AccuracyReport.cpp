@@ -10,6 +10,9 @@ namespace tmdem::coupling {
 
 namespace {
 
+// The label (and method) of the explicit update's runs.
+const std::string kExplicitLabel(thermal::name_of(thermal::IntegratorKind::Explicit));
+
 std::string fmt(const char* format, double x) {
   char buf[64];
   std::snprintf(buf, sizeof buf, format, x);
@@ -17,7 +20,7 @@ std::string fmt(const char* format, double x) {
 }
 
 std::string parameter_text(const AccuracyRun& r) {
-  return r.method == "explicit" ? "h = " + fmt("%.3e", r.parameter) + " s"
+  return r.is_explicit() ? "h = " + fmt("%.3e", r.parameter) + " s"
                                 : "rtol = " + fmt("%.0e", r.parameter);
 }
 
@@ -71,7 +74,7 @@ ExplicitProjection project_explicit(const std::vector<AccuracyRun>& runs, double
   ExplicitProjection p;
   std::vector<const AccuracyRun*> ex;
   for (const auto& r : runs)
-    if (r.ok && r.method == "explicit" && r.steps > 0 && r.max_error_K > 0.0) ex.push_back(&r);
+    if (r.ok && r.is_explicit() && r.steps > 0 && r.max_error_K > 0.0) ex.push_back(&r);
   if (ex.empty()) return p;
   std::sort(ex.begin(), ex.end(),
             [](const AccuracyRun* a, const AccuracyRun* b) { return a->parameter < b->parameter; });
@@ -134,7 +137,7 @@ void print_accuracy_report(std::ostream& out, const AccuracyStudyResult& res,
   for (double target : {1e-3, 1e-6}) {
     out << "\nmax error <= " << fmt("%.0e", target)
         << " K (each method's run with the least wall time that reaches it):\n";
-    const AccuracyRun* ex = cheapest_reaching(res.runs, "explicit", target);
+    const AccuracyRun* ex = cheapest_reaching(res.runs, kExplicitLabel, target);
     const auto proj = project_explicit(res.runs, res.end_time_s, target);
     double explicit_time = ex ? ex->wall_time_s : (proj.available ? proj.wall_time_s : 0.0);
     const bool projected = !ex && proj.available;
@@ -146,7 +149,7 @@ void print_accuracy_report(std::ostream& out, const AccuracyStudyResult& res,
         std::snprintf(line, sizeof line, "  %-10s %-18s error %9.2e K  %10.3e s", label.c_str(),
                       parameter_text(*r).c_str(), r->max_error_K, r->wall_time_s);
         out << line;
-        if (label != "explicit" && explicit_time > 0.0)
+        if (label != kExplicitLabel && explicit_time > 0.0)
           out << "  " << ratio_text(explicit_time, r->wall_time_s) << (projected ? " (projected)" : "");
         out << "\n";
         if (fastest.empty() || r->wall_time_s < fastest_time) {
@@ -160,7 +163,7 @@ void print_accuracy_report(std::ostream& out, const AccuracyStudyResult& res,
         out << " (smallest error " << fmt("%.2e", best->max_error_K) << " K at "
             << parameter_text(*best) << ")";
       out << "\n";
-      if (label == "explicit" && proj.available)
+      if (label == kExplicitLabel && proj.available)
         out << "    projected: h = " << fmt("%.3e", proj.step_s) << " s, "
             << fmt("%.3g", proj.steps) << " steps, " << fmt("%.3g", proj.wall_time_s)
             << " s (first order: error = c h with c = " << fmt("%.3g", proj.error_constant_K_per_s)
@@ -173,7 +176,7 @@ void print_accuracy_report(std::ostream& out, const AccuracyStudyResult& res,
       continue;
     }
     out << "  fastest: " << fastest;
-    if (fastest != "explicit" && explicit_time > 0.0)
+    if (fastest != kExplicitLabel && explicit_time > 0.0)
       out << "; " << fastest << " reaches " << fmt("%.0e", target) << " K "
           << ratio_text(explicit_time, fastest_time) << (projected ? " (explicit projected)" : "");
     out << "\n";

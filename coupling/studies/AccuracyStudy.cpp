@@ -63,8 +63,9 @@ AccuracyRun timed_accuracy_run(thermal::ThermalSystem& system, const std::string
                                const AccuracyStudyOptions& options, const ThermalDriver& driver) {
   AccuracyRun run;
   run.method = method;
-  run.linear_solver = method == "explicit" ? "none" : settings.linear_solver;
-  run.parameter = method == "explicit" ? settings.explicit_step_s : settings.relative_tolerance;
+  const bool explicit_update = run.is_explicit();
+  run.linear_solver = explicit_update ? kNoLinearSolver : settings.linear_solver;
+  run.parameter = explicit_update ? settings.explicit_step_s : settings.relative_tolerance;
   run.wall_time_s = std::numeric_limits<double>::infinity();
   try {
     while (run.timings < std::max(1, options.max_timings)) {
@@ -72,7 +73,7 @@ AccuracyRun timed_accuracy_run(thermal::ThermalSystem& system, const std::string
       const double cpu_start = thread_cpu_seconds();
       const auto start = Clock::now();
       if (driver) {
-        driver(*integrator, T0_K, end_time_s, "continue");
+        driver(*integrator, T0_K, end_time_s, CouplingStrategy::Continue);
       } else {
         integrator->initialize(0.0, T0_K, 0.0);
         integrator->advance_to(end_time_s);
@@ -132,12 +133,13 @@ AccuracyReference accuracy_reference(thermal::ThermalSystem& system, std::span<c
     ref.description = "exact matrix exponential of the affine system dT/dt = A T + b (" +
                       std::to_string(system.size()) + " particles, Eigen MatrixFunctions)";
   } else {
-    auto s = implicit_settings(base, "klu", options.reference_tolerance);
+    auto s = implicit_settings(base, std::string(thermal::name_of(thermal::LinearSolverKind::Klu)),
+                               options.reference_tolerance);
     s.max_steps_per_call = std::max(s.max_steps_per_call, 100000000L);
     try {
-      auto integrator = thermal::make_thermal_integrator("cvode", system, s);
+      auto integrator = thermal::make_thermal_integrator(thermal::name_of(thermal::IntegratorKind::Cvode), system, s);
       if (driver) {
-        driver(*integrator, T0_K, end_time_s, "restart");
+        driver(*integrator, T0_K, end_time_s, CouplingStrategy::Restart);
       } else {
         integrator->initialize(0.0, T0_K, 0.0);
         integrator->advance_to(end_time_s);
@@ -183,8 +185,8 @@ AccuracyStudyResult run_accuracy_study(thermal::ThermalSystem& system,
 
   auto report = [&](const AccuracyRun& r) {
     if (!log) return;
-    *log << "study: " << r.label() << (r.method == "explicit" ? " h = " : " rtol = ")
-         << r.parameter << (r.method == "explicit" ? " s" : "");
+    *log << "study: " << r.label() << (r.is_explicit() ? " h = " : " rtol = ")
+         << r.parameter << (r.is_explicit() ? " s" : "");
     if (r.ok)
       *log << ": max error " << r.max_error_K << " K, " << r.wall_time_s << " s, " << r.steps
            << " steps" << std::endl;
@@ -206,7 +208,7 @@ AccuracyStudyResult run_accuracy_study(thermal::ThermalSystem& system,
     }
     auto s = base;
     s.explicit_step_s = h;
-    result.runs.push_back(timed_accuracy_run(system, "explicit", s, T0_K, end_time_s,
+    result.runs.push_back(timed_accuracy_run(system, std::string(thermal::name_of(thermal::IntegratorKind::Explicit)), s, T0_K, end_time_s,
                                              result.reference.T_K, options, driver));
     report(result.runs.back());
   }

@@ -27,6 +27,7 @@
 #include <utility>
 #include <vector>
 
+#include "coupling/bridge/CouplingStrategy.h"
 #include "coupling/scene/Scene.h"
 #include "thermal/HeatTransferMode.h"
 #include "thermal/ThermalIntegrator.h"
@@ -55,9 +56,12 @@ struct AccuracyStudyOptions {
 
 // How one run gets from t = 0 to the end time. Empty: initialize, then one advance on the
 // frozen network. A dynamic scene replays its recorded contact graph (ThermalReplay) with the
-// given coupling strategy ("continue" for the runs, "restart" for the reference).
+// given coupling strategy (Continue for the runs, Restart for the reference).
 using ThermalDriver = std::function<void(thermal::ThermalIntegrator&, std::span<const double> T0_K,
-                                         double end_time_s, const std::string& coupling)>;
+                                         double end_time_s, CouplingStrategy coupling)>;
+
+// The CSV's linear_solver column for the explicit update.
+inline constexpr const char* kNoLinearSolver = "none";
 
 struct AccuracyRun {
   std::string method;          // explicit | cvode | ida
@@ -74,7 +78,8 @@ struct AccuracyRun {
   std::string message;         // why it failed
 
   // "explicit", "cvode/klu", ...
-  std::string label() const { return method == "explicit" ? method : method + "/" + linear_solver; }
+  bool is_explicit() const { return method == thermal::name_of(thermal::IntegratorKind::Explicit); }
+  std::string label() const { return is_explicit() ? method : method + "/" + linear_solver; }
 };
 
 struct SkippedRung {

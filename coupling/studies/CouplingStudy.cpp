@@ -19,9 +19,16 @@ namespace tmdem::coupling {
 namespace {
 
 struct Variant {
-  std::string strategy;    // continue | restart | explicit
-  std::string integrator;  // cvode | explicit
-  double parameter;        // rtol, or the explicit step (s)
+  CouplingStrategy strategy;
+  thermal::IntegratorKind integrator;  // cvode, or explicit at the mechanical step
+  double parameter;                    // rtol, or the explicit step (s)
+
+  // The CSV's strategy column: continue | restart | explicit.
+  std::string strategy_name() const {
+    return std::string(integrator == thermal::IntegratorKind::Explicit ? thermal::name_of(integrator)
+                                                                       : name_of(strategy));
+  }
+  std::string integrator_name() const { return std::string(thermal::name_of(integrator)); }
 };
 
 struct Row {
@@ -38,7 +45,7 @@ Row run_variant(const Scene& scene, thermal::ThermalSystem& system, ThermalRepla
   auto s = integrator_settings(scene);
   s.linear_solver = "klu";
   s.stop_at_each_time = true;
-  if (v.integrator == "explicit") {
+  if (v.integrator == thermal::IntegratorKind::Explicit) {
     s.explicit_step_s = v.parameter;
   } else {
     s.relative_tolerance = v.parameter;
@@ -47,7 +54,7 @@ Row run_variant(const Scene& scene, thermal::ThermalSystem& system, ThermalRepla
   Row row;
   row.v = v;
   try {
-    auto integrator = thermal::make_thermal_integrator(v.integrator, system, s);
+    auto integrator = thermal::make_thermal_integrator(thermal::name_of(v.integrator), system, s);
     const auto start = std::chrono::steady_clock::now();
     replay.run(*integrator, T0, v.strategy);
     row.thermal_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -81,7 +88,7 @@ int run_coupling_study(const Scene& scene, const std::string& csv_path, std::ost
   for (const auto& p : scene.particles) T0.push_back(p.temperature_K);
   ThermalReplay replay(scene, recording, *system);
 
-  const auto ref = run_variant(scene, *system, replay, T0, {"restart", "cvode", 1e-12});
+  const auto ref = run_variant(scene, *system, replay, T0, {CouplingStrategy::Restart, thermal::IntegratorKind::Cvode, 1e-12});
   if (!ref.failure.empty()) {
     log << "error: the reference run failed: " << ref.failure << "\n";
     return kExitSolverFailed;
@@ -89,10 +96,13 @@ int run_coupling_study(const Scene& scene, const std::string& csv_path, std::ost
   out << "reference: cvode/klu restarted every mechanical step, rtol = atol = 1e-12 ("
       << ref.stats.steps << " thermal steps, " << ref.thermal_wall_s << " s)\n";
 
-  const std::vector<Variant> variants{{"continue", "cvode", 1e-4}, {"continue", "cvode", 1e-6},
-                                      {"continue", "cvode", 1e-8}, {"restart", "cvode", 1e-4},
-                                      {"restart", "cvode", 1e-6},  {"restart", "cvode", 1e-8},
-                                      {"explicit", "explicit", h}};
+  using thermal::IntegratorKind;
+  const auto cont = CouplingStrategy::Continue, restart = CouplingStrategy::Restart;
+  const std::vector<Variant> variants{
+      {cont, IntegratorKind::Cvode, 1e-4},    {cont, IntegratorKind::Cvode, 1e-6},
+      {cont, IntegratorKind::Cvode, 1e-8},    {restart, IntegratorKind::Cvode, 1e-4},
+      {restart, IntegratorKind::Cvode, 1e-6}, {restart, IntegratorKind::Cvode, 1e-8},
+      {cont, IntegratorKind::Explicit, h}};
   std::ostringstream csv;
   csv << "strategy,integrator,parameter,max_error_K,thermal_wall_time_s,thermal_steps,"
          "reinitializations\n";
@@ -102,16 +112,16 @@ int run_coupling_study(const Scene& scene, const std::string& csv_path, std::ost
   for (const auto& v : variants) {
     auto row = run_variant(scene, *system, replay, T0, v);
     if (!row.failure.empty()) {
-      log << "warning: " << v.strategy << " (" << v.parameter << ") failed: " << row.failure << "\n";
-      out << std::left << std::setw(10) << v.strategy << std::setw(10) << v.integrator
+      log << "warning: " << v.strategy_name() << " (" << v.parameter << ") failed: " << row.failure << "\n";
+      out << std::left << std::setw(10) << v.strategy_name() << std::setw(10) << v.integrator_name()
           << std::setw(11) << v.parameter << "FAILED (left out of the CSV)\n";
       continue;
     }
     for (std::size_t i = 0; i < ref.T.size(); ++i)
       row.max_error_K = std::max(row.max_error_K, std::abs(row.T[i] - ref.T[i]));
-    csv << v.strategy << "," << v.integrator << "," << v.parameter << "," << row.max_error_K << ","
+    csv << v.strategy_name() << "," << v.integrator_name() << "," << v.parameter << "," << row.max_error_K << ","
         << row.thermal_wall_s << "," << row.stats.steps << "," << row.stats.reinitializations << "\n";
-    out << std::left << std::setw(10) << v.strategy << std::setw(10) << v.integrator << std::setw(11)
+    out << std::left << std::setw(10) << v.strategy_name() << std::setw(10) << v.integrator_name() << std::setw(11)
         << v.parameter << std::setw(13) << row.max_error_K << std::setw(12) << row.thermal_wall_s
         << std::setw(10) << row.stats.steps << row.stats.reinitializations << "\n";
   }

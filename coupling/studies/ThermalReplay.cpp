@@ -20,7 +20,7 @@ double ThermalReplay::min_stability_bound_s(double max_temperature_K) {
 }
 
 void ThermalReplay::run(thermal::ThermalIntegrator& integrator, std::span<const double> T0_K,
-                        const std::string& coupling) {
+                        CouplingStrategy coupling) {
   network_.reset();
   integrator.initialize(0.0, T0_K, 0.0);
   for (std::size_t k = 0; k < recording_.step_end_s.size(); ++k) {

@@ -19,7 +19,7 @@ class ThermalReplay {
   // From t = 0 (no contact) through every recorded step. `integrator` must be built on the
   // same system; it is initialized here.
   void run(thermal::ThermalIntegrator& integrator, std::span<const double> T0_K,
-           const std::string& coupling);
+           CouplingStrategy coupling);
 
   // Smallest explicit stability bound over the recorded steps, s (the system's edges are left
   // as those of the last step).

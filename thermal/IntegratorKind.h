@@ -1,0 +1,42 @@
+#pragma once
+// The names of the thermal integrators and linear solvers, parsed once into enums, so the code
+// compares kinds, never strings. The names are the scene's values (thermal.integrator,
+// thermal.linear_solver) and the accuracy-study CSV's `method` / `linear_solver` columns.
+#include <array>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+namespace tmdem::thermal {
+
+enum class IntegratorKind { Cvode, Ida, Explicit };
+enum class LinearSolverKind { Klu, Pcg };
+
+inline constexpr std::array<std::string_view, 3> kIntegratorNames{"cvode", "ida", "explicit"};
+inline constexpr std::array<std::string_view, 2> kLinearSolverNames{"klu", "pcg"};
+
+constexpr std::string_view name_of(IntegratorKind k) { return kIntegratorNames[static_cast<int>(k)]; }
+constexpr std::string_view name_of(LinearSolverKind k) { return kLinearSolverNames[static_cast<int>(k)]; }
+
+namespace detail {
+template <class Kind, std::size_t N>
+Kind parse_kind(std::string_view name, const std::array<std::string_view, N>& names,
+                const char* what) {
+  for (std::size_t i = 0; i < N; ++i)
+    if (names[i] == name) return static_cast<Kind>(i);
+  std::string valid;
+  for (auto n : names) valid += (valid.empty() ? "" : ", ") + std::string(n);
+  throw std::invalid_argument(std::string("unknown ") + what + " \"" + std::string(name) +
+                              "\"; valid types are: " + valid);
+}
+}  // namespace detail
+
+// Unknown names throw std::invalid_argument listing the valid ones.
+inline IntegratorKind parse_integrator_kind(std::string_view name) {
+  return detail::parse_kind<IntegratorKind>(name, kIntegratorNames, "thermal integrator");
+}
+inline LinearSolverKind parse_linear_solver_kind(std::string_view name) {
+  return detail::parse_kind<LinearSolverKind>(name, kLinearSolverNames, "linear solver");
+}
+
+}  // namespace tmdem::thermal

@@ -201,6 +201,36 @@ bool read_int_attribute(hid_t object, const char* name, int& value) {
   return read_scalar(object, name, H5T_NATIVE_INT, value);
 }
 
+void write_double_array_attribute(hid_t object, const char* name,
+                                  const std::vector<double>& values) {
+  const std::string what = attribute_what(name);
+  const htri_t present = H5Aexists(object, name);
+  check_ok(present < 0 ? -1 : 0, what);
+  // Its length changes from one restart to the next, so it is replaced rather than rewritten.
+  if (present > 0) check_ok(H5Adelete(object, name), what);
+  const hsize_t count = values.size();
+  Hdf5Handle space(check_id(H5Screate_simple(1, &count, nullptr), what), H5Sclose);
+  Hdf5Handle attribute(check_id(H5Acreate2(object, name, H5T_IEEE_F64LE, space.get(),
+                                           H5P_DEFAULT, H5P_DEFAULT),
+                                what),
+                       H5Aclose);
+  if (count > 0) check_ok(H5Awrite(attribute.get(), H5T_NATIVE_DOUBLE, values.data()), what);
+}
+
+std::vector<double> read_double_array_attribute(hid_t object, const char* name) {
+  const std::string what = attribute_what(name);
+  const htri_t present = H5Aexists(object, name);
+  check_ok(present < 0 ? -1 : 0, what);
+  if (present == 0) return {};
+  Hdf5Handle attribute(check_id(H5Aopen(object, name, H5P_DEFAULT), what), H5Aclose);
+  Hdf5Handle space(check_id(H5Aget_space(attribute.get()), what), H5Sclose);
+  const hssize_t count = H5Sget_simple_extent_npoints(space.get());
+  check_ok(count < 0 ? -1 : 0, what);
+  std::vector<double> values(static_cast<std::size_t>(count));
+  if (count > 0) check_ok(H5Aread(attribute.get(), H5T_NATIVE_DOUBLE, values.data()), what);
+  return values;
+}
+
 Hdf5Handle create_dataset(hid_t location, const char* name, hid_t file_type,
                           const std::vector<hsize_t>& dims, hsize_t chunk_rows,
                           const char* units) {

@@ -41,6 +41,10 @@ void write_int_attribute(hid_t object, const char* name, int value);
 bool read_double_attribute(hid_t object, const char* name, double& value);
 bool read_int64_attribute(hid_t object, const char* name, std::int64_t& value);
 bool read_int_attribute(hid_t object, const char* name, int& value);
+// 1-D double attribute [n] (IEEE_F64LE); replaced if present. Reading an absent one gives {}.
+void write_double_array_attribute(hid_t object, const char* name,
+                                  const std::vector<double>& values);
+std::vector<double> read_double_array_attribute(hid_t object, const char* name);
 
 // Dataset with a "units" attribute. Extendible (chunked, first dimension unlimited) when
 // chunk_rows > 0, else fixed size.

@@ -35,6 +35,12 @@ void write_result_scene(hid_t file, const std::string& scene_toml) {
   hdf5::write_string_attribute(file, "scene", scene_toml);
 }
 
+void append_result_restart(hid_t file, double checkpoint_time_s) {
+  std::vector<double> times = hdf5::read_double_array_attribute(file, "restart_times");
+  times.push_back(checkpoint_time_s);
+  hdf5::write_double_array_attribute(file, "restart_times", times);
+}
+
 ResultIdentity read_result_identity(hid_t file) {
   ResultIdentity identity;
   hdf5::read_string_attribute(file, "format", identity.format);

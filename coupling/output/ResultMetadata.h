@@ -31,4 +31,8 @@ ResultIdentity read_result_identity(hid_t file);
 // Replaces the root attribute "scene" (a restart may extend duration and output.*).
 void write_result_scene(hid_t file, const std::string& scene_toml);
 
+// Appends a restart's checkpoint time to the root attribute "restart_times" [s] (1-D, one entry
+// per restart segment, in order; absent in a run that was never restarted).
+void append_result_restart(hid_t file, double checkpoint_time_s);
+
 }  // namespace tmdem::coupling

@@ -215,6 +215,7 @@ ResultWriter ResultWriter::reopen(const std::string& path, std::size_t keep_fram
     if (match != nullptr && !match->next_scene_toml.empty()) {
       write_result_scene(w.file.get(), match->next_scene_toml);
     }
+    if (match != nullptr) append_result_restart(w.file.get(), match->checkpoint_time_s);
     write_result_status(w.file.get(), "running");
     hdf5::check_ok(H5Fflush(w.file.get(), H5F_SCOPE_LOCAL), "H5Fflush");
   } catch (const Hdf5Failure& e) {

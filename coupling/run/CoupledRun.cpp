@@ -12,6 +12,7 @@
 
 #include "coupling/common/ExitCode.h"
 #include "coupling/output/Checkpoint.h"
+#include "coupling/scene/SceneDifference.h"
 #include "coupling/bridge/ContactList.h"
 #include "coupling/bridge/DynamicNetwork.h"
 #include "coupling/output/OutputError.h"
@@ -113,6 +114,13 @@ void CoupledRun::restore_checkpoint() {
     throw StartError("checkpoint " + options_.restart_path + " holds " +
                      std::to_string(restart_->temperature_K.size()) +
                      " particles but the scene has " + std::to_string(n));
+  // A restart continues the same physics: only the duration and the output may change.
+  if (const auto difference = first_scene_difference(restart_->scene_toml, scene_.resolved_toml))
+    throw StartError("restart refused: key " + difference->key +
+                     " differs from the scene in checkpoint " + options_.restart_path +
+                     " (checkpoint " + difference->before_value + ", now " +
+                     difference->after_value +
+                     "); a restart may change only simulation.duration and output.*");
   t0_ = restart_->time_s;
   T0_ = restart_->temperature_K;
   boundary_heat0_J_ = restart_->boundary_heat_J;

@@ -143,4 +143,10 @@ std::string write_toml(const toml::table& root) {
   return out.str();
 }
 
+std::string write_toml_value(const toml::node& value) {
+  std::ostringstream out;
+  write_inline(out, value);
+  return out.str();
+}
+
 }  // namespace tmdem::coupling

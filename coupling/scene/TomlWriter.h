@@ -12,4 +12,7 @@ namespace tmdem::coupling {
 
 std::string write_toml(const toml::table& root);
 
+// One value as inline TOML text ("1e-06", "[0.0, -9.81, 0.0]", "{ kind = \"lattice\" }").
+std::string write_toml_value(const toml::node& value);
+
 }  // namespace tmdem::coupling

@@ -11,6 +11,7 @@
 #include "coupling/studies/CouplingStudy.h"
 #include "coupling/scene/DefaultScene.h"
 #include "coupling/output/OutputError.h"
+#include "coupling/app/RunEndReport.h"
 #include "coupling/app/SceneCheck.h"
 #include "coupling/scene/SceneError.h"
 #include "coupling/scene/SceneLoader.h"
@@ -121,10 +122,9 @@ int tmdem_main(int argc, char** argv) {
       options.quiet = quiet;
       options.terminal = isatty(STDERR_FILENO);
       const auto outcome = run_scene(scene, options, std::cerr);
-      if (outcome.exit_code == 0 && !quiet)
-        std::cerr << "wrote " << options.output_path << " (" << outcome.summary.wall_time_s
-                  << " s wall time, energy balance error "
-                  << outcome.summary.energy.balance_error_rel << ")" << std::endl;
+      if (outcome.exit_code != kExitInvalid)  // a run refused at start did nothing to report
+        print_run_end(outcome.summary, scene,
+                      outcome.exit_code == kExitOk ? options.output_path : "", quiet, std::cerr);
       return outcome.exit_code;
     }
     if (*docs_scene) {

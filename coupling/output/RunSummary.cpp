@@ -36,7 +36,8 @@ nlohmann::json RunSummary::to_json() const {
                       {"mean_iterations", mechanics.mean_iterations},
                       {"max_iterations", mechanics.max_iterations},
                       {"unconverged_steps", mechanics.unconverged_steps},
-                      {"max_penetration_m", mechanics.max_penetration_m}};
+                      {"max_penetration_m", mechanics.max_penetration_m},
+                      {"stalled_steps", mechanics.stalled_steps}};
   nlohmann::json t = {{"integrator", thermal.integrator},
                       {"steps", thermal.steps},
                       {"rhs_evals", thermal.rhs_evals},
@@ -59,6 +60,12 @@ nlohmann::json RunSummary::to_json() const {
                       {"mechanics", std::move(m)},
                       {"thermal", std::move(t)},
                       {"energy", std::move(e)}};
+  if (settle) {
+    j["settle"] = {{"at_rest", settle->at_rest},
+                   {"time_s", settle->time_s},
+                   {"steps", settle->steps},
+                   {"max_speed_m_s", settle->max_speed_m_s}};
+  }
   if (!message.empty()) j["message"] = message;
   return j;
 }
@@ -77,6 +84,17 @@ RunSummary RunSummary::from_json(const nlohmann::json& j) {
   s.mechanics.max_iterations = integer(m, "max_iterations", 0);
   s.mechanics.unconverged_steps = integer(m, "unconverged_steps", 0);
   s.mechanics.max_penetration_m = number(m, "max_penetration_m", 0.0);
+  s.mechanics.stalled_steps = integer(m, "stalled_steps", 0);
+
+  if (j.contains("settle")) {
+    const nlohmann::json& st = j.at("settle");
+    SettleSummary settle;
+    settle.at_rest = st.contains("at_rest") && st.at("at_rest").get<bool>();
+    settle.time_s = number(st, "time_s", 0.0);
+    settle.steps = integer(st, "steps", 0);
+    settle.max_speed_m_s = number(st, "max_speed_m_s", 0.0);
+    s.settle = settle;
+  }
 
   const nlohmann::json& t = section(j, "thermal");
   s.thermal.integrator = text(t, "integrator", s.thermal.integrator);

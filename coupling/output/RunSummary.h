@@ -1,8 +1,9 @@
 #pragma once
 // The run summary of contract section 4 (written by `tmdem run --summary SUMMARY.json`).
 // Key names in JSON are exactly the member names below; "message" and "thermal.linear_solver"
-// are extra keys written only when not empty.
+// are extra keys written only when not empty, "settle" only when set (docs/summary.md).
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -17,6 +18,15 @@ struct MechanicsSummary {
   std::int64_t max_iterations = 0;
   std::int64_t unconverged_steps = 0;
   double max_penetration_m = 0.0;
+  std::int64_t stalled_steps = 0;    // extra: of the unconverged steps, stopped for no progress
+};
+
+// The "settle" block (mechanics = "settle" only): how the packing was frozen.
+struct SettleSummary {
+  bool at_rest = false;              // every particle slower than mechanics.settle_velocity
+  double time_s = 0.0;               // settle time used
+  std::int64_t steps = 0;            // settle steps
+  double max_speed_m_s = 0.0;        // largest particle speed when frozen
 };
 
 struct ThermalSummary {
@@ -47,6 +57,7 @@ struct RunSummary {
   double simulated_time_s = 0.0;
   std::int64_t particles = 0;
   MechanicsSummary mechanics;
+  std::optional<SettleSummary> settle;  // extra: present for settle runs only
   ThermalSummary thermal;
   EnergySummary energy;
 

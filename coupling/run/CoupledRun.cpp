@@ -126,6 +126,14 @@ void CoupledRun::restore_checkpoint() {
   boundary_heat0_J_ = restart_->boundary_heat_J;
   if (auto it = restart_->extra.find("initial_energy_J"); it != restart_->extra.end())
     initial_energy_J_ = it->second;
+  // A restarted settle run does not settle again: it reports how the checkpointed run settled.
+  const auto& extra = restart_->extra;
+  if (extra.contains("settle_at_rest") && extra.contains("settle_time_s") &&
+      extra.contains("settle_steps") && extra.contains("settle_max_speed_m_s")) {
+    summary_.settle = SettleSummary{extra.at("settle_at_rest") != 0.0, extra.at("settle_time_s"),
+                                    std::llround(extra.at("settle_steps")),
+                                    extra.at("settle_max_speed_m_s")};
+  }
 }
 
 void CoupledRun::prepare_mechanics() {
@@ -165,7 +173,7 @@ void CoupledRun::prepare_mechanics() {
 }
 
 void CoupledRun::settle() {
-  settle_packing(*nscd_, scene_, progress_);
+  summary_.settle = settle_packing(*nscd_, scene_, progress_);
   gather_contacts(nscd_->contacts(), contacts_);
   particles_ = nscd_->particles();
 }
@@ -257,6 +265,12 @@ void CoupledRun::checkpoint(double t_s) {
   }
   cs.contact_tangential_force_N = contacts_.tangential_force_N;
   cs.extra["initial_energy_J"] = initial_energy_J_;
+  if (summary_.settle) {
+    cs.extra["settle_at_rest"] = summary_.settle->at_rest ? 1.0 : 0.0;
+    cs.extra["settle_time_s"] = summary_.settle->time_s;
+    cs.extra["settle_steps"] = double(summary_.settle->steps);
+    cs.extra["settle_max_speed_m_s"] = summary_.settle->max_speed_m_s;
+  }
   write_checkpoint(checkpoint_path_for(options_.output_path), cs);
 }
 
@@ -309,12 +323,9 @@ void CoupledRun::run_dynamic() {
     ++k;
     const double t_next = std::min(double(k) * h, scene_.duration_s);
     const auto report = nscd_->step(t_next - t);
-    if (!report.converged && !options_.quiet && nscd_->stats().unconverged_steps <= 10) {
-      std::ostringstream msg;
-      msg << "warning: mechanics step at t = " << t_next << " s: Gauss-Seidel did not converge in "
-          << report.sweeps << " sweeps (residual " << report.residual << ")";
-      progress_.message(msg.str());
-    }
+    if (!report.converged && !options_.quiet && nscd_->stats().unconverged_steps <= 10)
+      progress_.message(unconverged_step_warning("mechanics step", t_next, *nscd_, report,
+                                                 scene_.mechanics.tolerance));
     gather_contacts(nscd_->contacts(), contacts_);
     const auto thermal_start = std::chrono::steady_clock::now();
     dynamic_network_->update(contacts_, *integrator_, coupling_);
@@ -345,6 +356,7 @@ void CoupledRun::fill_summary() {
     summary_.mechanics.max_iterations = ms.max_sweeps;
     summary_.mechanics.unconverged_steps = ms.unconverged_steps;
     summary_.mechanics.max_penetration_m = ms.max_penetration_m;
+    summary_.mechanics.stalled_steps = ms.stalled_steps;
   }
   summary_.thermal.integrator = scene_.thermal.integrator;
   const bool explicit_update =

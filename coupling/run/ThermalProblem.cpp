@@ -11,45 +11,59 @@
 
 namespace tmdem::coupling {
 
-bool settle_packing(mechanics::NscdIntegrator& nscd, const Scene& scene, ProgressReporter& progress) {
+std::string unconverged_step_warning(const std::string& what, double t_s,
+                                     const mechanics::NscdIntegrator& nscd,
+                                     const mechanics::StepReport& report, double tolerance) {
+  std::ostringstream msg;
+  msg << "warning: " << what << " at t = " << t_s << " s: contact solver " << nscd.solver().name()
+      << (report.stalled ? " stalled (no progress) after " : " did not converge in ")
+      << report.sweeps << " iterations (residual " << report.residual << ", tolerance "
+      << tolerance << ")";
+  return msg.str();
+}
+
+SettleSummary settle_packing(mechanics::NscdIntegrator& nscd, const Scene& scene,
+                             ProgressReporter& progress) {
   const double h = scene.mechanics.time_step_s;
   const double t_max = scene.mechanics.settle_time_s;
+  const std::int64_t steps_before = nscd.stats().steps;
+  SettleSummary outcome;
   double t = 0.0;
-  bool at_rest = false;
   while (t < t_max - 0.5 * h) {
     const auto report = nscd.step(h);
     t += h;
     if (!report.converged && nscd.stats().unconverged_steps <= 10) {
-      std::ostringstream msg;
-      msg << "warning: settle step at t = " << t << " s: Gauss-Seidel did not converge in "
-          << report.sweeps << " sweeps (residual " << report.residual << ", tolerance "
-          << scene.mechanics.tolerance << ")";
-      if (nscd.stats().unconverged_steps == 10) msg << "; further such warnings are not shown";
-      progress.message(msg.str());
+      std::string msg = unconverged_step_warning("settle step", t, nscd, report,
+                                                 scene.mechanics.tolerance);
+      if (nscd.stats().unconverged_steps == 10) msg += "; further such warnings are not shown";
+      progress.message(msg);
     }
     const double speed = nscd.max_speed();
     std::ostringstream extra;
     extra << "max speed " << speed << " m/s, " << report.active_contacts << " contacts";
     progress.update("settle", t, t_max, extra.str());
     if (speed < scene.mechanics.settle_velocity_m_per_s) {
-      at_rest = true;
+      outcome.at_rest = true;
       break;
     }
   }
   progress.done();
+  outcome.time_s = t;
+  outcome.steps = nscd.stats().steps - steps_before;
+  outcome.max_speed_m_s = nscd.max_speed();
   std::ostringstream msg;
-  if (!at_rest) {
+  if (!outcome.at_rest) {
     msg << "warning: not at rest after mechanics.settle_time = " << t_max
-        << " s: largest speed " << nscd.max_speed() << " m/s (settle_velocity "
+        << " s: largest speed " << outcome.max_speed_m_s << " m/s (settle_velocity "
         << scene.mechanics.settle_velocity_m_per_s << " m/s); freezing the packing as it is";
   } else {
-    msg << "settle: at rest after " << t << " s (" << nscd.stats().steps << " steps, "
+    msg << "settle: at rest after " << t << " s (" << outcome.steps << " steps, "
         << nscd.contacts().size() << " contacts, max penetration "
         << nscd.stats().max_penetration_m << " m, " << nscd.stats().unconverged_steps
         << " unconverged steps)";
   }
   progress.message(msg.str());
-  return at_rest;
+  return outcome;
 }
 
 void gather_contacts(const std::vector<mechanics::ContactForce>& forces, ContactList& out) {
@@ -110,7 +124,7 @@ FrozenThermalProblem build_frozen_thermal_problem(const Scene& scene, ProgressRe
       break;
     case MechanicsMode::Settle: {
       auto nscd = make_nscd_integrator(scene, std::move(particles));
-      settle_packing(*nscd, scene, progress);
+      problem.settle = settle_packing(*nscd, scene, progress);
       gather_contacts(nscd->contacts(), problem.contacts);
       break;
     }

@@ -3,10 +3,13 @@
 // `tmdem study accuracy`: settling, the canonical contact list, the thermal system with the
 // modes the scene switches on, and the integrator settings.
 #include <memory>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "coupling/bridge/ContactList.h"
 #include "coupling/output/ProgressReporter.h"
+#include "coupling/output/RunSummary.h"
 #include "coupling/scene/Scene.h"
 #include "coupling/bridge/ThermalNetworkBuilder.h"
 #include "mechanics/ContactForce.h"
@@ -17,9 +20,16 @@
 namespace tmdem::coupling {
 
 // Steps the NSCD integrator until every particle is slower than mechanics.settle_velocity or
-// mechanics.settle_time runs out (then a warning with the largest speed). Returns whether the
-// packing came to rest.
-bool settle_packing(mechanics::NscdIntegrator& nscd, const Scene& scene, ProgressReporter& progress);
+// mechanics.settle_time runs out (then a warning with the largest speed). Returns how it ended:
+// at rest or not, the settle time and steps used, the largest speed when frozen.
+SettleSummary settle_packing(mechanics::NscdIntegrator& nscd, const Scene& scene,
+                             ProgressReporter& progress);
+
+// "warning: <what> at t = ... s: contact solver <name> did not converge ..." for an unconverged
+// (or stalled) step; shared by settle and dynamic runs so both name the solver in use.
+std::string unconverged_step_warning(const std::string& what, double t_s,
+                                     const mechanics::NscdIntegrator& nscd,
+                                     const mechanics::StepReport& report, double tolerance);
 
 // The mechanics' contacts, which arrive in canonical (i, j) order, copied in that order, so that
 // the same graph always gives the same edge list and the thermal side can tell a values-only
@@ -41,6 +51,7 @@ thermal::IntegratorSettings integrator_settings(const Scene& scene);
 // or from settling (settle). Throws std::invalid_argument for a dynamic scene.
 struct FrozenThermalProblem {
   ContactList contacts;
+  std::optional<SettleSummary> settle;  // settle scenes only
   std::unique_ptr<thermal::ThermalSystem> system;
   std::vector<double> T0_K;
 };

@@ -57,8 +57,11 @@ TEST(RunSummary, JsonHasEveryContractKey) {
   // Extras only when set.
   EXPECT_FALSE(j.contains("message"));
   EXPECT_FALSE(j["thermal"].contains("linear_solver"));
+  EXPECT_FALSE(j.contains("settle"));  // only for settle runs
   EXPECT_EQ(j.size(), 7u);
-  EXPECT_EQ(j["mechanics"].size(), 5u);
+  // The contract's 5 mechanics keys plus the extra stalled_steps.
+  EXPECT_EQ(j["mechanics"].size(), 6u);
+  EXPECT_TRUE(j["mechanics"]["stalled_steps"].is_number_integer());
   // The contract's 8 thermal keys plus the extra wall_time_s (time in the thermal side alone).
   EXPECT_EQ(j["thermal"].size(), 9u);
   EXPECT_TRUE(j["thermal"]["wall_time_s"].is_number());
@@ -85,6 +88,26 @@ TEST(RunSummary, FileRoundTrip) {
   EXPECT_EQ(r.mechanics.max_iterations, 812);
   EXPECT_EQ(r.thermal.reinitializations, 7);
   EXPECT_DOUBLE_EQ(r.energy.boundary_heat_J, 10.5);
+}
+
+TEST(RunSummary, SettleBlockAndStalledStepsRoundTrip) {
+  RunSummary s = sample();
+  s.mechanics.stalled_steps = 3;
+  s.settle = tmdem::coupling::SettleSummary{false, 5.0, 5000, 1.15e-3};
+  const nlohmann::json j = nlohmann::json::parse(s.to_json().dump());
+  ASSERT_TRUE(j.contains("settle"));
+  EXPECT_EQ(j["settle"].size(), 4u);
+  EXPECT_TRUE(j["settle"]["at_rest"].is_boolean());
+  EXPECT_FALSE(j["settle"]["at_rest"].get<bool>());
+  EXPECT_EQ(j["settle"]["time_s"].get<double>(), 5.0);
+  EXPECT_EQ(j["settle"]["steps"].get<std::int64_t>(), 5000);
+  EXPECT_EQ(j["settle"]["max_speed_m_s"].get<double>(), 1.15e-3);
+  EXPECT_EQ(j["mechanics"]["stalled_steps"].get<std::int64_t>(), 3);
+  const RunSummary r = RunSummary::from_json(j);
+  ASSERT_TRUE(r.settle.has_value());
+  EXPECT_EQ(r.settle->steps, 5000);
+  EXPECT_EQ(r.mechanics.stalled_steps, 3);
+  EXPECT_EQ(r.to_json(), s.to_json());
 }
 
 TEST(RunSummary, WriteToMissingFolderThrowsOutputErrorNamingThePath) {

@@ -20,6 +20,21 @@ ContactDetector::ContactDetector(double min_margin_m, double max_margin_m)
   }
 }
 
+void ContactDetector::restore(double margin_m, std::size_t rebuilds,
+                              std::vector<Eigen::Vector3d> reference_m,
+                              std::vector<CandidatePair> pairs) {
+  for (std::size_t p = 1; p < pairs.size(); ++p)
+    if (!pair_less(pairs[p - 1], pairs[p]))
+      throw std::invalid_argument("ContactDetector::restore: pairs not in strictly increasing (i, j) order");
+  margin_ = margin_m;
+  rebuilds_ = rebuilds;
+  valid_ = !reference_m.empty();
+  reference_position_ = std::move(reference_m);
+  pairs_ = std::move(pairs);
+  previous_pairs_.clear();
+  previous_index_.clear();
+}
+
 bool ContactDetector::update(const ParticleSet& particles, const std::vector<Wall>& walls,
                              const std::vector<double>& lookahead_m) {
   const std::size_t n = particles.size();

@@ -49,6 +49,14 @@ class ContactDetector {
 
   std::size_t rebuild_count() const { return rebuilds_; }
   double margin() const { return margin_; }
+  // Positions at the last rebuild (empty before the first one or after invalidate()).
+  const std::vector<Eigen::Vector3d>& reference_positions() const { return reference_position_; }
+
+  // Puts back a table saved from pairs(), reference_positions(), margin() and rebuild_count()
+  // (restart from a checkpoint): the next update() decides exactly as the saved detector would.
+  // Empty reference positions leave the table invalid (rebuilt at the next update).
+  void restore(double margin_m, std::size_t rebuilds, std::vector<Eigen::Vector3d> reference_m,
+               std::vector<CandidatePair> pairs);
 
  private:
   void rebuild(const ParticleSet& particles, const std::vector<Wall>& walls, double lookahead_max);

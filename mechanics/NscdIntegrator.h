@@ -37,6 +37,7 @@
 #include "mechanics/ContactProblem.h"
 #include "mechanics/ContactSolver.h"
 #include "mechanics/Material.h"
+#include "mechanics/MechanicsState.h"
 #include "mechanics/NscdParameters.h"
 #include "mechanics/ParticleSet.h"
 #include "mechanics/StepReport.h"
@@ -61,6 +62,13 @@ class NscdIntegrator {
   const std::vector<ContactForce>& contacts() const { return contacts_; }
   const MechanicsStats& stats() const { return stats_; }
   void restore_stats(const MechanicsStats& stats) { stats_ = stats; }  // after a restart
+
+  // What the next step reads (MechanicsState.h), and putting it back into an integrator built
+  // from the same scene: the steps after restore_state(save_state()) are bitwise those of the
+  // saved integrator. Both in NscdIntegratorState.cpp. restore_state throws
+  // std::invalid_argument when the particle or candidate counts do not fit.
+  MechanicsState save_state() const;
+  void restore_state(const MechanicsState& state);
 
   double kinetic_energy() const;    // J, translation + rotation of moving particles
   double potential_energy() const;  // J, -sum m g.x (zero at the origin), moving particles

@@ -21,6 +21,7 @@ class ExplicitIntegrator final : public ThermalIntegrator {
   std::span<const double> temperatures_K() const override { return T_; }
   double boundary_heat_J() const override { return boundary_heat_J_; }
   IntegratorStats stats() const override { return stats_; }
+  void restore_stats(const IntegratorStats& earlier) override { stats_ = earlier; }
 
   double stability_bound_s() const { return bound_s_; }
   double step_s() const { return step_s_; }

@@ -143,6 +143,14 @@ void SundialsIntegratorBase::record_reinitialization(const IntegratorStats& curr
   ++reinitializations_;
 }
 
+void SundialsIntegratorBase::restore_stats(const IntegratorStats& earlier) {
+  // Called right after initialize(): the solver's own counters are 0, all of `earlier` is
+  // history, added to what the solver counts from now on.
+  before_reinit_ = earlier;
+  before_reinit_.reinitializations = 0;
+  reinitializations_ = earlier.reinitializations;
+}
+
 IntegratorStats SundialsIntegratorBase::with_history(IntegratorStats current) const {
   current.steps += before_reinit_.steps;
   current.rhs_evals += before_reinit_.rhs_evals;

@@ -57,6 +57,9 @@ class ThermalIntegrator {
   // held particles, J, integrated with the same steps as the temperatures.
   virtual double boundary_heat_J() const = 0;
   virtual IntegratorStats stats() const = 0;
+  // Counters of earlier segments (restart from a checkpoint, or a re-initialisation at a
+  // checkpoint time): after initialize(), stats() reports these plus what comes after.
+  virtual void restore_stats(const IntegratorStats& earlier) = 0;
 };
 
 }  // namespace tmdem::thermal

@@ -20,6 +20,9 @@ class ContactPattern {
   bool update(const ContactList& active, ContactList& pattern, std::vector<std::uint8_t>& is_active);
 
   std::size_t size() const { return pairs_.size(); }
+  // The pattern's pairs, sorted (checkpoints), and putting them back (restart).
+  const std::vector<std::pair<std::int64_t, std::int64_t>>& pairs() const { return pairs_; }
+  void restore(std::vector<std::pair<std::int64_t, std::int64_t>> pairs) { pairs_ = std::move(pairs); }
 
  private:
   std::vector<std::pair<std::int64_t, std::int64_t>> pairs_;  // sorted

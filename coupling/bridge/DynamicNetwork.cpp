@@ -17,6 +17,24 @@ void DynamicNetwork::load(const ContactList& active) {
   system_.replace_edges(edges_);
 }
 
+std::vector<std::int64_t> DynamicNetwork::pattern_pairs() const {
+  std::vector<std::int64_t> out;
+  out.reserve(2 * pattern_.size());
+  for (const auto& [i, j] : pattern_.pairs()) {
+    out.push_back(i);
+    out.push_back(j);
+  }
+  return out;
+}
+
+void DynamicNetwork::restore(const std::vector<std::int64_t>& pattern_pairs, const ContactList& active) {
+  std::vector<std::pair<std::int64_t, std::int64_t>> pairs;
+  for (std::size_t p = 0; p + 1 < pattern_pairs.size(); p += 2)
+    pairs.emplace_back(pattern_pairs[p], pattern_pairs[p + 1]);
+  pattern_.restore(std::move(pairs));
+  load(active);
+}
+
 void DynamicNetwork::update(ContactList& active, thermal::ThermalIntegrator& integrator,
                             CouplingStrategy coupling) {
   const auto shape_before = system_.topology_version();

@@ -29,6 +29,11 @@ class DynamicNetwork {
   // As update, without an integrator (e.g. to inspect the network of a step).
   void load(const ContactList& active);
 
+  // The sticky pattern as pairs i, j (checkpoints), and a restart's way back: the pattern as it
+  // was, then the network of the checkpoint's active contacts on it (no pattern change).
+  std::vector<std::int64_t> pattern_pairs() const;
+  void restore(const std::vector<std::int64_t>& pattern_pairs, const ContactList& active);
+
  private:
   thermal::ThermalSystem& system_;
   ThermalNetworkBuilder builder_;

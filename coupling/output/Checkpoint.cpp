@@ -44,6 +44,20 @@ void write_contents(hid_t file, const CheckpointState& s) {
   std::vector<double> tangential = s.contact_tangential_force_N;
   tangential.resize(3 * (s.contact_pair.size() / 2), 0.0);
   hdf5::write_array(contacts.get(), "tangential_force", tangential, 3, "N");
+  if (!s.contact_normal_force_N.empty())
+    hdf5::write_array(contacts.get(), "normal_force", s.contact_normal_force_N, 0, "N");
+  if (s.has_mechanics) {
+    Hdf5Handle mechanics = hdf5::create_group(file, "mechanics");
+    hdf5::write_double_attribute(mechanics.get(), "margin_m", s.detector_margin_m);
+    hdf5::write_int64_attribute(mechanics.get(), "rebuilds", s.detector_rebuilds);
+    hdf5::write_array(mechanics.get(), "reference_position", s.detector_reference_position_m, 3, "m");
+    hdf5::write_array(mechanics.get(), "candidate_pair", s.candidate_pair, 2, "1");
+    hdf5::write_array(mechanics.get(), "candidate_force", s.candidate_force_N, 3, "N");
+  }
+  if (!s.thermal_pattern_pair.empty()) {
+    Hdf5Handle thermal = hdf5::create_group(file, "thermal");
+    hdf5::write_array(thermal.get(), "pattern_pair", s.thermal_pattern_pair, 2, "1");
+  }
   Hdf5Handle extra = hdf5::create_group(file, "extra");
   for (const auto& [name, value] : s.extra) {
     Hdf5Handle space(hdf5::check_id(H5Screate(H5S_SCALAR), name), H5Sclose);
@@ -87,6 +101,26 @@ CheckpointState read_contents(hid_t file) {
   } else {
     s.contact_tangential_force_N.assign(3 * (s.contact_pair.size() / 2), 0.0);
   }
+  if (hdf5::exists(contacts.get(), "normal_force"))
+    s.contact_normal_force_N = hdf5::read_double_array(contacts.get(), "normal_force", 0);
+  if (hdf5::exists(file, "mechanics")) {
+    Hdf5Handle mechanics = hdf5::open_group(file, "mechanics");
+    s.has_mechanics = true;
+    auto require_attribute = [](bool present, const char* name) {
+      if (!present) throw Hdf5Failure(std::string("attribute 'mechanics/") + name + "' is missing");
+    };
+    require_attribute(hdf5::read_double_attribute(mechanics.get(), "margin_m", s.detector_margin_m),
+                      "margin_m");
+    require_attribute(hdf5::read_int64_attribute(mechanics.get(), "rebuilds", s.detector_rebuilds),
+                      "rebuilds");
+    s.detector_reference_position_m = hdf5::read_double_array(mechanics.get(), "reference_position", 3);
+    s.candidate_pair = hdf5::read_int64_array(mechanics.get(), "candidate_pair", 2);
+    s.candidate_force_N = hdf5::read_double_array(mechanics.get(), "candidate_force", 3);
+  }
+  if (hdf5::exists(file, "thermal")) {
+    Hdf5Handle thermal = hdf5::open_group(file, "thermal");
+    s.thermal_pattern_pair = hdf5::read_int64_array(thermal.get(), "pattern_pair", 2);
+  }
   if (hdf5::exists(file, "extra")) {
     Hdf5Handle extra = hdf5::open_group(file, "extra");
     std::vector<std::string> names;
@@ -116,10 +150,19 @@ void write_checkpoint(const std::string& path, const CheckpointState& s) {
         "values (N = temperature_K.size() = " + std::to_string(n) + ")");
   }
   if (s.contact_pair.size() != 2 * c || s.contact_impulse_N_s.size() != 3 * c ||
-      (!s.contact_tangential_force_N.empty() && s.contact_tangential_force_N.size() != 3 * c)) {
+      (!s.contact_tangential_force_N.empty() && s.contact_tangential_force_N.size() != 3 * c) ||
+      (!s.contact_normal_force_N.empty() && s.contact_normal_force_N.size() != c)) {
     throw std::invalid_argument(
-        "CheckpointState: contact_pair needs 2 C values, contact_impulse_N_s 3 C and "
-        "contact_tangential_force_N 3 C or none");
+        "CheckpointState: contact_pair needs 2 C values, contact_impulse_N_s 3 C, "
+        "contact_tangential_force_N 3 C or none and contact_normal_force_N C or none");
+  }
+  if (s.has_mechanics && (s.candidate_pair.size() % 2 != 0 ||
+                          s.candidate_force_N.size() != 3 * (s.candidate_pair.size() / 2) ||
+                          (!s.detector_reference_position_m.empty() &&
+                           s.detector_reference_position_m.size() != 3 * n))) {
+    throw std::invalid_argument(
+        "CheckpointState: candidate_pair needs 2 K values, candidate_force_N 3 K and "
+        "detector_reference_position_m 3 N or none");
   }
   const std::string temporary = path + ".tmp";
   const std::filesystem::path folder = std::filesystem::path(path).parent_path();
@@ -171,7 +214,10 @@ CheckpointState read_checkpoint(const std::string& path) {
   const std::size_t c = s.contact_pair.size() / 2;
   if (s.position_m.size() != 3 * n || s.velocity_m_per_s.size() != 3 * n ||
       s.angular_velocity_rad_per_s.size() != 3 * n || s.contact_impulse_N_s.size() != 3 * c ||
-      s.contact_tangential_force_N.size() != 3 * c) {
+      s.contact_tangential_force_N.size() != 3 * c ||
+      (!s.contact_normal_force_N.empty() && s.contact_normal_force_N.size() != c) ||
+      s.candidate_force_N.size() != 3 * (s.candidate_pair.size() / 2) ||
+      (!s.detector_reference_position_m.empty() && s.detector_reference_position_m.size() != 3 * n)) {
     throw OutputError("cannot read checkpoint '" + path +
                       "': particle or contact counts of its datasets disagree");
   }

@@ -5,8 +5,14 @@
 // frames_written; datasets (each with a "units" attribute) /position [N,3] m,
 // /velocity [N,3] m/s, /angular_velocity [N,3] rad/s, /temperature [N] K,
 // /contacts/pair [C,2] int64, /contacts/impulse [C,3] N s, /contacts/tangential_force [C,3] N,
-// /extra/<name> scalar double. A checkpoint without tangential_force (written before it
-// existed) reads as tangential force 0.
+// /contacts/normal_force [C] N, /extra/<name> scalar double; for a bitwise restart (README
+// "Restart, interruption and files") also /mechanics (attributes margin_m, rebuilds; datasets
+// reference_position [N,3] or [0,3] m, candidate_pair [K,2], candidate_force [K,3] N: the
+// mechanics' MechanicsState) when the packing moves, and /thermal/pattern_pair [P,2] (a dynamic
+// run's sticky edge set). The integrators' and the mechanics' counters are /extra scalars.
+// A checkpoint without tangential_force or normal_force (written before they existed) reads as
+// tangential force 0 and normal force impulse / time step; without /mechanics or /thermal it
+// reads with has_mechanics = false and no pattern.
 //
 // write_checkpoint writes PATH.tmp, flushes it to disk and renames it to PATH: PATH is either the
 // previous checkpoint or the new one, never a partial file. On failure PATH.tmp is removed.
@@ -32,6 +38,16 @@ struct CheckpointState {
   std::vector<double> contact_impulse_N_s;           // C*3, last reactions (mechanics warm
                                                      // start; frame as the solver stores it)
   std::vector<double> contact_tangential_force_N;    // C*3, xyz on i, as in the result file
+  std::vector<double> contact_normal_force_N;        // C, as in the result file (empty on
+                                                     // write: impulse / time step)
+  // The moving mechanics' state (mechanics/MechanicsState.h), flat.
+  bool has_mechanics = false;
+  double detector_margin_m = 0.0;
+  std::int64_t detector_rebuilds = 0;
+  std::vector<double> detector_reference_position_m; // N*3, or empty: no candidate table yet
+  std::vector<std::int64_t> candidate_pair;          // K*2
+  std::vector<double> candidate_force_N;             // K*3, global frame, on i
+  std::vector<std::int64_t> thermal_pattern_pair;    // P*2, dynamic runs
   std::map<std::string, double> extra;               // free-form named scalars for the run loop
 };
 

@@ -23,6 +23,7 @@
 #include "coupling/bridge/ThermalNetworkBuilder.h"
 #include "coupling/run/Interruption.h"
 #include "coupling/run/OutputPaths.h"
+#include "coupling/run/RestartState.h"
 #include "coupling/run/ThermalProblem.h"
 #include "mechanics/NscdIntegrator.h"
 #include "mechanics/TouchingPairs.h"
@@ -72,6 +73,7 @@ class CoupledRun {
   void write_frame(double t_s);
   void maybe_checkpoint(double t_s);
   void checkpoint(double t_s);
+  void begin_thermal_segment(const CheckpointState& cs);
   void stop_if_interrupted(double t_s, bool frame_written);
   void fill_summary();
   std::span<const double> positions() const;
@@ -102,6 +104,7 @@ class CoupledRun {
   double boundary_heat0_J_ = 0.0;
   double initial_energy_J_ = 0.0;
   double next_checkpoint_s_ = 0.0;
+  double last_checkpoint_s_ = -1.0;     // time of the last checkpoint written, -1: none
   double thermal_seconds_ = 0.0;        // wall time inside the thermal side
   RunSummary summary_;
 };
@@ -154,18 +157,24 @@ void CoupledRun::prepare_mechanics() {
     return;
   }
   nscd_ = make_nscd_integrator(scene_, particles_);
+  if (restart_) {
+    // A settled run restarts on the frozen graph it checkpointed; a dynamic one from the
+    // mechanics' whole state (candidate table and warm-start forces) when the checkpoint has it.
+    contacts_ = contacts_of(*restart_, scene_.mechanics.time_step_s);
+    nscd_->restore_stats(mechanics_stats_of(*restart_));
+    if (mode == MechanicsMode::Dynamic && restart_->has_mechanics) {
+      try {
+        nscd_->restore_state(mechanics_state_of(*restart_));
+      } catch (const std::invalid_argument& e) {
+        throw StartError("checkpoint " + options_.restart_path + ": " + e.what());
+      }
+    }
+  }
   if (mode == MechanicsMode::Dynamic) {
     frozen_ = false;
     return;
   }
   if (restart_) {
-    // A settled run restarts on the frozen graph it checkpointed.
-    const double h = scene_.mechanics.time_step_s;
-    const auto& tangential = restart_->contact_tangential_force_N;
-    for (std::size_t c = 0; c < restart_->contact_pair.size() / 2; ++c)
-      contacts_.add(restart_->contact_pair[2 * c], restart_->contact_pair[2 * c + 1],
-                    restart_->contact_impulse_N_s[3 * c] / h,
-                    {tangential[3 * c], tangential[3 * c + 1], tangential[3 * c + 2]});
     particles_ = nscd_->particles();
     return;
   }
@@ -179,21 +188,29 @@ void CoupledRun::settle() {
 }
 
 double CoupledRun::max_temperature_K() const {
-  double T_max = max_scene_temperature_K(scene_);
-  for (double T : T0_) T_max = std::max(T_max, T);  // a restart may start elsewhere
-  return T_max;
+  // The scene's only, also on restart: the explicit update adds the temperatures it starts
+  // from itself, so a restart and the uninterrupted run's boundary see the same bound.
+  return max_scene_temperature_K(scene_);
 }
 
 void CoupledRun::prepare_thermal() {
   system_ = build_thermal_system(scene_, contacts_);
-  if (!frozen_) dynamic_network_ = std::make_unique<DynamicNetwork>(scene_, *system_);
+  if (!frozen_) {
+    dynamic_network_ = std::make_unique<DynamicNetwork>(scene_, *system_);
+    // The network the checkpoint's step left, on the pattern it had: the same edges, in the
+    // same order, as the uninterrupted run has at this time.
+    if (restart_) dynamic_network_->restore(restart_->thermal_pattern_pair, contacts_);
+  }
   auto s = integrator_settings(scene_);
   s.max_temperature_K = max_temperature_K();
   try {
     integrator_ = thermal::make_thermal_integrator(scene_.thermal.integrator, *system_, s);
     if (T0_.empty())
       for (const auto& p : scene_.particles) T0_.push_back(p.temperature_K);
-    integrator_->initialize(t0_, T0_, boundary_heat0_J_);
+    if (restart_)
+      begin_thermal_segment(*restart_);
+    else
+      integrator_->initialize(t0_, T0_, boundary_heat0_J_);
   } catch (const std::invalid_argument& e) {
     throw StartError(e.what());
   }
@@ -238,32 +255,41 @@ void CoupledRun::write_frame(double t_s) {
 
 void CoupledRun::maybe_checkpoint(double t_s) {
   if (!(scene_.output.checkpoint_interval_s > 0.0) || t_s < next_checkpoint_s_ - 1e-12) return;
-  while (next_checkpoint_s_ <= t_s + 1e-12) next_checkpoint_s_ += scene_.output.checkpoint_interval_s;
+  next_checkpoint_s_ = next_checkpoint_time_s(t_s, scene_.output.checkpoint_interval_s);
   checkpoint(t_s);
+}
+
+// An integration boundary (README "Restart, interruption and files"): the thermal integrator
+// starts afresh from the checkpoint's temperatures, boundary heat and counters. The run that
+// writes the checkpoint does this right after writing it, a run restarted from it does the same
+// at its start, so both continue identically.
+void CoupledRun::begin_thermal_segment(const CheckpointState& cs) {
+  integrator_->initialize(cs.time_s, cs.temperature_K, cs.boundary_heat_J);
+  auto stats = thermal_stats_of(cs);
+  ++stats.reinitializations;
+  integrator_->restore_stats(stats);
 }
 
 void CoupledRun::checkpoint(double t_s) {
   CheckpointState cs;
   cs.time_s = t_s;
-  const auto& ps = nscd_ && !frozen_ ? nscd_->particles() : particles_;
-  for (std::size_t i = 0; i < ps.size(); ++i)
-    for (int k = 0; k < 3; ++k) {
-      cs.position_m.push_back(ps.position[i][k]);
-      cs.velocity_m_per_s.push_back(frozen_ ? 0.0 : ps.velocity[i][k]);
-      cs.angular_velocity_rad_per_s.push_back(frozen_ ? 0.0 : ps.angular_velocity[i][k]);
-    }
+  if (nscd_ && !frozen_) {
+    store_mechanics_state(nscd_->save_state(), cs);
+  } else {
+    for (std::size_t i = 0; i < particles_.size(); ++i)
+      for (int k = 0; k < 3; ++k) cs.position_m.push_back(particles_.position[i][k]);
+    cs.velocity_m_per_s.assign(cs.position_m.size(), 0.0);
+    cs.angular_velocity_rad_per_s.assign(cs.position_m.size(), 0.0);
+    if (nscd_) store_mechanics_stats(nscd_->stats(), cs);
+  }
   const auto T = integrator_->temperatures_K();
   cs.temperature_K.assign(T.begin(), T.end());
   cs.boundary_heat_J = integrator_->boundary_heat_J();
   cs.scene_toml = scene_.resolved_toml;
   cs.frames_written = std::int64_t(writer_->frames());
-  cs.contact_pair = contacts_.pair;
-  for (double F : contacts_.normal_force_N) {
-    cs.contact_impulse_N_s.push_back(F * scene_.mechanics.time_step_s);
-    cs.contact_impulse_N_s.push_back(0.0);
-    cs.contact_impulse_N_s.push_back(0.0);
-  }
-  cs.contact_tangential_force_N = contacts_.tangential_force_N;
+  store_contacts(contacts_, scene_.mechanics.time_step_s, cs);
+  if (dynamic_network_) cs.thermal_pattern_pair = dynamic_network_->pattern_pairs();
+  store_thermal_stats(integrator_->stats(), cs);
   cs.extra["initial_energy_J"] = initial_energy_J_;
   if (summary_.settle) {
     cs.extra["settle_at_rest"] = summary_.settle->at_rest ? 1.0 : 0.0;
@@ -272,13 +298,15 @@ void CoupledRun::checkpoint(double t_s) {
     cs.extra["settle_max_speed_m_s"] = summary_.settle->max_speed_m_s;
   }
   write_checkpoint(checkpoint_path_for(options_.output_path), cs);
+  last_checkpoint_s_ = t_s;
+  begin_thermal_segment(cs);
 }
 
 void CoupledRun::stop_if_interrupted(double t_s, bool frame_written) {
   const int signal = Interruption::pending();
   if (signal == 0 || t_s >= scene_.duration_s) return;  // at the end: the run is complete
   if (!frame_written) write_frame(t_s);
-  checkpoint(t_s);
+  if (last_checkpoint_s_ != t_s) checkpoint(t_s);
   throw Interrupted{signal, t_s};
 }
 
@@ -477,7 +505,9 @@ RunOutcome CoupledRun::run() {
       writer_.emplace(options_.output_path, header, scene_.output.contacts,
                       options_.overwrite ? ExistingResult::Overwrite : ExistingResult::Refuse);
     }
-    next_checkpoint_s_ = t0_ + scene_.output.checkpoint_interval_s;
+    next_checkpoint_s_ = scene_.output.checkpoint_interval_s > 0.0
+                             ? next_checkpoint_time_s(t0_, scene_.output.checkpoint_interval_s)
+                             : 0.0;
     if (frozen_)
       run_static();
     else

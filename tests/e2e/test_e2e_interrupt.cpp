@@ -1,6 +1,7 @@
 // End to end: SIGTERM to a running dynamic scene finishes the step, writes a last frame and a
 // checkpoint, marks result and summary "interrupted", says how to resume and exits 143; a second
-// writer of the same result meanwhile is refused; the checkpoint resumes to a completed run.
+// writer of the same result meanwhile is refused; the checkpoint resumes to a completed run, bit
+// for bit the run that never stopped (given the same checkpoint times).
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -14,6 +15,7 @@
 #include <thread>
 
 #include "E2eSupport.h"
+#include "ResultComparison.h"
 
 using namespace tmdem::e2e;
 namespace fs = std::filesystem;
@@ -113,6 +115,82 @@ TEST(EndToEndInterrupt, SigtermLeavesInterruptedResultSummaryCheckpointAndExit14
   EXPECT_GT(times.size(), frames);
   for (std::size_t f = 1; f < times.size(); ++f) EXPECT_LT(times[f - 1], times[f]) << f;
   EXPECT_NEAR(times.back(), interrupted_at_s + 0.03, 1e-9);
+}
+
+std::string number(double value) {
+  std::ostringstream out;
+  out.precision(17);
+  out << value;
+  return out.str();
+}
+
+// Rows [first, first + count) of a dataset with `width` values per row.
+std::vector<double> rows(const std::vector<double>& values, std::size_t row, std::size_t width) {
+  return {values.begin() + std::ptrdiff_t(row * width), values.begin() + std::ptrdiff_t((row + 1) * width)};
+}
+
+TEST(EndToEndInterrupt, SigtermThenResumeEndsBitwiseWhereTheUninterruptedRunEnds) {
+  const auto dir = scratch_dir("interrupt_resume");
+  const auto reference = scratch_dir("interrupt_reference");
+  for (const auto& d : {dir, reference})
+    fs::copy_file(fs::path(TMDEM_SOURCE_DIR) / "examples" / "poured_bed.toml", d + "/bed.toml");
+  const pid_t child = spawn_tmdem({"run", "bed.toml", "--quiet", "-o", "out.h5", "--set",
+                                   "simulation.duration=50"},
+                                  dir);
+  ASSERT_GT(child, 0);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (frames_in_xdmf(dir + "/out.xdmf") < 4 && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  ASSERT_EQ(kill(child, SIGTERM), 0);
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 143) << text_of(dir + "/child.log");
+  double stopped_s = -1.0;
+  {
+    H5::H5File checkpoint(dir + "/out.checkpoint.h5", H5F_ACC_RDONLY);
+    checkpoint.openAttribute("time_s").read(H5::PredType::NATIVE_DOUBLE, &stopped_s);
+  }
+  ASSERT_GT(stopped_s, 0.0);
+
+  // The run that never stopped has its checkpoint (an integration boundary) at the moment the
+  // signal stopped the other one; both go on 0.03 s past it.
+  const std::string settings = " --set simulation.duration=" + number(stopped_s + 0.03) +
+                               " --set output.checkpoint_interval=" + number(stopped_s);
+  auto r = run_tmdem("run bed.toml --quiet -o out.h5 --summary s.json" + settings, reference);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = run_tmdem("run bed.toml --quiet -o out.h5 --restart out.checkpoint.h5 --summary s.json" + settings, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(summary_without_wall_times(reference + "/s.json"), summary_without_wall_times(dir + "/s.json"));
+
+  // Frame for frame at the times both files hold (the resumed one also has the frame written at
+  // the signal), bit for bit; then the contacts of the last frame.
+  H5::H5File a(reference + "/out.h5", H5F_ACC_RDONLY), b(dir + "/out.h5", H5F_ACC_RDONLY);
+  const auto ta = read_doubles(a, "/frames/time"), tb = read_doubles(b, "/frames/time");
+  const std::size_t n = read_doubles(a, "/particles/radius").size();
+  std::size_t matched = 0;
+  for (const std::string name : {"position", "velocity", "temperature", "boundary_heat", "thermal_energy"}) {
+    const auto va = read_doubles(a, "/frames/" + name), vb = read_doubles(b, "/frames/" + name);
+    const std::size_t width = va.size() / ta.size();
+    ASSERT_EQ(width, name == "position" || name == "velocity" ? 3 * n : name == "temperature" ? n : 1u);
+    for (std::size_t fa = 0; fa < ta.size(); ++fa) {
+      const auto fb = std::find(tb.begin(), tb.end(), ta[fa]);
+      ASSERT_NE(fb, tb.end()) << "frame at " << ta[fa] << " s missing after the resume";
+      EXPECT_TRUE(rows(va, fa, width) == rows(vb, std::size_t(fb - tb.begin()), width))
+          << name << " differs at t = " << ta[fa] << " s";
+      ++matched;
+    }
+  }
+  EXPECT_GE(matched, 5 * 4u);
+  EXPECT_EQ(ta.back(), tb.back());
+  const auto offset_a = read_ints(a, "/frames/contact_offset"), offset_b = read_ints(b, "/frames/contact_offset");
+  for (const std::string name : {"normal_force", "tangential_force", "conductance"}) {
+    const auto ca = read_doubles(a, "/contacts/" + name), cb = read_doubles(b, "/contacts/" + name);
+    const std::size_t width = name == "tangential_force" ? 3 : 1;
+    const std::vector<double> last_a(ca.begin() + std::ptrdiff_t(width * offset_a[offset_a.size() - 2]), ca.end());
+    const std::vector<double> last_b(cb.begin() + std::ptrdiff_t(width * offset_b[offset_b.size() - 2]), cb.end());
+    EXPECT_FALSE(last_a.empty()) << name;
+    EXPECT_TRUE(last_a == last_b) << name << " of the last frame differs";
+  }
 }
 
 }  // namespace

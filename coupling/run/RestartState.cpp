@@ -1,0 +1,129 @@
+#include "coupling/run/RestartState.h"
+
+#include <cmath>
+#include <string>
+#include <utility>
+
+namespace tmdem::coupling {
+namespace {
+
+double extra_or_zero(const CheckpointState& cs, const std::string& name) {
+  const auto it = cs.extra.find(name);
+  return it == cs.extra.end() ? 0.0 : it->second;
+}
+
+std::vector<Eigen::Vector3d> vectors_of(const std::vector<double>& flat) {
+  std::vector<Eigen::Vector3d> out(flat.size() / 3);
+  for (std::size_t i = 0; i < out.size(); ++i)
+    out[i] = Eigen::Vector3d(flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]);
+  return out;
+}
+
+std::vector<double> flat_of(const std::vector<Eigen::Vector3d>& vectors) {
+  std::vector<double> out;
+  out.reserve(3 * vectors.size());
+  for (const auto& v : vectors) out.insert(out.end(), {v.x(), v.y(), v.z()});
+  return out;
+}
+
+}  // namespace
+
+void store_contacts(const ContactList& contacts, double time_step_s, CheckpointState& cs) {
+  cs.contact_pair = contacts.pair;
+  cs.contact_normal_force_N = contacts.normal_force_N;
+  cs.contact_tangential_force_N = contacts.tangential_force_N;
+  // Kept for readers of the older layout: the normal impulse over one mechanics step.
+  cs.contact_impulse_N_s.clear();
+  for (double F : contacts.normal_force_N) cs.contact_impulse_N_s.insert(cs.contact_impulse_N_s.end(), {F * time_step_s, 0.0, 0.0});
+}
+
+ContactList contacts_of(const CheckpointState& cs, double time_step_s) {
+  ContactList contacts;
+  const auto& tangential = cs.contact_tangential_force_N;
+  for (std::size_t c = 0; c < cs.contact_pair.size() / 2; ++c) {
+    const double normal_N = cs.contact_normal_force_N.empty() ? cs.contact_impulse_N_s[3 * c] / time_step_s
+                                                              : cs.contact_normal_force_N[c];
+    contacts.add(cs.contact_pair[2 * c], cs.contact_pair[2 * c + 1], normal_N,
+                 {tangential[3 * c], tangential[3 * c + 1], tangential[3 * c + 2]});
+  }
+  return contacts;
+}
+
+// The integrator's counters and their /extra names.
+constexpr std::pair<const char*, long thermal::IntegratorStats::*> kThermalCounters[] = {
+    {"thermal_steps", &thermal::IntegratorStats::steps},
+    {"thermal_rhs_evals", &thermal::IntegratorStats::rhs_evals},
+    {"thermal_jacobian_evals", &thermal::IntegratorStats::jacobian_evals},
+    {"thermal_linear_setups", &thermal::IntegratorStats::linear_setups},
+    {"thermal_linear_iterations", &thermal::IntegratorStats::linear_iterations},
+    {"thermal_error_test_failures", &thermal::IntegratorStats::error_test_failures},
+    {"thermal_convergence_failures", &thermal::IntegratorStats::convergence_failures},
+    {"thermal_reinitializations", &thermal::IntegratorStats::reinitializations},
+};
+
+void store_thermal_stats(const thermal::IntegratorStats& s, CheckpointState& cs) {
+  for (const auto& [name, counter] : kThermalCounters) cs.extra[name] = double(s.*counter);
+}
+
+thermal::IntegratorStats thermal_stats_of(const CheckpointState& cs) {
+  thermal::IntegratorStats s;
+  for (const auto& [name, counter] : kThermalCounters) s.*counter = long(extra_or_zero(cs, name));
+  return s;
+}
+
+void store_mechanics_stats(const mechanics::MechanicsStats& s, CheckpointState& cs) {
+  cs.extra["mechanics_steps"] = double(s.steps);
+  cs.extra["mechanics_total_sweeps"] = double(s.total_sweeps);
+  cs.extra["mechanics_max_sweeps"] = double(s.max_sweeps);
+  cs.extra["mechanics_unconverged_steps"] = double(s.unconverged_steps);
+  cs.extra["mechanics_stalled_steps"] = double(s.stalled_steps);
+  cs.extra["mechanics_max_penetration_m"] = s.max_penetration_m;
+}
+
+mechanics::MechanicsStats mechanics_stats_of(const CheckpointState& cs) {
+  mechanics::MechanicsStats s;
+  s.steps = std::int64_t(extra_or_zero(cs, "mechanics_steps"));
+  s.total_sweeps = std::int64_t(extra_or_zero(cs, "mechanics_total_sweeps"));
+  s.max_sweeps = int(extra_or_zero(cs, "mechanics_max_sweeps"));
+  s.unconverged_steps = std::int64_t(extra_or_zero(cs, "mechanics_unconverged_steps"));
+  s.stalled_steps = std::int64_t(extra_or_zero(cs, "mechanics_stalled_steps"));
+  s.max_penetration_m = extra_or_zero(cs, "mechanics_max_penetration_m");
+  return s;
+}
+
+void store_mechanics_state(const mechanics::MechanicsState& m, CheckpointState& cs) {
+  cs.position_m = flat_of(m.position_m);
+  cs.velocity_m_per_s = flat_of(m.velocity_m_per_s);
+  cs.angular_velocity_rad_per_s = flat_of(m.angular_velocity_rad_per_s);
+  cs.has_mechanics = true;
+  cs.detector_margin_m = m.margin_m;
+  cs.detector_rebuilds = m.rebuilds;
+  cs.detector_reference_position_m = flat_of(m.reference_position_m);
+  cs.candidate_pair.clear();
+  for (const auto& p : m.candidates) cs.candidate_pair.insert(cs.candidate_pair.end(), {p.i, p.j});
+  cs.candidate_force_N = flat_of(m.candidate_force_N);
+  store_mechanics_stats(m.stats, cs);
+}
+
+mechanics::MechanicsState mechanics_state_of(const CheckpointState& cs) {
+  mechanics::MechanicsState m;
+  m.position_m = vectors_of(cs.position_m);
+  m.velocity_m_per_s = vectors_of(cs.velocity_m_per_s);
+  m.angular_velocity_rad_per_s = vectors_of(cs.angular_velocity_rad_per_s);
+  m.margin_m = cs.detector_margin_m;
+  m.rebuilds = cs.detector_rebuilds;
+  m.reference_position_m = vectors_of(cs.detector_reference_position_m);
+  for (std::size_t k = 0; k + 1 < cs.candidate_pair.size(); k += 2)
+    m.candidates.push_back({std::int32_t(cs.candidate_pair[k]), std::int32_t(cs.candidate_pair[k + 1])});
+  m.candidate_force_N = vectors_of(cs.candidate_force_N);
+  m.stats = mechanics_stats_of(cs);
+  return m;
+}
+
+double next_checkpoint_time_s(double t_s, double interval_s) {
+  // k interval with k the count of whole intervals reached (1e-9 absorbs t = k interval
+  // computed with round-off), plus one.
+  return interval_s * (std::floor(t_s / interval_s + 1e-9) + 1.0);
+}
+
+}  // namespace tmdem::coupling

@@ -1,0 +1,36 @@
+#pragma once
+// Everything NscdIntegrator::step() reads from earlier steps, so that an integrator built anew
+// from the same scene and given this state continues bit for bit (restart from a checkpoint).
+//
+// Beyond the particles' positions and velocities that is the candidate table (ContactDetector:
+// its pairs, the positions at its last rebuild, which decide the next rebuild, and the margin
+// and rebuild count) and each candidate's last reaction force, the warm start of the next solve
+// (normal and tangential parts). The step's own scratch (velocities at the start of the step,
+// the contact problem) is rebuilt by every step and is not part of it. contacts() stays empty
+// after a restore until the next step.
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "mechanics/ContactDetector.h"
+#include "mechanics/StepReport.h"
+
+namespace tmdem::mechanics {
+
+struct MechanicsState {
+  std::vector<Eigen::Vector3d> position_m;
+  std::vector<Eigen::Vector3d> velocity_m_per_s;
+  std::vector<Eigen::Vector3d> angular_velocity_rad_per_s;
+
+  // Candidate table; empty reference positions: no table yet (the next step rebuilds).
+  double margin_m = 0.0;
+  std::int64_t rebuilds = 0;
+  std::vector<Eigen::Vector3d> reference_position_m;  // per particle, at the last rebuild
+  std::vector<CandidatePair> candidates;               // sorted as ContactDetector::pairs()
+  std::vector<Eigen::Vector3d> candidate_force_N;      // per candidate, global frame, on i
+
+  MechanicsStats stats;
+};
+
+}  // namespace tmdem::mechanics

@@ -1,0 +1,48 @@
+// NscdIntegrator::save_state / restore_state (MechanicsState.h): apart from the step so that
+// the integrator's step code stays as it is.
+#include <stdexcept>
+#include <string>
+
+#include "mechanics/NscdIntegrator.h"
+
+namespace tmdem::mechanics {
+
+MechanicsState NscdIntegrator::save_state() const {
+  MechanicsState s;
+  s.position_m = particles_.position;
+  s.velocity_m_per_s = particles_.velocity;
+  s.angular_velocity_rad_per_s = particles_.angular_velocity;
+  s.margin_m = detector_.margin();
+  s.rebuilds = std::int64_t(detector_.rebuild_count());
+  s.reference_position_m = detector_.reference_positions();
+  s.candidates = detector_.pairs();
+  // force_ follows the table; before the first step it is shorter (no forces yet).
+  s.candidate_force_N.assign(s.candidates.size(), Eigen::Vector3d::Zero());
+  for (std::size_t k = 0; k < s.candidates.size() && k < force_.size(); ++k)
+    s.candidate_force_N[k] = force_[k];
+  s.stats = stats_;
+  return s;
+}
+
+void NscdIntegrator::restore_state(const MechanicsState& s) {
+  const std::size_t n = particles_.size();
+  if (s.position_m.size() != n || s.velocity_m_per_s.size() != n ||
+      s.angular_velocity_rad_per_s.size() != n ||
+      (!s.reference_position_m.empty() && s.reference_position_m.size() != n))
+    throw std::invalid_argument("mechanics: a saved state of " + std::to_string(s.position_m.size()) +
+                                " particles does not fit an integrator of " + std::to_string(n));
+  if (s.candidate_force_N.size() != s.candidates.size())
+    throw std::invalid_argument("mechanics: a saved state needs one force per candidate (" +
+                                std::to_string(s.candidates.size()) + " candidates, " +
+                                std::to_string(s.candidate_force_N.size()) + " forces)");
+  particles_.position = s.position_m;
+  particles_.velocity = s.velocity_m_per_s;
+  particles_.angular_velocity = s.angular_velocity_rad_per_s;
+  detector_.restore(s.margin_m, std::size_t(s.rebuilds), s.reference_position_m, s.candidates);
+  force_ = s.candidate_force_N;
+  old_force_.clear();
+  contacts_.clear();
+  stats_ = s.stats;
+}
+
+}  // namespace tmdem::mechanics

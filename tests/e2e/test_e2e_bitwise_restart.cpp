@@ -1,0 +1,96 @@
+// End to end: a run stopped at a checkpoint and restarted from it writes the same result file,
+// every dataset bit for bit, and the same summary (wall times aside), as the uninterrupted run:
+// thermal-only with every integrator, a settled packing, a dynamic packing (README "Restart,
+// interruption and files"). Both runs have the same checkpoint times, which are integration
+// boundaries in both.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <sstream>
+
+#include "E2eSupport.h"
+#include "ResultComparison.h"
+
+using namespace tmdem::e2e;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string number(double value) {
+  std::ostringstream out;
+  out.precision(17);
+  out << value;
+  return out.str();
+}
+
+// `example` run to `end_s` in one go, and in segments ending at each of `stops_s` (each
+// restarted from the previous one's checkpoint), all with checkpoints every `interval_s`.
+void expect_segments_equal_uninterrupted(const std::string& name, const std::string& example,
+                                         double interval_s, const std::vector<double>& stops_s,
+                                         double end_s, const std::string& settings = "") {
+  const auto full = scratch_dir("bitwise_" + name + "_full");
+  const auto part = scratch_dir("bitwise_" + name + "_part");
+  for (const auto& dir : {full, part})
+    fs::copy_file(fs::path(TMDEM_SOURCE_DIR) / "examples" / example, dir + "/s.toml");
+  const std::string common = "run s.toml --quiet -o out.h5 --set output.checkpoint_interval=" +
+                             number(interval_s) + " " + settings;
+  auto r = run_tmdem(common + " --summary s.json --set simulation.duration=" + number(end_s), full);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (std::size_t k = 0; k <= stops_s.size(); ++k) {
+    const double until_s = k < stops_s.size() ? stops_s[k] : end_s;
+    r = run_tmdem(common + (k > 0 ? " --restart out.checkpoint.h5" : "") +
+                      (k == stops_s.size() ? " --summary s.json" : "") +
+                      " --set simulation.duration=" + number(until_s),
+                  part);
+    ASSERT_EQ(r.exit_code, 0) << "segment " << k << ": " << r.output;
+  }
+
+  std::size_t compared = 0;
+  const auto differences = result_differences(full + "/out.h5", part + "/out.h5", &compared);
+  EXPECT_GE(compared, 12u);  // frames (time, position, velocity, temperature, ...), contacts, particles
+  for (const auto& line : differences) ADD_FAILURE() << name << ": " << line;
+  EXPECT_EQ(summary_without_wall_times(full + "/s.json"), summary_without_wall_times(part + "/s.json"))
+      << name;
+
+  H5::H5File restarted(part + "/out.h5", H5F_ACC_RDONLY);
+  EXPECT_EQ(read_string_attribute(restarted, "status"), "ok");
+  std::vector<double> restart_times(stops_s.size(), -1.0);
+  H5::Attribute attribute = restarted.openAttribute("restart_times");
+  ASSERT_EQ(std::size_t(attribute.getSpace().getSimpleExtentNpoints()), stops_s.size());
+  attribute.read(H5::PredType::NATIVE_DOUBLE, restart_times.data());
+  EXPECT_EQ(restart_times, stops_s);
+}
+
+}  // namespace
+
+// examples/lattice_constant.toml: 64 particles, 50 s, frames every 0.5 s; stopped at 20 s and
+// at 40 s (two restarts in a row), with each integrator and linear solver.
+class EndToEndBitwiseRestartLattice : public ::testing::TestWithParam<std::pair<const char*, const char*>> {};
+
+TEST_P(EndToEndBitwiseRestartLattice, TwoRestartsEqualTheUninterruptedRun) {
+  const auto [integrator, linear_solver] = GetParam();
+  expect_segments_equal_uninterrupted(std::string(integrator) + "_" + linear_solver,
+                                      "lattice_constant.toml", 20.0, {20.0, 40.0}, 50.0,
+                                      std::string("--set thermal.integrator=") + integrator +
+                                          " --set thermal.linear_solver=" + linear_solver);
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryIntegrator, EndToEndBitwiseRestartLattice,
+                         ::testing::Values(std::pair{"cvode", "klu"}, std::pair{"cvode", "pcg"},
+                                           std::pair{"ida", "klu"}, std::pair{"ida", "pcg"},
+                                           std::pair{"explicit", "klu"}),
+                         [](const auto& info) {
+                           return std::string(info.param.first) + "_" + info.param.second;
+                         });
+
+// examples/paper_triangle.toml: settled before t = 0, then 200 s on the frozen graph.
+TEST(EndToEndBitwiseRestart, PaperTriangleSettle) {
+  expect_segments_equal_uninterrupted("triangle", "paper_triangle.toml", 100.0, {100.0}, 200.0);
+}
+
+// examples/poured_bed.toml: 80 particles poured, contacts changing every step; stopped at 0.2 s
+// of 0.5 s (the restart needs the candidate table, the warm-start forces and the thermal
+// network's pattern of that step).
+TEST(EndToEndBitwiseRestart, PouredBedDynamic) {
+  expect_segments_equal_uninterrupted("poured_bed", "poured_bed.toml", 0.2, {0.2}, 0.5);
+}

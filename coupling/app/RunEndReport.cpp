@@ -21,7 +21,9 @@ void print_run_end(const RunSummary& summary, const Scene& scene, const std::str
       out << " (" << 100.0 * m.max_penetration_m / r_min_m << "% of the smallest radius)";
     out << "\n";
   }
-  if (summary.settle && !summary.settle->at_rest) {
+  // A run interrupted while settling froze nothing: it stopped before t = 0.
+  const bool stopped_settling = summary.status == "interrupted" && summary.simulated_time_s == 0.0;
+  if (summary.settle && !summary.settle->at_rest && !stopped_settling) {
     out << "warning: the packing was frozen WITHOUT coming to rest: largest speed "
         << summary.settle->max_speed_m_s << " m/s after " << summary.settle->time_s << " s ("
         << summary.settle->steps << " steps), above mechanics.settle_velocity = "

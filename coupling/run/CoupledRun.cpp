@@ -51,7 +51,7 @@ struct StartError : std::runtime_error {
 // A first SIGINT/SIGTERM was handled: last frame and checkpoint are written.
 struct Interrupted {
   int signal = 0;
-  double time_s = 0.0;
+  double time_s = 0.0;    // simulated time reached, or settle time when settling
 };
 
 class CoupledRun {
@@ -182,7 +182,11 @@ void CoupledRun::prepare_mechanics() {
 }
 
 void CoupledRun::settle() {
-  summary_.settle = settle_packing(*nscd_, scene_, progress_);
+  // A signal ends settling after the current step; the run then stops before t = 0: there is
+  // no frame to write and nothing to resume (a restart starts from a settled packing).
+  summary_.settle = settle_packing(*nscd_, scene_, progress_, [] { return Interruption::pending() != 0; });
+  if (const int signal = Interruption::pending(); signal != 0)
+    throw Interrupted{signal, summary_.settle->time_s};
   gather_contacts(nscd_->contacts(), contacts_);
   particles_ = nscd_->particles();
 }
@@ -472,6 +476,14 @@ RunOutcome CoupledRun::run() {
     restore_checkpoint();
     prepare_mechanics();
     prepare_thermal();
+  } catch (const Interrupted& stop) {
+    const int code = stop.signal == SIGINT ? kExitSigint : kExitSigterm;
+    RunOutcome result = finish(code, "", "interrupted");
+    if (result.exit_code == code)
+      log_ << "interrupted by " << signal_name(stop.signal) << " while settling (after "
+           << stop.time_s << " s of settle time); no result file written, nothing to resume: "
+           << "run the scene again to start over" << std::endl;
+    return result;
   } catch (const StartError& e) {
     return failed(kExitInvalid, e.what());
   } catch (const OutputError& e) {

@@ -23,7 +23,7 @@ std::string unconverged_step_warning(const std::string& what, double t_s,
 }
 
 SettleSummary settle_packing(mechanics::NscdIntegrator& nscd, const Scene& scene,
-                             ProgressReporter& progress) {
+                             ProgressReporter& progress, const std::function<bool()>& stop) {
   const double h = scene.mechanics.time_step_s;
   const double t_max = scene.mechanics.settle_time_s;
   const std::int64_t steps_before = nscd.stats().steps;
@@ -46,13 +46,17 @@ SettleSummary settle_packing(mechanics::NscdIntegrator& nscd, const Scene& scene
       outcome.at_rest = true;
       break;
     }
+    if (stop && stop()) break;
   }
   progress.done();
   outcome.time_s = t;
   outcome.steps = nscd.stats().steps - steps_before;
   outcome.max_speed_m_s = nscd.max_speed();
   std::ostringstream msg;
-  if (!outcome.at_rest) {
+  if (!outcome.at_rest && stop && stop()) {
+    msg << "settle: stopped after " << t << " s (" << outcome.steps << " steps), largest speed "
+        << outcome.max_speed_m_s << " m/s";
+  } else if (!outcome.at_rest) {
     msg << "warning: not at rest after mechanics.settle_time = " << t_max
         << " s: largest speed " << outcome.max_speed_m_s << " m/s (settle_velocity "
         << scene.mechanics.settle_velocity_m_per_s << " m/s); freezing the packing as it is";

@@ -2,6 +2,7 @@
 // The pieces of a run that turn a scene into a thermal problem, shared by `tmdem run` and
 // `tmdem study accuracy`: settling, the canonical contact list, the thermal system with the
 // modes the scene switches on, and the integrator settings.
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -21,9 +22,12 @@ namespace tmdem::coupling {
 
 // Steps the NSCD integrator until every particle is slower than mechanics.settle_velocity or
 // mechanics.settle_time runs out (then a warning with the largest speed). Returns how it ended:
-// at rest or not, the settle time and steps used, the largest speed when frozen.
+// at rest or not, the settle time and steps used, the largest speed when frozen. `stop`, asked
+// after every step, ends settling early (an interrupted run): at_rest is then false and no
+// "not at rest" warning is printed.
 SettleSummary settle_packing(mechanics::NscdIntegrator& nscd, const Scene& scene,
-                             ProgressReporter& progress);
+                             ProgressReporter& progress,
+                             const std::function<bool()>& stop = nullptr);
 
 // "warning: <what> at t = ... s: contact solver <name> did not converge ..." for an unconverged
 // (or stalled) step; shared by settle and dynamic runs so both name the solver in use.

@@ -193,4 +193,48 @@ TEST(EndToEndInterrupt, SigtermThenResumeEndsBitwiseWhereTheUninterruptedRunEnds
   }
 }
 
+// A signal while the packing settles (before t = 0) is acted on after the current settle step:
+// no result file and no checkpoint (there is no frame yet and nothing a restart could continue),
+// a summary that says "interrupted" with the settle steps done, one line saying so, exit 143.
+TEST(EndToEndInterrupt, SigtermWhileSettlingStopsPromptlyWithSummaryOnly) {
+  const auto dir = scratch_dir("interrupt_settle");
+  fs::copy_file(fs::path(TMDEM_SOURCE_DIR) / "examples" / "paper_bed.toml", dir + "/bed.toml");
+  // 256 particles that never reach 1e-9 m/s: settling would go on for the full 100 s.
+  const pid_t child = spawn_tmdem({"run", "bed.toml", "-o", "out.h5", "--summary", "s.json", "--set",
+                                   "mechanics.settle_velocity=1e-9", "--set", "mechanics.settle_time=100"},
+                                  dir);
+  ASSERT_GT(child, 0);
+  // Wait until settling has begun and reported progress at least once.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (text_of(dir + "/child.log").find("settle") == std::string::npos &&
+         std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  const auto signalled = std::chrono::steady_clock::now();
+  ASSERT_EQ(kill(child, SIGTERM), 0);
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  const double exit_after_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - signalled).count();
+  const std::string log = text_of(dir + "/child.log");
+  ASSERT_TRUE(WIFEXITED(status)) << log;
+  EXPECT_EQ(WEXITSTATUS(status), 143) << log;
+  // One settle step of this bed takes tens of ms; settling itself would take 100 s of steps.
+  EXPECT_LT(exit_after_s, 5.0) << log;
+  EXPECT_NE(log.find("interrupted by SIGTERM while settling"), std::string::npos) << log;
+  EXPECT_EQ(log.find("resume with"), std::string::npos) << log;
+  EXPECT_EQ(log.find("WITHOUT coming to rest"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(dir + "/out.h5"));
+  EXPECT_FALSE(fs::exists(dir + "/out.xdmf"));
+  EXPECT_FALSE(fs::exists(dir + "/out.checkpoint.h5"));
+  const auto summary = read_summary(dir + "/s.json");
+  EXPECT_EQ(summary["status"], "interrupted");
+  EXPECT_EQ(summary["simulated_time_s"].get<double>(), 0.0);
+  EXPECT_FALSE(summary["settle"]["at_rest"].get<bool>());
+  const auto steps = summary["settle"]["steps"].get<long long>();
+  EXPECT_GT(steps, 0);
+  EXPECT_LT(steps, 100000);  // far from settle_time / time_step
+  EXPECT_EQ(summary["mechanics"]["steps"].get<long long>(), steps);
+}
+
 }  // namespace

@@ -10,6 +10,7 @@
 
 #include "coupling/output/Hdf5ErrorSilence.h"
 #include "coupling/output/Hdf5Io.h"
+#include "coupling/output/PendingFrame.h"
 #include "coupling/output/ResultContacts.h"
 #include "coupling/output/ResultFileLock.h"
 #include "coupling/output/ResultFrames.h"
@@ -44,6 +45,8 @@ struct ResultWriter::Impl {
   std::int64_t contact_rows = 0;  // rows in /contacts/*
   std::size_t xdmf_frames = 0;    // frames in the last XDMF written
   std::chrono::steady_clock::time_point xdmf_time = std::chrono::steady_clock::now();
+  std::vector<PendingFrame> pending;  // accepted, not yet in the .h5 (see sync_due)
+  std::size_t pending_bytes = 0;
   bool finished = true;           // false once the file is complete and open
 
   Impl() = default;
@@ -63,19 +66,65 @@ struct ResultWriter::Impl {
   }
 
   // The XDMF lists every frame, so rewriting it costs O(frames): rewriting it after every frame
-  // made 4,000 frames take 28 s instead of 2 s. It is rewritten after each of the first 1024
-  // frames, then when the frame count has grown by 1/32 or one second of wall time has passed
-  // since the last rewrite: the overhead stays a few percent, and after a crash the XDMF misses
-  // at most the frames of the last second (it never lists a frame the .h5 does not hold).
-  void rewrite_xdmf_if_due() {
-    const std::size_t frames = times.size();
-    const auto now = std::chrono::steady_clock::now();
-    if (frames <= 1024 || (frames - xdmf_frames) * 32 >= frames ||
-        now - xdmf_time >= std::chrono::seconds(1)) {
-      write_xdmf(path, particles, times);
-      xdmf_frames = frames;
-      xdmf_time = now;
+  // made 4,000 frames take 28 s instead of 2 s. And its per-frame entries declare the datasets'
+  // frame count, so an XDMF older than the .h5 disagrees with it. Hence frames reach the .h5 and
+  // the XDMF together, in batches: a frame is stored (written, flushed) and the XDMF rewritten
+  // after each of the first 1024 frames, then when the frame count has grown by 1/32, a second
+  // of wall time has passed, or 64 MiB of frames wait; frames in between wait in memory. After
+  // a crash both files hold the same frames (all but the last second's at most), except in the
+  // moment between the flush of a batch and the XDMF's rename.
+  bool sync_due(std::size_t total_frames) const {
+    return total_frames <= 1024 || (total_frames - xdmf_frames) * 32 >= total_frames ||
+           std::chrono::steady_clock::now() - xdmf_time >= std::chrono::seconds(1) ||
+           pending_bytes >= (std::size_t{64} << 20);
+  }
+
+  // Appends `batch` to the datasets, flushes, then rewrites the XDMF. On an HDF5 failure the
+  // datasets are cut back to where they were and OutputError is thrown.
+  void store(const std::vector<FrameView>& batch) {
+    const std::size_t first = times.size();
+    std::int64_t rows = contact_rows;
+    try {
+      Hdf5ErrorSilence silence;
+      for (std::size_t k = 0; k < batch.size(); ++k) {
+        const std::size_t new_contacts = contacts.stored() ? batch[k].normal_force_N.size() : 0;
+        if (new_contacts > 0) contacts.append(rows, batch[k]);
+        rows += static_cast<std::int64_t>(new_contacts);
+        frames.append(first + k, batch[k], rows);
+      }
+      hdf5::check_ok(H5Fflush(file.get(), H5F_SCOPE_LOCAL), "H5Fflush");
+    } catch (const Hdf5Failure& e) {
+      const std::string which = batch.size() == 1 ? "frame " + std::to_string(first)
+                                                  : "frames " + std::to_string(first) + " to " +
+                                                        std::to_string(first + batch.size() - 1);
+      const std::string message = "cannot write " + which + " to result file '" + path + "': " + e.what();
+      try {
+        Hdf5ErrorSilence silence;
+        frames.cut_back(first);
+        contacts.cut_back(contact_rows);
+        H5Fflush(file.get(), H5F_SCOPE_LOCAL);
+      } catch (...) {
+        // The original error is the one to report.
+      }
+      throw OutputError(message);
     }
+    for (const auto& f : batch) times.push_back(f.time_s);
+    contact_rows = rows;
+    write_xdmf(path, particles, times);
+    xdmf_frames = times.size();
+    xdmf_time = std::chrono::steady_clock::now();
+  }
+
+  // Stores the frames waiting in memory (they are dropped if that fails).
+  void store_pending() {
+    if (pending.empty()) return;
+    const std::vector<PendingFrame> batch = std::move(pending);
+    pending.clear();
+    pending_bytes = 0;
+    std::vector<FrameView> views;
+    views.reserve(batch.size());
+    for (const auto& p : batch) views.push_back(p.view());
+    store(views);
   }
 
   // Releases every HDF5 id (datasets first, then the file), whatever happened before.
@@ -91,13 +140,18 @@ struct ResultWriter::Impl {
   void close_with_status(std::string_view status) {
     finished = true;
     std::string error;
+    try {
+      store_pending();
+    } catch (const OutputError& e) {
+      error = e.what();
+    }
     {
       Hdf5ErrorSilence silence;
       try {
         write_result_status(file.get(), status);
         hdf5::check_ok(H5Fflush(file.get(), H5F_SCOPE_LOCAL), "H5Fflush");
       } catch (const Hdf5Failure& e) {
-        error = "cannot set status of result file '" + path + "': " + e.what();
+        if (error.empty()) error = "cannot set status of result file '" + path + "': " + e.what();
       }
       if (!close_ids() && error.empty()) {
         error = "cannot close result file '" + path + "': " + hdf5::detail();
@@ -255,29 +309,18 @@ void ResultWriter::write_frame(const FrameView& frame) {
           "tangential_force_N 3 C or none");
     }
   }
-  const std::size_t f = w.times.size();
-  const std::int64_t total = w.contact_rows + static_cast<std::int64_t>(new_contacts);
-  try {
-    Hdf5ErrorSilence silence;
-    if (new_contacts > 0) w.contacts.append(w.contact_rows, frame);
-    w.frames.append(f, frame, total);
-    hdf5::check_ok(H5Fflush(w.file.get(), H5F_SCOPE_LOCAL), "H5Fflush");
-  } catch (const Hdf5Failure& e) {
-    const std::string message = "cannot write frame " + std::to_string(f) +
-                                " to result file '" + w.path + "': " + e.what();
-    try {
-      Hdf5ErrorSilence silence;
-      w.frames.cut_back(f);
-      w.contacts.cut_back(w.contact_rows);
-      H5Fflush(w.file.get(), H5F_SCOPE_LOCAL);
-    } catch (...) {
-      // The original error is the one to report.
-    }
-    throw OutputError(message);
+  const std::size_t total_frames = w.times.size() + w.pending.size() + 1;
+  if (w.pending.empty() && w.sync_due(total_frames)) {
+    w.store({frame});  // no copy while every frame is stored at once
+    return;
   }
-  w.times.push_back(frame.time_s);
-  w.contact_rows = total;
-  w.rewrite_xdmf_if_due();
+  w.pending.push_back(PendingFrame::copy_of(frame));
+  w.pending_bytes += w.pending.back().bytes();
+  if (w.sync_due(total_frames)) w.store_pending();
+}
+
+void ResultWriter::flush() {
+  if (impl_ && !impl_->finished) impl_->store_pending();
 }
 
 void ResultWriter::finish(std::string_view status) {
@@ -290,7 +333,10 @@ void ResultWriter::finish(std::string_view status) {
   impl_->close_with_status(status);
 }
 
-std::size_t ResultWriter::frames() const { return impl_ ? impl_->times.size() : 0; }
+std::size_t ResultWriter::frames() const {
+  return impl_ ? impl_->times.size() + impl_->pending.size() : 0;
+}
+std::size_t ResultWriter::stored_frames() const { return impl_ ? impl_->times.size() : 0; }
 std::size_t ResultWriter::particles() const { return impl_ ? impl_->particles : 0; }
 bool ResultWriter::finished() const { return !impl_ || impl_->finished; }
 const std::string& ResultWriter::path() const {

@@ -27,10 +27,12 @@
 // changes a byte. Every HDF5 identifier is owned and closed on every path (also when the disk
 // is full), so HDF5's teardown at exit finds nothing open.
 //
-// RESULT.xdmf is rewritten (atomically: temporary file then rename) after each of the first 1024
-// frames, then whenever the frame count has grown by 1/32 or a second of wall time has passed,
-// and always in finish() and in the destructor: after a crash it lists only frames the .h5
-// holds, and misses at most those of the last second.
+// Frames reach the .h5 and RESULT.xdmf together: each batch of frames is written and flushed,
+// then the XDMF is rewritten (atomically: temporary file then rename). A batch is every frame
+// for the first 1024 frames, then whatever arrived until the frame count has grown by 1/32, a
+// second of wall time has passed, or 64 MiB wait; finish(), flush() and the destructor store
+// what waits. After a crash both files describe the same frames (the XDMF's declared frame
+// count is the datasets'), missing at most those of the last second.
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -100,18 +102,22 @@ class ResultWriter {
   // Not finished: sets status "failed", closes and writes the XDMF, best effort; never throws.
   ~ResultWriter();
 
-  // Appends one frame and flushes. Span sizes must match N (std::invalid_argument otherwise);
-  // contacts are ignored when store_contacts is false (contact_offset then stays 0). On an
-  // HDF5 failure the datasets are cut back to the previous frame and OutputError is thrown;
-  // OutputError also when RESULT.xdmf cannot be rewritten (the frame is then in the .h5).
-  // std::logic_error after finish(). Not thread-safe (serial HDF5): one writing thread.
+  // Appends one frame (stored now or with the next batch, see above). Span sizes must match N
+  // (std::invalid_argument otherwise); contacts are ignored when store_contacts is false
+  // (contact_offset then stays 0). On an HDF5 failure the datasets are cut back to the previous
+  // batch and OutputError is thrown; OutputError also when RESULT.xdmf cannot be rewritten (the
+  // frames are then in the .h5). std::logic_error after finish(). Not thread-safe (serial
+  // HDF5): one writing thread.
   void write_frame(const FrameView& frame);
+  // Stores the frames waiting for their batch now (e.g. before a checkpoint counts them).
+  void flush();
 
   // status is "ok", "failed" or "interrupted" (std::invalid_argument otherwise). Sets the root attribute,
   // closes the file and writes RESULT.xdmf. A second call does nothing. Throws OutputError.
   void finish(std::string_view status);
 
-  std::size_t frames() const;      // frames written so far (F)
+  std::size_t frames() const;         // frames written so far, stored or waiting
+  std::size_t stored_frames() const;  // frames in the .h5 (F) and in the XDMF
   std::size_t particles() const;   // N
   bool finished() const;
   const std::string& path() const;

@@ -290,7 +290,8 @@ void CoupledRun::checkpoint(double t_s) {
   cs.temperature_K.assign(T.begin(), T.end());
   cs.boundary_heat_J = integrator_->boundary_heat_J();
   cs.scene_toml = scene_.resolved_toml;
-  cs.frames_written = std::int64_t(writer_->frames());
+  writer_->flush();  // the checkpoint counts frames the .h5 holds
+  cs.frames_written = std::int64_t(writer_->stored_frames());
   store_contacts(contacts_, scene_.mechanics.time_step_s, cs);
   if (dynamic_network_) cs.thermal_pattern_pair = dynamic_network_->pattern_pairs();
   store_thermal_stats(integrator_->stats(), cs);

@@ -12,7 +12,6 @@
 
 #include "coupling/common/ExitCode.h"
 #include "coupling/output/Checkpoint.h"
-#include "coupling/scene/SceneDifference.h"
 #include "coupling/bridge/ContactList.h"
 #include "coupling/bridge/DynamicNetwork.h"
 #include "coupling/output/OutputError.h"
@@ -21,6 +20,7 @@
 #include "coupling/bridge/SceneToMechanics.h"
 #include "coupling/bridge/ThermalDiagnostics.h"
 #include "coupling/bridge/ThermalNetworkBuilder.h"
+#include "coupling/run/CoupledRunLoop.h"
 #include "coupling/run/Interruption.h"
 #include "coupling/run/OutputPaths.h"
 #include "coupling/run/RestartState.h"
@@ -41,103 +41,7 @@ std::string checkpoint_path_for(const std::string& output_path) {
   return output_path + ".checkpoint.h5";
 }
 
-namespace {
-
-// Settings found invalid once the run is set up (nothing written yet): exit 2.
-struct StartError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-// A first SIGINT/SIGTERM was handled: last frame and checkpoint are written.
-struct Interrupted {
-  int signal = 0;
-  double time_s = 0.0;    // simulated time reached, or settle time when settling
-};
-
-class CoupledRun {
- public:
-  CoupledRun(const Scene& scene, const RunOptions& options, std::ostream& log)
-      : scene_(scene), options_(options), log_(log),
-        progress_(log, options.quiet, options.terminal),
-        coupling_(parse_coupling_strategy(scene.thermal.coupling)) {}
-
-  RunOutcome run();
-
- private:
-  void restore_checkpoint();
-  void prepare_mechanics();
-  void settle();
-  void prepare_thermal();
-  void run_static();
-  void run_dynamic();
-  void write_frame(double t_s);
-  void maybe_checkpoint(double t_s);
-  void checkpoint(double t_s);
-  void begin_thermal_segment(const CheckpointState& cs);
-  void stop_if_interrupted(double t_s, bool frame_written);
-  void fill_summary();
-  std::span<const double> positions() const;
-  std::span<const double> velocities() const;
-  double max_temperature_K() const;
-  std::vector<double> frame_times() const;
-
-  const Scene& scene_;
-  RunOptions options_;
-  std::ostream& log_;
-  ProgressReporter progress_;
-  CouplingStrategy coupling_;  // thermal.coupling, parsed once
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-
-  mechanics::ParticleSet particles_;                  // used when mechanics is off or settled
-  std::unique_ptr<mechanics::NscdIntegrator> nscd_;   // settle and dynamic
-  bool frozen_ = true;                                // positions no longer change
-  std::vector<double> zero_velocity_;
-  ContactList contacts_;
-  std::unique_ptr<DynamicNetwork> dynamic_network_;  // dynamic runs only
-  std::unique_ptr<thermal::ThermalSystem> system_;
-  std::unique_ptr<thermal::ThermalIntegrator> integrator_;
-  std::optional<ResultWriter> writer_;
-
-  std::optional<CheckpointState> restart_;
-  double t0_ = 0.0;
-  std::vector<double> T0_;
-  double boundary_heat0_J_ = 0.0;
-  double initial_energy_J_ = 0.0;
-  double next_checkpoint_s_ = 0.0;
-  double last_checkpoint_s_ = -1.0;     // time of the last checkpoint written, -1: none
-  double thermal_seconds_ = 0.0;        // wall time inside the thermal side
-  RunSummary summary_;
-};
-
-void CoupledRun::restore_checkpoint() {
-  if (options_.restart_path.empty()) return;
-  restart_ = read_checkpoint(options_.restart_path);  // OutputError -> exit 4
-  const std::size_t n = scene_.particles.size();
-  if (restart_->temperature_K.size() != n)
-    throw StartError("checkpoint " + options_.restart_path + " holds " +
-                     std::to_string(restart_->temperature_K.size()) +
-                     " particles but the scene has " + std::to_string(n));
-  // A restart continues the same physics: only the duration and the output may change.
-  if (const auto difference = first_scene_difference(restart_->scene_toml, scene_.resolved_toml))
-    throw StartError("restart refused: key " + difference->key +
-                     " differs from the scene in checkpoint " + options_.restart_path +
-                     " (checkpoint " + difference->before_value + ", now " +
-                     difference->after_value +
-                     "); a restart may change only simulation.duration and output.*");
-  t0_ = restart_->time_s;
-  T0_ = restart_->temperature_K;
-  boundary_heat0_J_ = restart_->boundary_heat_J;
-  if (auto it = restart_->extra.find("initial_energy_J"); it != restart_->extra.end())
-    initial_energy_J_ = it->second;
-  // A restarted settle run does not settle again: it reports how the checkpointed run settled.
-  const auto& extra = restart_->extra;
-  if (extra.contains("settle_at_rest") && extra.contains("settle_time_s") &&
-      extra.contains("settle_steps") && extra.contains("settle_max_speed_m_s")) {
-    summary_.settle = SettleSummary{extra.at("settle_at_rest") != 0.0, extra.at("settle_time_s"),
-                                    std::llround(extra.at("settle_steps")),
-                                    extra.at("settle_max_speed_m_s")};
-  }
-}
+namespace run_detail {
 
 void CoupledRun::prepare_mechanics() {
   particles_ = make_particle_set(scene_);
@@ -255,64 +159,6 @@ void CoupledRun::write_frame(double t_s) {
   f.conductance_W_per_K = contacts_.conductance_W_per_K;
   f.tangential_force_N = contacts_.tangential_force_N;
   writer_->write_frame(f);
-}
-
-void CoupledRun::maybe_checkpoint(double t_s) {
-  if (!(scene_.output.checkpoint_interval_s > 0.0) || t_s < next_checkpoint_s_ - 1e-12) return;
-  next_checkpoint_s_ = next_checkpoint_time_s(t_s, scene_.output.checkpoint_interval_s);
-  checkpoint(t_s);
-}
-
-// An integration boundary (README "Restart, interruption and files"): the thermal integrator
-// starts afresh from the checkpoint's temperatures, boundary heat and counters. The run that
-// writes the checkpoint does this right after writing it, a run restarted from it does the same
-// at its start, so both continue identically.
-void CoupledRun::begin_thermal_segment(const CheckpointState& cs) {
-  integrator_->initialize(cs.time_s, cs.temperature_K, cs.boundary_heat_J);
-  auto stats = thermal_stats_of(cs);
-  ++stats.reinitializations;
-  integrator_->restore_stats(stats);
-}
-
-void CoupledRun::checkpoint(double t_s) {
-  CheckpointState cs;
-  cs.time_s = t_s;
-  if (nscd_ && !frozen_) {
-    store_mechanics_state(nscd_->save_state(), cs);
-  } else {
-    for (std::size_t i = 0; i < particles_.size(); ++i)
-      for (int k = 0; k < 3; ++k) cs.position_m.push_back(particles_.position[i][k]);
-    cs.velocity_m_per_s.assign(cs.position_m.size(), 0.0);
-    cs.angular_velocity_rad_per_s.assign(cs.position_m.size(), 0.0);
-    if (nscd_) store_mechanics_stats(nscd_->stats(), cs);
-  }
-  const auto T = integrator_->temperatures_K();
-  cs.temperature_K.assign(T.begin(), T.end());
-  cs.boundary_heat_J = integrator_->boundary_heat_J();
-  cs.scene_toml = scene_.resolved_toml;
-  writer_->flush();  // the checkpoint counts frames the .h5 holds
-  cs.frames_written = std::int64_t(writer_->stored_frames());
-  store_contacts(contacts_, scene_.mechanics.time_step_s, cs);
-  if (dynamic_network_) cs.thermal_pattern_pair = dynamic_network_->pattern_pairs();
-  store_thermal_stats(integrator_->stats(), cs);
-  cs.extra["initial_energy_J"] = initial_energy_J_;
-  if (summary_.settle) {
-    cs.extra["settle_at_rest"] = summary_.settle->at_rest ? 1.0 : 0.0;
-    cs.extra["settle_time_s"] = summary_.settle->time_s;
-    cs.extra["settle_steps"] = double(summary_.settle->steps);
-    cs.extra["settle_max_speed_m_s"] = summary_.settle->max_speed_m_s;
-  }
-  write_checkpoint(checkpoint_path_for(options_.output_path), cs);
-  last_checkpoint_s_ = t_s;
-  begin_thermal_segment(cs);
-}
-
-void CoupledRun::stop_if_interrupted(double t_s, bool frame_written) {
-  const int signal = Interruption::pending();
-  if (signal == 0 || t_s >= scene_.duration_s) return;  // at the end: the run is complete
-  if (!frame_written) write_frame(t_s);
-  if (last_checkpoint_s_ != t_s) checkpoint(t_s);
-  throw Interrupted{signal, t_s};
 }
 
 std::vector<double> CoupledRun::frame_times() const {
@@ -550,10 +396,10 @@ RunOutcome CoupledRun::run() {
   return failed(kExitOk, "");
 }
 
-}  // namespace
+}  // namespace run_detail
 
 RunOutcome run_scene(const Scene& scene, const RunOptions& options, std::ostream& log) {
-  CoupledRun run(scene, options, log);
+  run_detail::CoupledRun run(scene, options, log);
   return run.run();
 }
 

@@ -1,0 +1,102 @@
+// CoupledRun's checkpoints, restarts and interruptions (README "Restart, interruption and
+// files"): every checkpoint time is an integration boundary, in the run that writes the
+// checkpoint and in the run restarted from it.
+#include <cmath>
+#include <string>
+
+#include "coupling/run/CoupledRunLoop.h"
+#include "coupling/run/Interruption.h"
+#include "coupling/run/RestartState.h"
+#include "coupling/scene/SceneDifference.h"
+
+namespace tmdem::coupling::run_detail {
+
+void CoupledRun::restore_checkpoint() {
+  if (options_.restart_path.empty()) return;
+  restart_ = read_checkpoint(options_.restart_path);  // OutputError -> exit 4
+  const std::size_t n = scene_.particles.size();
+  if (restart_->temperature_K.size() != n)
+    throw StartError("checkpoint " + options_.restart_path + " holds " +
+                     std::to_string(restart_->temperature_K.size()) +
+                     " particles but the scene has " + std::to_string(n));
+  // A restart continues the same physics: only the duration and the output may change.
+  if (const auto difference = first_scene_difference(restart_->scene_toml, scene_.resolved_toml))
+    throw StartError("restart refused: key " + difference->key +
+                     " differs from the scene in checkpoint " + options_.restart_path +
+                     " (checkpoint " + difference->before_value + ", now " +
+                     difference->after_value +
+                     "); a restart may change only simulation.duration and output.*");
+  t0_ = restart_->time_s;
+  T0_ = restart_->temperature_K;
+  boundary_heat0_J_ = restart_->boundary_heat_J;
+  if (auto it = restart_->extra.find("initial_energy_J"); it != restart_->extra.end())
+    initial_energy_J_ = it->second;
+  // A restarted settle run does not settle again: it reports how the checkpointed run settled.
+  const auto& extra = restart_->extra;
+  if (extra.contains("settle_at_rest") && extra.contains("settle_time_s") &&
+      extra.contains("settle_steps") && extra.contains("settle_max_speed_m_s")) {
+    summary_.settle = SettleSummary{extra.at("settle_at_rest") != 0.0, extra.at("settle_time_s"),
+                                    std::llround(extra.at("settle_steps")),
+                                    extra.at("settle_max_speed_m_s")};
+  }
+}
+
+void CoupledRun::maybe_checkpoint(double t_s) {
+  if (!(scene_.output.checkpoint_interval_s > 0.0) || t_s < next_checkpoint_s_ - 1e-12) return;
+  next_checkpoint_s_ = next_checkpoint_time_s(t_s, scene_.output.checkpoint_interval_s);
+  checkpoint(t_s);
+}
+
+// An integration boundary (README "Restart, interruption and files"): the thermal integrator
+// starts afresh from the checkpoint's temperatures, boundary heat and counters. The run that
+// writes the checkpoint does this right after writing it, a run restarted from it does the same
+// at its start, so both continue identically.
+void CoupledRun::begin_thermal_segment(const CheckpointState& cs) {
+  integrator_->initialize(cs.time_s, cs.temperature_K, cs.boundary_heat_J);
+  auto stats = thermal_stats_of(cs);
+  ++stats.reinitializations;
+  integrator_->restore_stats(stats);
+}
+
+void CoupledRun::checkpoint(double t_s) {
+  CheckpointState cs;
+  cs.time_s = t_s;
+  if (nscd_ && !frozen_) {
+    store_mechanics_state(nscd_->save_state(), cs);
+  } else {
+    for (std::size_t i = 0; i < particles_.size(); ++i)
+      for (int k = 0; k < 3; ++k) cs.position_m.push_back(particles_.position[i][k]);
+    cs.velocity_m_per_s.assign(cs.position_m.size(), 0.0);
+    cs.angular_velocity_rad_per_s.assign(cs.position_m.size(), 0.0);
+    if (nscd_) store_mechanics_stats(nscd_->stats(), cs);
+  }
+  const auto T = integrator_->temperatures_K();
+  cs.temperature_K.assign(T.begin(), T.end());
+  cs.boundary_heat_J = integrator_->boundary_heat_J();
+  cs.scene_toml = scene_.resolved_toml;
+  writer_->flush();  // the checkpoint counts frames the .h5 holds
+  cs.frames_written = std::int64_t(writer_->stored_frames());
+  store_contacts(contacts_, scene_.mechanics.time_step_s, cs);
+  if (dynamic_network_) cs.thermal_pattern_pair = dynamic_network_->pattern_pairs();
+  store_thermal_stats(integrator_->stats(), cs);
+  cs.extra["initial_energy_J"] = initial_energy_J_;
+  if (summary_.settle) {
+    cs.extra["settle_at_rest"] = summary_.settle->at_rest ? 1.0 : 0.0;
+    cs.extra["settle_time_s"] = summary_.settle->time_s;
+    cs.extra["settle_steps"] = double(summary_.settle->steps);
+    cs.extra["settle_max_speed_m_s"] = summary_.settle->max_speed_m_s;
+  }
+  write_checkpoint(checkpoint_path_for(options_.output_path), cs);
+  last_checkpoint_s_ = t_s;
+  begin_thermal_segment(cs);
+}
+
+void CoupledRun::stop_if_interrupted(double t_s, bool frame_written) {
+  const int signal = Interruption::pending();
+  if (signal == 0 || t_s >= scene_.duration_s) return;  // at the end: the run is complete
+  if (!frame_written) write_frame(t_s);
+  if (last_checkpoint_s_ != t_s) checkpoint(t_s);
+  throw Interrupted{signal, t_s};
+}
+
+}  // namespace tmdem::coupling::run_detail

@@ -1,0 +1,93 @@
+#pragma once
+// The coupled run's state and steps (CoupledRun.h describes the run), shared by the files that
+// implement it: CoupledRun.cpp (set-up, time loops, frames, summary) and
+// CoupledRunCheckpoints.cpp (checkpoints, restarts and interruptions). Internal to the run room.
+#include <chrono>
+#include <memory>
+#include <optional>
+#include <ostream>
+#include <span>
+#include <stdexcept>
+#include <vector>
+
+#include "coupling/bridge/ContactList.h"
+#include "coupling/bridge/CouplingStrategy.h"
+#include "coupling/bridge/DynamicNetwork.h"
+#include "coupling/output/Checkpoint.h"
+#include "coupling/output/ProgressReporter.h"
+#include "coupling/output/ResultWriter.h"
+#include "coupling/output/RunSummary.h"
+#include "coupling/run/CoupledRun.h"
+#include "mechanics/NscdIntegrator.h"
+#include "thermal/ThermalIntegrator.h"
+#include "thermal/ThermalSystem.h"
+
+namespace tmdem::coupling::run_detail {
+
+// Settings found invalid once the run is set up (nothing written yet): exit 2.
+struct StartError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// A first SIGINT/SIGTERM was handled: last frame and checkpoint are written.
+struct Interrupted {
+  int signal = 0;
+  double time_s = 0.0;    // simulated time reached, or settle time when settling
+};
+
+class CoupledRun {
+ public:
+  CoupledRun(const Scene& scene, const RunOptions& options, std::ostream& log)
+      : scene_(scene), options_(options), log_(log),
+        progress_(log, options.quiet, options.terminal),
+        coupling_(parse_coupling_strategy(scene.thermal.coupling)) {}
+
+  RunOutcome run();
+
+ private:
+  void restore_checkpoint();
+  void prepare_mechanics();
+  void settle();
+  void prepare_thermal();
+  void run_static();
+  void run_dynamic();
+  void write_frame(double t_s);
+  void maybe_checkpoint(double t_s);
+  void checkpoint(double t_s);
+  void begin_thermal_segment(const CheckpointState& cs);
+  void stop_if_interrupted(double t_s, bool frame_written);
+  void fill_summary();
+  std::span<const double> positions() const;
+  std::span<const double> velocities() const;
+  double max_temperature_K() const;
+  std::vector<double> frame_times() const;
+
+  const Scene& scene_;
+  RunOptions options_;
+  std::ostream& log_;
+  ProgressReporter progress_;
+  CouplingStrategy coupling_;  // thermal.coupling, parsed once
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+
+  mechanics::ParticleSet particles_;                  // used when mechanics is off or settled
+  std::unique_ptr<mechanics::NscdIntegrator> nscd_;   // settle and dynamic
+  bool frozen_ = true;                                // positions no longer change
+  std::vector<double> zero_velocity_;
+  ContactList contacts_;
+  std::unique_ptr<DynamicNetwork> dynamic_network_;  // dynamic runs only
+  std::unique_ptr<thermal::ThermalSystem> system_;
+  std::unique_ptr<thermal::ThermalIntegrator> integrator_;
+  std::optional<ResultWriter> writer_;
+
+  std::optional<CheckpointState> restart_;
+  double t0_ = 0.0;
+  std::vector<double> T0_;
+  double boundary_heat0_J_ = 0.0;
+  double initial_energy_J_ = 0.0;
+  double next_checkpoint_s_ = 0.0;
+  double last_checkpoint_s_ = -1.0;     // time of the last checkpoint written, -1: none
+  double thermal_seconds_ = 0.0;        // wall time inside the thermal side
+  RunSummary summary_;
+};
+
+}  // namespace tmdem::coupling::run_detail

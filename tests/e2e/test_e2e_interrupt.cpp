@@ -237,4 +237,37 @@ TEST(EndToEndInterrupt, SigtermWhileSettlingStopsPromptlyWithSummaryOnly) {
   EXPECT_EQ(summary["mechanics"]["steps"].get<long long>(), steps);
 }
 
+// SIGKILL (a crash: no handler, nothing written at the end) mid-run: the last periodic
+// checkpoint restarts the run, which then writes the very file of the run that never stopped.
+TEST(EndToEndInterrupt, SigkillThenRestartFromLastCheckpointEqualsUninterruptedRunBitwise) {
+  const auto dir = scratch_dir("sigkill_resume");
+  const auto reference = scratch_dir("sigkill_reference");
+  for (const auto& d : {dir, reference})
+    fs::copy_file(fs::path(TMDEM_SOURCE_DIR) / "examples" / "poured_bed.toml", d + "/bed.toml");
+  const std::vector<std::string> settings = {"--set", "simulation.duration=0.5", "--set",
+                                             "output.checkpoint_interval=0.1"};
+  std::vector<std::string> args = {"run", "bed.toml", "--quiet", "-o", "out.h5", "--summary", "s.json"};
+  args.insert(args.end(), settings.begin(), settings.end());
+  const pid_t child = spawn_tmdem(args, dir);
+  ASSERT_GT(child, 0);
+  // Frames every 0.05 s: the seventh frame is t = 0.3 s, past the checkpoints at 0.1 and 0.2 s.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (frames_in_xdmf(dir + "/out.xdmf") < 7 && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  ASSERT_EQ(kill(child, SIGKILL), 0);
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  if (!WIFSIGNALED(status)) GTEST_SKIP() << "the run ended before the kill; nothing to test";
+  ASSERT_TRUE(fs::exists(dir + "/out.checkpoint.h5"));
+
+  auto r = run_tmdem("run bed.toml --quiet -o out.h5 --summary s.json --set simulation.duration=0.5 "
+                     "--set output.checkpoint_interval=0.1", reference);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = run_tmdem("run bed.toml --quiet -o out.h5 --summary s.json --restart out.checkpoint.h5 "
+                "--set simulation.duration=0.5 --set output.checkpoint_interval=0.1", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const auto& line : result_differences(reference + "/out.h5", dir + "/out.h5")) ADD_FAILURE() << line;
+  EXPECT_EQ(summary_without_wall_times(reference + "/s.json"), summary_without_wall_times(dir + "/s.json"));
+}
+
 }  // namespace

@@ -113,3 +113,32 @@ TEST(ContactDetector, SkipsPairsOfFixedParticles) {
   EXPECT_EQ(detector.pairs()[1].i, 2);
   EXPECT_EQ(detector.pairs()[1].j, -1);
 }
+
+// A table put back with restore() decides like the detector it was saved from: no rebuild below
+// half the margin from the saved reference positions, a rebuild past it that maps the saved
+// pairs to the new table; unsorted pairs are refused, empty references mean "rebuild".
+TEST(ContactDetector, RestoredTableDecidesLikeTheSavedOne) {
+  ParticleSet set = random_set(200, 2);
+  ContactDetector saved(1e-4, 1e-4);
+  saved.update(set, {}, {});
+  ContactDetector restored(1e-4, 1e-4);
+  restored.restore(saved.margin(), saved.rebuild_count(), saved.reference_positions(), saved.pairs());
+  set.position[7].x() += 0.49e-4;
+  EXPECT_FALSE(restored.update(set, {}, {}));
+  set.position[7].x() += 0.02e-4;
+  EXPECT_TRUE(saved.update(set, {}, {}));
+  EXPECT_TRUE(restored.update(set, {}, {}));
+  EXPECT_EQ(restored.rebuild_count(), 2u);
+  ASSERT_EQ(restored.pairs().size(), saved.pairs().size());
+  for (std::size_t k = 0; k < saved.pairs().size(); ++k) {
+    EXPECT_EQ(restored.pairs()[k].i, saved.pairs()[k].i);
+    EXPECT_EQ(restored.pairs()[k].j, saved.pairs()[k].j);
+    EXPECT_EQ(restored.previous_index()[k], saved.previous_index()[k]);
+  }
+
+  ContactDetector cold(1e-4, 1e-4);
+  cold.restore(1e-4, 0, {}, {});
+  EXPECT_TRUE(cold.update(set, {}, {}));
+  EXPECT_THROW(cold.restore(1e-4, 1, saved.reference_positions(), {{1, 2}, {0, 1}}),
+               std::invalid_argument);
+}

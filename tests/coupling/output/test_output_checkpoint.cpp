@@ -66,6 +66,28 @@ void expect_equal(const CheckpointState& a, const CheckpointState& b) {
   EXPECT_EQ(a.contact_impulse_N_s, b.contact_impulse_N_s);
   EXPECT_EQ(a.contact_tangential_force_N, b.contact_tangential_force_N);
   EXPECT_EQ(a.extra, b.extra);
+  EXPECT_EQ(a.contact_normal_force_N, b.contact_normal_force_N);
+  EXPECT_EQ(a.has_mechanics, b.has_mechanics);
+  EXPECT_EQ(a.detector_margin_m, b.detector_margin_m);
+  EXPECT_EQ(a.detector_rebuilds, b.detector_rebuilds);
+  EXPECT_EQ(a.detector_reference_position_m, b.detector_reference_position_m);
+  EXPECT_EQ(a.candidate_pair, b.candidate_pair);
+  EXPECT_EQ(a.candidate_force_N, b.candidate_force_N);
+  EXPECT_EQ(a.thermal_pattern_pair, b.thermal_pattern_pair);
+}
+
+// sample() plus what a bitwise restart of a moving packing needs.
+CheckpointState sample_with_mechanics() {
+  CheckpointState s = sample();
+  s.contact_normal_force_N = {0.1 / 3.0, 2e-3, 1e300};
+  s.has_mechanics = true;
+  s.detector_margin_m = 1.0 / 3.0 * 1e-4;
+  s.detector_rebuilds = 4096;
+  s.detector_reference_position_m = {1, 2, 3, 4, 5, 6, 7, 8, 9.000000000000002};
+  s.candidate_pair = {0, -2, 0, -1, 0, 1, 0, 2, 1, 2};
+  s.candidate_force_N = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, -1e-300};
+  s.thermal_pattern_pair = {0, -1, 0, 1, 1, 2};
+  return s;
 }
 
 TEST(Checkpoint, RoundTrip) {
@@ -92,6 +114,33 @@ TEST(Checkpoint, RoundTripWithoutContacts) {
   s.extra.clear();
   write_checkpoint(dir.file("c.h5"), s);
   expect_equal(tmdem::coupling::read_checkpoint(dir.file("c.h5")), s);
+}
+
+// Every double bit for bit, the mechanics group and the thermal pattern included; a file
+// without them (the older layout) reads with has_mechanics false and no pattern.
+TEST(Checkpoint, RoundTripWithMechanicsStateAndPattern) {
+  TempDir dir;
+  write_checkpoint(dir.file("m.h5"), sample_with_mechanics());
+  expect_equal(tmdem::coupling::read_checkpoint(dir.file("m.h5")), sample_with_mechanics());
+  write_checkpoint(dir.file("o.h5"), sample());
+  const CheckpointState older = tmdem::coupling::read_checkpoint(dir.file("o.h5"));
+  EXPECT_FALSE(older.has_mechanics);
+  EXPECT_TRUE(older.contact_normal_force_N.empty());
+  EXPECT_TRUE(older.thermal_pattern_pair.empty());
+}
+
+TEST(Checkpoint, RejectsMechanicsStateOfOtherSizes) {
+  TempDir dir;
+  CheckpointState s = sample_with_mechanics();
+  s.candidate_force_N.pop_back();
+  EXPECT_THROW(write_checkpoint(dir.file("a.h5"), s), std::invalid_argument);
+  s = sample_with_mechanics();
+  s.detector_reference_position_m.resize(6);  // 2 particles' worth for 3 particles
+  EXPECT_THROW(write_checkpoint(dir.file("b.h5"), s), std::invalid_argument);
+  s = sample_with_mechanics();
+  s.contact_normal_force_N.push_back(1.0);
+  EXPECT_THROW(write_checkpoint(dir.file("c.h5"), s), std::invalid_argument);
+  EXPECT_EQ(dir.entries(), 0u);
 }
 
 TEST(Checkpoint, OverwriteReplacesWhole) {

@@ -46,6 +46,11 @@ class ApgdSolver final : public ContactSolver {
   SolveReport solve(const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
                     std::vector<Eigen::Vector3d>& velocity,
                     std::vector<Eigen::Vector3d>& angular_velocity) override;
+  // The Lipschitz estimate kept between solves.
+  std::vector<double> carried_state() const override { return {lipschitz_}; }
+  void restore_carried_state(const std::vector<double>& state) override {
+    if (state.size() == 1) lipschitz_ = state[0];
+  }
 
  private:
   void build_body_lists(const ContactProblem& problem);

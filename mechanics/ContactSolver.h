@@ -42,6 +42,12 @@ class ContactSolver {
   virtual SolveReport solve(const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
                             std::vector<Eigen::Vector3d>& velocity,
                             std::vector<Eigen::Vector3d>& angular_velocity) = 0;
+
+  // What the solver carries from one solve to the next (e.g. a step-size estimate), as plain
+  // numbers, and putting it back (restart from a checkpoint: MechanicsState.h). Empty for a
+  // solver that starts every solve from the warm-start reactions alone.
+  virtual std::vector<double> carried_state() const { return {}; }
+  virtual void restore_carried_state(const std::vector<double>& /*state*/) {}
 };
 
 }  // namespace tmdem::mechanics

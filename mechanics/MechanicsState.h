@@ -29,6 +29,7 @@ struct MechanicsState {
   std::vector<Eigen::Vector3d> reference_position_m;  // per particle, at the last rebuild
   std::vector<CandidatePair> candidates;               // sorted as ContactDetector::pairs()
   std::vector<Eigen::Vector3d> candidate_force_N;      // per candidate, global frame, on i
+  std::vector<double> solver_state;                    // ContactSolver::carried_state()
 
   MechanicsStats stats;
 };

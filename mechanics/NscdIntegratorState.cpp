@@ -20,6 +20,7 @@ MechanicsState NscdIntegrator::save_state() const {
   s.candidate_force_N.assign(s.candidates.size(), Eigen::Vector3d::Zero());
   for (std::size_t k = 0; k < s.candidates.size() && k < force_.size(); ++k)
     s.candidate_force_N[k] = force_[k];
+  s.solver_state = solver_->carried_state();
   s.stats = stats_;
   return s;
 }
@@ -42,6 +43,7 @@ void NscdIntegrator::restore_state(const MechanicsState& s) {
   force_ = s.candidate_force_N;
   old_force_.clear();
   contacts_.clear();
+  solver_->restore_carried_state(s.solver_state);
   stats_ = s.stats;
 }
 

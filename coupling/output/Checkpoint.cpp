@@ -53,6 +53,7 @@ void write_contents(hid_t file, const CheckpointState& s) {
     hdf5::write_array(mechanics.get(), "reference_position", s.detector_reference_position_m, 3, "m");
     hdf5::write_array(mechanics.get(), "candidate_pair", s.candidate_pair, 2, "1");
     hdf5::write_array(mechanics.get(), "candidate_force", s.candidate_force_N, 3, "N");
+    hdf5::write_array(mechanics.get(), "solver_state", s.contact_solver_state, 0, "1");
   }
   if (!s.thermal_pattern_pair.empty()) {
     Hdf5Handle thermal = hdf5::create_group(file, "thermal");
@@ -116,6 +117,8 @@ CheckpointState read_contents(hid_t file) {
     s.detector_reference_position_m = hdf5::read_double_array(mechanics.get(), "reference_position", 3);
     s.candidate_pair = hdf5::read_int64_array(mechanics.get(), "candidate_pair", 2);
     s.candidate_force_N = hdf5::read_double_array(mechanics.get(), "candidate_force", 3);
+    if (hdf5::exists(mechanics.get(), "solver_state"))
+      s.contact_solver_state = hdf5::read_double_array(mechanics.get(), "solver_state", 0);
   }
   if (hdf5::exists(file, "thermal")) {
     Hdf5Handle thermal = hdf5::open_group(file, "thermal");

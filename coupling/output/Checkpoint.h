@@ -7,8 +7,8 @@
 // /contacts/pair [C,2] int64, /contacts/impulse [C,3] N s, /contacts/tangential_force [C,3] N,
 // /contacts/normal_force [C] N, /extra/<name> scalar double; for a bitwise restart (README
 // "Restart, interruption and files") also /mechanics (attributes margin_m, rebuilds; datasets
-// reference_position [N,3] or [0,3] m, candidate_pair [K,2], candidate_force [K,3] N: the
-// mechanics' MechanicsState) when the packing moves, and /thermal/pattern_pair [P,2] (a dynamic
+// reference_position [N,3] or [0,3] m, candidate_pair [K,2], candidate_force [K,3] N,
+// solver_state [S]: the mechanics' MechanicsState) when the packing moves, and /thermal/pattern_pair [P,2] (a dynamic
 // run's sticky edge set). The integrators' and the mechanics' counters are /extra scalars.
 // A checkpoint without tangential_force or normal_force (written before they existed) reads as
 // tangential force 0 and normal force impulse / time step; without /mechanics or /thermal it
@@ -47,6 +47,7 @@ struct CheckpointState {
   std::vector<double> detector_reference_position_m; // N*3, or empty: no candidate table yet
   std::vector<std::int64_t> candidate_pair;          // K*2
   std::vector<double> candidate_force_N;             // K*3, global frame, on i
+  std::vector<double> contact_solver_state;          // the contact solver's carried numbers
   std::vector<std::int64_t> thermal_pattern_pair;    // P*2, dynamic runs
   std::map<std::string, double> extra;               // free-form named scalars for the run loop
 };

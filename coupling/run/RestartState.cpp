@@ -102,6 +102,7 @@ void store_mechanics_state(const mechanics::MechanicsState& m, CheckpointState& 
   cs.candidate_pair.clear();
   for (const auto& p : m.candidates) cs.candidate_pair.insert(cs.candidate_pair.end(), {p.i, p.j});
   cs.candidate_force_N = flat_of(m.candidate_force_N);
+  cs.contact_solver_state = m.solver_state;
   store_mechanics_stats(m.stats, cs);
 }
 
@@ -116,6 +117,7 @@ mechanics::MechanicsState mechanics_state_of(const CheckpointState& cs) {
   for (std::size_t k = 0; k + 1 < cs.candidate_pair.size(); k += 2)
     m.candidates.push_back({std::int32_t(cs.candidate_pair[k]), std::int32_t(cs.candidate_pair[k + 1])});
   m.candidate_force_N = vectors_of(cs.candidate_force_N);
+  m.solver_state = cs.contact_solver_state;
   m.stats = mechanics_stats_of(cs);
   return m;
 }

@@ -94,3 +94,9 @@ TEST(EndToEndBitwiseRestart, PaperTriangleSettle) {
 TEST(EndToEndBitwiseRestart, PouredBedDynamic) {
   expect_segments_equal_uninterrupted("poured_bed", "poured_bed.toml", 0.2, {0.2}, 0.5);
 }
+
+// The same with the accelerated contact solver, which carries its step-size estimate along.
+TEST(EndToEndBitwiseRestart, PouredBedDynamicApgd) {
+  expect_segments_equal_uninterrupted("poured_bed_apgd", "poured_bed.toml", 0.2, {0.2}, 0.5,
+                                      "--set mechanics.solver=apgd");
+}

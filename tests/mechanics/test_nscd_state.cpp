@@ -36,14 +36,15 @@ Trajectory run(NscdIntegrator& nscd, int steps) {
 
 // Steps `before` steps, saves, and compares `after` more steps of the original with those of
 // a fresh integrator of the same pile restored from the save.
-void expect_restored_run_identical(int dimension, double friction, int before, int after) {
-  NscdIntegrator original = random_pile(40, dimension, friction, 7);
+void expect_restored_run_identical(int dimension, double friction, int before, int after,
+                                   NscdParameters parameters = {}) {
+  NscdIntegrator original = random_pile(40, dimension, friction, 7, parameters);
   for (int s = 0; s < before; ++s) original.step();
   const MechanicsState saved = original.save_state();
   ASSERT_FALSE(saved.candidates.empty());
   ASSERT_EQ(saved.candidate_force_N.size(), saved.candidates.size());
 
-  NscdIntegrator restored = random_pile(40, dimension, friction, 7);
+  NscdIntegrator restored = random_pile(40, dimension, friction, 7, parameters);
   restored.restore_state(saved);
   EXPECT_EQ(restored.stats().steps, before);
   EXPECT_EQ(restored.detector().rebuild_count(), original.detector().rebuild_count());
@@ -60,7 +61,7 @@ void expect_restored_run_identical(int dimension, double friction, int before, i
 
   // Positions and velocities alone (a cold restart: fresh table, no warm start) give another
   // run: the Gauss-Seidel solve starts elsewhere and stops at another iterate.
-  NscdIntegrator cold = random_pile(40, dimension, friction, 7);
+  NscdIntegrator cold = random_pile(40, dimension, friction, 7, parameters);
   cold.particles().position = saved.position_m;
   cold.particles().velocity = saved.velocity_m_per_s;
   cold.particles().angular_velocity = saved.angular_velocity_rad_per_s;
@@ -75,6 +76,12 @@ void expect_restored_run_identical(int dimension, double friction, int before, i
 
 TEST(NscdState, RestoredIntegratorContinuesBitwise2D) { expect_restored_run_identical(2, 0.3, 150, 150); }
 TEST(NscdState, RestoredIntegratorContinuesBitwise3D) { expect_restored_run_identical(3, 0.3, 120, 120); }
+// apgd carries its step-size (Lipschitz) estimate from solve to solve: part of the state.
+TEST(NscdState, RestoredApgdIntegratorContinuesBitwise) {
+  NscdParameters parameters;
+  parameters.solver = "apgd";
+  expect_restored_run_identical(2, 0.3, 150, 150, parameters);
+}
 
 TEST(NscdState, StateOfAnotherPileIsRefused) {
   NscdIntegrator small = random_pile(10, 2, 0.3, 1), large = random_pile(40, 2, 0.3, 1);

@@ -35,11 +35,12 @@ struct CheckpointState {
   std::string scene_toml;                            // resolved scene
   std::int64_t frames_written = 0;                   // frames in the result file so far
   std::vector<std::int64_t> contact_pair;            // C*2, as in the result file
-  std::vector<double> contact_impulse_N_s;           // C*3, last reactions (mechanics warm
-                                                     // start; frame as the solver stores it)
+  std::vector<double> contact_impulse_N_s;           // C*3, normal impulse over one mechanics
+                                                     // step, then 0, 0 (older layout; the warm
+                                                     // start is candidate_force_N below)
   std::vector<double> contact_tangential_force_N;    // C*3, xyz on i, as in the result file
-  std::vector<double> contact_normal_force_N;        // C, as in the result file (empty on
-                                                     // write: impulse / time step)
+  std::vector<double> contact_normal_force_N;        // C, as in the result file (a file
+                                                     // without it: impulse / time step)
   // The moving mechanics' state (mechanics/MechanicsState.h), flat.
   bool has_mechanics = false;
   double detector_margin_m = 0.0;

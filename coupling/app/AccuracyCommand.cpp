@@ -1,9 +1,8 @@
 #include "coupling/app/AccuracyCommand.h"
 
-#include <filesystem>
-#include <fstream>
 
 #include "coupling/bridge/ThermalNetworkBuilder.h"
+#include "coupling/app/StudyCsvFile.h"
 #include "coupling/common/ExitCode.h"
 #include "coupling/output/ProgressReporter.h"
 #include "coupling/run/ThermalProblem.h"
@@ -16,20 +15,8 @@ namespace tmdem::coupling {
 int run_accuracy_command(const Scene& scene, const AccuracyCommandOptions& options,
                          std::ostream& out, std::ostream& log) {
   // Open the CSV first: an unwritable path should fail before minutes of computation.
-  std::ofstream csv;
-  if (!options.csv_path.empty()) {
-    csv.open(options.csv_path);
-    if (!csv) {
-      log << "error: cannot write CSV file '" << options.csv_path << "'" << std::endl;
-      return kExitIo;
-    }
-  }
-  auto discard_csv = [&] {
-    if (options.csv_path.empty()) return;
-    csv.close();
-    std::error_code ec;
-    std::filesystem::remove(options.csv_path, ec);
-  };
+  StudyCsvFile csv(options.csv_path);
+  if (!csv.open(log)) return kExitIo;
 
   AccuracyStudyResult result;
   try {
@@ -60,10 +47,10 @@ int run_accuracy_command(const Scene& scene, const AccuracyCommandOptions& optio
     }
   } catch (const ReferenceError& e) {
     log << "error: " << e.what() << std::endl;
-    discard_csv();
+    csv.discard();
     return kExitSolverFailed;
   } catch (...) {
-    discard_csv();
+    csv.discard();
     throw;
   }
   for (const auto& r : result.runs)
@@ -76,16 +63,9 @@ int run_accuracy_command(const Scene& scene, const AccuracyCommandOptions& optio
   print_accuracy_report(out, result, options.study);
   out.flush();
 
-  if (!options.csv_path.empty()) {
-    write_accuracy_csv(csv, result.runs);
-    csv.close();
-    if (!csv) {
-      log << "error: writing CSV file '" << options.csv_path << "' failed" << std::endl;
-      return kExitIo;
-    }
-    if (!options.quiet) log << "wrote " << options.csv_path << std::endl;
-  }
-  return kExitOk;
+  const bool written =
+      csv.write([&](std::ostream& f) { write_accuracy_csv(f, result.runs); }, log, options.quiet);
+  return written ? kExitOk : kExitIo;
 }
 
 }  // namespace tmdem::coupling

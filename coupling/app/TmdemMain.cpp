@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "coupling/app/AccuracyCommand.h"
+#include "coupling/app/ConductivityCommand.h"
 #include "coupling/common/ExitCode.h"
 #include "coupling/run/CoupledRun.h"
 #include "coupling/studies/CouplingStudy.h"
@@ -85,6 +86,19 @@ int tmdem_main(int argc, char** argv) {
       ->required();
   coupling->add_option("--csv", coupling_csv, "write the table as CSV here");
   coupling->add_option("--set", sets, "override one scene value, KEY=VALUE")->allow_extra_args(false);
+  std::string conductivity_path;
+  ConductivityCommandOptions conductivity_options;
+  auto* conductivity = study->add_subcommand(
+      "conductivity", "effective conductivity of a bed between its two isothermal walls "
+                      "(steady state, KLU)");
+  conductivity->add_option("scene", conductivity_path, "scene file (TOML)")->required();
+  conductivity->add_option("--pressures", conductivity_options.pressures_Pa,
+                           "piston pressures, Pa (needs a piston)")
+      ->delimiter(',');
+  conductivity->add_option("--csv", conductivity_options.csv_path, "write the table as CSV here");
+  conductivity->add_option("--set", sets, "override one scene value, KEY=VALUE (TOML value)")
+      ->take_all()->allow_extra_args(false);
+  conductivity->add_flag("--quiet", conductivity_options.quiet, "no progress on stderr");
   study->require_subcommand(1);
 
   auto* docs = app.add_subcommand("docs", "print generated reference documentation");
@@ -140,6 +154,11 @@ int tmdem_main(int argc, char** argv) {
     if (*coupling) {
       const Scene scene = load_scene_file(coupling_path, sets);
       return run_coupling_study(scene, coupling_csv, std::cout, std::cerr);
+    }
+    if (*conductivity) {
+      const Scene scene = load_scene_file(conductivity_path, sets);
+      conductivity_options.terminal = isatty(STDERR_FILENO);
+      return run_conductivity_command(scene, conductivity_options, std::cout, std::cerr);
     }
     if (*accuracy) {
       const Scene scene = load_scene_file(study_path, sets);

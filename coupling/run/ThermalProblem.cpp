@@ -125,11 +125,14 @@ FrozenThermalProblem build_frozen_thermal_problem(const Scene& scene, ProgressRe
     case MechanicsMode::Off:
       for (const auto& p : mechanics::find_touching_pairs(particles, walls, 1e-9))
         problem.contacts.add(p.i, p.j, 0.0);
+      for (const auto& x : particles.position) problem.positions_m.push_back({x.x(), x.y(), x.z()});
       break;
     case MechanicsMode::Settle: {
       auto nscd = make_nscd_integrator(scene, std::move(particles));
       problem.settle = settle_packing(*nscd, scene, progress);
       gather_contacts(nscd->contacts(), problem.contacts);
+      for (const auto& x : nscd->particles().position)
+        problem.positions_m.push_back({x.x(), x.y(), x.z()});
       break;
     }
     case MechanicsMode::Dynamic:

@@ -58,6 +58,7 @@ struct FrozenThermalProblem {
   std::optional<SettleSummary> settle;  // settle scenes only
   std::unique_ptr<thermal::ThermalSystem> system;
   std::vector<double> T0_K;
+  std::vector<Vec3> positions_m;  // particle centres of the frozen packing (after settling)
 };
 FrozenThermalProblem build_frozen_thermal_problem(const Scene& scene, ProgressReporter& progress);
 

@@ -1,0 +1,200 @@
+#include "coupling/studies/ConductivityStudy.h"
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "coupling/run/ThermalProblem.h"
+#include "coupling/scene/SceneError.h"
+#include "mechanics/PairIndex.h"
+#include "thermal/SteadyStateSolver.h"
+#include "thermal/ThermalSolverError.h"
+
+namespace tmdem::coupling {
+namespace {
+
+Eigen::Vector3d vec(const Vec3& v) { return {v[0], v[1], v[2]}; }
+
+// Which wall each of the network's wall edges belongs to, in the order build_edges adds them
+// (contact order, isothermal walls only).
+std::vector<std::size_t> wall_of_wall_edge(const Scene& scene, const ContactList& contacts) {
+  std::vector<std::size_t> wall;
+  for (std::size_t c = 0; c < contacts.size(); ++c) {
+    const auto j = contacts.pair[2 * c + 1];
+    if (mechanics::is_wall(j) && scene.walls[mechanics::wall_index(j)].temperature_K)
+      wall.push_back(mechanics::wall_index(j));
+  }
+  return wall;
+}
+
+// The network with only the wall edges of `keep` (npos: none).
+thermal::ThermalNetwork with_wall_edges_of(const thermal::ThermalNetwork& net,
+                                           const std::vector<std::size_t>& edge_wall,
+                                           std::size_t keep) {
+  thermal::ThermalNetwork out = net;
+  out.wall_node.clear();
+  out.wall_temperature_K.clear();
+  out.wall_conductance_W_per_K.clear();
+  for (std::size_t w = 0; w < net.wall_edge_count(); ++w)
+    if (edge_wall[w] == keep)
+      out.add_wall_edge(net.wall_node[w], net.wall_temperature_K[w], net.wall_conductance_W_per_K[w]);
+  return out;
+}
+
+double mode_heat_sum(const thermal::HeatTransferMode& mode, const thermal::ThermalNetwork& net,
+                     const std::vector<double>& T, std::vector<double>& q) {
+  std::fill(q.begin(), q.end(), 0.0);
+  double boundary_W = 0.0;
+  if (!mode.add_heat_flow(net, T, q, boundary_W))
+    throw thermal::ThermalSolverError("conductivity study: mode " + std::string(mode.name()) +
+                                      " refused the steady temperatures");
+  double sum = 0.0;
+  for (double v : q) sum += v;
+  return sum;
+}
+
+// Cross-section normal to `axis`: side walls bound it where the scene has them, else the
+// particles' extent.
+double cross_section_m2(const Scene& scene, const std::vector<Vec3>& positions,
+                        const Eigen::Vector3d& axis, std::size_t hot, std::size_t cold) {
+  Eigen::Vector3d e1 = Eigen::Vector3d::Zero();
+  for (std::size_t w = 0; w < scene.walls.size(); ++w) {
+    if (w == hot || w == cold) continue;
+    const auto n = vec(scene.walls[w].normal);
+    if (std::abs(n.dot(axis)) < 1e-9) {
+      e1 = n.normalized();
+      break;
+    }
+  }
+  if (e1.isZero()) {
+    Eigen::Index k = 0;
+    axis.cwiseAbs().minCoeff(&k);
+    e1 = Eigen::Vector3d::Unit(k);
+    e1 = (e1 - e1.dot(axis) * axis).normalized();
+  }
+  const Eigen::Vector3d e2 = axis.cross(e1).normalized();
+  double area = 1.0;
+  for (const auto& e : {e1, e2}) {
+    double lo = INFINITY, hi = -INFINITY;
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+      const double x = vec(positions[i]).dot(e), r = scene.particles[i].radius_m;
+      lo = std::min(lo, x - r);
+      hi = std::max(hi, x + r);
+    }
+    double wall_lo = -INFINITY, wall_hi = INFINITY;
+    for (std::size_t w = 0; w < scene.walls.size(); ++w) {
+      if (w == hot || w == cold) continue;
+      const double c = vec(scene.walls[w].normal).dot(e), p = vec(scene.walls[w].point_m).dot(e);
+      if (c > 1.0 - 1e-9) wall_lo = std::max(wall_lo, p);
+      if (c < -1.0 + 1e-9) wall_hi = std::min(wall_hi, p);
+    }
+    if (std::isfinite(wall_lo)) lo = wall_lo;
+    if (std::isfinite(wall_hi)) hi = wall_hi;
+    area *= hi - lo;
+  }
+  return area;
+}
+
+}  // namespace
+
+std::pair<std::size_t, std::size_t> conductivity_walls(const Scene& scene) {
+  std::vector<std::size_t> iso;
+  for (std::size_t w = 0; w < scene.walls.size(); ++w)
+    if (scene.walls[w].temperature_K) iso.push_back(w);
+  if (iso.size() != 2) {
+    std::ostringstream msg;
+    msg << "study conductivity needs exactly two walls with a temperature (the hot and the cold "
+           "side; all other walls adiabatic), the scene has " << iso.size();
+    if (!iso.empty()) {
+      msg << ":";
+      for (auto w : iso) msg << " wall[" << w << "]";
+    }
+    throw SceneError(msg.str());
+  }
+  const auto& a = scene.walls[iso[0]];
+  const auto& b = scene.walls[iso[1]];
+  if (vec(a.normal).normalized().dot(vec(b.normal).normalized()) > -1.0 + 1e-9)
+    throw SceneError("study conductivity: wall[" + std::to_string(iso[0]) + "] and wall[" +
+                     std::to_string(iso[1]) + "] must face each other (opposite normals)");
+  if (*a.temperature_K == *b.temperature_K)
+    throw SceneError("study conductivity: wall[" + std::to_string(iso[0]) + "].temperature and wall[" +
+                     std::to_string(iso[1]) + "].temperature are equal; no heat would flow");
+  return *a.temperature_K > *b.temperature_K ? std::pair(iso[0], iso[1]) : std::pair(iso[1], iso[0]);
+}
+
+ConductivityResult run_conductivity_study(const Scene& input, ProgressReporter& progress) {
+  ConductivityResult r;
+  std::tie(r.hot_wall, r.cold_wall) = conductivity_walls(input);
+  Scene scene = input;
+  if (scene.effects.mechanics == MechanicsMode::Dynamic) scene.effects.mechanics = MechanicsMode::Settle;
+  const auto& hot = scene.walls[r.hot_wall];
+  const auto& cold = scene.walls[r.cold_wall];
+  r.T_hot_K = *hot.temperature_K;
+  r.T_cold_K = *cold.temperature_K;
+  const Eigen::Vector3d axis = vec(hot.normal).normalized();
+  r.length_m = (vec(cold.point_m) - vec(hot.point_m)).dot(axis);
+  if (!(r.length_m > 0.0))
+    throw SceneError("study conductivity: the cold wall[" + std::to_string(r.cold_wall) +
+                     "] is not on the inner side of the hot wall[" + std::to_string(r.hot_wall) +
+                     "] (distance " + std::to_string(r.length_m) + " m)");
+
+  auto problem = build_frozen_thermal_problem(scene, progress);
+  const auto& system = *problem.system;
+  const auto steady = thermal::solve_steady_state(system, problem.T0_K);
+  r.T_K = steady.T_K;
+  r.newton_iterations = steady.newton_iterations;
+  r.max_residual_W = steady.max_residual_W;
+  r.floating_particles = steady.floating_particles;
+
+  // Geometry of the frozen packing.
+  const std::size_t n = scene.particles.size();
+  r.particles = n;
+  r.area_m2 = cross_section_m2(scene, problem.positions_m, axis, r.hot_wall, r.cold_wall);
+  double solid_m3 = 0.0;
+  for (const auto& p : scene.particles) solid_m3 += 4.0 / 3.0 * std::numbers::pi * std::pow(p.radius_m, 3);
+  r.porosity = 1.0 - solid_m3 / (r.area_m2 * r.length_m);
+  const bool geometric = scene.effects.mechanics == MechanicsMode::Off;
+  for (std::size_t c = 0; c < problem.contacts.size(); ++c) {
+    if (!geometric && !(problem.contacts.normal_force_N[c] > 0.0)) continue;
+    if (mechanics::is_wall(problem.contacts.pair[2 * c + 1])) ++r.wall_contacts;
+    else ++r.contacts;
+  }
+  r.coordination = n > 0 ? 2.0 * double(r.contacts) / double(n) : 0.0;
+
+  // Heat per mode through each wall and across the bed.
+  const auto& net = system.network();
+  const auto edge_wall = wall_of_wall_edge(scene, problem.contacts);
+  if (edge_wall.size() != net.wall_edge_count() && net.wall_edge_count() != 0)
+    throw std::logic_error("conductivity study: " + std::to_string(edge_wall.size()) +
+                           " isothermal wall contacts but " + std::to_string(net.wall_edge_count()) +
+                           " wall edges in the network");
+  const auto no_walls = with_wall_edges_of(net, edge_wall, SIZE_MAX);
+  const auto hot_only = with_wall_edges_of(net, edge_wall, r.hot_wall);
+  const auto cold_only = with_wall_edges_of(net, edge_wall, r.cold_wall);
+  std::vector<double> x(n), q(n);
+  for (std::size_t i = 0; i < n; ++i) x[i] = (vec(problem.positions_m[i]) - vec(hot.point_m)).dot(axis);
+  std::vector<double> transport_Wm;
+  for (const auto& mode : system.modes()) {
+    ModeShare s;
+    s.mode = std::string(mode->name());
+    const double interior = mode_heat_sum(*mode, no_walls, r.T_K, q);
+    s.hot_wall_W = mode_heat_sum(*mode, hot_only, r.T_K, q) - interior;
+    s.cold_wall_W = -(mode_heat_sum(*mode, cold_only, r.T_K, q) - interior);
+    mode_heat_sum(*mode, net, r.T_K, q);
+    double t = r.length_m * s.cold_wall_W;
+    for (std::size_t i = 0; i < n; ++i) t += q[i] * x[i];
+    transport_Wm.push_back(t);
+    r.heat_hot_W += s.hot_wall_W;
+    r.heat_cold_W += s.cold_wall_W;
+    r.modes.push_back(s);
+  }
+  for (std::size_t m = 0; m < r.modes.size(); ++m)
+    r.modes[m].share = r.heat_cold_W != 0.0 ? transport_Wm[m] / (r.length_m * r.heat_cold_W) : 0.0;
+  r.balance_rel = r.heat_hot_W != 0.0 ? std::abs(r.heat_hot_W - r.heat_cold_W) / std::abs(r.heat_hot_W) : 0.0;
+  r.k_eff_W_per_mK = r.heat_hot_W * r.length_m / (r.area_m2 * (r.T_hot_K - r.T_cold_K));
+  return r;
+}
+
+}  // namespace tmdem::coupling

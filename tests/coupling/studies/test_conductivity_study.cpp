@@ -1,0 +1,125 @@
+// `tmdem study conductivity` (coupling/studies/ConductivityStudy.h) against hand-computed
+// series resistances, a long transient run and the heat balance.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+#include <string>
+
+#include "coupling/run/ThermalProblem.h"
+#include "coupling/scene/SceneError.h"
+#include "coupling/scene/SceneLoader.h"
+#include "coupling/studies/ConductivityStudy.h"
+#include "support/SceneBuilder.h"
+#include "thermal/IntegratorRegistry.h"
+
+namespace tmdem::coupling {
+namespace {
+
+using namespace tmdem::test;
+
+constexpr double kH = 1.0e-3;  // W/K, every contact (thermal_scene)
+constexpr double kD = 0.002;   // m, sphere diameter (lattice)
+
+// nx x ny x nz simple cubic lattice of touching spheres between a hot floor (y = 0) and a cold
+// lid touching the top layer (y = ny d).
+std::string lattice_between_walls(int nx, int ny, int nz, double T_hot, double T_cold) {
+  return thermal_scene()
+      .add("generate", lattice({nx, ny, nz}, {{"temperature", 300.0}}))
+      .add("wall", floor_wall({{"temperature", T_hot}}))
+      .add("wall", plane_wall({0.0, ny * kD, 0.0}, {0.0, -1.0, 0.0}, {{"temperature", T_cold}}))
+      .str();
+}
+
+ProgressReporter quiet_progress() {
+  static std::ostringstream sink;
+  return ProgressReporter(sink, true, false);
+}
+
+// Each column is ny + 1 equal contacts in series (wall, ny - 1 between spheres, wall):
+// Q = nx nz H dT / (ny + 1), L = ny d, A = nx nz d^2, so k_eff = H / d * ny / (ny + 1).
+TEST(ConductivityStudy, SimpleCubicLatticeIsSeriesResistances) {
+  for (const auto& [nx, ny, nz] : {std::tuple{4, 6, 4}, std::tuple{3, 2, 5}, std::tuple{1, 9, 1}}) {
+    const auto scene = load_scene_text(lattice_between_walls(nx, ny, nz, 310.0, 290.0), "lattice");
+    auto progress = quiet_progress();
+    const auto r = run_conductivity_study(scene, progress);
+    const double expected = kH / kD * ny / (ny + 1.0);
+    EXPECT_NEAR(r.k_eff_W_per_mK, expected, 1e-12 * expected) << nx << "x" << ny << "x" << nz;
+    EXPECT_NEAR(r.heat_hot_W, nx * nz * kH * 20.0 / (ny + 1.0), 1e-13);
+    // Heat in = heat out to round-off.
+    EXPECT_LE(r.balance_rel, 1e-13);
+    EXPECT_NEAR(r.length_m, ny * kD, 1e-15);
+    EXPECT_NEAR(r.area_m2, nx * nz * kD * kD, 1e-18);
+    EXPECT_NEAR(r.porosity, 1.0 - std::numbers::pi / 6.0, 1e-12);
+    const int pairs = (nx - 1) * ny * nz + nx * (ny - 1) * nz + nx * ny * (nz - 1);
+    EXPECT_EQ(r.contacts, std::size_t(pairs));
+    EXPECT_EQ(r.wall_contacts, std::size_t(2 * nx * nz));
+    EXPECT_DOUBLE_EQ(r.coordination, 2.0 * pairs / (nx * ny * nz));
+    // Shares: sphere-sphere contacts span L - d of the bed, the two wall contacts d / 2 each.
+    ASSERT_EQ(r.modes.size(), 2u);
+    EXPECT_EQ(r.modes[0].mode, "contact_conduction");
+    EXPECT_NEAR(r.modes[0].share, (ny - 1.0) / ny, 1e-12);
+    EXPECT_NEAR(r.modes[1].share, 1.0 / ny, 1e-12);
+    EXPECT_EQ(r.floating_particles, 0u);
+    // Linear profile: layer k (from the floor) at T_hot - (k + 1) dT / (ny + 1).
+    for (std::size_t i = 0; i < r.T_K.size(); ++i) {
+      const int k = int(i) / nx % ny;
+      EXPECT_NEAR(r.T_K[i], 310.0 - (k + 1) * 20.0 / (ny + 1.0), 1e-10) << "particle " << i;
+    }
+  }
+}
+
+// The steady state agrees with a long CVODE run of the same scene (integrated far past the
+// slowest time constant) to the integrator's tolerance.
+TEST(ConductivityStudy, SteadyStateMatchesLongTransient) {
+  const auto scene = load_scene_text(lattice_between_walls(3, 5, 2, 330.0, 280.0), "lattice");
+  auto progress = quiet_progress();
+  const auto r = run_conductivity_study(scene, progress);
+  auto problem = build_frozen_thermal_problem(scene, progress);
+  thermal::IntegratorSettings settings;
+  settings.relative_tolerance = 1e-10;
+  settings.absolute_tolerance_K = 1e-10;
+  settings.max_temperature_K = 330.0;
+  auto cvode = thermal::make_thermal_integrator("cvode", *problem.system, settings);
+  cvode->initialize(0.0, problem.T0_K);
+  // Steel, C = m c = 0.0150 J/K per sphere, H = 1 mW/K: the slowest mode of a column of 5
+  // decays in about 110 s; 20,000 s leaves exp(-180) of the start.
+  cvode->advance_to(20000.0);
+  const auto T = cvode->temperatures_K();
+  double worst = 0.0;
+  for (std::size_t i = 0; i < T.size(); ++i) worst = std::max(worst, std::abs(T[i] - r.T_K[i]));
+  EXPECT_LT(worst, 1e-7);  // K: rtol 1e-10 x 330 K, accumulated over the run
+  std::cout << "largest |T_cvode - T_steady| = " << worst << " K\n";
+}
+
+TEST(ConductivityStudy, RefusesScenesWithoutTwoFacingIsothermalWalls) {
+  const auto one_wall = thermal_scene()
+                            .add("generate", lattice({2, 2, 2}))
+                            .add("wall", floor_wall({{"temperature", 300.0}}))
+                            .add("wall", plane_wall({0.0, 0.004, 0.0}, {0.0, -1.0, 0.0}))
+                            .str();
+  try {
+    conductivity_walls(load_scene_text(one_wall, "one"));
+    FAIL() << "accepted one isothermal wall";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("exactly two walls"), std::string::npos) << e.what();
+  }
+  const auto parallel = thermal_scene()
+                            .add("generate", lattice({2, 2, 2}))
+                            .add("wall", floor_wall({{"temperature", 300.0}}))
+                            .add("wall", plane_wall({0.0, 0.004, 0.0}, {1.0, 0.0, 0.0},
+                                                    {{"temperature", 290.0}}))
+                            .str();
+  EXPECT_THROW(conductivity_walls(load_scene_text(parallel, "parallel")), SceneError);
+  EXPECT_THROW(conductivity_walls(load_scene_text(lattice_between_walls(2, 2, 2, 300.0, 300.0), "eq")),
+               SceneError);
+  // The hot wall is the warmer one, whatever the order in the file.
+  const auto walls = conductivity_walls(load_scene_text(lattice_between_walls(2, 2, 2, 280.0, 300.0), "rev"));
+  EXPECT_EQ(walls.first, 1u);
+  EXPECT_EQ(walls.second, 0u);
+}
+
+}  // namespace
+}  // namespace tmdem::coupling

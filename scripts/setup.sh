@@ -1,14 +1,25 @@
 #!/usr/bin/env bash
 # Shared set-up for run.sh and test.sh: install missing Debian 12 packages, then configure and
 # build (Release) in build/. Safe to run again: installed packages and a configured build are reused.
+#   scripts/setup.sh [--with-paraview]
+# --with-paraview also installs Debian's ParaView (paraview, python3-paraview: pvbatch), which the
+# ctest test ParaView.* needs to open RESULT.xdmf with ParaView's readers (skipped without it).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+with_paraview=0
+for argument in "$@"; do
+  case "$argument" in
+    --with-paraview) with_paraview=1 ;;
+    *) echo "setup: unknown option '$argument' (valid: --with-paraview)" >&2; exit 2 ;;
+  esac
+done
 
 packages=(build-essential cmake pkg-config libsundials-dev libsuitesparse-dev libeigen3-dev
           libhdf5-dev libgtest-dev libbenchmark-dev libtomlplusplus-dev libcli11-dev
           nlohmann-json3-dev python3-matplotlib python3-h5py
           python3-pybind11 python3-pytest
           clang-14 libclang-rt-14-dev)  # clang: the sanitizer build and libFuzzer (build-asan/)
+[ "$with_paraview" -eq 1 ] && packages+=(paraview python3-paraview)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

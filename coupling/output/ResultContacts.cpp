@@ -1,6 +1,7 @@
 #include "coupling/output/ResultContacts.h"
 
 #include <algorithm>
+#include <limits>
 #include <vector>
 
 #include "coupling/output/Hdf5Io.h"
@@ -28,6 +29,7 @@ void ResultContacts::create(hid_t file, std::size_t particles, bool stored) {
   tangential_force_ =
       hdf5::create_dataset(g, "tangential_force", H5T_IEEE_F64LE, {0, 3}, chunk, "N");
   conductance_ = hdf5::create_dataset(g, "conductance", H5T_IEEE_F64LE, {0}, chunk, "W/K");
+  heat_flow_ = hdf5::create_dataset(g, "heat_flow", H5T_IEEE_F64LE, {0}, chunk, "W");
 }
 
 void ResultContacts::open(hid_t file, bool writable) {
@@ -48,11 +50,19 @@ void ResultContacts::open(hid_t file, bool writable) {
     const std::vector<double> zeros(3 * rows, 0.0);
     hdf5::write_rows(tangential_force_.get(), 0, rows, zeros.data(), H5T_NATIVE_DOUBLE);
   }
+  if (hdf5::exists(g, "heat_flow")) {
+    heat_flow_ = hdf5::open_dataset(g, "heat_flow");
+  } else if (writable) {
+    const hsize_t rows = hdf5::dataset_rows(pair_.get());
+    heat_flow_ = hdf5::create_dataset(g, "heat_flow", H5T_IEEE_F64LE, {0}, 256, "W");
+    const std::vector<double> unknown(rows, std::numeric_limits<double>::quiet_NaN());
+    hdf5::write_rows(heat_flow_.get(), 0, rows, unknown.data(), H5T_NATIVE_DOUBLE);
+  }
 }
 
 std::int64_t ResultContacts::rows() const {
   hsize_t rows = hdf5::dataset_rows(pair_.get());
-  for (const Hdf5Handle* d : {&normal_force_, &tangential_force_, &conductance_}) {
+  for (const Hdf5Handle* d : {&normal_force_, &tangential_force_, &conductance_, &heat_flow_}) {
     if (d->valid()) rows = std::min(rows, hdf5::dataset_rows(d->get()));
   }
   return static_cast<std::int64_t>(rows);
@@ -65,24 +75,33 @@ void ResultContacts::append(std::int64_t first, const FrameView& frame) {
   hdf5::write_rows(pair_.get(), at, c, frame.contact_pair.data(), H5T_NATIVE_INT64);
   hdf5::write_rows(normal_force_.get(), at, c, frame.normal_force_N.data(), H5T_NATIVE_DOUBLE);
   if (frame.tangential_force_N.empty()) {
-    const std::vector<double> zeros(3 * c, 0.0);
-    hdf5::write_rows(tangential_force_.get(), at, c, zeros.data(), H5T_NATIVE_DOUBLE);
+    filler_.assign(3 * c, 0.0);
+    hdf5::write_rows(tangential_force_.get(), at, c, filler_.data(), H5T_NATIVE_DOUBLE);
   } else {
     hdf5::write_rows(tangential_force_.get(), at, c, frame.tangential_force_N.data(),
                      H5T_NATIVE_DOUBLE);
   }
   hdf5::write_rows(conductance_.get(), at, c, frame.conductance_W_per_K.data(),
                    H5T_NATIVE_DOUBLE);
+  if (frame.heat_flow_W.empty()) {
+    filler_.assign(c, std::numeric_limits<double>::quiet_NaN());
+    hdf5::write_rows(heat_flow_.get(), at, c, filler_.data(), H5T_NATIVE_DOUBLE);
+  } else {
+    hdf5::write_rows(heat_flow_.get(), at, c, frame.heat_flow_W.data(), H5T_NATIVE_DOUBLE);
+  }
 }
 
 void ResultContacts::cut_back(std::int64_t rows) {
-  for (const Hdf5Handle* d : {&pair_, &normal_force_, &tangential_force_, &conductance_}) {
+  for (const Hdf5Handle* d : {&pair_, &normal_force_, &tangential_force_, &conductance_,
+                              &heat_flow_}) {
+    if (!d->valid()) continue;
     hdf5::set_rows(d->get(), static_cast<hsize_t>(rows));
   }
 }
 
 void ResultContacts::close() {
-  for (Hdf5Handle* d : {&pair_, &normal_force_, &tangential_force_, &conductance_}) d->reset();
+  for (Hdf5Handle* d : {&pair_, &normal_force_, &tangential_force_, &conductance_, &heat_flow_})
+    d->reset();
 }
 
 }  // namespace tmdem::coupling

@@ -15,6 +15,7 @@
 #include "coupling/output/ResultFileLock.h"
 #include "coupling/output/ResultFrames.h"
 #include "coupling/output/ResultMetadata.h"
+#include "coupling/output/ResultViews.h"
 #include "coupling/output/XdmfWriter.h"
 
 namespace tmdem::coupling {
@@ -40,8 +41,10 @@ struct ResultWriter::Impl {
   Hdf5Handle file;
   ResultFrames frames;
   ResultContacts contacts;
+  ResultViews views;
   std::size_t particles = 0;
   std::vector<double> times;      // of the frames written, for the XDMF
+  std::vector<FrameViewCounts> view_counts;  // of the frames written, for the XDMF
   std::int64_t contact_rows = 0;  // rows in /contacts/*
   std::size_t xdmf_frames = 0;    // frames in the last XDMF written
   std::chrono::steady_clock::time_point xdmf_time = std::chrono::steady_clock::now();
@@ -91,6 +94,10 @@ struct ResultWriter::Impl {
         if (new_contacts > 0) contacts.append(rows, batch[k]);
         rows += static_cast<std::int64_t>(new_contacts);
         frames.append(first + k, batch[k], rows);
+        view_counts.push_back(views.add_frame(
+            file.get(), first + k, batch[k].position_m,
+            contacts.stored() ? batch[k].contact_pair : std::span<const std::int64_t>{},
+            rows - static_cast<std::int64_t>(new_contacts)));
       }
       hdf5::check_ok(H5Fflush(file.get(), H5F_SCOPE_LOCAL), "H5Fflush");
     } catch (const Hdf5Failure& e) {
@@ -102,6 +109,8 @@ struct ResultWriter::Impl {
         Hdf5ErrorSilence silence;
         frames.cut_back(first);
         contacts.cut_back(contact_rows);
+        views.cut_back(file.get(), first);
+        view_counts.resize(first);
         H5Fflush(file.get(), H5F_SCOPE_LOCAL);
       } catch (...) {
         // The original error is the one to report.
@@ -110,7 +119,7 @@ struct ResultWriter::Impl {
     }
     for (const auto& f : batch) times.push_back(f.time_s);
     contact_rows = rows;
-    write_xdmf(path, particles, times);
+    write_xdmf(path, particles, views.walls(), times, view_counts);
     xdmf_frames = times.size();
     xdmf_time = std::chrono::steady_clock::now();
   }
@@ -125,6 +134,29 @@ struct ResultWriter::Impl {
     views.reserve(batch.size());
     for (const auto& p : batch) views.push_back(p.view());
     store(views);
+  }
+
+  // The views of the first `frames_kept` frames: read back where present, built from the
+  // stored positions and pairs where missing (a file written before /xdmf existed).
+  void rebuild_views(std::size_t frames_kept) {
+    view_counts.clear();
+    std::vector<double> position(3 * particles);
+    std::vector<std::int64_t> pair;
+    Hdf5Handle position_set = hdf5::open_dataset(file.get(), "/frames/position");
+    Hdf5Handle pair_set = hdf5::open_dataset(file.get(), "/contacts/pair");
+    for (std::size_t f = 0; f < frames_kept; ++f) {
+      if (views.has_frame(file.get(), f)) {
+        view_counts.push_back(views.counts(file.get(), f));
+        continue;
+      }
+      const std::int64_t first = frames.contact_offset(f);
+      const std::int64_t end = frames.contact_offset(f + 1);
+      hdf5::read_rows(position_set.get(), f, 1, position.data(), H5T_NATIVE_DOUBLE);
+      pair.resize(2 * std::size_t(end - first));
+      hdf5::read_rows(pair_set.get(), hsize_t(first), hsize_t(end - first), pair.data(),
+                      H5T_NATIVE_INT64);
+      view_counts.push_back(views.add_frame(file.get(), f, position, pair, first));
+    }
   }
 
   // Releases every HDF5 id (datasets first, then the file), whatever happened before.
@@ -159,7 +191,7 @@ struct ResultWriter::Impl {
     }
     lock.release();
     try {
-      write_xdmf(path, particles, times);
+      write_xdmf(path, particles, views.walls(), times, view_counts);
     } catch (const OutputError& e) {
       if (error.empty()) error = e.what();
     }
@@ -198,6 +230,7 @@ ResultWriter::ResultWriter(const std::string& path, const ResultHeader& header,
     write_result_metadata(w.file.get(), header);
     w.frames.create(w.file.get(), n);
     w.contacts.create(w.file.get(), n, store_contacts);
+    w.views.create(w.file.get(), n, header.walls);
     hdf5::check_ok(H5Fflush(w.file.get(), H5F_SCOPE_LOCAL), "H5Fflush");
   } catch (const Hdf5Failure& e) {
     w.close_ids();
@@ -266,6 +299,9 @@ ResultWriter ResultWriter::reopen(const std::string& path, std::size_t keep_fram
     w.contacts.open(w.file.get());
     w.frames.cut_back(keep_frames);
     w.contacts.cut_back(w.contact_rows);
+    w.views.open(w.file.get(), w.particles);
+    w.views.cut_back(w.file.get(), keep_frames);
+    w.rebuild_views(keep_frames);
     if (match != nullptr && !match->next_scene_toml.empty()) {
       write_result_scene(w.file.get(), match->next_scene_toml);
     }

@@ -9,8 +9,10 @@
 //   /frames/time [F] s, position [F,N,3] m, velocity [F,N,3] m/s, temperature [F,N] K,
 //      thermal_energy [F] J, boundary_heat [F] J, contact_offset [F+1] int64 ("1")
 //   /contacts/pair [C,2] int64 ("1"; j < 0 is wall -1-j), normal_force [C] N,
-//      tangential_force [C,3] N, conductance [C] W/K; group attribute "stored" = 1 or 0
-// The three parts are written by ResultMetadata, ResultFrames and ResultContacts.
+//      tangential_force [C,3] N, conductance [C] W/K, heat_flow [C] W; group attribute
+//      "stored" = 1 or 0
+//   /walls and /xdmf: the walls and the per-frame views RESULT.xdmf points at (ResultViews.h)
+// The parts are written by ResultMetadata, ResultFrames, ResultContacts and ResultViews.
 //
 // Reading while the run goes on: every write_frame() ends with H5Fflush, and the writer opens the
 // file without HDF5's flock(), so any reader (h5py, ParaView, another tmdem) may open the file
@@ -33,7 +35,9 @@
 // second of wall time has passed, or 64 MiB wait; finish(), flush() and the destructor store
 // what waits. After a crash both files describe the same frames (the XDMF's declared frame
 // count is the datasets'), missing at most those of the last second.
+#include <array>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <span>
 #include <string>
@@ -44,6 +48,13 @@
 
 namespace tmdem::coupling {
 
+// A plane wall as the result file describes it (/walls).
+struct WallPlane {
+  std::array<double, 3> point_m{};
+  std::array<double, 3> normal{};                                    // unit, into the domain
+  double temperature_K = std::numeric_limits<double>::quiet_NaN();   // NaN: adiabatic
+};
+
 // Static data, written once. All vectors have N entries (N = radius_m.size()).
 struct ResultHeader {
   std::string scene_toml;                     // resolved scene, root attribute "scene"
@@ -52,6 +63,7 @@ struct ResultHeader {
   std::vector<double> heat_capacity_J_per_K;  // m c
   std::vector<int> material;                  // index into the scene's materials
   std::vector<std::string> material_names;    // optional; attribute "names" of /particles/material
+  std::vector<WallPlane> walls;               // /walls, drawn in RESULT.xdmf
 };
 
 // One frame. The spans point into the caller's arrays; nothing is kept after write_frame().
@@ -66,6 +78,7 @@ struct FrameView {
   std::span<const double> normal_force_N;       // C
   std::span<const double> conductance_W_per_K;  // C
   std::span<const double> tangential_force_N;   // C*3 (xyz, on i), or empty: stored as 0
+  std::span<const double> heat_flow_W;          // C, from i to j (or the wall), or empty: NaN
 };
 
 // What reopen() checks before it changes a byte of an existing result file.

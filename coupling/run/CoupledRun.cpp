@@ -12,6 +12,7 @@
 
 #include "coupling/common/ExitCode.h"
 #include "coupling/output/Checkpoint.h"
+#include "coupling/bridge/ContactHeatFlow.h"
 #include "coupling/bridge/ContactList.h"
 #include "coupling/bridge/DynamicNetwork.h"
 #include "coupling/output/OutputError.h"
@@ -158,6 +159,8 @@ void CoupledRun::write_frame(double t_s) {
   f.normal_force_N = contacts_.normal_force_N;
   f.conductance_W_per_K = contacts_.conductance_W_per_K;
   f.tangential_force_N = contacts_.tangential_force_N;
+  contact_heat_flow_W(contacts_, f.temperature_K, scene_, heat_flow_W_);
+  f.heat_flow_W = heat_flow_W_;
   writer_->write_frame(f);
 }
 
@@ -361,6 +364,15 @@ RunOutcome CoupledRun::run() {
         header.material.push_back(p.material);
       }
       for (const auto& m : scene_.materials) header.material_names.push_back(m.name);
+      for (const auto& wall : scene_.walls) {
+        WallPlane plane;
+        for (int k = 0; k < 3; ++k) {
+          plane.point_m[k] = wall.point_m[k];
+          plane.normal[k] = wall.normal[k];
+        }
+        if (wall.temperature_K) plane.temperature_K = *wall.temperature_K;
+        header.walls.push_back(plane);
+      }
       writer_.emplace(options_.output_path, header, scene_.output.contacts,
                       options_.overwrite ? ExistingResult::Overwrite : ExistingResult::Refuse);
     }

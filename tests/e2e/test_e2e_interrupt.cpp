@@ -46,8 +46,8 @@ std::string text_of(const std::string& path) {
 std::size_t frames_in_xdmf(const std::string& path) {
   const std::string text = text_of(path);
   std::size_t n = 0;
-  for (auto at = text.find("<Grid Name=\"frame_"); at != std::string::npos;
-       at = text.find("<Grid Name=\"frame_", at + 1))
+  for (auto at = text.find("<Grid Name=\"particles\" GridType=\"Uniform\""); at != std::string::npos;
+       at = text.find("<Grid Name=\"particles\" GridType=\"Uniform\"", at + 1))
     ++n;
   return n;
 }

@@ -46,31 +46,64 @@ TEST(XdmfWriter, PathNextToResult) {
   EXPECT_EQ(xdmf_path_for("/tmp/result"), "/tmp/result.xdmf");
 }
 
-TEST(XdmfWriter, DocumentHasOneGridPerFrame) {
+TEST(XdmfWriter, DocumentNamesWholeDatasetsPerFrame) {
   const std::vector<double> times = {0.0, 0.1, 0.2};
-  const std::string xml = xdmf_document("result.h5", 5, times);
+  // Frame 0 without contacts, frame 1 with 4 (one on a wall), frame 2 with 2 (both on walls).
+  const std::vector<FrameViewCounts> views = {{0, 0}, {4, 1}, {2, 2}};
+  const std::string xml = xdmf_document("result.h5", 5, 3, times, views);
   EXPECT_EQ(xml.rfind("<?xml", 0), 0u);
-  EXPECT_EQ(count(xml, "CollectionType=\"Temporal\""), 1u);
-  EXPECT_EQ(count(xml, "<Grid Name=\"frame_"), 3u);
+  EXPECT_EQ(xml.find("HyperSlab"), std::string::npos);  // ParaView's Xdmf3 readers skip them
+  // Three temporal collections (blocks keep their places at every time), one grid per frame.
+  EXPECT_EQ(count(xml, "CollectionType=\"Temporal\""), 3u);
+  EXPECT_EQ(count(xml, "<Grid Name=\"particles\" GridType=\"Uniform\""), 3u);
+  EXPECT_EQ(count(xml, "<Time Value="), 9u);
   EXPECT_EQ(count(xml, "TopologyType=\"Polyvertex\" NumberOfElements=\"5\""), 3u);
-  EXPECT_EQ(count(xml, "result.h5:/frames/position</DataItem>"), 3u);
-  EXPECT_EQ(count(xml, "result.h5:/frames/temperature</DataItem>"), 3u);
-  EXPECT_EQ(count(xml, "result.h5:/frames/velocity</DataItem>"), 3u);
+  EXPECT_EQ(count(xml, "result.h5:/xdmf/vertices</DataItem>"), 6u);  // topology and id
+  for (int f = 0; f < 3; ++f) {
+    const std::string view = "result.h5:/xdmf/frame_" + std::to_string(f) + "/";
+    for (const char* array : {"velocity", "temperature"})
+      EXPECT_EQ(count(xml, view + array + "</DataItem>"), 1u) << f << array;
+    // Also the points of frame 0's empty line set.
+    EXPECT_EQ(count(xml, view + "position</DataItem>"), f == 0 ? 2u : 1u) << f;
+  }
   EXPECT_EQ(count(xml, "result.h5:/particles/radius</DataItem>"), 3u);
+  EXPECT_EQ(count(xml, "result.h5:/particles/material</DataItem>"), 3u);
+  // Contacts: a line set over the positions and the wall feet; frame 0 has an empty one.
+  EXPECT_EQ(count(xml, "<Grid Name=\"contacts\" GridType=\"Uniform\""), 3u);
+  EXPECT_EQ(xml.find("/xdmf/frame_0/contact"), std::string::npos);
+  EXPECT_NE(xml.find("NumberOfElements=\"0\" NodesPerElement=\"2\"><DataItem Dimensions=\"0 2\" "
+                     "NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">result.h5:/xdmf/no_lines"),
+            std::string::npos);
+  EXPECT_NE(xml.find("TopologyType=\"Polyline\" NumberOfElements=\"4\" NodesPerElement=\"2\">"
+                     "<DataItem Dimensions=\"4 2\""),
+            std::string::npos);
+  EXPECT_NE(xml.find("<DataItem Dimensions=\"6 3\" NumberType=\"Float\" Precision=\"8\" "
+                     "Format=\"HDF\">result.h5:/xdmf/frame_1/contact_points"),
+            std::string::npos);
+  EXPECT_NE(xml.find("Dimensions=\"7 3\" NumberType=\"Float\" Precision=\"8\" "
+                     "Format=\"HDF\">result.h5:/xdmf/frame_2/contact_points"),
+            std::string::npos);
+  for (const char* array : {"normal_force", "conductance", "heat_flow", "tangential_force"})
+    EXPECT_EQ(count(xml, "<Attribute Name=\"" + std::string(array)), 3u) << array;
+  // Walls in every frame: 3 squares.
+  EXPECT_EQ(count(xml, "TopologyType=\"Quadrilateral\" NumberOfElements=\"3\""), 3u);
+  EXPECT_EQ(count(xml, "result.h5:/walls/temperature</DataItem>"), 3u);
   EXPECT_NE(xml.find("<Time Value=\"0.1\"/>"), std::string::npos);
-  // Frame 2 of 3: hyperslab start row 2, source dimensions 3 x 5 x 3.
-  EXPECT_NE(xml.find(">2 0 0 1 1 1 1 5 3</DataItem>"), std::string::npos);
-  EXPECT_NE(xml.find("Dimensions=\"3 5 3\""), std::string::npos);
   for (const char* element : {"Xdmf", "Domain", "Grid", "Topology", "Geometry", "Attribute",
                               "DataItem", "Time"}) {
     expect_balanced(xml, element);
   }
+  // No walls: no wall grid; no contacts in any frame: no contact grid.
+  EXPECT_EQ(xdmf_document("result.h5", 5, 0, times, views).find("walls"), std::string::npos);
+  const std::vector<FrameViewCounts> none = {{0, 0}, {0, 0}, {0, 0}};
+  EXPECT_EQ(xdmf_document("result.h5", 5, 0, times, none).find("contacts"), std::string::npos);
 }
 
 TEST(XdmfWriter, EscapesFileName) {
   const std::vector<double> times = {0.0};
-  const std::string xml = xdmf_document("a&b<c>.h5", 1, times);
-  EXPECT_NE(xml.find("a&amp;b&lt;c&gt;.h5:/frames/position"), std::string::npos);
+  const std::vector<FrameViewCounts> views = {{0, 0}};
+  const std::string xml = xdmf_document("a&b<c>.h5", 1, 0, times, views);
+  EXPECT_NE(xml.find("a&amp;b&lt;c&gt;.h5:/xdmf/frame_0/position"), std::string::npos);
   EXPECT_EQ(xml.find("a&b"), std::string::npos);
 }
 
@@ -92,13 +125,13 @@ TEST(XdmfWriter, ResultWriterKeepsXdmfCurrent) {
     }
     EXPECT_EQ(writer.xdmf_path(), (dir / "bed.xdmf").string());
     const std::string during = read_text(writer.xdmf_path());
-    EXPECT_EQ(count(during, "<Grid Name=\"frame_"), 2u);
+    EXPECT_EQ(count(during, "<Grid Name=\"particles\" GridType=\"Uniform\""), 2u);
     writer.write_frame(FrameView{1.0, xyz, xyz, temperature, 6.0, 0.0, {}, {}, {}, {}});
     writer.finish("ok");
   }
   const std::string xml = read_text((dir / "bed.xdmf").string());
-  EXPECT_EQ(count(xml, "<Grid Name=\"frame_"), 3u);
-  EXPECT_EQ(count(xml, "bed.h5:/frames/position"), 3u);
+  EXPECT_EQ(count(xml, "<Grid Name=\"particles\" GridType=\"Uniform\""), 3u);
+  EXPECT_EQ(count(xml, "/position</DataItem>"), 3u);
   EXPECT_EQ(xml.find(dir.string()), std::string::npos);  // file name only, no folder
   EXPECT_FALSE(fs::exists(dir / "bed.xdmf.tmp"));
   fs::remove_all(dir);

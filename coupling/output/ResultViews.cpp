@@ -1,0 +1,256 @@
+#include "coupling/output/ResultViews.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <string>
+
+#include "coupling/output/Hdf5Io.h"
+
+namespace tmdem::coupling {
+namespace {
+
+std::string frame_group(std::size_t frame) { return "/xdmf/frame_" + std::to_string(frame); }
+
+Hdf5Handle simple_space(const std::vector<hsize_t>& dims, bool unlimited_rows = false) {
+  std::vector<hsize_t> max_dims = dims;
+  if (unlimited_rows) max_dims[0] = H5S_UNLIMITED;
+  return Hdf5Handle(hdf5::check_id(H5Screate_simple(int(dims.size()), dims.data(),
+                                                    max_dims.data()),
+                                   "H5Screate_simple"),
+                    H5Sclose);
+}
+
+// Selects rows [first, first + count) of a space of shape dims (all other dimensions whole).
+void select_rows(hid_t space, const std::vector<hsize_t>& dims, hsize_t first, hsize_t count) {
+  std::vector<hsize_t> start(dims.size(), 0), block = dims;
+  start[0] = first;
+  block[0] = count;
+  hdf5::check_ok(H5Sselect_hyperslab(space, H5S_SELECT_SET, start.data(), nullptr,
+                                     block.data(), nullptr),
+                 "H5Sselect_hyperslab");
+}
+
+// One mapping of a virtual dataset: its rows [virtual_first, +virtual_rows) are rows
+// [source_first, +source_rows) of `source` (a dataset of this file, shape source_dims with
+// unlimited rows). Both selections hold the same number of values: one frame row [1, N, 3] of
+// /frames/position fills the N rows of a view [N, 3].
+struct Mapping {
+  hsize_t virtual_first = 0;
+  hsize_t virtual_rows = 0;
+  std::string source;
+  std::vector<hsize_t> source_dims;
+  hsize_t source_first = 0;
+  hsize_t source_rows = 0;
+};
+
+void create_virtual(hid_t group, const char* name, const std::vector<hsize_t>& dims,
+                    const std::vector<Mapping>& mappings, const char* units) {
+  const std::string what = std::string("virtual dataset ") + name;
+  Hdf5Handle properties(hdf5::check_id(H5Pcreate(H5P_DATASET_CREATE), what), H5Pclose);
+  Hdf5Handle space = simple_space(dims);
+  for (const Mapping& m : mappings) {
+    if (m.virtual_rows == 0) continue;
+    Hdf5Handle virtual_space = simple_space(dims);
+    select_rows(virtual_space.get(), dims, m.virtual_first, m.virtual_rows);
+    Hdf5Handle source_space = simple_space(m.source_dims, true);
+    select_rows(source_space.get(), m.source_dims, m.source_first, m.source_rows);
+    hdf5::check_ok(H5Pset_virtual(properties.get(), virtual_space.get(), ".", m.source.c_str(),
+                                  source_space.get()),
+                   what);
+  }
+  Hdf5Handle dataset(hdf5::check_id(H5Dcreate2(group, name, H5T_IEEE_F64LE, space.get(),
+                                               H5P_DEFAULT, properties.get(), H5P_DEFAULT),
+                                    what),
+                     H5Dclose);
+  hdf5::write_string_attribute(dataset.get(), "units", units);
+}
+
+// Unit vectors u, v with (u, v, n) right-handed and orthonormal.
+void tangents(const double* n, std::array<double, 3>& u, std::array<double, 3>& v) {
+  const std::array<double, 3> a = std::abs(n[0]) < 0.9 ? std::array<double, 3>{1, 0, 0}
+                                                       : std::array<double, 3>{0, 1, 0};
+  u = {a[1] * n[2] - a[2] * n[1], a[2] * n[0] - a[0] * n[2], a[0] * n[1] - a[1] * n[0]};
+  const double length = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+  for (double& c : u) c /= length;
+  v = {n[1] * u[2] - n[2] * u[1], n[2] * u[0] - n[0] * u[2], n[0] * u[1] - n[1] * u[0]};
+}
+
+// The projection of x on the plane of `wall`.
+std::array<double, 3> foot(const WallPlane& wall, const double* x) {
+  const auto& p = wall.point_m;
+  const auto& n = wall.normal;
+  const double d = (x[0] - p[0]) * n[0] + (x[1] - p[1]) * n[1] + (x[2] - p[2]) * n[2];
+  return {x[0] - d * n[0], x[1] - d * n[1], x[2] - d * n[2]};
+}
+
+// /xdmf/vertices, and the empty datasets of a frame without contacts (ParaView's Xdmf3 readers
+// take a line set of 0 lines; an XML DataItem without content makes them abort).
+void create_static_views(hid_t file, std::size_t particles) {
+  Hdf5Handle xdmf = hdf5::create_group(file, "xdmf");
+  std::vector<std::int64_t> ids(particles);
+  std::iota(ids.begin(), ids.end(), std::int64_t{0});
+  hdf5::write_array(xdmf.get(), "vertices", ids, 0, "1");
+  hdf5::write_array(xdmf.get(), "no_lines", std::vector<std::int64_t>{}, 2, "1");
+  hdf5::write_array(xdmf.get(), "no_values", std::vector<double>{}, 0, "1");
+  hdf5::write_array(xdmf.get(), "no_vectors", std::vector<double>{}, 3, "1");
+}
+
+}  // namespace
+
+void ResultViews::create(hid_t file, std::size_t particles, const std::vector<WallPlane>& walls) {
+  particles_ = particles;
+  walls_ = walls;
+  Hdf5Handle group = hdf5::create_group(file, "walls");
+  std::vector<double> point, normal, temperature;
+  for (const WallPlane& w : walls) {
+    point.insert(point.end(), w.point_m.begin(), w.point_m.end());
+    normal.insert(normal.end(), w.normal.begin(), w.normal.end());
+    temperature.push_back(w.temperature_K);
+  }
+  hdf5::write_array(group.get(), "point", point, 3, "m");
+  hdf5::write_array(group.get(), "normal", normal, 3, "1");
+  hdf5::write_array(group.get(), "temperature", temperature, 0, "K");
+  create_static_views(file, particles);
+}
+
+void ResultViews::open(hid_t file, std::size_t particles) {
+  particles_ = particles;
+  walls_.clear();
+  if (hdf5::exists(file, "walls")) {
+    Hdf5Handle group = hdf5::open_group(file, "walls");
+    const auto point = hdf5::read_double_array(group.get(), "point", 3);
+    const auto normal = hdf5::read_double_array(group.get(), "normal", 3);
+    const auto temperature = hdf5::read_double_array(group.get(), "temperature", 0);
+    for (std::size_t w = 0; w < temperature.size(); ++w) {
+      WallPlane plane;
+      for (int k = 0; k < 3; ++k) {
+        plane.point_m[k] = point[3 * w + k];
+        plane.normal[k] = normal[3 * w + k];
+      }
+      plane.temperature_K = temperature[w];
+      walls_.push_back(plane);
+    }
+  }
+  if (!hdf5::exists(file, "xdmf")) create_static_views(file, particles);
+}
+
+bool ResultViews::has_frame(hid_t file, std::size_t frame) const {
+  Hdf5Handle xdmf = hdf5::open_group(file, "xdmf");
+  return hdf5::exists(xdmf.get(), ("frame_" + std::to_string(frame)).c_str());
+}
+
+FrameViewCounts ResultViews::add_frame(hid_t file, std::size_t frame,
+                                       std::span<const double> position_m,
+                                       std::span<const std::int64_t> pair,
+                                       std::int64_t first_contact) {
+  const hsize_t n = particles_;
+  const hsize_t f = frame;
+  if (!walls_.empty() && !hdf5::exists(file, "/xdmf/walls")) {
+    // Squares centred on the particles' projection, large enough to hold the whole bed.
+    std::array<double, 3> lo, hi;
+    lo.fill(std::numeric_limits<double>::infinity());
+    hi.fill(-std::numeric_limits<double>::infinity());
+    for (std::size_t i = 0; i < n; ++i)
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], position_m[3 * i + k]);
+        hi[k] = std::max(hi[k], position_m[3 * i + k]);
+      }
+    const std::array<double, 3> centre = {(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2,
+                                          (lo[2] + hi[2]) / 2};
+    const double half = 0.5 * std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) +
+                                        (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                                        (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    double r_max = 0.0;
+    if (hdf5::exists(file, "/particles/radius")) {
+      Hdf5Handle particles = hdf5::open_group(file, "particles");
+      for (double r : hdf5::read_double_array(particles.get(), "radius", 0)) r_max = std::max(r_max, r);
+    }
+    const double side = std::max(half + 2.0 * r_max, 1e-12);
+    std::vector<double> points;
+    std::vector<std::int64_t> quads;
+    for (std::size_t w = 0; w < walls_.size(); ++w) {
+      const auto c = foot(walls_[w], centre.data());
+      std::array<double, 3> u, v;
+      tangents(walls_[w].normal.data(), u, v);
+      for (const auto& [a, b] : {std::pair{-1.0, -1.0}, {1.0, -1.0}, {1.0, 1.0}, {-1.0, 1.0}}) {
+        for (int k = 0; k < 3; ++k) points.push_back(c[k] + side * (a * u[k] + b * v[k]));
+        quads.push_back(std::int64_t(quads.size()));
+      }
+    }
+    Hdf5Handle group = hdf5::create_group(file, "/xdmf/walls");
+    hdf5::write_array(group.get(), "points", points, 3, "m");
+    hdf5::write_array(group.get(), "quads", quads, 4, "1");
+  }
+
+  Hdf5Handle group = hdf5::create_group(file, frame_group(frame).c_str());
+  const hid_t g = group.get();
+  const hsize_t frames = f + 1;
+  create_virtual(g, "position", {n, 3}, {{0, n, "/frames/position", {frames, n, 3}, f, 1}}, "m");
+  create_virtual(g, "velocity", {n, 3}, {{0, n, "/frames/velocity", {frames, n, 3}, f, 1}},
+                 "m/s");
+  create_virtual(g, "temperature", {n}, {{0, n, "/frames/temperature", {frames, n}, f, 1}}, "K");
+
+  FrameViewCounts counts;
+  counts.contacts = pair.size() / 2;
+  if (counts.contacts == 0) return counts;
+  std::vector<std::int64_t> lines(pair.begin(), pair.end());
+  std::vector<double> feet;
+  for (std::size_t c = 0; c < counts.contacts; ++c) {
+    const std::int64_t j = pair[2 * c + 1];
+    if (j >= 0) continue;
+    const std::size_t i = std::size_t(pair[2 * c]);
+    const std::size_t wall = std::size_t(-1 - j);
+    // A wall the file does not describe (written before /walls existed): a zero-length line.
+    const auto end = wall < walls_.size() ? foot(walls_[wall], &position_m[3 * i])
+                                          : std::array<double, 3>{position_m[3 * i],
+                                                                  position_m[3 * i + 1],
+                                                                  position_m[3 * i + 2]};
+    feet.insert(feet.end(), end.begin(), end.end());
+    lines[2 * c + 1] = std::int64_t(n + counts.wall_contacts);
+    ++counts.wall_contacts;
+  }
+  hdf5::write_array(g, "contact_lines", lines, 2, "1");
+  const hsize_t w = counts.wall_contacts;
+  std::vector<Mapping> points = {{0, n, "/frames/position", {frames, n, 3}, f, 1}};
+  if (w > 0) {
+    hdf5::write_array(g, "wall_feet", feet, 3, "m");
+    points.push_back({n, w, frame_group(frame) + "/wall_feet", {w, 3}, 0, w});
+  }
+  create_virtual(g, "contact_points", {n + w, 3}, points, "m");
+  const hsize_t c = counts.contacts;
+  const hsize_t first = hsize_t(first_contact), rows = first + c;
+  create_virtual(g, "normal_force", {c}, {{0, c, "/contacts/normal_force", {rows}, first, c}},
+                 "N");
+  create_virtual(g, "conductance", {c}, {{0, c, "/contacts/conductance", {rows}, first, c}},
+                 "W/K");
+  create_virtual(g, "heat_flow", {c}, {{0, c, "/contacts/heat_flow", {rows}, first, c}}, "W");
+  create_virtual(g, "tangential_force", {c, 3},
+                 {{0, c, "/contacts/tangential_force", {rows, 3}, first, c}}, "N");
+  return counts;
+}
+
+FrameViewCounts ResultViews::counts(hid_t file, std::size_t frame) const {
+  FrameViewCounts counts;
+  Hdf5Handle group = hdf5::open_group(file, frame_group(frame).c_str());
+  if (!hdf5::exists(group.get(), "contact_lines")) return counts;
+  Hdf5Handle lines = hdf5::open_dataset(group.get(), "contact_lines");
+  counts.contacts = hdf5::dataset_rows(lines.get());
+  if (hdf5::exists(group.get(), "wall_feet")) {
+    Hdf5Handle feet = hdf5::open_dataset(group.get(), "wall_feet");
+    counts.wall_contacts = hdf5::dataset_rows(feet.get());
+  }
+  return counts;
+}
+
+void ResultViews::cut_back(hid_t file, std::size_t frames) const {
+  for (std::size_t f = frames;; ++f) {
+    const std::string name = frame_group(f);
+    if (!hdf5::exists(file, name.c_str())) break;
+    hdf5::check_ok(H5Ldelete(file, name.c_str(), H5P_DEFAULT), "H5Ldelete " + name);
+  }
+}
+
+}  // namespace tmdem::coupling

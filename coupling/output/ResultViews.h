@@ -1,0 +1,58 @@
+#pragma once
+// What RESULT.xdmf points at: the /walls group and the /xdmf group of a result file.
+//
+// ParaView 5.11's Xdmf3 readers (Xdmf3 Reader S and T) show 0 points for XDMF HyperSlab items,
+// so RESULT.xdmf names one whole dataset per frame and array. Those per-frame datasets are HDF5
+// virtual datasets onto the frame's rows of /frames/* and /contacts/* (no data is copied); only
+// the contact line set's connectivity and the feet of wall contacts are real data.
+//   /walls/point [W,3] m, normal [W,3] 1, temperature [W] K (NaN: adiabatic)
+//   /xdmf/vertices [N] int64 0..N-1: Polyvertex connectivity, and the particle id
+//   /xdmf/walls/points [4W,3] m, quads [W,4]: each plane drawn as a square around the particles
+//     of the first frame (half side: the bounding box's half diagonal plus twice r_max)
+//   /xdmf/frame_<f>/position [N,3], velocity [N,3], temperature [N]          (virtual)
+//   /xdmf/frame_<f>/contact_lines [C_f,2] int64: particle ids i, j, or N + k for the k-th wall
+//     contact of the frame, whose end is wall_feet[k] [W_f,3] (the centre's projection on it)
+//   /xdmf/frame_<f>/contact_points [N+W_f,3]: the positions, then wall_feet        (virtual)
+//   /xdmf/frame_<f>/normal_force, conductance, heat_flow [C_f], tangential_force [C_f,3] (virtual)
+#include <hdf5.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "coupling/output/ResultWriter.h"
+
+namespace tmdem::coupling {
+
+// What the XDMF of one frame needs to know.
+struct FrameViewCounts {
+  std::size_t contacts = 0;       // C_f (0: no contact grid in this frame)
+  std::size_t wall_contacts = 0;  // W_f
+};
+
+class ResultViews {
+ public:
+  // /walls and /xdmf/vertices of a new file.
+  void create(hid_t file, std::size_t particles, const std::vector<WallPlane>& walls);
+  // An existing file; a file written before /xdmf existed gets /xdmf/vertices (and no walls).
+  void open(hid_t file, std::size_t particles);
+
+  std::size_t walls() const { return walls_.size(); }
+  bool has_frame(hid_t file, std::size_t frame) const;
+
+  // The view of frame `frame`: positions [3N], its contacts' pairs [2C] at rows first_contact..
+  // of /contacts. Draws the walls on the first call if they are not drawn yet.
+  FrameViewCounts add_frame(hid_t file, std::size_t frame, std::span<const double> position_m,
+                            std::span<const std::int64_t> pair, std::int64_t first_contact);
+  // Counts of an existing frame view.
+  FrameViewCounts counts(hid_t file, std::size_t frame) const;
+  // Removes the views of frames >= frames (a restart cuts the file back).
+  void cut_back(hid_t file, std::size_t frames) const;
+
+ private:
+  std::size_t particles_ = 0;
+  std::vector<WallPlane> walls_;
+};
+
+}  // namespace tmdem::coupling

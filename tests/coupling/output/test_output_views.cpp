@@ -1,0 +1,167 @@
+// ResultViews: the per-frame datasets RESULT.xdmf names read back exactly the frame's rows of
+// /frames and /contacts (virtual datasets), the contact line set ends wall contacts at the foot
+// of the centre on the wall, and a restart cuts the views back with the frames.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "coupling/output/Hdf5Io.h"
+#include "coupling/output/ResultWriter.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace tmdem::coupling;
+
+struct ViewFile {
+  fs::path dir;
+  std::string path;
+  ViewFile() {
+    dir = fs::temp_directory_path() / ("tmdem-output-views-" + std::to_string(getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    path = (dir / "bed.h5").string();
+  }
+  ~ViewFile() { fs::remove_all(dir); }
+};
+
+ResultHeader three_particles() {
+  ResultHeader header;
+  header.radius_m = {1e-3, 1e-3, 2e-3};
+  header.mass_kg = {1e-5, 1e-5, 8e-5};
+  header.heat_capacity_J_per_K = {1e-2, 1e-2, 8e-2};
+  header.material = {0, 0, 1};
+  WallPlane floor;  // y = 0, facing up, 350 K
+  floor.normal = {0.0, 1.0, 0.0};
+  floor.temperature_K = 350.0;
+  WallPlane side;   // x = -1 mm, facing +x, adiabatic
+  side.point_m = {-1e-3, 0.0, 0.0};
+  side.normal = {1.0, 0.0, 0.0};
+  header.walls = {floor, side};
+  return header;
+}
+
+// Frame f: positions shifted by f mm in z, temperatures 300 + 10 f + i; contacts (0, 1) and
+// (0, floor) in frame 0, (1, 2), (2, side) and (0, floor) in frame 1.
+struct Frame {
+  std::vector<double> x, v, T, force, H, tangential, Q;
+  std::vector<std::int64_t> pair;
+  FrameView view(double t) const {
+    return FrameView{t, x, v, T, 1.0, 0.0, pair, force, H, tangential, Q};
+  }
+};
+
+Frame frame(int f) {
+  Frame fr;
+  fr.x = {0.0, 1e-3, 1e-3 * f, 2e-3, 1e-3, 1e-3 * f, 5e-3, 2e-3, 1e-3 * f};
+  fr.v = {0.0, 0.0, 0.1 * f, 0.0, 0.0, 0.2 * f, 0.0, 0.0, 0.3 * f};
+  fr.T = {300.0 + 10 * f, 301.0 + 10 * f, 302.0 + 10 * f};
+  if (f == 0) {
+    fr.pair = {0, 1, 0, -1};
+  } else {
+    fr.pair = {1, 2, 2, -2, 0, -1};
+  }
+  const std::size_t c = fr.pair.size() / 2;
+  for (std::size_t k = 0; k < c; ++k) {
+    fr.force.push_back(1.0 + double(k) + 10.0 * f);
+    fr.H.push_back(0.01 * double(k + 1));
+    fr.Q.push_back(-0.5 * double(k + 1) - f);
+    for (int d = 0; d < 3; ++d) fr.tangential.push_back(0.1 * d + double(k));
+  }
+  return fr;
+}
+
+std::vector<double> read_view(const std::string& path, const std::string& name) {
+  Hdf5Handle file = hdf5::open_file(path, false, false);
+  Hdf5Handle d = hdf5::open_dataset(file.get(), name.c_str());
+  const auto dims = hdf5::dataset_dims(d.get());
+  hsize_t n = 1;
+  for (hsize_t x : dims) n *= x;
+  std::vector<double> out(n);
+  hdf5::read_rows(d.get(), 0, dims[0], out.data(), H5T_NATIVE_DOUBLE);
+  return out;
+}
+
+std::vector<std::int64_t> read_ids(const std::string& path, const std::string& name) {
+  Hdf5Handle file = hdf5::open_file(path, false, false);
+  Hdf5Handle d = hdf5::open_dataset(file.get(), name.c_str());
+  const auto dims = hdf5::dataset_dims(d.get());
+  std::vector<std::int64_t> out(dims[0] * (dims.size() > 1 ? dims[1] : 1));
+  hdf5::read_rows(d.get(), 0, dims[0], out.data(), H5T_NATIVE_INT64);
+  return out;
+}
+
+bool has(const std::string& path, const std::string& name) {
+  Hdf5Handle file = hdf5::open_file(path, false, false);
+  return H5Lexists(file.get(), "/xdmf", H5P_DEFAULT) > 0 &&
+         H5Lexists(file.get(), name.c_str(), H5P_DEFAULT) > 0;
+}
+
+TEST(ResultViews, FrameViewsReadTheFrameRowsExactly) {
+  ViewFile file;
+  {
+    ResultWriter writer(file.path, three_particles(), true);
+    for (int f = 0; f < 2; ++f) writer.write_frame(frame(f).view(0.5 * f));
+    writer.finish("ok");
+  }
+  for (int f = 0; f < 2; ++f) {
+    const Frame expected = frame(f);
+    const std::string view = "/xdmf/frame_" + std::to_string(f) + "/";
+    EXPECT_EQ(read_view(file.path, view + "position"), expected.x) << f;
+    EXPECT_EQ(read_view(file.path, view + "velocity"), expected.v) << f;
+    EXPECT_EQ(read_view(file.path, view + "temperature"), expected.T) << f;
+    EXPECT_EQ(read_view(file.path, view + "normal_force"), expected.force) << f;
+    EXPECT_EQ(read_view(file.path, view + "conductance"), expected.H) << f;
+    EXPECT_EQ(read_view(file.path, view + "heat_flow"), expected.Q) << f;
+    EXPECT_EQ(read_view(file.path, view + "tangential_force"), expected.tangential) << f;
+  }
+  // Frame 1: (1, 2), (2, side wall) -> point N + 0, (0, floor) -> point N + 1.
+  EXPECT_EQ(read_ids(file.path, "/xdmf/frame_1/contact_lines"),
+            (std::vector<std::int64_t>{1, 2, 2, 3, 0, 4}));
+  // Feet: particle 2 (5, 2, 1) mm on x = -1 mm; particle 0 (0, 1, 1) mm on y = 0.
+  const std::vector<double> feet = {-1e-3, 2e-3, 1e-3, 0.0, 0.0, 1e-3};
+  EXPECT_EQ(read_view(file.path, "/xdmf/frame_1/wall_feet"), feet);
+  std::vector<double> points = frame(1).x;
+  points.insert(points.end(), feet.begin(), feet.end());
+  EXPECT_EQ(read_view(file.path, "/xdmf/frame_1/contact_points"), points);
+  EXPECT_EQ(read_ids(file.path, "/xdmf/vertices"), (std::vector<std::int64_t>{0, 1, 2}));
+  // Walls as given; adiabatic is NaN. Each square lies in its plane.
+  const auto T_wall = read_view(file.path, "/walls/temperature");
+  ASSERT_EQ(T_wall.size(), 2u);
+  EXPECT_EQ(T_wall[0], 350.0);
+  EXPECT_TRUE(std::isnan(T_wall[1]));
+  const auto corners = read_view(file.path, "/xdmf/walls/points");
+  ASSERT_EQ(corners.size(), 24u);
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_NEAR(corners[3 * k + 1], 0.0, 1e-18);             // floor: y = 0
+    EXPECT_NEAR(corners[12 + 3 * k], -1e-3, 1e-18);          // side: x = -1 mm
+  }
+}
+
+TEST(ResultViews, RestartCutsTheViewsBackWithTheFrames) {
+  ViewFile file;
+  {
+    ResultWriter writer(file.path, three_particles(), true);
+    for (int f = 0; f < 2; ++f) writer.write_frame(frame(f).view(0.5 * f));
+    writer.finish("interrupted");
+  }
+  {
+    ResultWriter writer = ResultWriter::reopen(file.path, 1);
+    EXPECT_FALSE(has(file.path, "/xdmf/frame_1"));
+    // Frame 1 again, with other data: its view shows the new rows.
+    Frame again = frame(1);
+    again.T = {400.0, 401.0, 402.0};
+    writer.write_frame(again.view(0.5));
+    writer.finish("ok");
+  }
+  EXPECT_EQ(read_view(file.path, "/xdmf/frame_1/temperature"),
+            (std::vector<double>{400.0, 401.0, 402.0}));
+  EXPECT_EQ(read_view(file.path, "/xdmf/frame_1/normal_force"), frame(1).force);
+  EXPECT_EQ(read_view(file.path, "/xdmf/frame_0/normal_force"), frame(0).force);
+}
+
+}  // namespace

@@ -1,0 +1,86 @@
+"""Opens a tmdem RESULT.xdmf with ParaView's three XDMF readers and checks what they show.
+
+Run by tests/paraview/test_paraview_readers.cpp through pvbatch:
+  pvbatch check_xdmf.py XDMF PARTICLES FRAMES LAST_TIME PARTICLE_ID TEMPERATURE CONTACTS WALLS
+XDMF must be an absolute path (ParaView's Xdmf3 readers resolve the .h5 next to it wrongly for
+a bare file name). Exit 0 when every reader shows, at the last time step: PARTICLES points with
+the point arrays of the contract, particle PARTICLE_ID at TEMPERATURE (K, to 1e-9 relative),
+CONTACTS contact lines with their cell arrays (when CONTACTS > 0) and WALLS wall squares.
+"""
+import sys
+
+from paraview.simple import XDMFReader, Xdmf3ReaderS, Xdmf3ReaderT, servermanager
+
+path = sys.argv[1]
+particles, frames = int(sys.argv[2]), int(sys.argv[3])
+last_time, particle_id, temperature = float(sys.argv[4]), int(sys.argv[5]), float(sys.argv[6])
+contacts, walls = int(sys.argv[7]), int(sys.argv[8])
+
+
+def leaves(data):
+    """Every dataset leaf under a multiblock / multipiece tree."""
+    if data is None:
+        return []
+    if data.IsA("vtkMultiBlockDataSet"):
+        return [leaf for i in range(data.GetNumberOfBlocks()) for leaf in leaves(data.GetBlock(i))]
+    if data.IsA("vtkMultiPieceDataSet"):
+        return [leaf for i in range(data.GetNumberOfPieces()) for leaf in leaves(data.GetPiece(i))]
+    return [data]
+
+
+def point_arrays(data):
+    return {data.GetPointData().GetArrayName(i) for i in range(data.GetPointData().GetNumberOfArrays())}
+
+
+def cell_arrays(data):
+    return {data.GetCellData().GetArrayName(i) for i in range(data.GetCellData().GetNumberOfArrays())}
+
+
+def check(name, reader):
+    problems = []
+    reader.UpdatePipelineInformation()
+    times = list(reader.TimestepValues)
+    if len(times) != frames:
+        problems.append(f"{len(times)} time steps, expected {frames}")
+    if not times or abs(times[-1] - last_time) > 1e-9 * max(1.0, abs(last_time)):
+        problems.append(f"last time {times[-1] if times else None}, expected {last_time}")
+    reader.UpdatePipeline(last_time)
+    found = leaves(servermanager.Fetch(reader))
+    grains = [d for d in found if "id" in point_arrays(d)]
+    lines = [d for d in found if "heat_flow" in cell_arrays(d)]
+    squares = [d for d in found if d.GetNumberOfPoints() == 4 * walls and "temperature" in cell_arrays(d)]
+    if len(grains) != 1:
+        problems.append(f"{len(grains)} particle grids")
+    else:
+        g = grains[0]
+        if g.GetNumberOfPoints() != particles:
+            problems.append(f"{g.GetNumberOfPoints()} points, expected {particles}")
+        missing = {"temperature", "velocity", "radius", "material", "id"} - point_arrays(g)
+        if missing:
+            problems.append(f"missing point arrays {sorted(missing)}")
+        ids, T = g.GetPointData().GetArray("id"), g.GetPointData().GetArray("temperature")
+        at = [k for k in range(g.GetNumberOfPoints()) if int(ids.GetValue(k)) == particle_id]
+        if len(at) != 1:
+            problems.append(f"particle {particle_id} found {len(at)} times")
+        elif abs(T.GetValue(at[0]) - temperature) > 1e-9 * abs(temperature):
+            problems.append(f"T[{particle_id}] = {T.GetValue(at[0])!r}, expected {temperature!r}")
+    if contacts > 0:
+        if len(lines) != 1:
+            problems.append(f"{len(lines)} contact grids")
+        elif lines[0].GetNumberOfCells() != contacts:
+            problems.append(f"{lines[0].GetNumberOfCells()} contact lines, expected {contacts}")
+        elif {"normal_force", "conductance", "tangential_force"} - cell_arrays(lines[0]):
+            problems.append("contact cell arrays missing")
+    if walls > 0 and len(squares) != 1:
+        problems.append(f"{len(squares)} wall grids with {4 * walls} points")
+    print(f"{name}: {len(times)} time steps, leaves "
+          f"{[(d.GetNumberOfPoints(), d.GetNumberOfCells()) for d in found]}: "
+          + ("ok" if not problems else "; ".join(problems)))
+    return not problems
+
+
+ok = True
+ok &= check("Xdmf3ReaderS", Xdmf3ReaderS(FileName=[path]))
+ok &= check("Xdmf3ReaderT", Xdmf3ReaderT(FileName=[path]))
+ok &= check("XDMFReader", XDMFReader(FileNames=[path]))
+sys.exit(0 if ok else 1)

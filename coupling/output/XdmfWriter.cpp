@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <string_view>
 #include <system_error>
 
 #include "coupling/output/OutputError.h"
@@ -28,17 +29,28 @@ std::string xml_escape(const std::string& text) {
 
 std::string number(double value) { return shortest_number(value); }
 
-// <DataItem ...>file:path</DataItem>, one whole dataset.
-std::string item(const std::string& file, const std::string& path, const std::string& dims,
-                 const char* type = "Float", int precision = 8) {
-  return "<DataItem Dimensions=\"" + dims + "\" NumberType=\"" + type + "\" Precision=\"" +
-         std::to_string(precision) + "\" Format=\"HDF\">" + file + ":" + path + "</DataItem>";
+// Appends <DataItem ...>file:path</DataItem> naming one whole dataset; the path is given in
+// two parts (a frame's view folder and the array) and nothing is built in temporaries: the
+// document is rewritten often (ResultWriter.h), so its cost is that of copying its text.
+struct Item {
+  std::string_view folder, array, dims;
+  const char* type = "Float";
+  const char* precision = "8";
+};
+
+void append_item(std::string& out, std::string_view file, const Item& item) {
+  out.append("<DataItem Dimensions=\"").append(item.dims).append("\" NumberType=\"");
+  out.append(item.type).append("\" Precision=\"").append(item.precision);
+  out.append("\" Format=\"HDF\">").append(file).append(":").append(item.folder);
+  out.append(item.array).append("</DataItem>");
 }
 
-void attribute(std::string& out, const std::string& name, const char* kind, const char* centre,
-               const std::string& data) {
-  out += "        <Attribute Name=\"" + name + "\" AttributeType=\"" + kind + "\" Center=\"" +
-         centre + "\">" + data + "</Attribute>\n";
+void append_attribute(std::string& out, std::string_view file, std::string_view name,
+                      const char* kind, const char* centre, const Item& item) {
+  out.append("        <Attribute Name=\"").append(name).append("\" AttributeType=\"");
+  out.append(kind).append("\" Center=\"").append(centre).append("\">");
+  append_item(out, file, item);
+  out.append("</Attribute>\n");
 }
 
 }  // namespace
@@ -53,35 +65,37 @@ std::string xdmf_document(const std::string& h5_file_name, std::size_t particles
                           std::size_t walls, std::span<const double> times_s,
                           std::span<const FrameViewCounts> views) {
   const std::string file = xml_escape(h5_file_name);
-  const std::string n = std::to_string(particles);
-  const std::string w = std::to_string(walls);
+  const std::string n = std::to_string(particles), n3 = n + " 3";
+  const std::string w = std::to_string(walls), w4 = w + " 4";
+  const std::string corners = std::to_string(4 * walls) + " 3";
   const std::size_t frames = std::min(times_s.size(), views.size());
   bool any_contacts = false;
   for (std::size_t f = 0; f < frames; ++f) any_contacts = any_contacts || views[f].contacts > 0;
   std::string out;
-  out.reserve(1024 + frames * (3000 + 20 * file.size()));
-  out += "<?xml version=\"1.0\" ?>\n";
-  out += "<Xdmf Version=\"3.0\">\n";
-  out += "  <Domain>\n";
+  out.reserve(1024 + frames * (3600 + 24 * file.size()));
+  out += "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n  <Domain>\n";
+  std::string view, c, c2, c3, points;
   auto open_frame = [&](const char* grid, std::size_t f) {
-    out += "      <Grid Name=\"" + std::string(grid) + "\" GridType=\"Uniform\">\n";
-    out += "        <Time Value=\"" + number(times_s[f]) + "\"/>\n";
+    view.assign("/xdmf/frame_").append(std::to_string(f)).append("/");
+    out.append("      <Grid Name=\"").append(grid).append("\" GridType=\"Uniform\">\n");
+    out.append("        <Time Value=\"").append(number(times_s[f])).append("\"/>\n");
   };
   // Block 0: the particles.
   out += "    <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
   for (std::size_t f = 0; f < frames; ++f) {
-    const std::string view = "/xdmf/frame_" + std::to_string(f) + "/";
     open_frame("particles", f);
-    out += "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" + n +
-           "\" NodesPerElement=\"1\">" + item(file, "/xdmf/vertices", n, "Int") +
-           "</Topology>\n";
-    out += "        <Geometry GeometryType=\"XYZ\">" + item(file, view + "position", n + " 3") +
-           "</Geometry>\n";
-    attribute(out, "temperature", "Scalar", "Node", item(file, view + "temperature", n));
-    attribute(out, "velocity", "Vector", "Node", item(file, view + "velocity", n + " 3"));
-    attribute(out, "radius", "Scalar", "Node", item(file, "/particles/radius", n));
-    attribute(out, "material", "Scalar", "Node", item(file, "/particles/material", n, "Int", 4));
-    attribute(out, "id", "Scalar", "Node", item(file, "/xdmf/vertices", n, "Int"));
+    out.append("        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"").append(n);
+    out.append("\" NodesPerElement=\"1\">");
+    append_item(out, file, {"/xdmf/", "vertices", n, "Int"});
+    out.append("</Topology>\n        <Geometry GeometryType=\"XYZ\">");
+    append_item(out, file, {view, "position", n3});
+    out.append("</Geometry>\n");
+    append_attribute(out, file, "temperature", "Scalar", "Node", {view, "temperature", n});
+    append_attribute(out, file, "velocity", "Vector", "Node", {view, "velocity", n3});
+    append_attribute(out, file, "radius", "Scalar", "Node", {"/particles/", "radius", n});
+    append_attribute(out, file, "material", "Scalar", "Node",
+                     {"/particles/", "material", n, "Int", "4"});
+    append_attribute(out, file, "id", "Scalar", "Node", {"/xdmf/", "vertices", n, "Int"});
     out += "      </Grid>\n";
   }
   out += "    </Grid>\n";
@@ -91,22 +105,24 @@ std::string xdmf_document(const std::string& h5_file_name, std::size_t particles
     out += "    <Grid Name=\"contacts\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
     for (std::size_t f = 0; f < frames; ++f) {
       const bool some = views[f].contacts > 0;
-      const std::string view = "/xdmf/frame_" + std::to_string(f) + "/";
-      const std::string c = std::to_string(views[f].contacts);
-      const std::string points = std::to_string(particles + views[f].wall_contacts);
+      c = std::to_string(views[f].contacts);
+      c2 = c + " 2";
+      c3 = c + " 3";
+      points = std::to_string(particles + views[f].wall_contacts) + " 3";
       open_frame("contacts", f);
-      out += "        <Topology TopologyType=\"Polyline\" NumberOfElements=\"" + c +
-             "\" NodesPerElement=\"2\">" +
-             item(file, some ? view + "contact_lines" : "/xdmf/no_lines", c + " 2", "Int") +
-             "</Topology>\n";
-      out += "        <Geometry GeometryType=\"XYZ\">" +
-             item(file, view + (some ? "contact_points" : "position"), points + " 3") +
-             "</Geometry>\n";
+      out.append("        <Topology TopologyType=\"Polyline\" NumberOfElements=\"").append(c);
+      out.append("\" NodesPerElement=\"2\">");
+      append_item(out, file, some ? Item{view, "contact_lines", c2, "Int"}
+                                  : Item{"/xdmf/", "no_lines", c2, "Int"});
+      out.append("</Topology>\n        <Geometry GeometryType=\"XYZ\">");
+      append_item(out, file, {view, some ? "contact_points" : "position", points});
+      out.append("</Geometry>\n");
       for (const char* name : {"normal_force", "conductance", "heat_flow"})
-        attribute(out, name, "Scalar", "Cell",
-                  item(file, some ? view + name : "/xdmf/no_values", c));
-      attribute(out, "tangential_force", "Vector", "Cell",
-                item(file, some ? view + "tangential_force" : "/xdmf/no_vectors", c + " 3"));
+        append_attribute(out, file, name, "Scalar", "Cell",
+                         some ? Item{view, name, c} : Item{"/xdmf/", "no_values", c});
+      append_attribute(out, file, "tangential_force", "Vector", "Cell",
+                       some ? Item{view, "tangential_force", c3}
+                            : Item{"/xdmf/", "no_vectors", c3});
       out += "      </Grid>\n";
     }
     out += "    </Grid>\n";
@@ -116,18 +132,18 @@ std::string xdmf_document(const std::string& h5_file_name, std::size_t particles
     out += "    <Grid Name=\"walls\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
     for (std::size_t f = 0; f < frames; ++f) {
       open_frame("walls", f);
-      out += "        <Topology TopologyType=\"Quadrilateral\" NumberOfElements=\"" + w +
-             "\">" + item(file, "/xdmf/walls/quads", w + " 4", "Int") + "</Topology>\n";
-      out += "        <Geometry GeometryType=\"XYZ\">" +
-             item(file, "/xdmf/walls/points", std::to_string(4 * walls) + " 3") +
-             "</Geometry>\n";
-      attribute(out, "temperature", "Scalar", "Cell", item(file, "/walls/temperature", w));
+      out.append("        <Topology TopologyType=\"Quadrilateral\" NumberOfElements=\"");
+      out.append(w).append("\">");
+      append_item(out, file, {"/xdmf/walls/", "quads", w4, "Int"});
+      out.append("</Topology>\n        <Geometry GeometryType=\"XYZ\">");
+      append_item(out, file, {"/xdmf/walls/", "points", corners});
+      out.append("</Geometry>\n");
+      append_attribute(out, file, "temperature", "Scalar", "Cell", {"/walls/", "temperature", w});
       out += "      </Grid>\n";
     }
     out += "    </Grid>\n";
   }
-  out += "  </Domain>\n";
-  out += "</Xdmf>\n";
+  out += "  </Domain>\n</Xdmf>\n";
   return out;
 }
 

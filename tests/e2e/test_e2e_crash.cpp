@@ -63,8 +63,8 @@ TEST(EndToEndCrash, KilledRunLeavesXdmfDescribingExactlyTheFramesOfTheH5) {
 
     const std::string xdmf = text_of(dir + "/out.xdmf");
     std::size_t listed = 0;
-    for (auto at = xdmf.find("<Grid Name=\"frame_"); at != std::string::npos;
-         at = xdmf.find("<Grid Name=\"frame_", at + 1))
+    for (auto at = xdmf.find("<Grid Name=\"particles\" GridType=\"Uniform\""); at != std::string::npos;
+         at = xdmf.find("<Grid Name=\"particles\" GridType=\"Uniform\"", at + 1))
       ++listed;
     EXPECT_EQ(listed, frames) << crash_at;
     // Every HDF5 dataset the XDMF points at has the dimensions it declares there.

@@ -24,7 +24,7 @@ std::size_t frames_listed(const std::string& xdmf_path) {
   text << in.rdbuf();
   const std::string s = text.str();
   std::size_t n = 0;
-  for (auto at = s.find("<Grid Name=\"frame_"); at != std::string::npos; at = s.find("<Grid Name=\"frame_", at + 1)) ++n;
+  for (auto at = s.find("<Grid Name=\"particles\" GridType=\"Uniform\""); at != std::string::npos; at = s.find("<Grid Name=\"particles\" GridType=\"Uniform\"", at + 1)) ++n;
   return n;
 }
 

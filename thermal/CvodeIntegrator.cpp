@@ -114,8 +114,9 @@ IntegratorStats CvodeIntegrator::stats() const {
 
 // ---- trampolines -------------------------------------------------------------------------
 
-int CvodeIntegrator::rhs(sunrealtype, N_Vector y, N_Vector ydot, void* self) {
+int CvodeIntegrator::rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* self) {
   auto* me = static_cast<CvodeIntegrator*>(self);
+  me->system_.set_time(t);
   me->unscale(y);
   auto out = nvector_view(ydot);
   double boundary_W = 0.0;
@@ -128,8 +129,9 @@ int CvodeIntegrator::rhs(sunrealtype, N_Vector y, N_Vector ydot, void* self) {
   return std::isfinite(sum) ? 0 : 1;
 }
 
-int CvodeIntegrator::boundary_rhs(sunrealtype, N_Vector y, N_Vector qdot, void* self) {
+int CvodeIntegrator::boundary_rhs(sunrealtype t, N_Vector y, N_Vector qdot, void* self) {
   auto* me = static_cast<CvodeIntegrator*>(self);
+  me->system_.set_time(t);
   me->unscale(y);
   double boundary_W = 0.0;
   if (!me->system_.heat_flow(me->T_work_, me->dT_work_, boundary_W)) return 1;

@@ -54,6 +54,7 @@ void ExplicitIntegrator::advance_to(double t_s) {
     const bool last = remaining <= step_s_ * (1.0 + 1e-12);
     const double h = last ? remaining : step_s_;
     double boundary_W = 0.0;
+    system_.set_time(t_);
     if (!system_.time_derivative(T_, dTdt_, boundary_W)) {
       std::ostringstream msg;
       msg << "explicit update: heat flow undefined at t = " << t_

@@ -33,6 +33,7 @@ void IdaIntegrator::consistent_derivative() {
   unscale(y_.get());
   double boundary_W = 0.0;
   auto yp = nvector_view(yp_.get());
+  system_.set_time(t_);
   if (!system_.time_derivative(T_work_, yp, boundary_W))
     throw ThermalSolverError("IDA: heat flow undefined at the initial temperatures", 0, t_);
   if (!scale_.empty())
@@ -140,8 +141,9 @@ IntegratorStats IdaIntegrator::stats() const {
 
 // ---- trampolines -------------------------------------------------------------------------
 
-int IdaIntegrator::residual(sunrealtype, N_Vector y, N_Vector yp, N_Vector r, void* self) {
+int IdaIntegrator::residual(sunrealtype t, N_Vector y, N_Vector yp, N_Vector r, void* self) {
   auto* me = static_cast<IdaIntegrator*>(self);
+  me->system_.set_time(t);
   me->unscale(y);
   auto rr = nvector_view(r), ypd = nvector_view(yp), yd = nvector_view(y);
   double boundary_W = 0.0;
@@ -156,8 +158,9 @@ int IdaIntegrator::residual(sunrealtype, N_Vector y, N_Vector yp, N_Vector r, vo
   return std::isfinite(sum) ? 0 : 1;
 }
 
-int IdaIntegrator::boundary_rhs(sunrealtype, N_Vector y, N_Vector, N_Vector qdot, void* self) {
+int IdaIntegrator::boundary_rhs(sunrealtype t, N_Vector y, N_Vector, N_Vector qdot, void* self) {
   auto* me = static_cast<IdaIntegrator*>(self);
+  me->system_.set_time(t);
   me->unscale(y);
   double boundary_W = 0.0;
   if (!me->system_.heat_flow(me->T_work_, me->dT_work_, boundary_W)) return 1;

@@ -7,6 +7,7 @@
 // drops object files nothing refers to, and with them their registrations.
 TMDEM_HEAT_MODE(contact_conduction)
 TMDEM_HEAT_MODE(wall_conduction)
+TMDEM_HEAT_MODE(wall_flux)
 TMDEM_HEAT_MODE(convection)
 TMDEM_HEAT_MODE(radiation)
 TMDEM_HEAT_MODE(heat_source)

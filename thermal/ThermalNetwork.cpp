@@ -1,5 +1,6 @@
 #include "thermal/ThermalNetwork.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -21,6 +22,10 @@ void ThermalNetwork::clear_edges() {
   wall_node.clear();
   wall_temperature_K.clear();
   wall_conductance_W_per_K.clear();
+  wall_schedule.clear();
+  flux_node.clear();
+  flux_wall.clear();
+  flux_conductance_W_per_K.clear();
 }
 
 void ThermalNetwork::add_edge(std::int32_t a, std::int32_t b, double conductance_W_per_K) {
@@ -30,10 +35,23 @@ void ThermalNetwork::add_edge(std::int32_t a, std::int32_t b, double conductance
 }
 
 void ThermalNetwork::add_wall_edge(std::int32_t node, double temperature_K,
-                                   double conductance_W_per_K) {
+                                   double conductance_W_per_K, std::int32_t schedule) {
   wall_node.push_back(node);
   wall_temperature_K.push_back(temperature_K);
   wall_conductance_W_per_K.push_back(conductance_W_per_K);
+  wall_schedule.push_back(schedule);
+}
+
+void ThermalNetwork::add_flux_edge(std::int32_t node, std::int32_t flux_wall_index,
+                                   double conductance_W_per_K) {
+  flux_node.push_back(node);
+  flux_wall.push_back(flux_wall_index);
+  flux_conductance_W_per_K.push_back(conductance_W_per_K);
+}
+
+void ThermalNetwork::apply_time(double t_s) {
+  for (std::size_t w = 0; w < wall_schedule.size(); ++w)
+    if (wall_schedule[w] >= 0) wall_temperature_K[w] = wall_temperature_tables[std::size_t(wall_schedule[w])](t_s);
 }
 
 void ThermalNetwork::validate() const {
@@ -66,6 +84,30 @@ void ThermalNetwork::validate() const {
     const double h = wall_conductance_W_per_K[w];
     if (!(h >= 0.0) || !std::isfinite(h))
       fail("wall edge " + std::to_string(w) + " has conductance " + std::to_string(h) + " W/K");
+  }
+  // Networks filled by hand (tests) may leave the schedule empty: every wall is constant.
+  if (!wall_schedule.empty() && wall_schedule.size() != wall_node.size())
+    fail("wall schedule has " + std::to_string(wall_schedule.size()) + " entries for " +
+         std::to_string(wall_node.size()) + " wall edges");
+  for (std::size_t w = 0; w < wall_schedule.size(); ++w)
+    if (wall_schedule[w] < -1 || wall_schedule[w] >= std::int32_t(wall_temperature_tables.size()))
+      fail("wall edge " + std::to_string(w) + " names temperature table " +
+           std::to_string(wall_schedule[w]) + " of " + std::to_string(wall_temperature_tables.size()));
+  for (std::size_t k = 0; k < wall_temperature_tables.size(); ++k) {
+    const auto& t = wall_temperature_tables[k];
+    if (t.x.empty() || t.x.size() != t.y.size() || !std::is_sorted(t.x.begin(), t.x.end()))
+      fail("wall temperature table " + std::to_string(k) + " is empty, uneven or unsorted");
+  }
+  if (flux_wall.size() != flux_node.size() || flux_conductance_W_per_K.size() != flux_node.size())
+    fail("flux edge arrays have different sizes");
+  for (std::size_t f = 0; f < flux_node.size(); ++f) {
+    if (flux_node[f] < 0 || std::size_t(flux_node[f]) >= n || flux_wall[f] < 0 ||
+        std::size_t(flux_wall[f]) >= flux_wall_power_W.size())
+      fail("flux edge " + std::to_string(f) + " names node " + std::to_string(flux_node[f]) +
+           " and flux wall " + std::to_string(flux_wall[f]));
+    const double h = flux_conductance_W_per_K[f];
+    if (!(h >= 0.0) || !std::isfinite(h))
+      fail("flux edge " + std::to_string(f) + " has conductance " + std::to_string(h) + " W/K");
   }
 }
 

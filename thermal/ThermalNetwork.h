@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "thermal/PiecewiseLinearTable.h"
+
 namespace tmdem::thermal {
 
 struct ThermalNetwork {
@@ -26,16 +28,33 @@ struct ThermalNetwork {
   std::vector<std::int32_t> wall_node;
   std::vector<double> wall_temperature_K;
   std::vector<double> wall_conductance_W_per_K;
+  // Wall temperatures that follow a table in time (K against s, piecewise linear, clamped):
+  // per wall edge the table's index, -1 for a constant wall. apply_time writes the tables'
+  // values at t into wall_temperature_K.
+  std::vector<PiecewiseLinearTable> wall_temperature_tables;  // node data: set once
+  std::vector<std::int32_t> wall_schedule;                    // per wall edge
+
+  // Walls with an imposed heat flux: each wall's power (flux x its area, W) is shared among
+  // the particles touching it in proportion to their contact conductance.
+  std::vector<double> flux_wall_power_W;                      // node data: one per flux wall
+  std::vector<std::int32_t> flux_node, flux_wall;             // per flux edge
+  std::vector<double> flux_conductance_W_per_K;               // per flux edge
 
   std::size_t node_count() const { return heat_capacity_J_per_K.size(); }
   std::size_t edge_count() const { return edge_a.size(); }
   std::size_t wall_edge_count() const { return wall_node.size(); }
+  std::size_t flux_edge_count() const { return flux_node.size(); }
 
   // Sizes every node array for n nodes (zero sources, emissivity, nothing held).
   void resize_nodes(std::size_t n);
   void clear_edges();
   void add_edge(std::int32_t a, std::int32_t b, double conductance_W_per_K);
-  void add_wall_edge(std::int32_t node, double wall_temperature_K, double conductance_W_per_K);
+  // schedule: index into wall_temperature_tables, -1 for a constant wall_temperature_K.
+  void add_wall_edge(std::int32_t node, double wall_temperature_K, double conductance_W_per_K,
+                     std::int32_t schedule = -1);
+  void add_flux_edge(std::int32_t node, std::int32_t flux_wall_index, double conductance_W_per_K);
+  // Wall temperatures of the scheduled wall edges at time t_s.
+  void apply_time(double t_s);
   // Throws std::invalid_argument naming the first inconsistency (sizes, ids, non-finite or
   // negative conductance, non-positive heat capacity).
   void validate() const;

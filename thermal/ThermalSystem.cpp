@@ -12,6 +12,7 @@ ThermalSystem::ThermalSystem(ThermalNetwork network,
                              std::vector<std::unique_ptr<HeatTransferMode>> modes)
     : network_(std::move(network)), modes_(std::move(modes)) {
   network_.validate();
+  network_.apply_time(time_s_);
   pattern_.build(network_);
 }
 
@@ -23,7 +24,12 @@ void ThermalSystem::replace_edges(const ThermalNetwork& edges) {
   network_.wall_node = edges.wall_node;
   network_.wall_temperature_K = edges.wall_temperature_K;
   network_.wall_conductance_W_per_K = edges.wall_conductance_W_per_K;
+  network_.wall_schedule = edges.wall_schedule;
+  network_.flux_node = edges.flux_node;
+  network_.flux_wall = edges.flux_wall;
+  network_.flux_conductance_W_per_K = edges.flux_conductance_W_per_K;
   network_.validate();
+  network_.apply_time(time_s_);
   if (same_shape) {
     ++values_version_;
   } else {
@@ -31,6 +37,11 @@ void ThermalSystem::replace_edges(const ThermalNetwork& edges) {
     ++topology_version_;
     ++values_version_;
   }
+}
+
+void ThermalSystem::set_time(double t_s) {
+  time_s_ = t_s;
+  network_.apply_time(t_s);
 }
 
 bool ThermalSystem::heat_flow(std::span<const double> T, std::span<double> q,

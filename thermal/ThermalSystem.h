@@ -32,6 +32,11 @@ class ThermalSystem {
   // shape and the pattern is rebuilt.
   void replace_edges(const ThermalNetwork& edges);
   std::uint64_t topology_version() const { return topology_version_; }
+
+  // The time the heat flow is evaluated at: walls whose temperature follows a table take their
+  // value at t_s (nothing else depends on time). Integrators set it before each evaluation.
+  void set_time(double t_s);
+  double time_s() const { return time_s_; }
   std::uint64_t values_version() const { return values_version_; }
 
   // Heat flow into every node, W (held nodes included), and the boundary power into the free
@@ -70,6 +75,7 @@ class ThermalSystem {
   JacobianPattern pattern_;
   std::uint64_t topology_version_ = 0;
   std::uint64_t values_version_ = 0;
+  double time_s_ = 0.0;
 };
 
 }  // namespace tmdem::thermal

@@ -13,7 +13,13 @@ namespace tmdem::coupling {
 ThermalNetworkBuilder::ThermalNetworkBuilder(const Scene& scene)
     : scene_(scene),
       law_(thermal::conductance_law_from_name(scene.thermal.conductance)),
-      contacts_carry_heat_(contacts_carry_heat(scene.effects)) {}
+      contacts_carry_heat_(contacts_carry_heat(scene.effects)) {
+  std::int32_t tables = 0, fluxes = 0;
+  for (const auto& w : scene.walls) {
+    wall_table_.push_back(w.temperature_table.empty() ? -1 : tables++);
+    wall_flux_.push_back(w.heat_flux_W_per_m2 ? fluxes++ : -1);
+  }
+}
 
 thermal::ThermalNetwork ThermalNetworkBuilder::nodes() const {
   thermal::ThermalNetwork net;
@@ -28,7 +34,18 @@ thermal::ThermalNetwork ThermalNetworkBuilder::nodes() const {
     net.heat_source_W[i] = p.heat_source_W;
     net.held[i] = p.fixed_temperature ? 1 : 0;
   }
-  for (const auto& w : scene_.walls) net.isothermal_walls += w.temperature_K.has_value();
+  for (const auto& w : scene_.walls) {
+    net.isothermal_walls += w.temperature_K.has_value();
+    if (!w.temperature_table.empty()) {
+      thermal::PiecewiseLinearTable table;
+      for (const auto& [t, T] : w.temperature_table) {
+        table.x.push_back(t);
+        table.y.push_back(T);
+      }
+      net.wall_temperature_tables.push_back(std::move(table));
+    }
+    if (w.heat_flux_W_per_m2) net.flux_wall_power_W.push_back(*w.heat_flux_W_per_m2 * w.heat_flux_area_m2);
+  }
   return net;
 }
 
@@ -61,9 +78,12 @@ void ThermalNetworkBuilder::build_edges(ContactList& contacts, thermal::ThermalN
   edges.clear_edges();
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     const auto i = contacts.pair[2 * c], j = contacts.pair[2 * c + 1];
+    const auto wall = mechanics::is_wall(j) ? mechanics::wall_index(j) : 0;
     const bool isothermal_wall =
-        mechanics::is_wall(j) && scene_.walls[mechanics::wall_index(j)].temperature_K.has_value();
-    const bool carries_heat = contacts_carry_heat_ && (!mechanics::is_wall(j) || isothermal_wall);
+        mechanics::is_wall(j) && scene_.walls[wall].temperature_K.has_value();
+    const bool flux_wall = mechanics::is_wall(j) && wall_flux_[wall] >= 0;
+    const bool carries_heat =
+        contacts_carry_heat_ && (!mechanics::is_wall(j) || isothermal_wall || flux_wall);
     const bool open = is_active && !(*is_active)[c];
     const double H =
         carries_heat && !open ? conductance_W_per_K(i, j, contacts.normal_force_N[c]) : 0.0;
@@ -71,8 +91,10 @@ void ThermalNetworkBuilder::build_edges(ContactList& contacts, thermal::ThermalN
     if (!carries_heat) continue;
     if (!mechanics::is_wall(j))
       edges.add_edge(std::int32_t(i), std::int32_t(j), H);
+    else if (flux_wall)
+      edges.add_flux_edge(std::int32_t(i), wall_flux_[wall], H);
     else
-      edges.add_wall_edge(std::int32_t(i), *scene_.walls[mechanics::wall_index(j)].temperature_K, H);
+      edges.add_wall_edge(std::int32_t(i), *scene_.walls[wall].temperature_K, H, wall_table_[wall]);
   }
 }
 

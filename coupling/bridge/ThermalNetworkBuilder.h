@@ -17,7 +17,8 @@ class ThermalNetworkBuilder {
  public:
   explicit ThermalNetworkBuilder(const Scene& scene);
 
-  // Node data: heat capacity m c, surface 4 pi r^2, emissivity, sources, held flags.
+  // Node data: heat capacity m c, surface 4 pi r^2, emissivity, sources, held flags, wall
+  // temperature tables and flux-wall powers (flux x area).
   thermal::ThermalNetwork nodes() const;
   // Fills contacts.conductance_W_per_K and writes the edge arrays of `edges` (node arrays are
   // left alone). A wall contact becomes an edge only for an isothermal wall; with conduction
@@ -40,6 +41,9 @@ class ThermalNetworkBuilder {
   thermal::ContactBody body(std::int64_t id) const;  // id: particle, or a wall (mechanics/PairIndex.h)
 
   const Scene& scene_;
+  // Per scene wall: index of its temperature table / of its flux power in the network's node
+  // data, -1 for none.
+  std::vector<std::int32_t> wall_table_, wall_flux_;
   thermal::ConductanceLawKind law_;
   bool contacts_carry_heat_;  // some switched-on mode reads the contact conductances
 };

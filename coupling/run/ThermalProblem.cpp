@@ -101,8 +101,10 @@ std::unique_ptr<thermal::ThermalSystem> build_thermal_system(const Scene& scene,
 double max_scene_temperature_K(const Scene& scene) {
   double T_max = 0.0;
   for (const auto& p : scene.particles) T_max = std::max(T_max, p.temperature_K);
-  for (const auto& w : scene.walls)
+  for (const auto& w : scene.walls) {
     if (w.temperature_K) T_max = std::max(T_max, *w.temperature_K);
+    for (const auto& [t, T] : w.temperature_table) T_max = std::max(T_max, T);
+  }
   return std::max(T_max, max_mode_temperature_K(scene));
 }
 

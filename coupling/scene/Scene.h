@@ -43,7 +43,13 @@ struct Wall {
   Vec3 point_m{};
   Vec3 normal{};                    // unit, points into the domain
   int material = 0;
-  std::optional<double> temperature_K;  // set: isothermal; unset: adiabatic
+  std::optional<double> temperature_K;  // set: isothermal; unset: adiabatic (a table: its value at t = 0)
+  // temperature = [[t_s, T_K], ...]: piecewise linear in time, clamped; empty: constant.
+  std::vector<std::array<double, 2>> temperature_table;
+  // Imposed heat flux into the bed, W/m^2 (negative: heat taken out), over heat_flux_area_m2;
+  // the power is shared among the touching particles by conductance. Excludes temperature.
+  std::optional<double> heat_flux_W_per_m2;
+  double heat_flux_area_m2 = 0.0;
 };
 
 struct Effects {

@@ -1,6 +1,7 @@
 #include <cmath>
 
 #include "coupling/scene/SceneBuilder.h"
+#include "thermal/PiecewiseLinearTable.h"
 
 namespace tmdem::coupling {
 
@@ -74,6 +75,50 @@ void SceneBuilder::read_particles() {
   }
 }
 
+namespace {
+
+// temperature: a number, or [[t_s, T_K], ...] with strictly increasing times; heat_flux with
+// heat_flux_area instead of a temperature.
+void read_wall_heat(const SceneTable& t, Wall& w) {
+  const toml::node* node = t.node("temperature");
+  if (node != nullptr && node->is_array()) {
+    const auto& rows = *node->as_array();
+    if (rows.empty()) t.fail("temperature", "a table needs at least one [t_s, T_K] entry");
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      const auto* row = rows[k].as_array();
+      const auto time = row && row->size() == 2 ? (*row)[0].value<double>() : std::nullopt;
+      const auto temperature = row && row->size() == 2 ? (*row)[1].value<double>() : std::nullopt;
+      const std::string entry = "entry " + std::to_string(k) + ": ";
+      if (!time || !temperature)
+        t.fail("temperature", entry + "expected [t_s, T_K], two numbers");
+      const double t_s = time.value_or(0.0), T_K = temperature.value_or(0.0);
+      if (!std::isfinite(t_s) || !std::isfinite(T_K) || !(T_K > 0.0))
+        t.fail("temperature", entry + "needs a finite time and a temperature > 0 K");
+      if (k > 0 && !(t_s > w.temperature_table.back()[0]))
+        t.fail("temperature", entry + "times must increase strictly (" + format_number(t_s) +
+                                  " s after " + format_number(w.temperature_table.back()[0]) + " s)");
+      w.temperature_table.push_back({t_s, T_K});
+    }
+    thermal::PiecewiseLinearTable table;
+    for (const auto& [time, T] : w.temperature_table) {
+      table.x.push_back(time);
+      table.y.push_back(T);
+    }
+    w.temperature_K = table(0.0);
+  } else {
+    w.temperature_K = t.optional_number("temperature", thermal::ParameterRange::greater(0.0));
+  }
+  w.heat_flux_W_per_m2 = t.optional_number("heat_flux");
+  const auto area = t.optional_number("heat_flux_area");
+  if (w.heat_flux_W_per_m2 && w.temperature_K)
+    t.fail("heat_flux", "a wall has a temperature or a heat flux, not both");
+  if (w.heat_flux_W_per_m2.has_value() != area.has_value())
+    t.fail(area ? "heat_flux_area" : "heat_flux", "heat_flux and heat_flux_area go together");
+  w.heat_flux_area_m2 = area.value_or(0.0);
+}
+
+}  // namespace
+
 void SceneBuilder::read_walls() {
   const auto tables = root_.table_array("wall", true);
   for (const SceneTable& t : tables) {
@@ -85,7 +130,7 @@ void SceneBuilder::read_walls() {
       t.fail("normal", "must be a non-zero vector (got " + format_vec3(n) + ")");
     w.normal = {n[0] / length, n[1] / length, n[2] / length};
     w.material = material_of(t, "material");
-    w.temperature_K = t.optional_number("temperature");
+    read_wall_heat(t, w);
     scene_.walls.push_back(w);
   }
 }

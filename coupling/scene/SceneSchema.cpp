@@ -210,8 +210,15 @@ std::vector<Section> build_sections() {
        {vector3("point", "m", "", "a point of the plane"),
         vector3("normal", "", "", "normal, pointing into the domain (normalised; non-zero)"),
         material_reference(),
-        number("temperature", "K", std::nullopt, Range::greater(0.0),
-               "isothermal wall exchanging heat by contact conduction; omitted: adiabatic")}}};
+        value("temperature", "K", "", "> 0, or [[t_s, T_K], ...] (times increasing)",
+              "isothermal wall exchanging heat by contact conduction; a table: piecewise linear "
+              "in time, clamped outside it; omitted (and no heat_flux): adiabatic"),
+        number("heat_flux", "W/m^2", std::nullopt, Range::any(),
+               "imposed heat flux into the bed (negative: out), instead of a temperature; the "
+               "power heat_flux x heat_flux_area is shared among the touching particles in "
+               "proportion to their contact conductance"),
+        number("heat_flux_area", "m^2", std::nullopt, Range::greater(0.0),
+               "the area the heat flux is imposed over (with heat_flux)")}}};
   for (const auto& s : modes) sections.push_back(s);
   sections.push_back(
       {"mechanics", "NSCD (Moreau-Jean, Gauss-Seidel); range checks apply when mechanics is on",

@@ -113,6 +113,15 @@ std::pair<std::size_t, std::size_t> conductivity_walls(const Scene& scene) {
     }
     throw SceneError(msg.str());
   }
+  for (std::size_t w = 0; w < scene.walls.size(); ++w) {
+    if (!scene.walls[w].temperature_table.empty())
+      throw SceneError("study conductivity: wall[" + std::to_string(w) +
+                       "].temperature is a table; the steady state needs constant temperatures");
+    if (scene.walls[w].heat_flux_W_per_m2)
+      throw SceneError("study conductivity: wall[" + std::to_string(w) +
+                       "] has a heat_flux; every wall but the hot and the cold one must be "
+                       "adiabatic");
+  }
   const auto& a = scene.walls[iso[0]];
   const auto& b = scene.walls[iso[1]];
   if (vec(a.normal).normalized().dot(vec(b.normal).normalized()) > -1.0 + 1e-9)

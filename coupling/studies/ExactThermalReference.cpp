@@ -23,6 +23,8 @@ std::optional<AffineThermalSystem> affine_thermal_system(const thermal::ThermalN
     if (m != "contact_conduction" && m != "wall_conduction" && m != "convection" &&
         m != "heat_source")
       return std::nullopt;
+  // Wall temperatures that follow a table make the system time-dependent: not affine-constant.
+  if (!net.wall_temperature_tables.empty()) return std::nullopt;
   const auto n = Eigen::Index(net.node_count());
   Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n);  // d q / d T, W/K
   Eigen::VectorXd f = Eigen::VectorXd::Zero(n);     // q at T = 0, W

@@ -10,7 +10,9 @@ namespace tmdem::thermal {
 
 struct JacobianEvaluation {
   std::vector<double> diagonal_W_per_K;  // per node
-  std::vector<double> edge_W_per_K;      // per edge, in the network's edge order
+  std::vector<double> edge_W_per_K;      // per edge, in the network's edge order (symmetric)
+  std::vector<double> edge_ab_W_per_K;   // per edge: extra d q_a / d T_b (non-symmetric modes)
+  std::vector<double> edge_ba_W_per_K;   // per edge: extra d q_b / d T_a
 };
 
 }  // namespace tmdem::thermal

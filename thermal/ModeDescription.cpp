@@ -66,4 +66,18 @@ double ModeParameters::operator[](std::string_view key) const {
                          std::string(key));
 }
 
+std::string_view ModeParameters::choice(std::string_view key) const {
+  for (std::size_t i = 0; i < mode_->parameters.size(); ++i)
+    if (mode_->parameters[i].key == key) {
+      const auto& names = mode_->parameters[i].choices;
+      const auto index = std::size_t(values_[i]);
+      if (names.empty() || index >= names.size())
+        throw std::logic_error("mode " + std::string(mode_->name) + ": " + std::string(key) +
+                               " is not a choice parameter with a valid index");
+      return names[index];
+    }
+  throw std::logic_error("mode " + std::string(mode_->name) + " declares no parameter " +
+                         std::string(key));
+}
+
 }  // namespace tmdem::thermal

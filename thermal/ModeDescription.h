@@ -38,7 +38,8 @@ struct ParameterRange {
   std::string interval() const;  // "> 0", "(-1, 0.5)", "any finite number"
 };
 
-// One number a mode reads from its scene section.
+// One value a mode reads from its scene section: a number, a boolean (`boolean`, stored as 0 or
+// 1) or a name out of `choices` (stored as its index; an unknown name lists the valid ones).
 struct ModeParameter {
   std::string_view key{};          // key inside the section: "coefficient"
   std::string_view unit{};         // "W/(m^2 K)", "K"; "" for a pure number
@@ -48,6 +49,8 @@ struct ModeParameter {
   // A reservoir temperature (fluid, surroundings) the particles can be driven to: it counts
   // towards the largest temperature of the run (explicit stability bound, `tmdem check`).
   bool bounds_temperature = false;
+  bool boolean = false;                      // true/false in the scene; default_value 0 or 1
+  std::vector<std::string_view> choices{};   // names; default_value is the default's index
 };
 
 struct ModeDescription;
@@ -61,6 +64,8 @@ class ModeParameters {
   ModeParameters(const ModeDescription& mode, std::vector<double> values);
   // The value of a declared key; an undeclared key is a programming error (std::logic_error).
   double operator[](std::string_view key) const;
+  // The name chosen for a declared choice parameter.
+  std::string_view choice(std::string_view key) const;
   const ModeDescription& mode() const { return *mode_; }
 
  private:
@@ -94,6 +99,14 @@ struct ModeDescription {
   // True for modes that read the contact conductances: contacts become network edges (with their
   // conductances) only while such a mode is switched on.
   bool uses_contact_conductance = false;
+  // Key of the parameter that holds the mode's reach across gaps, as a fraction of the smaller
+  // radius ("" = contacts only). The network then also holds every pair (and isothermal-wall
+  // pair) whose gap is at most that fraction, with its gap (thermal/ThermalNetwork.h). Near
+  // pairs come from a geometric search of the frozen packing; dynamic runs refuse such a mode.
+  std::string_view near_pair_reach{};
+  // Key of a boolean parameter that must be true for the mode to be built ("" = none), for a
+  // mode that shares its effects switch and section with another (pair radiation).
+  std::string_view enabled_by{};
   // Further condition on the network's nodes (null: always), e.g. only when some particle has a
   // heat source. A mode that is off or not in use is never constructed.
   bool (*in_use)(const ThermalNetwork& nodes) = nullptr;

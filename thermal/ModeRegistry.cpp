@@ -98,6 +98,15 @@ ModeParameters resolve_mode_parameters(const ModeDescription& mode, const ModeSe
   std::vector<double> values;
   for (const auto& p : mode.parameters) {
     const double v = settings.find(mode.name, p.key).value_or(p.default_value);
+    if (!p.choices.empty() || p.boolean) {
+      const double count = p.boolean ? 2.0 : double(p.choices.size());
+      if (!(v >= 0.0 && v < count && v == std::floor(v)))
+        throw std::invalid_argument(prefix + std::string(p.key) + ": not a valid " +
+                                    (p.boolean ? "boolean" : "choice index") + " (got " +
+                                    parameter_text(v) + ")");
+      values.push_back(v);
+      continue;
+    }
     if (!std::isfinite(v) || !p.range.contains(v))
       throw std::invalid_argument(prefix + std::string(p.key) + ": " + p.range.describe() +
                                   " (got " + parameter_text(v) + ")");

@@ -26,16 +26,19 @@ std::vector<std::uint8_t> solved_nodes(const ThermalSystem& system, const Jacobi
   const std::size_t n = system.size();
   std::vector<std::size_t> parent(n);
   std::iota(parent.begin(), parent.end(), std::size_t{0});
+  // Column sums: a conservative exchange (also the one-sided pair radiation, whose rows do not
+  // sum to zero away from equal temperatures) adds up to zero down each column.
   std::vector<double> row_sum(J.diagonal_W_per_K), row_abs(n, 0.0);
   for (std::size_t e = 0; e < net.edge_count(); ++e) {
-    const double h = J.edge_W_per_K[e];
-    if (h == 0.0) continue;
+    const double h_ab = J.edge_W_per_K[e] + J.edge_ab_W_per_K[e];  // d q_a / d T_b: column b
+    const double h_ba = J.edge_W_per_K[e] + J.edge_ba_W_per_K[e];  // d q_b / d T_a: column a
+    if (h_ab == 0.0 && h_ba == 0.0) continue;
     const auto a = std::size_t(net.edge_a[e]), b = std::size_t(net.edge_b[e]);
     parent[find_root(parent, a)] = find_root(parent, b);
-    row_sum[a] += h;
-    row_sum[b] += h;
-    row_abs[a] += std::abs(h);
-    row_abs[b] += std::abs(h);
+    row_sum[a] += h_ba;
+    row_sum[b] += h_ab;
+    row_abs[a] += std::abs(h_ba);
+    row_abs[b] += std::abs(h_ab);
   }
   std::vector<std::uint8_t> anchored_root(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
@@ -105,8 +108,8 @@ SteadyState solve_steady_state(const ThermalSystem& system, std::span<const doub
     for (std::size_t e = 0; e < net.edge_count(); ++e) {
       const auto a = net.edge_a[e], bb = net.edge_b[e];
       if (!solved[a] || !solved[bb]) continue;
-      values[pattern.slot_ab[e]] += J.edge_W_per_K[e];
-      values[pattern.slot_ba[e]] += J.edge_W_per_K[e];
+      values[pattern.slot_ab[e]] += J.edge_W_per_K[e] + J.edge_ab_W_per_K[e];
+      values[pattern.slot_ba[e]] += J.edge_W_per_K[e] + J.edge_ba_W_per_K[e];
     }
     if (const int flag = SUNLinSolSetup(LS.get(), A.get()); flag != 0)
       throw ThermalSolverError("steady state: KLU could not factorise the conductance matrix "

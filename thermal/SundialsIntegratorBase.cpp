@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
+#include <stdexcept>
 
 #include "thermal/IntegratorKind.h"
 #include "thermal/ThermalSolverError.h"
@@ -17,6 +18,10 @@ namespace tmdem::thermal {
 SundialsIntegratorBase::SundialsIntegratorBase(ThermalSystem& system,
                                                const IntegratorSettings& settings)
     : system_(system), settings_(settings), pcg_(parse_linear_solver_kind(settings.linear_solver) == LinearSolverKind::Pcg) {
+  if (pcg_ && !system_.symmetric_jacobian())
+    throw std::invalid_argument(
+        "thermal.linear_solver = \"pcg\" needs a symmetric Jacobian, but a switched-on mode "
+        "(particle-particle radiation) couples T^4 terms one-sidedly; use \"klu\"");
   if (pcg_) {
     scale_.resize(system_.size());
     for (std::size_t i = 0; i < scale_.size(); ++i)

@@ -10,6 +10,7 @@ namespace tmdem::thermal {
 void ThermalNetwork::resize_nodes(std::size_t n) {
   heat_capacity_J_per_K.assign(n, 0.0);
   surface_area_m2.assign(n, 0.0);
+  radius_m.assign(n, 0.0);
   emissivity.assign(n, 0.0);
   heat_source_W.assign(n, 0.0);
   held.assign(n, 0);
@@ -19,27 +20,45 @@ void ThermalNetwork::clear_edges() {
   edge_a.clear();
   edge_b.clear();
   edge_conductance_W_per_K.clear();
-  wall_node.clear();
-  wall_temperature_K.clear();
-  wall_conductance_W_per_K.clear();
-  wall_schedule.clear();
+  edge_gap_m.clear();
+  edge_contact_radius_m.clear();
+  edge_in_contact.clear();
+  clear_wall_edges();
   flux_node.clear();
   flux_wall.clear();
   flux_conductance_W_per_K.clear();
 }
 
-void ThermalNetwork::add_edge(std::int32_t a, std::int32_t b, double conductance_W_per_K) {
+void ThermalNetwork::clear_wall_edges() {
+  wall_node.clear();
+  wall_temperature_K.clear();
+  wall_conductance_W_per_K.clear();
+  wall_schedule.clear();
+  wall_gap_m.clear();
+  wall_contact_radius_m.clear();
+  wall_in_contact.clear();
+}
+
+void ThermalNetwork::add_edge(std::int32_t a, std::int32_t b, double conductance_W_per_K,
+                              double gap_m, double contact_radius_m, bool in_contact) {
   edge_a.push_back(a);
   edge_b.push_back(b);
   edge_conductance_W_per_K.push_back(conductance_W_per_K);
+  edge_gap_m.push_back(gap_m);
+  edge_contact_radius_m.push_back(contact_radius_m);
+  edge_in_contact.push_back(in_contact ? 1 : 0);
 }
 
 void ThermalNetwork::add_wall_edge(std::int32_t node, double temperature_K,
-                                   double conductance_W_per_K, std::int32_t schedule) {
+                                   double conductance_W_per_K, std::int32_t schedule,
+                                   double gap_m, double contact_radius_m, bool in_contact) {
   wall_node.push_back(node);
   wall_temperature_K.push_back(temperature_K);
   wall_conductance_W_per_K.push_back(conductance_W_per_K);
   wall_schedule.push_back(schedule);
+  wall_gap_m.push_back(gap_m);
+  wall_contact_radius_m.push_back(contact_radius_m);
+  wall_in_contact.push_back(in_contact ? 1 : 0);
 }
 
 void ThermalNetwork::add_flux_edge(std::int32_t node, std::int32_t flux_wall_index,
@@ -57,14 +76,16 @@ void ThermalNetwork::apply_time(double t_s) {
 void ThermalNetwork::validate() const {
   const std::size_t n = node_count();
   auto fail = [](const std::string& what) { throw std::invalid_argument("thermal network: " + what); };
-  if (surface_area_m2.size() != n || emissivity.size() != n || heat_source_W.size() != n ||
-      held.size() != n)
+  if (surface_area_m2.size() != n || radius_m.size() != n || emissivity.size() != n ||
+      heat_source_W.size() != n || held.size() != n)
     fail("node arrays have different sizes");
   for (std::size_t i = 0; i < n; ++i)
     if (!(heat_capacity_J_per_K[i] > 0.0) || !std::isfinite(heat_capacity_J_per_K[i]))
       fail("node " + std::to_string(i) + " has heat capacity " +
            std::to_string(heat_capacity_J_per_K[i]) + " J/K (must be positive and finite)");
-  if (edge_b.size() != edge_a.size() || edge_conductance_W_per_K.size() != edge_a.size())
+  if (edge_b.size() != edge_a.size() || edge_conductance_W_per_K.size() != edge_a.size() ||
+      edge_gap_m.size() != edge_a.size() || edge_contact_radius_m.size() != edge_a.size() ||
+      edge_in_contact.size() != edge_a.size())
     fail("edge arrays have different sizes");
   for (std::size_t e = 0; e < edge_a.size(); ++e) {
     const auto a = edge_a[e], b = edge_b[e];
@@ -76,7 +97,8 @@ void ThermalNetwork::validate() const {
       fail("edge " + std::to_string(e) + " has conductance " + std::to_string(h) + " W/K");
   }
   if (wall_temperature_K.size() != wall_node.size() ||
-      wall_conductance_W_per_K.size() != wall_node.size())
+      wall_conductance_W_per_K.size() != wall_node.size() || wall_gap_m.size() != wall_node.size() ||
+      wall_contact_radius_m.size() != wall_node.size() || wall_in_contact.size() != wall_node.size())
     fail("wall edge arrays have different sizes");
   for (std::size_t w = 0; w < wall_node.size(); ++w) {
     if (wall_node[w] < 0 || std::size_t(wall_node[w]) >= n)

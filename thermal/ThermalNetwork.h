@@ -13,6 +13,7 @@ struct ThermalNetwork {
   // Nodes.
   std::vector<double> heat_capacity_J_per_K;   // C_i = m_i c_i
   std::vector<double> surface_area_m2;         // 4 pi r^2, for convection and radiation
+  std::vector<double> radius_m;                // r_i, for the gap-dependent modes (gas, pair radiation)
   std::vector<double> emissivity;              // 0..1
   std::vector<double> heat_source_W;           // imposed power P_i
   std::vector<std::uint8_t> held;              // 1: temperature held for the whole run
@@ -20,14 +21,21 @@ struct ThermalNetwork {
   // the contacts, but whether wall conduction can ever matter is known from the start.
   std::size_t isothermal_walls = 0;
 
-  // Particle-particle edges (a != b; each unordered pair at most once).
+  // Particle-particle edges (a != b; each unordered pair at most once): the contacts, plus the
+  // near pairs (contact conductance 0) when a switched-on mode works across gaps.
   std::vector<std::int32_t> edge_a, edge_b;
   std::vector<double> edge_conductance_W_per_K;
+  std::vector<double> edge_gap_m;             // surface gap |x_a - x_b| - r_a - r_b; < 0 overlap
+  std::vector<double> edge_contact_radius_m;  // Hertz contact radius (0: no force, or near pair)
+  std::vector<std::uint8_t> edge_in_contact;  // 1: a contact of the mechanics (or geometry)
 
   // Particle-wall edges, isothermal walls only (adiabatic walls carry no heat, so no edge).
   std::vector<std::int32_t> wall_node;
   std::vector<double> wall_temperature_K;
   std::vector<double> wall_conductance_W_per_K;
+  std::vector<double> wall_gap_m;             // signed distance to the plane - r
+  std::vector<double> wall_contact_radius_m;
+  std::vector<std::uint8_t> wall_in_contact;
   // Wall temperatures that follow a table in time (K against s, piecewise linear, clamped):
   // per wall edge the table's index, -1 for a constant wall. apply_time writes the tables'
   // values at t into wall_temperature_K.
@@ -48,10 +56,14 @@ struct ThermalNetwork {
   // Sizes every node array for n nodes (zero sources, emissivity, nothing held).
   void resize_nodes(std::size_t n);
   void clear_edges();
-  void add_edge(std::int32_t a, std::int32_t b, double conductance_W_per_K);
+  void clear_wall_edges();  // the isothermal-wall edges only (flux edges stay)
+  // Geometry defaults: a touching contact (gap 0) of unknown contact radius (0).
+  void add_edge(std::int32_t a, std::int32_t b, double conductance_W_per_K, double gap_m = 0.0,
+                double contact_radius_m = 0.0, bool in_contact = true);
   // schedule: index into wall_temperature_tables, -1 for a constant wall_temperature_K.
   void add_wall_edge(std::int32_t node, double wall_temperature_K, double conductance_W_per_K,
-                     std::int32_t schedule = -1);
+                     std::int32_t schedule = -1, double gap_m = 0.0,
+                     double contact_radius_m = 0.0, bool in_contact = true);
   void add_flux_edge(std::int32_t node, std::int32_t flux_wall_index, double conductance_W_per_K);
   // Wall temperatures of the scheduled wall edges at time t_s.
   void apply_time(double t_s);

@@ -14,6 +14,13 @@ ThermalSystem::ThermalSystem(ThermalNetwork network,
   network_.validate();
   network_.apply_time(time_s_);
   pattern_.build(network_);
+  for (auto& mode : modes_) mode->update_geometry(network_);
+}
+
+bool ThermalSystem::symmetric_jacobian() const {
+  for (const auto& mode : modes_)
+    if (!mode->symmetric_jacobian()) return false;
+  return true;
 }
 
 void ThermalSystem::replace_edges(const ThermalNetwork& edges) {
@@ -28,8 +35,15 @@ void ThermalSystem::replace_edges(const ThermalNetwork& edges) {
   network_.flux_node = edges.flux_node;
   network_.flux_wall = edges.flux_wall;
   network_.flux_conductance_W_per_K = edges.flux_conductance_W_per_K;
+  network_.edge_gap_m = edges.edge_gap_m;
+  network_.edge_contact_radius_m = edges.edge_contact_radius_m;
+  network_.edge_in_contact = edges.edge_in_contact;
+  network_.wall_gap_m = edges.wall_gap_m;
+  network_.wall_contact_radius_m = edges.wall_contact_radius_m;
+  network_.wall_in_contact = edges.wall_in_contact;
   network_.validate();
   network_.apply_time(time_s_);
+  for (auto& mode : modes_) mode->update_geometry(network_);
   if (same_shape) {
     ++values_version_;
   } else {
@@ -65,12 +79,18 @@ bool ThermalSystem::time_derivative(std::span<const double> T, std::span<double>
 void ThermalSystem::evaluate_jacobian(std::span<const double> T, JacobianEvaluation& J) const {
   J.diagonal_W_per_K.assign(network_.node_count(), 0.0);
   J.edge_W_per_K.assign(network_.edge_count(), 0.0);
+  J.edge_ab_W_per_K.assign(network_.edge_count(), 0.0);
+  J.edge_ba_W_per_K.assign(network_.edge_count(), 0.0);
   for (const auto& mode : modes_)
-    mode->add_jacobian(network_, T, JacobianView{J.diagonal_W_per_K, J.edge_W_per_K});
+    mode->add_jacobian(network_, T,
+                       JacobianView{J.diagonal_W_per_K, J.edge_W_per_K, J.edge_ab_W_per_K,
+                                    J.edge_ba_W_per_K});
 }
 
 void ThermalSystem::check_evaluation(const JacobianEvaluation& J) const {
-  if (J.diagonal_W_per_K.size() != size() || J.edge_W_per_K.size() != network_.edge_count())
+  if (J.diagonal_W_per_K.size() != size() || J.edge_W_per_K.size() != network_.edge_count() ||
+      J.edge_ab_W_per_K.size() != network_.edge_count() ||
+      J.edge_ba_W_per_K.size() != network_.edge_count())
     throw std::logic_error("ThermalSystem: Jacobian evaluated for another contact graph (" +
                            std::to_string(J.edge_W_per_K.size()) + " edges, network has " +
                            std::to_string(network_.edge_count()) + "); call evaluate_jacobian");
@@ -87,10 +107,11 @@ void ThermalSystem::jacobian_values(const JacobianEvaluation& J, std::span<doubl
   for (std::size_t e = 0; e < network_.edge_count(); ++e) {
     const auto a = network_.edge_a[e], b = network_.edge_b[e];
     if (held[a] || held[b]) continue;
-    const double h = J.edge_W_per_K[e];
+    const double h_ab = J.edge_W_per_K[e] + J.edge_ab_W_per_K[e];
+    const double h_ba = J.edge_W_per_K[e] + J.edge_ba_W_per_K[e];
     const double sab = scale.empty() ? 1.0 : scale[a] / scale[b];
-    values[pattern_.slot_ab[e]] += h / C[a] * sab;
-    values[pattern_.slot_ba[e]] += h / C[b] / sab;
+    values[pattern_.slot_ab[e]] += h_ab / C[a] * sab;
+    values[pattern_.slot_ba[e]] += h_ba / C[b] / sab;
   }
 }
 
@@ -109,8 +130,8 @@ void ThermalSystem::jacobian_times(const JacobianEvaluation& J, std::span<const 
     if (held[a] || held[b]) continue;
     const double ua = scale.empty() ? v[a] : v[a] / scale[a];
     const double ub = scale.empty() ? v[b] : v[b] / scale[b];
-    Jv[a] += J.edge_W_per_K[e] * ub;
-    Jv[b] += J.edge_W_per_K[e] * ua;
+    Jv[a] += (J.edge_W_per_K[e] + J.edge_ab_W_per_K[e]) * ub;
+    Jv[b] += (J.edge_W_per_K[e] + J.edge_ba_W_per_K[e]) * ua;
   }
   for (std::size_t i = 0; i < size(); ++i) Jv[i] *= (scale.empty() ? 1.0 : scale[i]) / C[i];
 }
@@ -122,8 +143,8 @@ double ThermalSystem::explicit_stability_bound_s(double T_max_K) const {
   std::vector<double> row_sum(size(), 0.0);  // sum_j |J_ij| C_i, W/K
   for (std::size_t i = 0; i < size(); ++i) row_sum[i] = std::abs(J.diagonal_W_per_K[i]);
   for (std::size_t e = 0; e < network_.edge_count(); ++e) {
-    row_sum[network_.edge_a[e]] += std::abs(J.edge_W_per_K[e]);
-    row_sum[network_.edge_b[e]] += std::abs(J.edge_W_per_K[e]);
+    row_sum[network_.edge_a[e]] += std::abs(J.edge_W_per_K[e] + J.edge_ab_W_per_K[e]);
+    row_sum[network_.edge_b[e]] += std::abs(J.edge_W_per_K[e] + J.edge_ba_W_per_K[e]);
   }
   double lambda_max = 0.0;
   for (std::size_t i = 0; i < size(); ++i)

@@ -66,6 +66,9 @@ class ThermalSystem {
 
   double thermal_energy_J(std::span<const double> T_K) const;
 
+  // False when some mode's Jacobian is not symmetric (HeatTransferMode::symmetric_jacobian).
+  bool symmetric_jacobian() const;
+
  private:
   // Throws std::logic_error when J was evaluated before the contact graph changed shape.
   void check_evaluation(const JacobianEvaluation& J) const;

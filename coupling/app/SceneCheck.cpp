@@ -68,7 +68,7 @@ void check_scene(const Scene& scene, std::ostream& out) {
                               scene.gravity_m_per_s2[2]);
   for (const auto& p : mechanics::find_touching_pairs(particles, make_mechanics_walls(scene), 1e-9))
     contacts.add(p.i, p.j, particles.mass[std::size_t(p.i)] * g);
-  const auto system = build_thermal_system(scene, contacts);
+  const auto system = build_thermal_system(scene, contacts, &particles);
   out << "modes:";
   for (const auto& mode : system->modes()) out << " " << mode->name();
   out << "\n";

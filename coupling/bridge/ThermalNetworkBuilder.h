@@ -7,6 +7,7 @@
 
 #include "coupling/bridge/ContactList.h"
 #include "coupling/scene/Scene.h"
+#include "mechanics/ParticleSet.h"
 #include "thermal/ConductanceLaw.h"
 #include "thermal/ModeSettings.h"
 #include "thermal/ThermalNetwork.h"
@@ -26,8 +27,13 @@ class ThermalNetworkBuilder {
   // conductance is 0.
   // is_active (optional, one per contact): 0 marks a pattern-only pair, an edge of zero
   // conductance that keeps the sparsity pattern while the contact is open.
+  // geometry: the packing the contacts belong to. Required when a switched-on mode works across
+  // gaps (ModeDescription::near_pair_reach): every contact then becomes an edge (contact
+  // conductance 0 if conduction is off) with its gap and Hertz contact radius, and every pair
+  // within the reach (cell-grid search, O(N)) that is no contact is added as a near edge.
   void build_edges(ContactList& contacts, thermal::ThermalNetwork& edges,
-                   const std::vector<std::uint8_t>* is_active = nullptr) const;
+                   const std::vector<std::uint8_t>* is_active = nullptr,
+                   const mechanics::ParticleSet* geometry = nullptr) const;
   // Conductance of one contact by the scene's law, W/K.
   double conductance_W_per_K(std::int64_t i, std::int64_t j, double normal_force_N) const;
 
@@ -46,6 +52,10 @@ class ThermalNetworkBuilder {
   std::vector<std::int32_t> wall_table_, wall_flux_;
   thermal::ConductanceLawKind law_;
   bool contacts_carry_heat_;  // some switched-on mode reads the contact conductances
+  double near_reach_;         // fraction of the smaller radius; 0: contacts only
+
+  void build_edges_with_gaps(ContactList& contacts, thermal::ThermalNetwork& edges,
+                             const mechanics::ParticleSet& geometry) const;
 };
 
 }  // namespace tmdem::coupling

@@ -103,7 +103,7 @@ double CoupledRun::max_temperature_K() const {
 }
 
 void CoupledRun::prepare_thermal() {
-  system_ = build_thermal_system(scene_, contacts_);
+  system_ = build_thermal_system(scene_, contacts_, frozen_ ? &particles_ : nullptr);
   if (!frozen_) {
     dynamic_network_ = std::make_unique<DynamicNetwork>(scene_, *system_);
     // The network the checkpoint's step left, on the pattern it had: the same edges, in the
@@ -159,7 +159,7 @@ void CoupledRun::write_frame(double t_s) {
   f.normal_force_N = contacts_.normal_force_N;
   f.conductance_W_per_K = contacts_.conductance_W_per_K;
   f.tangential_force_N = contacts_.tangential_force_N;
-  contact_heat_flow_W(contacts_, f.temperature_K, t_s, scene_, heat_flow_W_);
+  contact_heat_flow_W(contacts_, f.temperature_K, scene_, heat_flow_W_);
   f.heat_flow_W = heat_flow_W_;
   writer_->write_frame(f);
 }

@@ -87,11 +87,11 @@ void gather_contacts(const std::vector<mechanics::ContactForce>& forces, Contact
   }
 }
 
-std::unique_ptr<thermal::ThermalSystem> build_thermal_system(const Scene& scene,
-                                                             ContactList& contacts) {
+std::unique_ptr<thermal::ThermalSystem> build_thermal_system(
+    const Scene& scene, ContactList& contacts, const mechanics::ParticleSet* geometry) {
   ThermalNetworkBuilder builder(scene);
   auto network = builder.nodes();
-  builder.build_edges(contacts, network);
+  builder.build_edges(contacts, network, nullptr, geometry);
   std::vector<std::unique_ptr<thermal::HeatTransferMode>> modes;
   for (const auto& name : builder.mode_names(network))
     modes.push_back(thermal::make_heat_transfer_mode(name, builder.mode_settings()));
@@ -130,11 +130,12 @@ FrozenThermalProblem build_frozen_thermal_problem(const Scene& scene, ProgressRe
       for (const auto& x : particles.position) problem.positions_m.push_back({x.x(), x.y(), x.z()});
       break;
     case MechanicsMode::Settle: {
-      auto nscd = make_nscd_integrator(scene, std::move(particles));
+      auto nscd = make_nscd_integrator(scene, particles);
       problem.settle = settle_packing(*nscd, scene, progress);
       gather_contacts(nscd->contacts(), problem.contacts);
       for (const auto& x : nscd->particles().position)
         problem.positions_m.push_back({x.x(), x.y(), x.z()});
+      particles = nscd->particles();
       break;
     }
     case MechanicsMode::Dynamic:
@@ -142,7 +143,7 @@ FrozenThermalProblem build_frozen_thermal_problem(const Scene& scene, ProgressRe
           "the thermal problem of a dynamic scene changes every mechanical step; it has no frozen "
           "contact graph");
   }
-  problem.system = build_thermal_system(scene, problem.contacts);
+  problem.system = build_thermal_system(scene, problem.contacts, &particles);
   for (const auto& p : scene.particles) problem.T0_K.push_back(p.temperature_K);
   return problem;
 }

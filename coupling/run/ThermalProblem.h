@@ -41,9 +41,10 @@ std::string unconverged_step_warning(const std::string& what, double t_s,
 void gather_contacts(const std::vector<mechanics::ContactForce>& forces, ContactList& out);
 
 // Network nodes from the scene, edges from `contacts` (conductances filled in), and the modes
-// the scene switches on (a mode that is off is never built).
-std::unique_ptr<thermal::ThermalSystem> build_thermal_system(const Scene& scene,
-                                                             ContactList& contacts);
+// the scene switches on (a mode that is off is never built). geometry: the frozen packing,
+// needed when a mode works across gaps (near pairs); null for a moving packing.
+std::unique_ptr<thermal::ThermalSystem> build_thermal_system(
+    const Scene& scene, ContactList& contacts, const mechanics::ParticleSet* geometry = nullptr);
 
 // Largest temperature the run can see: particles, isothermal walls, fluid, surroundings.
 double max_scene_temperature_K(const Scene& scene);

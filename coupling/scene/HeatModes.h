@@ -11,6 +11,13 @@ namespace tmdem::coupling {
 // up to its own in_use test on the network).
 bool switched_on(const Effects& effects, const thermal::ModeDescription& mode);
 
+// Switched on, and its enabled_by parameter (if it declares one) is true: the mode is built.
+bool mode_enabled(const Scene& scene, const thermal::ModeDescription& mode);
+
+// Largest near-pair reach (fraction of the smaller radius) of the enabled modes; 0 if none needs
+// near pairs.
+double near_pair_reach(const Scene& scene);
+
 // Some switched-on mode reads the contact conductances: contacts become network edges.
 bool contacts_carry_heat(const Effects& effects);
 

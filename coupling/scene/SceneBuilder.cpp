@@ -87,12 +87,41 @@ void SceneBuilder::read_heat_modes() {
     const SceneTable t = section(mode->section, on);
     std::vector<double> values;
     for (const auto& p : mode->parameters) {
-      values.push_back(t.number(p.key, p.default_value, p.range));
+      if (p.boolean) {
+        values.push_back(t.boolean(p.key, p.default_value != 0.0) ? 1.0 : 0.0);
+      } else if (!p.choices.empty()) {
+        const std::string name = t.choice(p.key);  // refuses an unknown name, listing the valid
+        std::size_t index = 0;
+        while (index < p.choices.size() && p.choices[index] != name) ++index;
+        values.push_back(double(index));
+      } else {
+        values.push_back(t.number(p.key, p.default_value, p.range));
+      }
       scene_.heat_modes.set(mode->name, p.key, values.back());
     }
+    const thermal::ModeParameters parameters(*mode, std::move(values));
     if (on && mode->check)
-      if (const auto problem = mode->check(thermal::ModeParameters(*mode, std::move(values))))
+      if (const auto problem = mode->check(parameters))
         t.fail(problem->key, problem->problem);
+    // Near pairs come from a geometric search of a frozen packing; the moving packing's
+    // neighbour lists are not handed over yet, so refuse rather than leave the gaps out.
+    const bool enabled = mode->enabled_by.empty() || parameters[mode->enabled_by] != 0.0;
+    if (on && enabled && !mode->near_pair_reach.empty() &&
+        scene_.effects.mechanics == MechanicsMode::Dynamic) {
+      // Built by appending: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string.
+      std::string problem = "not supported yet with effects.mechanics = \"dynamic\"";
+      if (!mode->enabled_by.empty()) {
+        problem += " with ";
+        problem += mode->section;
+        problem += '.';
+        problem += mode->enabled_by;
+        problem += " = true";
+      }
+      problem += " (";
+      problem += mode->summary;
+      problem += ": its near pairs are found for a frozen packing only); use \"settle\" or \"off\"";
+      section("effects", true).fail(mode->effect, problem);
+    }
   }
 }
 

@@ -62,8 +62,14 @@ Key boolean(std::string name, std::string default_text, std::string description)
 
 Key choice(std::string name, std::string fallback, const std::vector<std::string>& choices,
            std::string description) {
-  Key k = value(std::move(name), "", fallback.empty() ? "" : "\"" + fallback + "\"", "",
-                std::move(description), fallback.empty());
+  // Built by appending: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string here.
+  std::string quoted;
+  if (!fallback.empty()) {
+    quoted += '"';
+    quoted += fallback;
+    quoted += '"';
+  }
+  Key k = value(std::move(name), "", quoted, "", std::move(description), fallback.empty());
   for (const auto& c : choices) {
     if (!k.allowed.empty()) k.allowed += ", ";
     k.allowed += '"';
@@ -94,10 +100,12 @@ std::vector<Key> particle_settings(bool new_particles) {
       number("heat_source", "W", std::nullopt, Range::any(), "imposed power"),
       boolean("fixed", "", "does not move")};
   if (new_particles) {
-    keys[0].default_text = "293.15";
-    keys[1].default_text = "false";
-    keys[2].default_text = "0";
-    keys[3].default_text = "false";
+    // Swapped in, not assigned: GCC 12 warns falsely (-Wrestrict) on these literal assignments.
+    const char* defaults[4] = {"293.15", "false", "0", "false"};
+    for (int i = 0; i < 4; ++i) {
+      std::string text(defaults[i]);
+      keys[std::size_t(i)].default_text.swap(text);
+    }
   }
   return keys;
 }
@@ -118,10 +126,21 @@ std::vector<Section> mode_sections() {
       out.push_back({std::string(mode->section), std::string(mode->section_description), {}});
       it = out.end() - 1;
     }
-    for (const auto& p : mode->parameters)
-      if (std::none_of(it->keys.begin(), it->keys.end(), [&](const Key& k) { return k.name == p.key; }))
+    for (const auto& p : mode->parameters) {
+      if (std::any_of(it->keys.begin(), it->keys.end(), [&](const Key& k) { return k.name == p.key; }))
+        continue;
+      if (p.boolean) {
+        it->keys.push_back(boolean(std::string(p.key), p.default_value != 0.0 ? "true" : "false",
+                                   std::string(p.description)));
+      } else if (!p.choices.empty()) {
+        const std::vector<std::string> names(p.choices.begin(), p.choices.end());
+        it->keys.push_back(choice(std::string(p.key), names.at(std::size_t(p.default_value)),
+                                  names, std::string(p.description)));
+      } else {
         it->keys.push_back(number(std::string(p.key), std::string(p.unit), p.default_value,
                                   p.range, std::string(p.description)));
+      }
+    }
   }
   return out;
 }
@@ -136,7 +155,7 @@ std::vector<Section> build_sections() {
       table("particle", Kind::TableArray, "one particle each"),
       table("generate", Kind::TableArray, "many particles each"),
       table("assign", Kind::TableArray, "changes selected particles after generation"),
-      table("wall", Kind::TableArray, "infinite planes and cylinders")};
+      table("wall", Kind::TableArray, "infinite planes")};
   for (const auto& s : modes) top.push_back(table(s.name, Kind::Table, s.description));
   for (const auto& k : {table("mechanics", Kind::Table, "NSCD contact dynamics"),
                         table("thermal", Kind::Table, "thermal integrator and contact conductance"),
@@ -206,14 +225,9 @@ std::vector<Section> build_sections() {
       {"nearest", "nearest = { point, count }",
        {vector3("point", "m", "", "the point distances are measured from"),
         value("count", "", "", "integer in [1, number of particles]", "how many particles", true)}},
-      {"wall", "an infinite plane, or an infinite cylinder with the particles inside",
-       {choice("shape", "plane", {"plane", "cylinder"},
-               "\"plane\": point and normal; \"cylinder\" (3D): point on the axis, axis, radius"),
-        vector3("point", "m", "", "a point of the plane (cylinder: a point of the axis)"),
-        vector3("normal", "", "", "plane: normal, pointing into the domain (normalised; non-zero)",
-                false),
-        vector3("axis", "", "", "cylinder: direction of the axis (normalised; non-zero)", false),
-        number("radius", "m", std::nullopt, Range::greater(0.0), "cylinder: radius"),
+      {"wall", "an infinite plane",
+       {vector3("point", "m", "", "a point of the plane"),
+        vector3("normal", "", "", "normal, pointing into the domain (normalised; non-zero)"),
         material_reference(),
         value("temperature", "K", "", "> 0, or [[t_s, T_K], ...] (times increasing)",
               "isothermal wall exchanging heat by contact conduction; a table: piecewise linear "

@@ -30,12 +30,24 @@ TEST(SceneModes, SchemaHoldsEveryModesEffectSectionAndKeys) {
       const auto* key = SceneSchema::find(mode->section, p.key);
       ASSERT_NE(key, nullptr) << mode->section << "." << p.key;
       EXPECT_EQ(key->unit, p.unit);
+      EXPECT_EQ(key->description, p.description);
+      ++parameters;
+      if (p.boolean) {  // true/false in the scene
+        EXPECT_EQ(key->allowed, "true, false");
+        EXPECT_EQ(key->default_text, p.default_value != 0.0 ? "true" : "false");
+        continue;
+      }
+      if (!p.choices.empty()) {  // a name out of the declared choices
+        ASSERT_EQ(key->choices.size(), p.choices.size()) << p.key;
+        for (std::size_t c = 0; c < p.choices.size(); ++c) EXPECT_EQ(key->choices[c], p.choices[c]);
+        EXPECT_EQ(key->default_text,
+                  "\"" + std::string(p.choices[std::size_t(p.default_value)]) + "\"");
+        continue;
+      }
       ASSERT_TRUE(key->default_number.has_value());
       EXPECT_EQ(*key->default_number, p.default_value);
       ASSERT_TRUE(key->range.has_value());
       EXPECT_EQ(key->allowed, p.range.interval());
-      EXPECT_EQ(key->description, p.description);
-      ++parameters;
     }
   }
   EXPECT_GE(parameters, 3);  // convection: coefficient, fluid_temperature; radiation: ambient

@@ -32,13 +32,23 @@ TEST(SceneReference, ListsEveryModesSectionKeysWithUnitDefaultAndRange) {
           << mode->effect;
     if (mode->section.empty()) continue;
     EXPECT_NE(text.find("## `[" + std::string(mode->section) + "]`"), std::string::npos);
-    for (const auto& p : mode->parameters)
+    for (const auto& p : mode->parameters) {
+      std::string default_text = thermal::parameter_text(p.default_value);
+      std::string allowed = p.range.interval();
+      if (p.boolean) {
+        default_text = p.default_value != 0.0 ? "true" : "false";
+        allowed = "true, false";
+      } else if (!p.choices.empty()) {
+        default_text = "\"" + std::string(p.choices[std::size_t(p.default_value)]) + "\"";
+        allowed.clear();
+        for (const auto& c : p.choices) allowed += (allowed.empty() ? "\"" : ", \"") + std::string(c) + "\"";
+      }
       EXPECT_NE(text.find("| `" + std::string(p.key) + "` | " +
-                          (p.unit.empty() ? "-" : std::string(p.unit)) + " | " +
-                          thermal::parameter_text(p.default_value) + " | " + p.range.interval() +
-                          " | " + std::string(p.description) + " |"),
+                          (p.unit.empty() ? "-" : std::string(p.unit)) + " | " + default_text +
+                          " | " + allowed + " | " + std::string(p.description) + " |"),
                 std::string::npos)
           << mode->section << "." << p.key;
+    }
   }
   EXPECT_NE(text.find("| `coefficient` | W/(m^2 K) | 10 | >= 0 |"), std::string::npos);
 }

@@ -1,6 +1,8 @@
 #include "coupling/app/ConductivityCommand.h"
 
 
+#include <tuple>
+
 #include "coupling/app/StudyCsvFile.h"
 #include "coupling/common/ExitCode.h"
 #include "coupling/output/ProgressReporter.h"
@@ -37,6 +39,14 @@ int run_conductivity_command(const Scene& scene, const ConductivityCommandOption
   out << "conductivity study: " << scene.source << "\n";
   for (const auto& r : results) print_conductivity_report(out, r);
   out.flush();
+  for (const auto& r : results)
+    for (const auto& [wall, count, side] :
+         {std::tuple{r.hot_wall, r.hot_wall_contacts, "hot"}, std::tuple{r.cold_wall, r.cold_wall_contacts, "cold"}})
+      if (count == 0)
+        log << "warning: the " << side << " wall[" << wall
+            << "] touches no particle, so no heat crosses the bed (k_eff = 0): place it where the "
+               "bed ends (a settled bed's top is uneven: a piston that presses the wall onto it "
+               "does not exist yet)" << std::endl;
   for (const auto& r : results)
     if (r.balance_rel > 1e-9)
       log << "warning: heat in (" << r.heat_hot_W << " W) and heat out (" << r.heat_cold_W

@@ -167,7 +167,12 @@ ConductivityResult run_conductivity_study(const Scene& input, ProgressReporter& 
   const bool geometric = scene.effects.mechanics == MechanicsMode::Off;
   for (std::size_t c = 0; c < problem.contacts.size(); ++c) {
     if (!geometric && !(problem.contacts.normal_force_N[c] > 0.0)) continue;
-    if (mechanics::is_wall(problem.contacts.pair[2 * c + 1])) ++r.wall_contacts;
+    const auto j = problem.contacts.pair[2 * c + 1];
+    if (mechanics::is_wall(j)) {
+      ++r.wall_contacts;
+      r.hot_wall_contacts += mechanics::wall_index(j) == r.hot_wall;
+      r.cold_wall_contacts += mechanics::wall_index(j) == r.cold_wall;
+    }
     else ++r.contacts;
   }
   r.coordination = n > 0 ? 2.0 * double(r.contacts) / double(n) : 0.0;

@@ -53,6 +53,7 @@ struct ConductivityResult {
   double porosity = 0.0;
   double coordination = 0.0;
   std::size_t particles = 0, contacts = 0, wall_contacts = 0;
+  std::size_t hot_wall_contacts = 0, cold_wall_contacts = 0;  // 0: no heat path through that wall
   std::size_t floating_particles = 0;  // exchange heat with nothing: kept at their start value
   int newton_iterations = 0;
   double max_residual_W = 0.0;

@@ -59,4 +59,19 @@ TEST(E2eConductivity, SceneWithoutTwoIsothermalWallsIsExit2) {
   EXPECT_NE(r.output.find("exactly two walls with a temperature"), std::string::npos) << r.output;
 }
 
+// A lid above the bed (not touching it): k_eff = 0, and the command says why.
+TEST(E2eConductivity, LidNotTouchingTheBedIsReported) {
+  const auto dir = scratch_dir("conductivity_lid");
+  write_file(dir + "/bed.toml",
+             thermal_scene()
+                 .add("generate", lattice({2, 2, 2}))
+                 .add("wall", floor_wall({{"temperature", 320.0}}))
+                 .add("wall", plane_wall({0.0, 0.01, 0.0}, {0.0, -1.0, 0.0}, {{"temperature", 300.0}}))
+                 .str());
+  const auto r = run_tmdem("study conductivity bed.toml", dir);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("warning: the cold wall[1] touches no particle"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("k_eff = 0 W/(m K)"), std::string::npos) << r.output;
+}
+
 }  // namespace

@@ -76,6 +76,7 @@ NscdIntegrator::NscdIntegrator(ParticleSet particles, std::vector<Material> mate
     gravity_.z() = 0.0;
     // A wall normal with a z component would push particles out of the plane.
     for (auto& wall : walls_) {
+      require(wall.shape == WallShape::Plane, "a cylinder wall needs 3D");
       wall.normal.z() = 0.0;
       require(wall.normal.norm() > 0.0, "a wall normal along z makes no sense in 2D");
       wall.normal.normalize();
@@ -177,7 +178,7 @@ void NscdIntegrator::setup_contacts(double h) {
       other_material = particles_.material[j];
     } else {
       const Wall& wall = walls_[wall_index(j)];
-      n = wall.normal;
+      n = wall.normal_at(xi);
       gap = wall.signed_distance(xi) - lever_i;
       other_material = wall.material;
     }

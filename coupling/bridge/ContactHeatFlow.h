@@ -1,7 +1,11 @@
 #pragma once
-// The heat flow through each contact of a ContactList at given temperatures (result file
-// /contacts/heat_flow): Q = H (T_i - T_j) in W, positive from i to j; for a wall contact
-// Q = H (T_i - T_wall), 0 for an adiabatic wall (its conductance is 0).
+// The heat flow through each contact of a ContactList at time t (result file
+// /contacts/heat_flow), in W, positive from i to j:
+//   particle-particle  Q = H (T_i - T_j)
+//   isothermal wall    Q = H (T_i - T_wall(t))   (a tabled wall at its value at t)
+//   heat-flux wall     Q = -P_w H / sum_k H_kw   (its power shared by conductance, as the
+//                                                 wall_flux mode does; negative: into i)
+//   adiabatic wall     Q = 0
 #include <span>
 #include <vector>
 
@@ -10,8 +14,8 @@
 
 namespace tmdem::coupling {
 
-// out gets one value per contact (resized; no allocation once large enough).
+// out gets one value per contact. Called once per frame (two small per-wall arrays).
 void contact_heat_flow_W(const ContactList& contacts, std::span<const double> temperature_K,
-                         const Scene& scene, std::vector<double>& out);
+                         double time_s, const Scene& scene, std::vector<double>& out);
 
 }  // namespace tmdem::coupling

@@ -27,10 +27,12 @@ std::vector<mechanics::Material> make_mechanics_materials(const Scene& scene) {
 
 std::vector<mechanics::Wall> make_mechanics_walls(const Scene& scene) {
   std::vector<mechanics::Wall> out;
-  for (const auto& w : scene.walls)
-    out.push_back(mechanics::Wall::through(Eigen::Vector3d(w.point_m[0], w.point_m[1], w.point_m[2]),
-                                           Eigen::Vector3d(w.normal[0], w.normal[1], w.normal[2]),
-                                           w.material));
+  for (const auto& w : scene.walls) {
+    const Eigen::Vector3d point(w.point_m[0], w.point_m[1], w.point_m[2]);
+    const Eigen::Vector3d direction(w.normal[0], w.normal[1], w.normal[2]);
+    out.push_back(w.cylinder ? mechanics::Wall::cylinder(point, direction, w.radius_m, w.material)
+                             : mechanics::Wall::through(point, direction, w.material));
+  }
   return out;
 }
 

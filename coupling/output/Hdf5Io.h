@@ -46,8 +46,9 @@ void write_double_array_attribute(hid_t object, const char* name,
                                   const std::vector<double>& values);
 std::vector<double> read_double_array_attribute(hid_t object, const char* name);
 
-// Dataset with a "units" attribute. Extendible (chunked, first dimension unlimited) when
-// chunk_rows > 0, else fixed size.
+// Dataset with a "units" attribute. Extendible (chunked, first dimension unlimited) and
+// compressed (shuffle + deflate level 1, when the HDF5 library has deflate) when chunk_rows > 0,
+// else fixed size and uncompressed.
 Hdf5Handle create_dataset(hid_t location, const char* name, hid_t file_type,
                           const std::vector<hsize_t>& dims, hsize_t chunk_rows,
                           const char* units);

@@ -142,93 +142,141 @@ bool ResultViews::has_frame(hid_t file, std::size_t frame) const {
   return hdf5::exists(xdmf.get(), ("frame_" + std::to_string(frame)).c_str());
 }
 
-FrameViewCounts ResultViews::add_frame(hid_t file, std::size_t frame,
-                                       std::span<const double> position_m,
-                                       std::span<const std::int64_t> pair,
-                                       std::int64_t first_contact) {
+void ResultViews::draw_walls(hid_t file, std::span<const double> position_m) const {
+  // Squares centred on the particles' projection, large enough to hold the whole bed.
+  const std::size_t n = particles_;
+  std::array<double, 3> lo, hi;
+  lo.fill(std::numeric_limits<double>::infinity());
+  hi.fill(-std::numeric_limits<double>::infinity());
+  for (std::size_t i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], position_m[3 * i + k]);
+      hi[k] = std::max(hi[k], position_m[3 * i + k]);
+    }
+  const std::array<double, 3> centre = {(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2,
+                                        (lo[2] + hi[2]) / 2};
+  const double half = 0.5 * std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) +
+                                      (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                                      (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  double r_max = 0.0;
+  if (hdf5::exists(file, "/particles/radius")) {
+    Hdf5Handle particles = hdf5::open_group(file, "particles");
+    for (double r : hdf5::read_double_array(particles.get(), "radius", 0)) r_max = std::max(r_max, r);
+  }
+  const double side = std::max(half + 2.0 * r_max, 1e-12);
+  std::vector<double> points;
+  std::vector<std::int64_t> quads;
+  for (std::size_t w = 0; w < walls_.size(); ++w) {
+    const auto c = foot(walls_[w], centre.data());
+    std::array<double, 3> u, v;
+    tangents(walls_[w].normal.data(), u, v);
+    for (const auto& [a, b] : {std::pair{-1.0, -1.0}, {1.0, -1.0}, {1.0, 1.0}, {-1.0, 1.0}}) {
+      for (int k = 0; k < 3; ++k) points.push_back(c[k] + side * (a * u[k] + b * v[k]));
+      quads.push_back(std::int64_t(quads.size()));
+    }
+  }
+  Hdf5Handle group = hdf5::create_group(file, "/xdmf/walls");
+  hdf5::write_array(group.get(), "points", points, 3, "m");
+  hdf5::write_array(group.get(), "quads", quads, 4, "1");
+}
+
+FrameViewCounts ResultViews::add_frame(hid_t file, std::size_t frame, const FrameView& data,
+                                       bool contacts_stored, std::int64_t first_contact) {
   const hsize_t n = particles_;
   const hsize_t f = frame;
-  if (!walls_.empty() && !hdf5::exists(file, "/xdmf/walls")) {
-    // Squares centred on the particles' projection, large enough to hold the whole bed.
-    std::array<double, 3> lo, hi;
-    lo.fill(std::numeric_limits<double>::infinity());
-    hi.fill(-std::numeric_limits<double>::infinity());
-    for (std::size_t i = 0; i < n; ++i)
-      for (int k = 0; k < 3; ++k) {
-        lo[k] = std::min(lo[k], position_m[3 * i + k]);
-        hi[k] = std::max(hi[k], position_m[3 * i + k]);
-      }
-    const std::array<double, 3> centre = {(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2,
-                                          (lo[2] + hi[2]) / 2};
-    const double half = 0.5 * std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) +
-                                        (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                                        (hi[2] - lo[2]) * (hi[2] - lo[2]));
-    double r_max = 0.0;
-    if (hdf5::exists(file, "/particles/radius")) {
-      Hdf5Handle particles = hdf5::open_group(file, "particles");
-      for (double r : hdf5::read_double_array(particles.get(), "radius", 0)) r_max = std::max(r_max, r);
-    }
-    const double side = std::max(half + 2.0 * r_max, 1e-12);
-    std::vector<double> points;
-    std::vector<std::int64_t> quads;
-    for (std::size_t w = 0; w < walls_.size(); ++w) {
-      const auto c = foot(walls_[w], centre.data());
-      std::array<double, 3> u, v;
-      tangents(walls_[w].normal.data(), u, v);
-      for (const auto& [a, b] : {std::pair{-1.0, -1.0}, {1.0, -1.0}, {1.0, 1.0}, {-1.0, 1.0}}) {
-        for (int k = 0; k < 3; ++k) points.push_back(c[k] + side * (a * u[k] + b * v[k]));
-        quads.push_back(std::int64_t(quads.size()));
-      }
-    }
-    Hdf5Handle group = hdf5::create_group(file, "/xdmf/walls");
-    hdf5::write_array(group.get(), "points", points, 3, "m");
-    hdf5::write_array(group.get(), "quads", quads, 4, "1");
-  }
+  const std::span<const double> position_m = data.position_m;
+  const std::span<const std::int64_t> pair =
+      contacts_stored ? data.contact_pair : std::span<const std::int64_t>{};
+  if (!walls_.empty() && !hdf5::exists(file, "/xdmf/walls")) draw_walls(file, position_m);
 
   Hdf5Handle group = hdf5::create_group(file, frame_group(frame).c_str());
   const hid_t g = group.get();
+  const std::string here = frame_group(frame) + "/";
+  auto link = [&](std::size_t source_frame, const char* name) {
+    const std::string source = frame_group(source_frame) + "/" + name;
+    hdf5::check_ok(H5Lcreate_hard(file, source.c_str(), file, (here + name).c_str(),
+                                  H5P_DEFAULT, H5P_DEFAULT),
+                   "H5Lcreate_hard " + here + name);
+  };
+  auto same = [](const auto& kept, const auto& now) {
+    return kept.size() == now.size() && std::equal(now.begin(), now.end(), kept.begin());
+  };
+  const bool complete = data.velocity_m_per_s.size() == 3 * n;  // not a rebuilt view
+  const bool geometry_same = previous_.valid && complete &&
+                             same(previous_.position, position_m) &&
+                             same(previous_.velocity, data.velocity_m_per_s);
   const hsize_t frames = f + 1;
-  create_virtual(g, "position", {n, 3}, {{0, n, "/frames/position", {frames, n, 3}, f, 1}}, "m");
-  create_virtual(g, "velocity", {n, 3}, {{0, n, "/frames/velocity", {frames, n, 3}, f, 1}},
-                 "m/s");
+  if (geometry_same) {
+    link(previous_.geometry_frame, "position");
+    link(previous_.geometry_frame, "velocity");
+  } else {
+    create_virtual(g, "position", {n, 3}, {{0, n, "/frames/position", {frames, n, 3}, f, 1}},
+                   "m");
+    create_virtual(g, "velocity", {n, 3}, {{0, n, "/frames/velocity", {frames, n, 3}, f, 1}},
+                   "m/s");
+  }
   create_virtual(g, "temperature", {n}, {{0, n, "/frames/temperature", {frames, n}, f, 1}}, "K");
 
   FrameViewCounts counts;
   counts.contacts = pair.size() / 2;
-  if (counts.contacts == 0) return counts;
-  std::vector<std::int64_t> lines(pair.begin(), pair.end());
-  std::vector<double> feet;
-  for (std::size_t c = 0; c < counts.contacts; ++c) {
-    const std::int64_t j = pair[2 * c + 1];
-    if (j >= 0) continue;
-    const std::size_t i = std::size_t(pair[2 * c]);
-    const std::size_t wall = std::size_t(-1 - j);
-    // A wall the file does not describe (written before /walls existed): a zero-length line.
-    const auto end = wall < walls_.size() ? foot(walls_[wall], &position_m[3 * i])
-                                          : std::array<double, 3>{position_m[3 * i],
-                                                                  position_m[3 * i + 1],
-                                                                  position_m[3 * i + 2]};
-    feet.insert(feet.end(), end.begin(), end.end());
-    lines[2 * c + 1] = std::int64_t(n + counts.wall_contacts);
-    ++counts.wall_contacts;
-  }
-  hdf5::write_array(g, "contact_lines", lines, 2, "1");
-  const hsize_t w = counts.wall_contacts;
-  std::vector<Mapping> points = {{0, n, "/frames/position", {frames, n, 3}, f, 1}};
-  if (w > 0) {
-    hdf5::write_array(g, "wall_feet", feet, 3, "m");
-    points.push_back({n, w, frame_group(frame) + "/wall_feet", {w, 3}, 0, w});
-  }
-  create_virtual(g, "contact_points", {n + w, 3}, points, "m");
   const hsize_t c = counts.contacts;
   const hsize_t first = hsize_t(first_contact), rows = first + c;
-  create_virtual(g, "normal_force", {c}, {{0, c, "/contacts/normal_force", {rows}, first, c}},
-                 "N");
-  create_virtual(g, "conductance", {c}, {{0, c, "/contacts/conductance", {rows}, first, c}},
-                 "W/K");
-  create_virtual(g, "heat_flow", {c}, {{0, c, "/contacts/heat_flow", {rows}, first, c}}, "W");
-  create_virtual(g, "tangential_force", {c, 3},
-                 {{0, c, "/contacts/tangential_force", {rows, 3}, first, c}}, "N");
+  const bool contacts_same = geometry_same && c > 0 && same(previous_.pair, pair) &&
+                             same(previous_.force, data.normal_force_N) &&
+                             same(previous_.conductance, data.conductance_W_per_K) &&
+                             same(previous_.tangential, data.tangential_force_N);
+  if (contacts_same) {
+    counts.wall_contacts = previous_.counts.wall_contacts;
+    for (const char* name : {"contact_lines", "contact_points", "normal_force", "conductance",
+                             "tangential_force"})
+      link(previous_.contacts_frame, name);
+    if (counts.wall_contacts > 0) link(previous_.contacts_frame, "wall_feet");
+  } else if (c > 0) {
+    std::vector<std::int64_t> lines(pair.begin(), pair.end());
+    std::vector<double> feet;
+    for (std::size_t k = 0; k < counts.contacts; ++k) {
+      const std::int64_t j = pair[2 * k + 1];
+      if (j >= 0) continue;
+      const std::size_t i = std::size_t(pair[2 * k]);
+      const std::size_t wall = std::size_t(-1 - j);
+      // A wall the file does not describe (written before /walls existed): a zero-length line.
+      const auto end = wall < walls_.size() ? foot(walls_[wall], &position_m[3 * i])
+                                            : std::array<double, 3>{position_m[3 * i],
+                                                                    position_m[3 * i + 1],
+                                                                    position_m[3 * i + 2]};
+      feet.insert(feet.end(), end.begin(), end.end());
+      lines[2 * k + 1] = std::int64_t(n + counts.wall_contacts);
+      ++counts.wall_contacts;
+    }
+    hdf5::write_array(g, "contact_lines", lines, 2, "1");
+    const hsize_t w = counts.wall_contacts;
+    std::vector<Mapping> points = {{0, n, "/frames/position", {frames, n, 3}, f, 1}};
+    if (w > 0) {
+      hdf5::write_array(g, "wall_feet", feet, 3, "m");
+      points.push_back({n, w, here + "wall_feet", {w, 3}, 0, w});
+    }
+    create_virtual(g, "contact_points", {n + w, 3}, points, "m");
+    create_virtual(g, "normal_force", {c}, {{0, c, "/contacts/normal_force", {rows}, first, c}},
+                   "N");
+    create_virtual(g, "conductance", {c}, {{0, c, "/contacts/conductance", {rows}, first, c}},
+                   "W/K");
+    create_virtual(g, "tangential_force", {c, 3},
+                   {{0, c, "/contacts/tangential_force", {rows, 3}, first, c}}, "N");
+  }
+  if (c > 0)
+    create_virtual(g, "heat_flow", {c}, {{0, c, "/contacts/heat_flow", {rows}, first, c}}, "W");
+
+  // Kept for the next frame (no allocation once the vectors have their size).
+  previous_.valid = complete;
+  if (!geometry_same) previous_.geometry_frame = frame;
+  if (!contacts_same) previous_.contacts_frame = frame;
+  previous_.counts = counts;
+  previous_.position.assign(position_m.begin(), position_m.end());
+  previous_.velocity.assign(data.velocity_m_per_s.begin(), data.velocity_m_per_s.end());
+  previous_.pair.assign(pair.begin(), pair.end());
+  previous_.force.assign(data.normal_force_N.begin(), data.normal_force_N.end());
+  previous_.conductance.assign(data.conductance_W_per_K.begin(), data.conductance_W_per_K.end());
+  previous_.tangential.assign(data.tangential_force_N.begin(), data.tangential_force_N.end());
   return counts;
 }
 
@@ -245,7 +293,8 @@ FrameViewCounts ResultViews::counts(hid_t file, std::size_t frame) const {
   return counts;
 }
 
-void ResultViews::cut_back(hid_t file, std::size_t frames) const {
+void ResultViews::cut_back(hid_t file, std::size_t frames) {
+  previous_.valid = false;
   for (std::size_t f = frames;; ++f) {
     const std::string name = frame_group(f);
     if (!hdf5::exists(file, name.c_str())) break;

@@ -14,6 +14,7 @@
 //     contact of the frame, whose end is wall_feet[k] [W_f,3] (the centre's projection on it)
 //   /xdmf/frame_<f>/contact_points [N+W_f,3]: the positions, then wall_feet        (virtual)
 //   /xdmf/frame_<f>/normal_force, conductance, heat_flow [C_f], tangential_force [C_f,3] (virtual)
+// In a frozen bed every view but temperature and heat_flow is a hard link to frame 0's.
 #include <hdf5.h>
 
 #include <cstddef>
@@ -41,18 +42,31 @@ class ResultViews {
   std::size_t walls() const { return walls_.size(); }
   bool has_frame(hid_t file, std::size_t frame) const;
 
-  // The view of frame `frame`: positions [3N], its contacts' pairs [2C] at rows first_contact..
-  // of /contacts. Draws the walls on the first call if they are not drawn yet.
-  FrameViewCounts add_frame(hid_t file, std::size_t frame, std::span<const double> position_m,
-                            std::span<const std::int64_t> pair, std::int64_t first_contact);
+  // The view of frame `frame` (its contacts are rows first_contact.. of /contacts; none when
+  // contacts are not stored). Draws the walls on the first call if they are not drawn yet. Views
+  // equal to the previous frame's (a frozen bed: same positions, velocities, contacts and
+  // forces) are hard links to that frame's, so only temperature and heat_flow are new.
+  FrameViewCounts add_frame(hid_t file, std::size_t frame, const FrameView& data,
+                            bool contacts_stored, std::int64_t first_contact);
   // Counts of an existing frame view.
   FrameViewCounts counts(hid_t file, std::size_t frame) const;
   // Removes the views of frames >= frames (a restart cuts the file back).
-  void cut_back(hid_t file, std::size_t frames) const;
+  void cut_back(hid_t file, std::size_t frames);
 
  private:
+  void draw_walls(hid_t file, std::span<const double> position_m) const;
+
   std::size_t particles_ = 0;
   std::vector<WallPlane> walls_;
+  // The last frame's data, to tell an unchanged view (valid only after a complete frame).
+  struct Previous {
+    bool valid = false;
+    std::size_t geometry_frame = 0;  // the frame whose position and velocity views are linked
+    std::size_t contacts_frame = 0;  // the frame whose contact views are linked
+    FrameViewCounts counts;
+    std::vector<double> position, velocity, force, conductance, tangential;
+    std::vector<std::int64_t> pair;
+  } previous_;
 };
 
 }  // namespace tmdem::coupling

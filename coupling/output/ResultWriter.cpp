@@ -94,10 +94,8 @@ struct ResultWriter::Impl {
         if (new_contacts > 0) contacts.append(rows, batch[k]);
         rows += static_cast<std::int64_t>(new_contacts);
         frames.append(first + k, batch[k], rows);
-        view_counts.push_back(views.add_frame(
-            file.get(), first + k, batch[k].position_m,
-            contacts.stored() ? batch[k].contact_pair : std::span<const std::int64_t>{},
-            rows - static_cast<std::int64_t>(new_contacts)));
+        view_counts.push_back(views.add_frame(file.get(), first + k, batch[k], contacts.stored(),
+                                              rows - static_cast<std::int64_t>(new_contacts)));
       }
       hdf5::check_ok(H5Fflush(file.get(), H5F_SCOPE_LOCAL), "H5Fflush");
     } catch (const Hdf5Failure& e) {
@@ -155,7 +153,10 @@ struct ResultWriter::Impl {
       pair.resize(2 * std::size_t(end - first));
       hdf5::read_rows(pair_set.get(), hsize_t(first), hsize_t(end - first), pair.data(),
                       H5T_NATIVE_INT64);
-      view_counts.push_back(views.add_frame(file.get(), f, position, pair, first));
+      FrameView stored;  // positions and pairs only: rebuilt views are never linked
+      stored.position_m = position;
+      stored.contact_pair = pair;
+      view_counts.push_back(views.add_frame(file.get(), f, stored, true, first));
     }
   }
 

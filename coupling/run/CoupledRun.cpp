@@ -159,7 +159,7 @@ void CoupledRun::write_frame(double t_s) {
   f.normal_force_N = contacts_.normal_force_N;
   f.conductance_W_per_K = contacts_.conductance_W_per_K;
   f.tangential_force_N = contacts_.tangential_force_N;
-  contact_heat_flow_W(contacts_, f.temperature_K, scene_, heat_flow_W_);
+  contact_heat_flow_W(contacts_, f.temperature_K, t_s, scene_, heat_flow_W_);
   f.heat_flow_W = heat_flow_W_;
   writer_->write_frame(f);
 }

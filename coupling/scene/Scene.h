@@ -2,6 +2,7 @@
 // The resolved scene: everything from the TOML file after generation and [[assign]], validated.
 // Field names follow contract section 2; units are SI and stated per field.
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -40,9 +41,11 @@ struct Particle {
 };
 
 struct Wall {
-  Vec3 point_m{};
-  Vec3 normal{};                    // unit, points into the domain
+  Vec3 point_m{};                   // plane: a point of it; cylinder: a point of the axis
+  Vec3 normal{};                    // unit; plane: points into the domain; cylinder: the axis
   int material = 0;
+  bool cylinder = false;            // shape = "cylinder": particles inside, radius_m from the axis
+  double radius_m = 0.0;
   std::optional<double> temperature_K;  // set: isothermal; unset: adiabatic (a table: its value at t = 0)
   // temperature = [[t_s, T_K], ...]: piecewise linear in time, clamped; empty: constant.
   std::vector<std::array<double, 2>> temperature_table;
@@ -51,6 +54,18 @@ struct Wall {
   std::optional<double> heat_flux_W_per_m2;
   double heat_flux_area_m2 = 0.0;
 };
+
+// Signed distance of x from the wall's surface, m (positive inside the domain).
+inline double wall_signed_distance(const Wall& w, const Vec3& x) {
+  double along = 0.0, d2 = 0.0;
+  for (int k = 0; k < 3; ++k) along += (x[k] - w.point_m[k]) * w.normal[k];
+  if (!w.cylinder) return along;
+  for (int k = 0; k < 3; ++k) {
+    const double r = x[k] - w.point_m[k] - along * w.normal[k];
+    d2 += r * r;
+  }
+  return w.radius_m - std::sqrt(d2);
+}
 
 struct Effects {
   MechanicsMode mechanics = MechanicsMode::Settle;

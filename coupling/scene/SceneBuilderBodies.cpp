@@ -124,10 +124,19 @@ void SceneBuilder::read_walls() {
   for (const SceneTable& t : tables) {
     Wall w;
     w.point_m = t.required_vec3("point", scene_.dimension);
-    const Vec3 n = t.required_vec3("normal", scene_.dimension);
+    w.cylinder = t.has("shape") && t.choice("shape") == "cylinder";
+    if (w.cylinder) {
+      if (scene_.dimension != 3) t.fail("shape", "a cylinder wall needs simulation.dimension = 3");
+      if (t.has("normal")) t.fail("normal", "a cylinder has an axis, not a normal");
+      w.radius_m = t.required_number("radius");
+    } else {
+      for (const char* key : {"axis", "radius"})
+        if (t.has(key)) t.fail(key, "only a shape = \"cylinder\" wall takes this key");
+    }
+    const Vec3 n = t.required_vec3(w.cylinder ? "axis" : "normal", scene_.dimension);
     const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     if (!(length > 0.0) || !std::isfinite(length))
-      t.fail("normal", "must be a non-zero vector (got " + format_vec3(n) + ")");
+      t.fail(w.cylinder ? "axis" : "normal", "must be a non-zero vector (got " + format_vec3(n) + ")");
     w.normal = {n[0] / length, n[1] / length, n[2] / length};
     w.material = material_of(t, "material");
     read_wall_heat(t, w);

@@ -155,7 +155,7 @@ std::vector<Section> build_sections() {
       table("particle", Kind::TableArray, "one particle each"),
       table("generate", Kind::TableArray, "many particles each"),
       table("assign", Kind::TableArray, "changes selected particles after generation"),
-      table("wall", Kind::TableArray, "infinite planes")};
+      table("wall", Kind::TableArray, "infinite planes and cylinders")};
   for (const auto& s : modes) top.push_back(table(s.name, Kind::Table, s.description));
   for (const auto& k : {table("mechanics", Kind::Table, "NSCD contact dynamics"),
                         table("thermal", Kind::Table, "thermal integrator and contact conductance"),
@@ -225,9 +225,14 @@ std::vector<Section> build_sections() {
       {"nearest", "nearest = { point, count }",
        {vector3("point", "m", "", "the point distances are measured from"),
         value("count", "", "", "integer in [1, number of particles]", "how many particles", true)}},
-      {"wall", "an infinite plane",
-       {vector3("point", "m", "", "a point of the plane"),
-        vector3("normal", "", "", "normal, pointing into the domain (normalised; non-zero)"),
+      {"wall", "an infinite plane, or an infinite cylinder with the particles inside",
+       {choice("shape", "plane", {"plane", "cylinder"},
+               "\"plane\": point and normal; \"cylinder\" (3D): point on the axis, axis, radius"),
+        vector3("point", "m", "", "a point of the plane (cylinder: a point of the axis)"),
+        vector3("normal", "", "", "plane: normal, pointing into the domain (normalised; non-zero)",
+                false),
+        vector3("axis", "", "", "cylinder: direction of the axis (normalised; non-zero)", false),
+        number("radius", "m", std::nullopt, Range::greater(0.0), "cylinder: radius"),
         material_reference(),
         value("temperature", "K", "", "> 0, or [[t_s, T_K], ...] (times increasing)",
               "isothermal wall exchanging heat by contact conduction; a table: piecewise linear "

@@ -46,9 +46,7 @@ void check_overlaps(const Scene& scene, const std::vector<std::string>& origins,
     const Wall& wall = scene.walls[w];
     for (std::size_t i = 0; i < scene.particles.size(); ++i) {
       const Particle& p = scene.particles[i];
-      double distance = 0.0;
-      for (int d = 0; d < 3; ++d) distance += (p.position_m[d] - wall.point_m[d]) * wall.normal[d];
-      const double gap = distance - p.radius_m;
+      const double gap = wall_signed_distance(wall, p.position_m) - p.radius_m;
       if (gap < -kOverlapTolerance * p.radius_m)
         throw SceneError(source + ": particle " + std::to_string(i) + " and wall[" +
                          std::to_string(w) + "] overlap at start (gap " + format_number(gap) +

@@ -59,9 +59,15 @@ double mode_heat_sum(const thermal::HeatTransferMode& mode, const thermal::Therm
 // particles' extent.
 double cross_section_m2(const Scene& scene, const std::vector<Vec3>& positions,
                         const Eigen::Vector3d& axis, std::size_t hot, std::size_t cold) {
+  // A column: a cylinder along the axis bounds the whole cross-section.
+  for (std::size_t w = 0; w < scene.walls.size(); ++w) {
+    const auto& c = scene.walls[w];
+    if (c.cylinder && std::abs(vec(c.normal).dot(axis)) > 1.0 - 1e-9)
+      return std::numbers::pi * c.radius_m * c.radius_m;
+  }
   Eigen::Vector3d e1 = Eigen::Vector3d::Zero();
   for (std::size_t w = 0; w < scene.walls.size(); ++w) {
-    if (w == hot || w == cold) continue;
+    if (w == hot || w == cold || scene.walls[w].cylinder) continue;
     const auto n = vec(scene.walls[w].normal);
     if (std::abs(n.dot(axis)) < 1e-9) {
       e1 = n.normalized();
@@ -85,7 +91,7 @@ double cross_section_m2(const Scene& scene, const std::vector<Vec3>& positions,
     }
     double wall_lo = -INFINITY, wall_hi = INFINITY;
     for (std::size_t w = 0; w < scene.walls.size(); ++w) {
-      if (w == hot || w == cold) continue;
+      if (w == hot || w == cold || scene.walls[w].cylinder) continue;
       const double c = vec(scene.walls[w].normal).dot(e), p = vec(scene.walls[w].point_m).dot(e);
       if (c > 1.0 - 1e-9) wall_lo = std::max(wall_lo, p);
       if (c < -1.0 + 1e-9) wall_hi = std::min(wall_hi, p);
@@ -122,6 +128,10 @@ std::pair<std::size_t, std::size_t> conductivity_walls(const Scene& scene) {
                        "] has a heat_flux; every wall but the hot and the cold one must be "
                        "adiabatic");
   }
+  for (auto w : iso)
+    if (scene.walls[w].cylinder)
+      throw SceneError("study conductivity: wall[" + std::to_string(w) +
+                       "] is a cylinder; the hot and the cold wall must be planes");
   const auto& a = scene.walls[iso[0]];
   const auto& b = scene.walls[iso[1]];
   if (vec(a.normal).normalized().dot(vec(b.normal).normalized()) > -1.0 + 1e-9)

@@ -9,9 +9,28 @@
 
 using namespace tmdem::e2e;
 
+namespace {
+
+// The contacts and temperatures of a finished run in `dir` (its scene written as s.toml).
+struct HeatFlowRun {
+  std::vector<long long> pair, offset;
+  std::vector<double> Q, H, T, time;
+};
+
+HeatFlowRun run_and_read(const std::string& dir, const std::string& scene) {
+  write_file(dir + "/s.toml", scene);
+  const auto r = run_tmdem("run s.toml --quiet", dir);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  H5::H5File f(dir + "/out.h5", H5F_ACC_RDONLY);
+  return {read_ints(f, "/contacts/pair"), read_ints(f, "/frames/contact_offset"),
+          read_doubles(f, "/contacts/heat_flow"), read_doubles(f, "/contacts/conductance"),
+          read_doubles(f, "/frames/temperature"), read_doubles(f, "/frames/time")};
+}
+
+}  // namespace
+
 TEST(EndToEndHeatFlow, SeriesColumnCarriesTheSameSteadyHeatFlowThroughEveryContact) {
-  const auto dir = scratch_dir("heat_flow");
-  write_file(dir + "/s.toml",
+  const auto run = run_and_read(scratch_dir("heat_flow"),
              thermal_scene()
                  .set("simulation.duration", 3000.0)
                  .add("generate", column(3))
@@ -19,14 +38,9 @@ TEST(EndToEndHeatFlow, SeriesColumnCarriesTheSameSteadyHeatFlowThroughEveryConta
                  .add("wall", plane_wall({0.0, 0.006, 0.0}, {0.0, -1.0, 0.0},
                                          {{"temperature", 300.0}}))
                  .set(tolerances(1.0e-12))
-                 .set(output("out.h5", 1000.0)));
-  const auto r = run_tmdem("run s.toml --quiet", dir);
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  H5::H5File f(dir + "/out.h5", H5F_ACC_RDONLY);
-  const auto pair = read_ints(f, "/contacts/pair");
-  const auto Q = read_doubles(f, "/contacts/heat_flow");
-  const auto H = read_doubles(f, "/contacts/conductance");
-  const auto offset = read_ints(f, "/frames/contact_offset");
+                 .set(output("out.h5", 1000.0))
+                 .str());
+  const auto& [pair, offset, Q, H, T, time] = run;
   const std::size_t frames = offset.size() - 1;
   ASSERT_EQ(offset[frames] - offset[frames - 1], 4);
   const double H0 = 1.0e-3, expected_W = 100.0 / (4.0 / H0);  // 0.025 W
@@ -39,6 +53,54 @@ TEST(EndToEndHeatFlow, SeriesColumnCarriesTheSameSteadyHeatFlowThroughEveryConta
     EXPECT_NEAR(Q[c], sign * expected_W, 1e-6 * expected_W) << i << " " << j;
   }
   // At t = 0 every particle is at 293.15 K: the floor contact carries H (293.15 - 400).
-  for (long long c = offset[0]; c < offset[1]; ++c)
-    if (pair[2 * c + 1] == -1) EXPECT_NEAR(Q[c], H0 * (293.15 - 400.0), 1e-15);
+  for (long long c = offset[0]; c < offset[1]; ++c) {
+    if (pair[2 * c + 1] == -1) {
+      EXPECT_NEAR(Q[c], H0 * (293.15 - 400.0), 1e-15);
+    }
+  }
+}
+
+// A flux floor shares its power by conductance: with equal conductances each of the 9 spheres
+// of a 3 x 1 x 3 layer receives P / 9, recorded as a flow from the sphere into the wall of -P/9.
+TEST(EndToEndHeatFlow, FluxWallContactsCarryTheirShareOfThePower) {
+  const double flux = 2500.0, area = 3.0e-5;  // W/m^2, m^2: P = 75 mW
+  const auto run = run_and_read(scratch_dir("heat_flow_flux"),
+             thermal_scene()
+                 .set("simulation.duration", 20.0)
+                 .add("generate", lattice({3, 1, 3}))
+                 .add("wall", floor_wall({{"heat_flux", flux}, {"heat_flux_area", area}}))
+                 .set(output("out.h5", 10.0))
+                 .str());
+  const auto& [pair, offset, Q, H, T, time] = run;
+  for (std::size_t fr = 0; fr + 1 < offset.size(); ++fr) {
+    int floor_contacts = 0;
+    for (long long c = offset[fr]; c < offset[fr + 1]; ++c) {
+      if (pair[2 * c + 1] != -1) continue;
+      ++floor_contacts;
+      EXPECT_NEAR(Q[c], -flux * area / 9.0, 1e-15) << fr;
+    }
+    EXPECT_EQ(floor_contacts, 9) << fr;
+  }
+}
+
+// A wall whose temperature follows a table: the heat flow uses the table's value at the
+// frame's time (300 K at 0 s rising to 400 K at 100 s, then held).
+TEST(EndToEndHeatFlow, TabledWallUsesItsTemperatureAtTheFrameTime) {
+  const auto run = run_and_read(scratch_dir("heat_flow_table"),
+             thermal_scene()
+                 .set("simulation.duration", 150.0)
+                 .add("generate", column(1))
+                 .add("wall", floor_wall({{"temperature", raw("[[0.0, 300.0], [100.0, 400.0]]")}}))
+                 .set(tolerances(1.0e-10))
+                 .set(output("out.h5", 50.0))
+                 .str());
+  const auto& [pair, offset, Q, H, T, time] = run;
+  ASSERT_EQ(time.size(), 4u);
+  for (std::size_t fr = 0; fr < time.size(); ++fr) {
+    ASSERT_EQ(offset[fr + 1] - offset[fr], 1) << fr;
+    const double wall_K = 300.0 + std::min(time[fr], 100.0);
+    const auto c = std::size_t(offset[fr]);
+    EXPECT_EQ(H[c], 1.0e-3);
+    EXPECT_NEAR(Q[c], H[c] * (T[fr] - wall_K), 1e-15) << time[fr];
+  }
 }

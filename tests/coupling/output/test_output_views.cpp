@@ -164,4 +164,80 @@ TEST(ResultViews, RestartCutsTheViewsBackWithTheFrames) {
   EXPECT_EQ(read_view(file.path, "/xdmf/frame_0/normal_force"), frame(0).force);
 }
 
+// The HDF5 object a path names (hard links to one object give the same address).
+haddr_t object_of(const std::string& path, const std::string& name) {
+  Hdf5Handle file = hdf5::open_file(path, false, false);
+  H5O_info_t info;
+  EXPECT_GE(H5Oget_info_by_name(file.get(), name.c_str(), &info, H5P_DEFAULT), 0) << name;
+  return info.addr;
+}
+
+bool same_object(const std::string& path, const std::string& a, const std::string& b) {
+  return object_of(path, a) == object_of(path, b);
+}
+
+TEST(ResultViews, FrozenFramesLinkTheirGeometryAndContactViewsToTheFirst) {
+  ViewFile file;
+  Frame frozen = frame(1);
+  {
+    ResultWriter writer(file.path, three_particles(), true);
+    for (int f = 0; f < 3; ++f) {
+      Frame now = frozen;  // same geometry and contacts, other temperatures and heat flows
+      for (double& T : now.T) T += f;
+      for (double& Q : now.Q) Q *= f + 1;
+      writer.write_frame(now.view(0.5 * f));
+    }
+    Frame moved = frozen;  // frame 3: a particle moved
+    moved.x[0] += 1e-6;
+    writer.write_frame(moved.view(1.5));
+    writer.finish("ok");
+  }
+  for (const char* name : {"position", "velocity", "contact_lines", "wall_feet", "contact_points",
+                           "normal_force", "conductance", "tangential_force"}) {
+    EXPECT_TRUE(same_object(file.path, "/xdmf/frame_0/" + std::string(name),
+                            "/xdmf/frame_2/" + std::string(name)))
+        << name;
+    EXPECT_FALSE(same_object(file.path, "/xdmf/frame_0/" + std::string(name),
+                             "/xdmf/frame_3/" + std::string(name)))
+        << name;
+  }
+  for (int f = 0; f < 3; ++f) {
+    const std::string view = "/xdmf/frame_" + std::to_string(f) + "/";
+    EXPECT_FALSE(same_object(file.path, "/xdmf/frame_0/temperature", view + "temperature") &&
+                 f > 0);
+    std::vector<double> T = frozen.T, Q = frozen.Q;
+    for (double& t : T) t += f;
+    for (double& q : Q) q *= f + 1;
+    EXPECT_EQ(read_view(file.path, view + "temperature"), T) << f;
+    EXPECT_EQ(read_view(file.path, view + "heat_flow"), Q) << f;
+    EXPECT_EQ(read_view(file.path, view + "position"), frozen.x) << f;
+  }
+  std::vector<double> moved = frozen.x;
+  moved[0] += 1e-6;
+  EXPECT_EQ(read_view(file.path, "/xdmf/frame_3/position"), moved);
+}
+
+TEST(ResultViews, GrowingDatasetsAreCompressed) {
+  ViewFile file;
+  {
+    ResultWriter writer(file.path, three_particles(), true);
+    writer.write_frame(frame(0).view(0.0));
+    writer.finish("ok");
+  }
+  Hdf5Handle h5 = hdf5::open_file(file.path, false, false);
+  for (const char* name : {"/frames/position", "/frames/temperature", "/contacts/pair",
+                           "/contacts/heat_flow"}) {
+    Hdf5Handle d = hdf5::open_dataset(h5.get(), name);
+    Hdf5Handle plist(H5Dget_create_plist(d.get()), H5Pclose);
+    bool deflate = false;
+    for (int k = 0; k < H5Pget_nfilters(plist.get()); ++k) {
+      unsigned flags = 0;
+      std::size_t count = 0;
+      deflate = deflate || H5Pget_filter2(plist.get(), unsigned(k), &flags, &count, nullptr, 0,
+                                          nullptr, nullptr) == H5Z_FILTER_DEFLATE;
+    }
+    EXPECT_TRUE(deflate) << name;
+  }
+}
+
 }  // namespace

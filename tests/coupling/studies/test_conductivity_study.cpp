@@ -94,6 +94,27 @@ TEST(ConductivityStudy, SteadyStateMatchesLongTransient) {
   std::cout << "largest |T_cvode - T_steady| = " << worst << " K\n";
 }
 
+// A column of n spheres on the axis of an (adiabatic) cylinder of radius R_c between a hot floor
+// and a cold lid: Q = H dT / (n + 1), L = n d and A = pi R_c^2 (the cylinder bounds the
+// cross-section), so k_eff = H n d / ((n + 1) pi R_c^2).
+TEST(ConductivityStudy, ColumnInACylinderUsesItsCrossSection) {
+  const int n = 5;
+  const double Rc = 0.0015;
+  const auto text = thermal_scene()
+                        .add("generate", lattice({1, n, 1}, {{"origin", {0.0, 0.001, 0.0}}}))
+                        .add("wall", floor_wall({{"temperature", 320.0}}))
+                        .add("wall", plane_wall({0.0, n * kD, 0.0}, {0.0, -1.0, 0.0}, {{"temperature", 300.0}}))
+                        .add("wall", {{"shape", "cylinder"}, {"point", {0.0, 0.0, 0.0}},
+                                      {"axis", {0.0, 1.0, 0.0}}, {"radius", Rc}, {"material", "steel"}})
+                        .str();
+  auto progress = quiet_progress();
+  const auto r = run_conductivity_study(load_scene_text(text, "column"), progress);
+  const double expected = kH * n * kD / ((n + 1) * std::numbers::pi * Rc * Rc);
+  EXPECT_NEAR(r.area_m2, std::numbers::pi * Rc * Rc, 1e-18);
+  EXPECT_NEAR(r.k_eff_W_per_mK, expected, 1e-12 * expected);
+  EXPECT_LE(r.balance_rel, 1e-13);
+}
+
 TEST(ConductivityStudy, RefusesScenesWithoutTwoFacingIsothermalWalls) {
   const auto one_wall = thermal_scene()
                             .add("generate", lattice({2, 2, 2}))

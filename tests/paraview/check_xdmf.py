@@ -1,11 +1,12 @@
 """Opens a tmdem RESULT.xdmf with ParaView's three XDMF readers and checks what they show.
 
 Run by tests/paraview/test_paraview_readers.cpp through pvbatch:
-  pvbatch check_xdmf.py XDMF PARTICLES FRAMES LAST_TIME PARTICLE_ID TEMPERATURE CONTACTS WALLS
+  pvbatch check_xdmf.py XDMF PARTICLES FRAMES LAST_TIME PARTICLE_ID TEMPERATURE CONTACTS WALLS [AT]
 XDMF must be an absolute path (ParaView's Xdmf3 readers resolve the .h5 next to it wrongly for
-a bare file name). Exit 0 when every reader shows, at the last time step: PARTICLES points with
-the point arrays of the contract, particle PARTICLE_ID at TEMPERATURE (K, to 1e-9 relative),
-CONTACTS contact lines with their cell arrays (when CONTACTS > 0) and WALLS wall squares.
+a bare file name). Exit 0 when every reader shows FRAMES time steps ending at LAST_TIME and, at
+time AT (default LAST_TIME): PARTICLES points with the point arrays of the contract, particle
+PARTICLE_ID at TEMPERATURE (K, to 1e-9 relative), CONTACTS contact lines with their cell arrays
+(CONTACTS = 0: no contact grid, or one of 0 lines) and WALLS wall squares.
 """
 import sys
 
@@ -15,6 +16,7 @@ path = sys.argv[1]
 particles, frames = int(sys.argv[2]), int(sys.argv[3])
 last_time, particle_id, temperature = float(sys.argv[4]), int(sys.argv[5]), float(sys.argv[6])
 contacts, walls = int(sys.argv[7]), int(sys.argv[8])
+check_time = float(sys.argv[9]) if len(sys.argv) > 9 else last_time
 
 
 def leaves(data):
@@ -44,7 +46,9 @@ def check(name, reader):
         problems.append(f"{len(times)} time steps, expected {frames}")
     if not times or abs(times[-1] - last_time) > 1e-9 * max(1.0, abs(last_time)):
         problems.append(f"last time {times[-1] if times else None}, expected {last_time}")
-    reader.UpdatePipeline(last_time)
+    if not any(abs(t - check_time) <= 1e-9 * max(1.0, abs(check_time)) for t in times):
+        problems.append(f"no time step at {check_time}")
+    reader.UpdatePipeline(check_time)
     found = leaves(servermanager.Fetch(reader))
     grains = [d for d in found if "id" in point_arrays(d)]
     lines = [d for d in found if "heat_flow" in cell_arrays(d)]
@@ -59,12 +63,15 @@ def check(name, reader):
         if missing:
             problems.append(f"missing point arrays {sorted(missing)}")
         ids, T = g.GetPointData().GetArray("id"), g.GetPointData().GetArray("temperature")
-        at = [k for k in range(g.GetNumberOfPoints()) if int(ids.GetValue(k)) == particle_id]
-        if len(at) != 1:
-            problems.append(f"particle {particle_id} found {len(at)} times")
-        elif abs(T.GetValue(at[0]) - temperature) > 1e-9 * abs(temperature):
-            problems.append(f"T[{particle_id}] = {T.GetValue(at[0])!r}, expected {temperature!r}")
-    if contacts > 0:
+        where = [k for k in range(g.GetNumberOfPoints()) if int(ids.GetValue(k)) == particle_id]
+        if len(where) != 1:
+            problems.append(f"particle {particle_id} found {len(where)} times")
+        elif abs(T.GetValue(where[0]) - temperature) > 1e-9 * abs(temperature):
+            problems.append(f"T[{particle_id}] = {T.GetValue(where[0])!r}, expected {temperature!r}")
+    if contacts == 0:
+        if any(d.GetNumberOfCells() > 0 for d in lines):
+            problems.append("contact lines where there are none")
+    else:
         if len(lines) != 1:
             problems.append(f"{len(lines)} contact grids")
         elif lines[0].GetNumberOfCells() != contacts:
@@ -73,7 +80,7 @@ def check(name, reader):
             problems.append("contact cell arrays missing")
     if walls > 0 and len(squares) != 1:
         problems.append(f"{len(squares)} wall grids with {4 * walls} points")
-    print(f"{name}: {len(times)} time steps, leaves "
+    print(f"{name}: {len(times)} time steps, at t = {check_time}: leaves "
           f"{[(d.GetNumberOfPoints(), d.GetNumberOfCells()) for d in found]}: "
           + ("ok" if not problems else "; ".join(problems)))
     return not problems

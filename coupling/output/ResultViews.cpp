@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <numeric>
 #include <string>
 
@@ -78,12 +79,23 @@ void tangents(const double* n, std::array<double, 3>& u, std::array<double, 3>& 
   v = {n[1] * u[2] - n[2] * u[1], n[2] * u[0] - n[0] * u[2], n[0] * u[1] - n[1] * u[0]};
 }
 
-// The projection of x on the plane of `wall`.
+// The point of `wall` nearest to x: its projection on a plane; on a cylinder, the point at the
+// cylinder's radius straight out from the axis through x (any one if x lies on the axis).
 std::array<double, 3> foot(const WallPlane& wall, const double* x) {
   const auto& p = wall.point_m;
   const auto& n = wall.normal;
   const double d = (x[0] - p[0]) * n[0] + (x[1] - p[1]) * n[1] + (x[2] - p[2]) * n[2];
-  return {x[0] - d * n[0], x[1] - d * n[1], x[2] - d * n[2]};
+  if (!(wall.radius_m > 0.0)) return {x[0] - d * n[0], x[1] - d * n[1], x[2] - d * n[2]};
+  const std::array<double, 3> axis = {p[0] + d * n[0], p[1] + d * n[1], p[2] + d * n[2]};
+  std::array<double, 3> out = {x[0] - axis[0], x[1] - axis[1], x[2] - axis[2]};
+  double length = std::sqrt(out[0] * out[0] + out[1] * out[1] + out[2] * out[2]);
+  if (!(length > 0.0)) {
+    std::array<double, 3> v;
+    tangents(n.data(), out, v);
+    length = 1.0;
+  }
+  for (int k = 0; k < 3; ++k) out[k] = axis[k] + wall.radius_m * out[k] / length;
+  return out;
 }
 
 // /xdmf/vertices, and the empty datasets of a frame without contacts (ParaView's Xdmf3 readers
@@ -104,14 +116,16 @@ void ResultViews::create(hid_t file, std::size_t particles, const std::vector<Wa
   particles_ = particles;
   walls_ = walls;
   Hdf5Handle group = hdf5::create_group(file, "walls");
-  std::vector<double> point, normal, temperature;
+  std::vector<double> point, normal, radius, temperature;
   for (const WallPlane& w : walls) {
     point.insert(point.end(), w.point_m.begin(), w.point_m.end());
     normal.insert(normal.end(), w.normal.begin(), w.normal.end());
+    radius.push_back(w.radius_m);
     temperature.push_back(w.temperature_K);
   }
   hdf5::write_array(group.get(), "point", point, 3, "m");
   hdf5::write_array(group.get(), "normal", normal, 3, "1");
+  hdf5::write_array(group.get(), "radius", radius, 0, "m");
   hdf5::write_array(group.get(), "temperature", temperature, 0, "K");
   create_static_views(file, particles);
 }
@@ -124,17 +138,27 @@ void ResultViews::open(hid_t file, std::size_t particles) {
     const auto point = hdf5::read_double_array(group.get(), "point", 3);
     const auto normal = hdf5::read_double_array(group.get(), "normal", 3);
     const auto temperature = hdf5::read_double_array(group.get(), "temperature", 0);
+    const auto radius = hdf5::exists(group.get(), "radius")
+                            ? hdf5::read_double_array(group.get(), "radius", 0)
+                            : std::vector<double>(temperature.size(), 0.0);
     for (std::size_t w = 0; w < temperature.size(); ++w) {
       WallPlane plane;
       for (int k = 0; k < 3; ++k) {
         plane.point_m[k] = point[3 * w + k];
         plane.normal[k] = normal[3 * w + k];
       }
+      plane.radius_m = radius[w];
       plane.temperature_K = temperature[w];
       walls_.push_back(plane);
     }
   }
   if (!hdf5::exists(file, "xdmf")) create_static_views(file, particles);
+  wall_quads_ = 0;
+  if (hdf5::exists(file, "/xdmf/walls")) {
+    Hdf5Handle walls = hdf5::open_group(file, "/xdmf/walls");
+    Hdf5Handle quads = hdf5::open_dataset(walls.get(), "quads");
+    wall_quads_ = hdf5::dataset_rows(quads.get());
+  }
 }
 
 bool ResultViews::has_frame(hid_t file, std::size_t frame) const {
@@ -142,8 +166,8 @@ bool ResultViews::has_frame(hid_t file, std::size_t frame) const {
   return hdf5::exists(xdmf.get(), ("frame_" + std::to_string(frame)).c_str());
 }
 
-void ResultViews::draw_walls(hid_t file, std::span<const double> position_m) const {
-  // Squares centred on the particles' projection, large enough to hold the whole bed.
+void ResultViews::draw_walls(hid_t file, std::span<const double> position_m) {
+  // Around the particles of this (the first) frame, large enough to hold the whole bed.
   const std::size_t n = particles_;
   std::array<double, 3> lo, hi;
   lo.fill(std::numeric_limits<double>::infinity());
@@ -164,20 +188,53 @@ void ResultViews::draw_walls(hid_t file, std::span<const double> position_m) con
     for (double r : hdf5::read_double_array(particles.get(), "radius", 0)) r_max = std::max(r_max, r);
   }
   const double side = std::max(half + 2.0 * r_max, 1e-12);
-  std::vector<double> points;
+  std::vector<double> points, temperature;
   std::vector<std::int64_t> quads;
-  for (std::size_t w = 0; w < walls_.size(); ++w) {
-    const auto c = foot(walls_[w], centre.data());
+  auto corner = [&](const std::array<double, 3>& x) {
+    points.insert(points.end(), x.begin(), x.end());
+    quads.push_back(std::int64_t(quads.size()));
+  };
+  for (const WallPlane& wall : walls_) {
     std::array<double, 3> u, v;
-    tangents(walls_[w].normal.data(), u, v);
-    for (const auto& [a, b] : {std::pair{-1.0, -1.0}, {1.0, -1.0}, {1.0, 1.0}, {-1.0, 1.0}}) {
-      for (int k = 0; k < 3; ++k) points.push_back(c[k] + side * (a * u[k] + b * v[k]));
-      quads.push_back(std::int64_t(quads.size()));
+    tangents(wall.normal.data(), u, v);
+    const auto& a = wall.normal;
+    if (!(wall.radius_m > 0.0)) {
+      const auto c = foot(wall, centre.data());
+      for (const auto& [s, t] : {std::pair{-1.0, -1.0}, {1.0, -1.0}, {1.0, 1.0}, {-1.0, 1.0}})
+        corner({c[0] + side * (s * u[0] + t * v[0]), c[1] + side * (s * u[1] + t * v[1]),
+                c[2] + side * (s * u[2] + t * v[2])});
+      temperature.push_back(wall.temperature_K);
+      continue;
+    }
+    // A cylinder: 32 strips between the particles' lowest and highest reach along the axis.
+    double below = std::numeric_limits<double>::infinity(), above = -below;
+    for (std::size_t i = 0; i < n; ++i) {
+      double along = 0.0;
+      for (int k = 0; k < 3; ++k) along += (position_m[3 * i + k] - wall.point_m[k]) * a[k];
+      below = std::min(below, along - 2.0 * r_max);
+      above = std::max(above, along + 2.0 * r_max);
+    }
+    constexpr int kStrips = 32;
+    auto at = [&](int strip, double along) {
+      const double angle = 2.0 * std::numbers::pi * strip / kStrips;
+      const double cu = wall.radius_m * std::cos(angle), cv = wall.radius_m * std::sin(angle);
+      return std::array<double, 3>{wall.point_m[0] + along * a[0] + cu * u[0] + cv * v[0],
+                                   wall.point_m[1] + along * a[1] + cu * u[1] + cv * v[1],
+                                   wall.point_m[2] + along * a[2] + cu * u[2] + cv * v[2]};
+    };
+    for (int strip = 0; strip < kStrips; ++strip) {
+      corner(at(strip, below));
+      corner(at(strip + 1, below));
+      corner(at(strip + 1, above));
+      corner(at(strip, above));
+      temperature.push_back(wall.temperature_K);
     }
   }
   Hdf5Handle group = hdf5::create_group(file, "/xdmf/walls");
   hdf5::write_array(group.get(), "points", points, 3, "m");
   hdf5::write_array(group.get(), "quads", quads, 4, "1");
+  hdf5::write_array(group.get(), "temperature", temperature, 0, "K");
+  wall_quads_ = temperature.size();
 }
 
 FrameViewCounts ResultViews::add_frame(hid_t file, std::size_t frame, const FrameView& data,

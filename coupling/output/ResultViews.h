@@ -5,10 +5,12 @@
 // so RESULT.xdmf names one whole dataset per frame and array. Those per-frame datasets are HDF5
 // virtual datasets onto the frame's rows of /frames/* and /contacts/* (no data is copied); only
 // the contact line set's connectivity and the feet of wall contacts are real data.
-//   /walls/point [W,3] m, normal [W,3] 1, temperature [W] K (NaN: adiabatic)
+//   /walls/point [W,3] m, normal [W,3] 1, radius [W] m (0: plane, else a cylinder about the
+//     axis through point along normal), temperature [W] K (NaN: adiabatic)
 //   /xdmf/vertices [N] int64 0..N-1: Polyvertex connectivity, and the particle id
-//   /xdmf/walls/points [4W,3] m, quads [W,4]: each plane drawn as a square around the particles
-//     of the first frame (half side: the bounding box's half diagonal plus twice r_max)
+//   /xdmf/walls/points [4Q,3] m, quads [Q,4], temperature [Q] K: Q quadrilaterals; a plane is
+//     one square around the particles of the first frame (half side: the bounding box's half
+//     diagonal plus twice r_max), a cylinder 32 strips over the particles' extent along its axis
 //   /xdmf/frame_<f>/position [N,3], velocity [N,3], temperature [N]          (virtual)
 //   /xdmf/frame_<f>/contact_lines [C_f,2] int64: particle ids i, j, or N + k for the k-th wall
 //     contact of the frame, whose end is wall_feet[k] [W_f,3] (the centre's projection on it)
@@ -39,7 +41,7 @@ class ResultViews {
   // An existing file; a file written before /xdmf existed gets /xdmf/vertices (and no walls).
   void open(hid_t file, std::size_t particles);
 
-  std::size_t walls() const { return walls_.size(); }
+  std::size_t wall_quads() const { return wall_quads_; }  // 0 before the first frame
   bool has_frame(hid_t file, std::size_t frame) const;
 
   // The view of frame `frame` (its contacts are rows first_contact.. of /contacts; none when
@@ -54,10 +56,11 @@ class ResultViews {
   void cut_back(hid_t file, std::size_t frames);
 
  private:
-  void draw_walls(hid_t file, std::span<const double> position_m) const;
+  void draw_walls(hid_t file, std::span<const double> position_m);
 
   std::size_t particles_ = 0;
   std::vector<WallPlane> walls_;
+  std::size_t wall_quads_ = 0;
   // The last frame's data, to tell an unchanged view (valid only after a complete frame).
   struct Previous {
     bool valid = false;

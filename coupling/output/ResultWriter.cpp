@@ -117,7 +117,7 @@ struct ResultWriter::Impl {
     }
     for (const auto& f : batch) times.push_back(f.time_s);
     contact_rows = rows;
-    write_xdmf(path, particles, views.walls(), times, view_counts);
+    write_xdmf(path, particles, views.wall_quads(), times, view_counts);
     xdmf_frames = times.size();
     xdmf_time = std::chrono::steady_clock::now();
   }
@@ -192,7 +192,7 @@ struct ResultWriter::Impl {
     }
     lock.release();
     try {
-      write_xdmf(path, particles, views.walls(), times, view_counts);
+      write_xdmf(path, particles, views.wall_quads(), times, view_counts);
     } catch (const OutputError& e) {
       if (error.empty()) error = e.what();
     }

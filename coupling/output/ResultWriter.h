@@ -48,10 +48,12 @@
 
 namespace tmdem::coupling {
 
-// A plane wall as the result file describes it (/walls).
+// A wall as the result file describes it (/walls): a plane, or a cylinder (radius_m > 0)
+// about the axis through point_m along normal.
 struct WallPlane {
   std::array<double, 3> point_m{};
-  std::array<double, 3> normal{};                                    // unit, into the domain
+  std::array<double, 3> normal{};     // unit; plane: into the domain; cylinder: the axis
+  double radius_m = 0.0;              // 0: plane
   double temperature_K = std::numeric_limits<double>::quiet_NaN();   // NaN: adiabatic
 };
 

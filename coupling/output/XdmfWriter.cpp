@@ -138,7 +138,8 @@ std::string xdmf_document(const std::string& h5_file_name, std::size_t particles
       out.append("</Topology>\n        <Geometry GeometryType=\"XYZ\">");
       append_item(out, file, {"/xdmf/walls/", "points", corners});
       out.append("</Geometry>\n");
-      append_attribute(out, file, "temperature", "Scalar", "Cell", {"/walls/", "temperature", w});
+      append_attribute(out, file, "temperature", "Scalar", "Cell",
+                       {"/xdmf/walls/", "temperature", w});
       out += "      </Grid>\n";
     }
     out += "    </Grid>\n";

@@ -11,8 +11,8 @@
 //              heat_flow (W, from i to j or the wall) and tangential_force (N). A frame without
 //              contacts has 0 lines (the legacy XDMF Reader then reports an error and shows
 //              no contact block for that frame).
-//   walls      (scenes with walls) one square per plane; cell attribute temperature (K, NaN:
-//              adiabatic)
+//   walls      (scenes with walls) quadrilaterals: a square per plane, 32 strips per cylinder;
+//              cell attribute temperature (K, NaN: adiabatic)
 // Every DataItem names one whole HDF5 dataset (the per-frame views of ResultViews.h): ParaView's
 // Xdmf3 readers show 0 points for HyperSlab items. The HDF5 file is referenced by its file name
 // only, so the .xdmf must sit next to the .h5 (both may be moved together).
@@ -27,7 +27,8 @@ namespace tmdem::coupling {
 // "out/result.h5" -> "out/result.xdmf" (replaces the extension, or appends ".xdmf").
 std::string xdmf_path_for(const std::string& h5_path);
 
-// The XDMF text: one frame per entry of times_s, whose views hold views[f] contacts.
+// The XDMF text: one frame per entry of times_s, whose views hold views[f] contacts; `walls`
+// is the number of wall quadrilaterals (/xdmf/walls/quads).
 std::string xdmf_document(const std::string& h5_file_name, std::size_t particles,
                           std::size_t walls, std::span<const double> times_s,
                           std::span<const FrameViewCounts> views);

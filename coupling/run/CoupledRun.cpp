@@ -370,6 +370,7 @@ RunOutcome CoupledRun::run() {
           plane.point_m[k] = wall.point_m[k];
           plane.normal[k] = wall.normal[k];
         }
+        if (wall.cylinder) plane.radius_m = wall.radius_m;
         if (wall.temperature_K) plane.temperature_K = *wall.temperature_K;
         header.walls.push_back(plane);
       }

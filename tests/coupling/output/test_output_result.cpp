@@ -197,6 +197,7 @@ TEST(ResultWriter, WritesContractLayoutUnitsAndValues) {
       {"/contacts/heat_flow", {{5}, "W"}},
       {"/walls/point", {{0, 3}, "m"}},
       {"/walls/normal", {{0, 3}, "1"}},
+      {"/walls/radius", {{0}, "m"}},
       {"/walls/temperature", {{0}, "K"}},
       {"/xdmf/vertices", {{3}, "1"}},
       {"/xdmf/no_lines", {{0, 2}, "1"}},

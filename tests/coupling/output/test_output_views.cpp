@@ -142,6 +142,41 @@ TEST(ResultViews, FrameViewsReadTheFrameRowsExactly) {
   }
 }
 
+TEST(ResultViews, CylinderWallContactsEndOnTheMantleAndItIsDrawnAsStrips) {
+  ViewFile file;
+  ResultHeader header = three_particles();
+  WallPlane tube;  // axis along y through (2, 0, 0) mm, radius 4 mm, 320 K
+  tube.point_m = {2e-3, 0.0, 0.0};
+  tube.normal = {0.0, 1.0, 0.0};
+  tube.radius_m = 4e-3;
+  tube.temperature_K = 320.0;
+  header.walls = {tube};
+  Frame f = frame(0);
+  f.pair = {2, -1};  // particle 2 at (5, 2, 0) mm: 3 mm out along +x, foot at (6, 2, 0) mm
+  f.force = {1.0};
+  f.H = {0.01};
+  f.Q = {-0.5};
+  f.tangential = {0.0, 0.0, 0.0};
+  {
+    ResultWriter writer(file.path, header, true);
+    writer.write_frame(f.view(0.0));
+    writer.finish("ok");
+  }
+  const auto feet = read_view(file.path, "/xdmf/frame_0/wall_feet");
+  ASSERT_EQ(feet.size(), 3u);
+  EXPECT_NEAR(feet[0], 6e-3, 1e-18);
+  EXPECT_NEAR(feet[1], 2e-3, 1e-18);
+  EXPECT_NEAR(feet[2], 0.0, 1e-18);
+  EXPECT_EQ(read_view(file.path, "/walls/radius"), (std::vector<double>{4e-3}));
+  const auto corners = read_view(file.path, "/xdmf/walls/points");
+  ASSERT_EQ(corners.size(), 32u * 4u * 3u);
+  for (std::size_t k = 0; k < corners.size() / 3; ++k) {  // every corner on the mantle
+    const double dx = corners[3 * k] - 2e-3, dz = corners[3 * k + 2];
+    EXPECT_NEAR(std::hypot(dx, dz), 4e-3, 1e-15) << k;
+  }
+  EXPECT_EQ(read_view(file.path, "/xdmf/walls/temperature"), std::vector<double>(32, 320.0));
+}
+
 TEST(ResultViews, RestartCutsTheViewsBackWithTheFrames) {
   ViewFile file;
   {

@@ -85,9 +85,9 @@ TEST(XdmfWriter, DocumentNamesWholeDatasetsPerFrame) {
             std::string::npos);
   for (const char* array : {"normal_force", "conductance", "heat_flow", "tangential_force"})
     EXPECT_EQ(count(xml, "<Attribute Name=\"" + std::string(array)), 3u) << array;
-  // Walls in every frame: 3 squares.
+  // Walls in every frame: 3 quadrilaterals.
   EXPECT_EQ(count(xml, "TopologyType=\"Quadrilateral\" NumberOfElements=\"3\""), 3u);
-  EXPECT_EQ(count(xml, "result.h5:/walls/temperature</DataItem>"), 3u);
+  EXPECT_EQ(count(xml, "result.h5:/xdmf/walls/temperature</DataItem>"), 3u);
   EXPECT_NE(xml.find("<Time Value=\"0.1\"/>"), std::string::npos);
   for (const char* element : {"Xdmf", "Domain", "Grid", "Topology", "Geometry", "Attribute",
                               "DataItem", "Time"}) {

@@ -91,9 +91,10 @@ PYBIND11_MODULE(tmdem, m) {
       .def_readonly("normal_force", &PythonResult::normal_force)
       .def_readonly("tangential_force", &PythonResult::tangential_force)
       .def_readonly("conductance", &PythonResult::conductance)
+      .def_readonly("heat_flow", &PythonResult::heat_flow)
       .def_property_readonly("frames", &PythonResult::frames)
       .def("contacts", &PythonResult::contacts, py::arg("frame"),
-           "frame's contacts: dict of pair, normal_force, tangential_force, conductance")
+           "frame's contacts: dict of pair, normal_force, tangential_force, conductance, heat_flow")
       .def("__repr__", [](const PythonResult& r) {
         return "<tmdem.Result " + r.path + ", " + std::to_string(r.frames()) + " frames, " +
                std::to_string(r.radius.shape(0)) + " particles, status " + r.status + ">";

@@ -90,6 +90,13 @@ PythonResult::PythonResult(const std::string& file_path) : path(file_path) {
       tangential_force = py::array_t<double>(std::vector<py::ssize_t>{pair.shape(0), 3});
       std::fill_n(tangential_force.mutable_data(), tangential_force.size(), 0.0);
     }
+    if (hdf5::exists(c, "heat_flow")) {
+      heat_flow = read_dataset<double>(c, "heat_flow", rows);
+    } else {  // files written before the dataset existed: not known
+      heat_flow = py::array_t<double>(std::vector<py::ssize_t>{pair.shape(0)});
+      std::fill_n(heat_flow.mutable_data(), heat_flow.size(),
+                  std::numeric_limits<double>::quiet_NaN());
+    }
   } catch (const coupling::Hdf5Failure& e) {
     throw coupling::OutputError("cannot read result file \"" + path + "\": " + e.what());
   }
@@ -108,6 +115,7 @@ py::dict PythonResult::contacts(long frame) const {
   out["normal_force"] = py::object(normal_force)[rows];
   out["tangential_force"] = py::object(tangential_force)[rows];
   out["conductance"] = py::object(conductance)[rows];
+  out["heat_flow"] = py::object(heat_flow)[rows];
   return out;
 }
 

@@ -13,7 +13,7 @@ struct PythonResult {
   explicit PythonResult(const std::string& path);
 
   // Frame f's contacts as a dict of array views: pair, normal_force, tangential_force,
-  // conductance. IndexError outside 0 .. frames - 1 (negative counts from the end).
+  // conductance, heat_flow. IndexError outside 0 .. frames - 1 (negative counts from the end).
   pybind11::dict contacts(long frame) const;
   long frames() const { return static_cast<long>(time.shape(0)); }
 
@@ -27,6 +27,7 @@ struct PythonResult {
   pybind11::array_t<std::int64_t> contact_offset;                 // [F + 1]
   pybind11::array_t<std::int64_t> pair;                           // [C, 2]
   pybind11::array_t<double> normal_force, conductance;            // [C]  N, W/K
+  pybind11::array_t<double> heat_flow;                            // [C]  W, from i to j
   pybind11::array_t<double> tangential_force;                     // [C, 3]  N
 };
 

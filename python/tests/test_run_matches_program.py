@@ -9,7 +9,7 @@ import tmdem
 
 ARRAYS = ["times", "temperature", "position", "velocity", "thermal_energy", "boundary_heat",
           "radius", "mass", "heat_capacity", "material", "contact_offset", "pair",
-          "normal_force", "tangential_force", "conductance"]
+          "normal_force", "tangential_force", "conductance", "heat_flow"]
 
 
 def _without_wall_times(summary):
@@ -60,6 +60,21 @@ def test_contacts_per_frame(tmp_path, lattice_scene):
         assert np.all(contacts["pair"][:, 0] < contacts["pair"][:, 1])
     last = result.contacts(-1)
     assert np.array_equal(last["pair"], result.pair[result.contact_offset[-2]:])
+
+
+def test_heat_flow_is_conductance_times_temperature_difference(tmp_path, lattice_scene):
+    # The lattice's hot corner loses heat to its neighbours: every contact carries
+    # H (T_i - T_j) at its frame's temperatures, recomputed here from the stored arrays.
+    scene = tmdem.Scene.load(str(lattice_scene), set=["simulation.duration=5"])
+    _, result = tmdem.run(scene, output=str(tmp_path / "r.h5"))
+    for frame in range(result.frames):
+        contacts = result.contacts(frame)
+        i, j = contacts["pair"][:, 0], contacts["pair"][:, 1]
+        assert np.all(j >= 0)  # particle pairs only in this scene
+        T = result.temperature[frame]
+        expected = contacts["conductance"] * (T[i] - T[j])
+        assert np.array_equal(contacts["heat_flow"], expected), frame
+    assert np.max(result.contacts(0)["heat_flow"]) > 0.0  # the corner really sends heat
 
 
 def test_existing_file_refused_without_overwrite(tmp_path, lattice_scene):

@@ -102,7 +102,7 @@ struct ModeDescription {
   // Key of the parameter that holds the mode's reach across gaps, as a fraction of the smaller
   // radius ("" = contacts only). The network then also holds every pair (and isothermal-wall
   // pair) whose gap is at most that fraction, with its gap (thermal/ThermalNetwork.h). Near
-  // pairs come from a geometric search of the frozen packing; dynamic runs refuse such a mode.
+  // pairs come from a cell-grid search of the packing (frozen: once; dynamic: every step).
   std::string_view near_pair_reach{};
   // Key of a boolean parameter that must be true for the mode to be built ("" = none), for a
   // mode that shares its effects switch and section with another (pair radiation).

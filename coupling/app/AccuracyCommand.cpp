@@ -6,6 +6,7 @@
 #include "coupling/common/ExitCode.h"
 #include "coupling/output/ProgressReporter.h"
 #include "coupling/run/ThermalProblem.h"
+#include "coupling/scene/HeatModes.h"
 #include "coupling/studies/AccuracyReport.h"
 #include "coupling/studies/ContactRecording.h"
 #include "coupling/studies/ThermalReplay.h"
@@ -23,6 +24,13 @@ int run_accuracy_command(const Scene& scene, const AccuracyCommandOptions& optio
     ProgressReporter progress(log, options.quiet, options.terminal);
     const auto base = integrator_settings(scene);
     const auto modes = ThermalNetworkBuilder(scene).mode_settings();
+    if (scene.effects.mechanics == MechanicsMode::Dynamic && near_pair_reach(scene) > 0.0) {
+      log << "error: tmdem study accuracy replays a dynamic scene's recorded contacts without "
+             "positions, so it cannot follow the near pairs of effects.gas_conduction or "
+             "[radiation] between_particles; switch them off or use \"settle\"\n";
+      csv.discard();
+      return kExitInvalid;
+    }
     if (scene.effects.mechanics == MechanicsMode::Dynamic) {
       // Record the mechanics once; every run replays the same contact graph.
       const auto recording = record_contacts(scene, progress);

@@ -1,5 +1,7 @@
 #include "coupling/bridge/DynamicNetwork.h"
 
+#include <stdexcept>
+
 namespace tmdem::coupling {
 
 DynamicNetwork::DynamicNetwork(const Scene& scene, thermal::ThermalSystem& system)
@@ -11,9 +13,20 @@ void DynamicNetwork::reset() {
   system_.replace_edges(edges_);
 }
 
-void DynamicNetwork::load(const ContactList& active) {
-  pattern_.update(active, pattern_contacts_, pattern_active_);
-  builder_.build_edges(pattern_contacts_, edges_, &pattern_active_);
+void DynamicNetwork::load(const ContactList& active, const mechanics::ParticleSet* geometry) {
+  if (builder_.near_reach() > 0.0) {
+    if (geometry == nullptr)
+      throw std::invalid_argument(
+          "a mode working across gaps (gas conduction, pair radiation) needs the packing's "
+          "positions every step; replays of recorded contacts (tmdem study accuracy / coupling "
+          "on a dynamic scene) do not have them");
+    builder_.add_near_pairs(active, *geometry, with_near_);
+    pattern_.update(with_near_, pattern_contacts_, pattern_active_);
+    builder_.build_pattern_edges(pattern_contacts_, active, edges_, *geometry);
+  } else {
+    pattern_.update(active, pattern_contacts_, pattern_active_);
+    builder_.build_edges(pattern_contacts_, edges_, &pattern_active_);
+  }
   system_.replace_edges(edges_);
 }
 
@@ -27,18 +40,19 @@ std::vector<std::int64_t> DynamicNetwork::pattern_pairs() const {
   return out;
 }
 
-void DynamicNetwork::restore(const std::vector<std::int64_t>& pattern_pairs, const ContactList& active) {
+void DynamicNetwork::restore(const std::vector<std::int64_t>& pattern_pairs, const ContactList& active,
+                             const mechanics::ParticleSet* geometry) {
   std::vector<std::pair<std::int64_t, std::int64_t>> pairs;
   for (std::size_t p = 0; p + 1 < pattern_pairs.size(); p += 2)
     pairs.emplace_back(pattern_pairs[p], pattern_pairs[p + 1]);
   pattern_.restore(std::move(pairs));
-  load(active);
+  load(active, geometry);
 }
 
 void DynamicNetwork::update(ContactList& active, thermal::ThermalIntegrator& integrator,
-                            CouplingStrategy coupling) {
+                            CouplingStrategy coupling, const mechanics::ParticleSet* geometry) {
   const auto shape_before = system_.topology_version();
-  load(active);
+  load(active, geometry);
   // The output lists the active contacts only; their conductances come from the pattern list
   // (both sorted by pair).
   std::size_t p = 0;

@@ -24,15 +24,19 @@ class DynamicNetwork {
   // No contact, empty pattern (t = 0 of a dynamic run).
   void reset();
   // active: this step's contacts in canonical order; their conductances are filled in.
+  // geometry: the packing of this step, required when a mode works across gaps (gas, pair
+  // radiation): its near pairs then join the sticky pattern like contacts, and every pattern
+  // edge carries this step's gap.
   void update(ContactList& active, thermal::ThermalIntegrator& integrator,
-              CouplingStrategy coupling);
+              CouplingStrategy coupling, const mechanics::ParticleSet* geometry = nullptr);
   // As update, without an integrator (e.g. to inspect the network of a step).
-  void load(const ContactList& active);
+  void load(const ContactList& active, const mechanics::ParticleSet* geometry = nullptr);
 
   // The sticky pattern as pairs i, j (checkpoints), and a restart's way back: the pattern as it
   // was, then the network of the checkpoint's active contacts on it (no pattern change).
   std::vector<std::int64_t> pattern_pairs() const;
-  void restore(const std::vector<std::int64_t>& pattern_pairs, const ContactList& active);
+  void restore(const std::vector<std::int64_t>& pattern_pairs, const ContactList& active,
+               const mechanics::ParticleSet* geometry = nullptr);
 
  private:
   thermal::ThermalSystem& system_;
@@ -40,6 +44,7 @@ class DynamicNetwork {
   ContactPattern pattern_;
   ContactList pattern_contacts_;
   std::vector<std::uint8_t> pattern_active_;
+  ContactList with_near_;  // this step's contacts and near pairs, canonical order
   thermal::ThermalNetwork edges_;
 };
 

@@ -1,5 +1,6 @@
 #include "coupling/bridge/ThermalNetworkBuilder.h"
 
+#include <algorithm>
 #include <limits>
 #include <numbers>
 #include <set>
@@ -112,50 +113,96 @@ void ThermalNetworkBuilder::build_edges(ContactList& contacts, thermal::ThermalN
   }
 }
 
+void ThermalNetworkBuilder::add_gap_edge(thermal::ThermalNetwork& edges, std::int64_t i,
+                                         std::int64_t j, double H, double force_N, bool contact,
+                                         const mechanics::ParticleSet& geometry,
+                                         const std::vector<mechanics::Wall>& walls) const {
+  const auto& x = geometry.position;
+  const auto& r = geometry.radius;
+  const double a = contact ? thermal::hertz_contact_radius_m(body(i), body(j), force_N) : 0.0;
+  const auto si = std::size_t(i);
+  if (!mechanics::is_wall(j)) {
+    const double gap = (x[si] - x[std::size_t(j)]).norm() - r[si] - r[std::size_t(j)];
+    edges.add_edge(std::int32_t(i), std::int32_t(j), H, gap, a, contact);
+    return;
+  }
+  const auto w = mechanics::wall_index(j);
+  if (wall_flux_[w] >= 0) {
+    if (contacts_carry_heat_) edges.add_flux_edge(std::int32_t(i), wall_flux_[w], H);
+  } else if (scene_.walls[w].temperature_K) {
+    const double gap = walls[w].signed_distance(x[si]) - r[si];
+    edges.add_wall_edge(std::int32_t(i), *scene_.walls[w].temperature_K, H, wall_table_[w], gap, a,
+                        contact);
+  }
+}
+
+bool ThermalNetworkBuilder::contact_carries_heat(std::int64_t j) const {
+  if (!contacts_carry_heat_) return false;
+  if (!mechanics::is_wall(j)) return true;
+  const auto w = mechanics::wall_index(j);
+  return wall_flux_[w] >= 0 || scene_.walls[w].temperature_K.has_value();
+}
+
 void ThermalNetworkBuilder::build_edges_with_gaps(ContactList& contacts,
                                                   thermal::ThermalNetwork& edges,
                                                   const mechanics::ParticleSet& geometry) const {
   edges.clear_edges();
   const auto walls = make_mechanics_walls(scene_);
-  const auto& x = geometry.position;
-  const auto& r = geometry.radius;
-  const auto isothermal = [&](std::int64_t j) {
-    return scene_.walls[mechanics::wall_index(j)].temperature_K.has_value();
-  };
   std::set<std::pair<std::int64_t, std::int64_t>> contact_pairs;
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     const auto i = contacts.pair[2 * c], j = contacts.pair[2 * c + 1];
     contact_pairs.emplace(i, j);
-    const bool wall = mechanics::is_wall(j);
-    const auto w = wall ? mechanics::wall_index(j) : 0;
-    const bool flux_wall = wall && wall_flux_[w] >= 0;
     const double F = contacts.normal_force_N[c];
-    const bool carries_heat = contacts_carry_heat_ && (!wall || isothermal(j) || flux_wall);
-    const double H = carries_heat ? conductance_W_per_K(i, j, F) : 0.0;
+    const double H = contact_carries_heat(j) ? conductance_W_per_K(i, j, F) : 0.0;
     contacts.conductance_W_per_K[c] = H;
-    const double a = thermal::hertz_contact_radius_m(body(i), body(j), F);
-    const auto si = std::size_t(i);
-    if (!wall) {
-      const double gap = (x[si] - x[std::size_t(j)]).norm() - r[si] - r[std::size_t(j)];
-      edges.add_edge(std::int32_t(i), std::int32_t(j), H, gap, a, true);
-    } else if (flux_wall) {
-      if (carries_heat) edges.add_flux_edge(std::int32_t(i), wall_flux_[w], H);
-    } else if (isothermal(j)) {
-      const double gap = walls[w].signed_distance(x[si]) - r[si];
-      edges.add_wall_edge(std::int32_t(i), *scene_.walls[w].temperature_K, H, wall_table_[w], gap,
-                          a, true);
-    }
+    add_gap_edge(edges, i, j, H, F, true, geometry, walls);
   }
   // Gas and radiation reach isothermal walls only (a flux wall's power goes to its contacts).
-  for (const auto& p : mechanics::find_touching_pairs(geometry, walls, near_reach_)) {
-    if (contact_pairs.count({p.i, p.j})) continue;
-    if (!mechanics::is_wall(p.j)) {
-      edges.add_edge(std::int32_t(p.i), std::int32_t(p.j), 0.0, p.gap_m, 0.0, false);
-    } else if (isothermal(p.j)) {
-      const auto w = mechanics::wall_index(p.j);
-      edges.add_wall_edge(std::int32_t(p.i), *scene_.walls[w].temperature_K, 0.0, wall_table_[w],
-                          p.gap_m, 0.0, false);
-    }
+  for (const auto& p : mechanics::find_touching_pairs(geometry, walls, near_reach_))
+    if (!contact_pairs.count({p.i, p.j}) &&
+        (!mechanics::is_wall(p.j) || scene_.walls[mechanics::wall_index(p.j)].temperature_K))
+      add_gap_edge(edges, p.i, p.j, 0.0, 0.0, false, geometry, walls);
+}
+
+void ThermalNetworkBuilder::add_near_pairs(const ContactList& contacts,
+                                           const mechanics::ParticleSet& geometry,
+                                           ContactList& out) const {
+  out.clear();
+  const auto near = mechanics::find_touching_pairs(geometry, make_mechanics_walls(scene_), near_reach_);
+  std::vector<std::pair<std::int64_t, std::int64_t>> extra;
+  for (const auto& p : near)
+    if (!mechanics::is_wall(p.j) || scene_.walls[mechanics::wall_index(p.j)].temperature_K)
+      extra.emplace_back(p.i, p.j);
+  std::sort(extra.begin(), extra.end());
+  // Merge walk: contacts keep their force and tangential force, near pairs get 0.
+  std::size_t e = 0;
+  for (std::size_t c = 0; c <= contacts.size(); ++c) {
+    const bool more = c < contacts.size();
+    const std::pair key = more ? std::pair(contacts.pair[2 * c], contacts.pair[2 * c + 1])
+                               : std::pair(std::numeric_limits<std::int64_t>::max(), std::int64_t(0));
+    for (; e < extra.size() && extra[e] < key; ++e) out.add(extra[e].first, extra[e].second, 0.0);
+    if (e < extra.size() && extra[e] == key) ++e;
+    if (!more) break;
+    const auto* t = &contacts.tangential_force_N[3 * c];
+    out.add(key.first, key.second, contacts.normal_force_N[c], {t[0], t[1], t[2]});
+  }
+}
+
+void ThermalNetworkBuilder::build_pattern_edges(ContactList& pattern, const ContactList& active,
+                                                thermal::ThermalNetwork& edges,
+                                                const mechanics::ParticleSet& geometry) const {
+  edges.clear_edges();
+  const auto walls = make_mechanics_walls(scene_);
+  std::size_t c = 0;  // merge walk over the active contacts
+  for (std::size_t p = 0; p < pattern.size(); ++p) {
+    const auto i = pattern.pair[2 * p], j = pattern.pair[2 * p + 1];
+    const std::pair key(i, j);
+    while (c < active.size() && std::pair(active.pair[2 * c], active.pair[2 * c + 1]) < key) ++c;
+    const bool contact = c < active.size() && std::pair(active.pair[2 * c], active.pair[2 * c + 1]) == key;
+    const double F = contact ? active.normal_force_N[c] : 0.0;
+    const double H = contact && contact_carries_heat(j) ? conductance_W_per_K(i, j, F) : 0.0;
+    pattern.conductance_W_per_K[p] = H;
+    add_gap_edge(edges, i, j, H, F, contact, geometry, walls);
   }
 }
 

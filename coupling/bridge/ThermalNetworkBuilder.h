@@ -8,6 +8,7 @@
 #include "coupling/bridge/ContactList.h"
 #include "coupling/scene/Scene.h"
 #include "mechanics/ParticleSet.h"
+#include "mechanics/Wall.h"
 #include "thermal/ConductanceLaw.h"
 #include "thermal/ModeSettings.h"
 #include "thermal/ThermalNetwork.h"
@@ -34,6 +35,19 @@ class ThermalNetworkBuilder {
   void build_edges(ContactList& contacts, thermal::ThermalNetwork& edges,
                    const std::vector<std::uint8_t>* is_active = nullptr,
                    const mechanics::ParticleSet* geometry = nullptr) const;
+  // Largest reach of the switched-on gap modes, fraction of the smaller radius (0: none).
+  double near_reach() const { return near_reach_; }
+  // Moving packings: `out` = the step's contacts (canonical order) plus every near pair of
+  // `geometry` within the reach (cell grid, O(N); force 0; isothermal walls only), canonical.
+  void add_near_pairs(const ContactList& contacts, const mechanics::ParticleSet& geometry,
+                      ContactList& out) const;
+  // Edges for every entry of a sticky pattern (canonical order, near pairs included), each with
+  // this step's gap; contact conductance only for the entries that are contacts now (`active`,
+  // canonical). Fills pattern.conductance_W_per_K.
+  void build_pattern_edges(ContactList& pattern, const ContactList& active,
+                           thermal::ThermalNetwork& edges,
+                           const mechanics::ParticleSet& geometry) const;
+
   // Conductance of one contact by the scene's law, W/K.
   double conductance_W_per_K(std::int64_t i, std::int64_t j, double normal_force_N) const;
 
@@ -56,6 +70,11 @@ class ThermalNetworkBuilder {
 
   void build_edges_with_gaps(ContactList& contacts, thermal::ThermalNetwork& edges,
                              const mechanics::ParticleSet& geometry) const;
+  // One edge with its gap: particle pair, flux-wall contact or isothermal wall (adiabatic: none).
+  void add_gap_edge(thermal::ThermalNetwork& edges, std::int64_t i, std::int64_t j, double H,
+                    double force_N, bool contact, const mechanics::ParticleSet& geometry,
+                    const std::vector<mechanics::Wall>& walls) const;
+  bool contact_carries_heat(std::int64_t j) const;  // j: particle or wall code
 };
 
 }  // namespace tmdem::coupling

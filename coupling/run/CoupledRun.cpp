@@ -103,12 +103,13 @@ double CoupledRun::max_temperature_K() const {
 }
 
 void CoupledRun::prepare_thermal() {
-  system_ = build_thermal_system(scene_, contacts_, frozen_ ? &particles_ : nullptr);
+  system_ = build_thermal_system(scene_, contacts_, frozen_ ? &particles_ : &nscd_->particles());
   if (!frozen_) {
     dynamic_network_ = std::make_unique<DynamicNetwork>(scene_, *system_);
     // The network the checkpoint's step left, on the pattern it had: the same edges, in the
     // same order, as the uninterrupted run has at this time.
-    if (restart_) dynamic_network_->restore(restart_->thermal_pattern_pair, contacts_);
+    if (restart_)
+      dynamic_network_->restore(restart_->thermal_pattern_pair, contacts_, &nscd_->particles());
   }
   auto s = integrator_settings(scene_);
   s.max_temperature_K = max_temperature_K();
@@ -210,7 +211,7 @@ void CoupledRun::run_dynamic() {
                                                  scene_.mechanics.tolerance));
     gather_contacts(nscd_->contacts(), contacts_);
     const auto thermal_start = std::chrono::steady_clock::now();
-    dynamic_network_->update(contacts_, *integrator_, coupling_);
+    dynamic_network_->update(contacts_, *integrator_, coupling_, &nscd_->particles());
     integrator_->advance_to(t_next);
     thermal_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - thermal_start).count();
     t = t_next;

@@ -99,29 +99,9 @@ void SceneBuilder::read_heat_modes() {
       }
       scene_.heat_modes.set(mode->name, p.key, values.back());
     }
-    const thermal::ModeParameters parameters(*mode, std::move(values));
     if (on && mode->check)
-      if (const auto problem = mode->check(parameters))
+      if (const auto problem = mode->check(thermal::ModeParameters(*mode, std::move(values))))
         t.fail(problem->key, problem->problem);
-    // Near pairs come from a geometric search of a frozen packing; the moving packing's
-    // neighbour lists are not handed over yet, so refuse rather than leave the gaps out.
-    const bool enabled = mode->enabled_by.empty() || parameters[mode->enabled_by] != 0.0;
-    if (on && enabled && !mode->near_pair_reach.empty() &&
-        scene_.effects.mechanics == MechanicsMode::Dynamic) {
-      // Built by appending: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string.
-      std::string problem = "not supported yet with effects.mechanics = \"dynamic\"";
-      if (!mode->enabled_by.empty()) {
-        problem += " with ";
-        problem += mode->section;
-        problem += '.';
-        problem += mode->enabled_by;
-        problem += " = true";
-      }
-      problem += " (";
-      problem += mode->summary;
-      problem += ": its near pairs are found for a frozen packing only); use \"settle\" or \"off\"";
-      section("effects", true).fail(mode->effect, problem);
-    }
   }
 }
 

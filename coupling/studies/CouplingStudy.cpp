@@ -11,6 +11,7 @@
 #include "coupling/studies/ContactRecording.h"
 #include "coupling/common/ExitCode.h"
 #include "coupling/run/ThermalProblem.h"
+#include "coupling/scene/HeatModes.h"
 #include "coupling/studies/ThermalReplay.h"
 #include "thermal/IntegratorRegistry.h"
 
@@ -73,6 +74,12 @@ int run_coupling_study(const Scene& scene, const std::string& csv_path, std::ost
                        std::ostream& log) {
   if (scene.effects.mechanics != MechanicsMode::Dynamic) {
     log << "error: tmdem study coupling needs a scene with effects.mechanics = \"dynamic\"\n";
+    return kExitInvalid;
+  }
+  if (near_pair_reach(scene) > 0.0) {  // replays know contacts, not positions
+    log << "error: tmdem study coupling replays recorded contacts without positions, so it cannot "
+           "follow the near pairs of effects.gas_conduction or [radiation] between_particles; "
+           "switch them off for the study\n";
     return kExitInvalid;
   }
   const double h = scene.mechanics.time_step_s;

@@ -28,6 +28,7 @@ struct SteadyStateOptions {
 struct SteadyState {
   std::vector<double> T_K;
   int newton_iterations = 0;
+  int factorizations = 0;          // KLU factorisations (a linear network: 1)
   double max_correction_K = 0.0;   // of the last Newton step
   double max_residual_W = 0.0;     // largest |q_i| over the free, anchored particles at T_K
   std::size_t floating_particles = 0;  // kept at their starting temperature (see above)

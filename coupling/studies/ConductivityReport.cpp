@@ -20,7 +20,8 @@ void print_conductivity_report(std::ostream& out, const ConductivityResult& r) {
   out << std::setprecision(10) << "heat in through the hot wall " << r.heat_hot_W
       << " W, out through the cold wall " << r.heat_cold_W << " W (relative difference "
       << std::setprecision(3) << r.balance_rel << ")\n"
-      << "steady state: " << r.newton_iterations << " Newton iterations (KLU), largest residual "
+      << "steady state: " << r.newton_iterations << " Newton iterations, " << r.factorizations
+      << " KLU factorisation(s), largest residual "
       << r.max_residual_W << " W\n";
   for (const auto& m : r.modes)
     out << "  " << std::left << std::setw(20) << m.mode << std::right << " share "

@@ -164,6 +164,7 @@ ConductivityResult run_conductivity_study(const Scene& input, ProgressReporter& 
   const auto steady = thermal::solve_steady_state(system, problem.T0_K);
   r.T_K = steady.T_K;
   r.newton_iterations = steady.newton_iterations;
+  r.factorizations = steady.factorizations;
   r.max_residual_W = steady.max_residual_W;
   r.floating_particles = steady.floating_particles;
 

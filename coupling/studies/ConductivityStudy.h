@@ -56,6 +56,7 @@ struct ConductivityResult {
   std::size_t hot_wall_contacts = 0, cold_wall_contacts = 0;  // 0: no heat path through that wall
   std::size_t floating_particles = 0;  // exchange heat with nothing: kept at their start value
   int newton_iterations = 0;
+  int factorizations = 0;
   double max_residual_W = 0.0;
   bool at_rest = true;         // settled packings: came to rest within settle_time
   std::vector<ModeShare> modes;   // every switched-on mode, registry order

@@ -39,6 +39,7 @@ TEST(SteadyState, SeriesChainBetweenHeldEnds) {
   EXPECT_EQ(s.T_K.back(), 250.0);
   EXPECT_EQ(s.floating_particles, 0u);
   EXPECT_LE(s.newton_iterations, 3);
+  EXPECT_EQ(s.factorizations, 1);  // linear: the second Newton step reuses the factors
 }
 
 // A pair touching only each other exchanges nothing with the rest: its steady temperature is

@@ -14,6 +14,7 @@
 #include "coupling/studies/ConductivityStudy.h"
 #include "support/SceneBuilder.h"
 #include "thermal/IntegratorRegistry.h"
+#include "thermal/JacobianEvaluation.h"
 
 namespace tmdem::coupling {
 namespace {
@@ -113,6 +114,49 @@ TEST(ConductivityStudy, ColumnInACylinderUsesItsCrossSection) {
   EXPECT_NEAR(r.area_m2, std::numbers::pi * Rc * Rc, 1e-18);
   EXPECT_NEAR(r.k_eff_W_per_mK, expected, 1e-12 * expected);
   EXPECT_LE(r.balance_rel, 1e-13);
+}
+
+// With gas in the gaps the lattice is still series resistances, now of the contact plus gas
+// conductances the modes assign (read back from the system's Jacobian: G_pp per sphere pair,
+// G_w per sphere-wall pair): k_eff = n_y / (d ((n_y - 1) / G_pp + 2 / G_w)). The shares of
+// contact, wall and gas conduction add up to 1 and heat in equals heat out.
+TEST(ConductivityStudy, LatticeInAirIsSeriesOfContactPlusGas) {
+  const int nx = 3, ny = 4, nz = 2;
+  const auto text = SceneBuilder(thermal_scene())
+                        .set("effects.gas_conduction", true)
+                        .set("fluid.model", "surrounding_layer")
+                        .add("generate", lattice({nx, ny, nz}, {{"temperature", 300.0}}))
+                        .add("wall", floor_wall({{"temperature", 310.0}}))
+                        .add("wall", plane_wall({0.0, ny * kD, 0.0}, {0.0, -1.0, 0.0}, {{"temperature", 290.0}}))
+                        .str();
+  const auto scene = load_scene_text(text, "air");
+  auto progress = quiet_progress();
+  const auto r = run_conductivity_study(scene, progress);
+  auto problem = build_frozen_thermal_problem(scene, progress);
+  thermal::JacobianEvaluation J;
+  problem.system->evaluate_jacobian(problem.T0_K, J);
+  const auto& net = problem.system->network();
+  double G_pp = 0.0;
+  int node0_edges = 0;
+  for (std::size_t e = 0; e < net.edge_count(); ++e) {
+    if (net.edge_a[e] != 0 && net.edge_b[e] != 0) continue;
+    G_pp = J.edge_W_per_K[e];  // the same for every touching pair of the lattice
+    ++node0_edges;
+  }
+  ASSERT_EQ(node0_edges, 3);  // the floor corner touches 3 spheres
+  ASSERT_GT(G_pp, kH);        // the gas adds to the contact
+  const double G_w = -J.diagonal_W_per_K[0] - 3.0 * G_pp;
+  const double expected = ny / (kD * ((ny - 1) / G_pp + 2.0 / G_w));
+  EXPECT_NEAR(r.k_eff_W_per_mK, expected, 1e-12 * expected);
+  EXPECT_LE(r.balance_rel, 1e-12);
+  double sum = 0.0;
+  for (const auto& m : r.modes) sum += m.share;
+  EXPECT_NEAR(sum, 1.0, 1e-12);
+  const auto gas = std::find_if(r.modes.begin(), r.modes.end(),
+                                [](const ModeShare& m) { return m.mode == "gas_conduction"; });
+  ASSERT_NE(gas, r.modes.end());
+  EXPECT_GT(gas->share, 0.0);
+  EXPECT_GT(gas->hot_wall_W, 0.0);
 }
 
 TEST(ConductivityStudy, RefusesScenesWithoutTwoFacingIsothermalWalls) {

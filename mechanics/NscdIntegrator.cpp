@@ -54,6 +54,11 @@ NscdIntegrator::NscdIntegrator(ParticleSet particles, std::vector<Material> mate
   require(parameters_.theta > 0.0 && parameters_.theta <= 1.0, "theta must be in (0, 1]");
   require(parameters_.tolerance > 0.0, "tolerance must be positive");
   require(parameters_.max_iterations >= 1, "max_iterations must be at least 1");
+  require(parameters_.penetration_slop_fraction >= 0.0 &&
+              parameters_.penetration_slop_fraction < 1.0,
+          "penetration_slop_fraction must be in [0, 1)");
+  require(parameters_.recovery_speed >= 0.0 && std::isfinite(parameters_.recovery_speed),
+          "recovery_speed must be >= 0");
   require(parameters_.relaxation > 0.0 && parameters_.relaxation < 2.0,
           "relaxation must be in (0, 2)");
   for (std::size_t m = 0; m < materials_.size(); ++m) {
@@ -96,6 +101,9 @@ NscdIntegrator::NscdIntegrator(ParticleSet particles, std::vector<Material> mate
     }
   }
   keep_in_plane();
+  double r_min = 0.0;
+  for (std::size_t i = 0; i < n; ++i) r_min = i == 0 ? particles_.radius[i] : std::min(r_min, particles_.radius[i]);
+  slop_m_ = parameters_.penetration_slop_fraction * r_min;
   SolverSettings settings;
   settings.tolerance = parameters_.tolerance;
   settings.max_iterations = parameters_.max_iterations;
@@ -197,7 +205,15 @@ void NscdIntegrator::setup_contacts(double h) {
     // Position term P / h, with the normal velocity at the start of the step.
     Eigen::Vector3d u_old = old_velocity_[i] - (lever_i * old_angular_velocity_[i]).cross(n);
     if (!is_wall(j)) u_old -= old_velocity_[j] + (lever_j * old_angular_velocity_[j]).cross(n);
-    p.bias[k] = (gap + h * (1.0 - theta) * u_old.dot(n)) / h;
+    // A predicted penetration within the slop is held, not pushed out; beyond it, only the
+    // excess is corrected, at most at recovery_speed (NscdParameters.h).
+    const double predicted = gap + h * (1.0 - theta) * u_old.dot(n);
+    double bias = predicted / h;
+    if (predicted < 0.0) {
+      bias = std::min(predicted + slop_m_, 0.0) / h;
+      if (parameters_.recovery_speed > 0.0) bias = std::max(bias, -parameters_.recovery_speed);
+    }
+    p.bias[k] = bias;
 
     // Warm start: last step's force of this pair, in the new frame, as an impulse.
     const Eigen::Vector3d impulse = force_[k] * h;

@@ -109,6 +109,7 @@ class NscdIntegrator {
   std::vector<double> inverse_mass_, inverse_inertia_;  // 0 for fixed particles
   std::vector<Eigen::Vector3d> old_velocity_, old_angular_velocity_;
   std::vector<double> lookahead_;
+  double slop_m_ = 0.0;  // penetration slop (NscdParameters), m
   ContactProblem problem_;
   std::unique_ptr<ContactSolver> solver_;
   std::vector<Eigen::Vector3d> reactions_;   // local impulse per candidate (n, t1, t2), N s

@@ -17,6 +17,18 @@ RandomPlacement place_random(std::size_t count, const Eigen::Vector3d& box_min,
                              const Eigen::Vector3d& box_max, const std::vector<double>& radii,
                              const std::vector<double>& fractions, std::uint64_t seed,
                              int dimension, std::size_t max_attempts_per_particle) {
+  return place_random(count, box_min, box_max, radii, fractions, seed, dimension,
+                      RandomPlacement{}, max_attempts_per_particle);
+}
+
+RandomPlacement place_random(std::size_t count, const Eigen::Vector3d& box_min,
+                             const Eigen::Vector3d& box_max, const std::vector<double>& radii,
+                             const std::vector<double>& fractions, std::uint64_t seed,
+                             int dimension, const RandomPlacement& avoid,
+                             std::size_t max_attempts_per_particle) {
+  if (avoid.positions.size() != avoid.radii.size()) {
+    throw std::invalid_argument("place_random: avoid has positions and radii of different lengths");
+  }
   if (dimension != 2 && dimension != 3) {
     throw std::invalid_argument("place_random: dimension must be 2 or 3");
   }
@@ -70,9 +82,12 @@ RandomPlacement place_random(std::size_t count, const Eigen::Vector3d& box_min,
     }
   }
 
-  // Grid over the box with cells of one largest diameter: a new sphere can only overlap
-  // spheres in its own or the adjacent cells. Each cell holds a linked list of sphere ids.
-  const double cell = 2.0 * r_max;
+  // Grid over the box with cells of one largest reach (one largest diameter without `avoid`):
+  // a new sphere can only overlap spheres in its own or the adjacent cells. Each cell holds a
+  // linked list of sphere ids; ids from `count` on are the spheres of `avoid`.
+  const double avoid_r_max =
+      avoid.radii.empty() ? 0.0 : *std::max_element(avoid.radii.begin(), avoid.radii.end());
+  const double cell = r_max + std::max(r_max, avoid_r_max);
   int dims[3] = {1, 1, 1};
   for (int a = 0; a < axes; ++a) {
     dims[a] = std::max(1, static_cast<int>(std::floor((box_max[a] - box_min[a]) / cell)));
@@ -80,11 +95,39 @@ RandomPlacement place_random(std::size_t count, const Eigen::Vector3d& box_min,
   const double cells = static_cast<double>(dims[0]) * dims[1] * dims[2];
   if (cells > 1e8) throw std::invalid_argument("place_random: box too large for the radius");
   std::vector<std::int64_t> head(static_cast<std::size_t>(cells), -1);
-  std::vector<std::int64_t> next(count, -1);
+  std::vector<std::int64_t> next(count + avoid.positions.size(), -1);
   auto cell_coordinate = [&](const Eigen::Vector3d& x, int a) {
     const double extent = box_max[a] - box_min[a];
     const int c = static_cast<int>((x[a] - box_min[a]) / extent * dims[a]);
     return std::clamp(c, 0, dims[a] - 1);
+  };
+
+  auto cell_of = [&](const Eigen::Vector3d& x) {
+    const int cz = axes == 3 ? cell_coordinate(x, 2) : 0;
+    return (static_cast<std::size_t>(cz) * dims[1] + cell_coordinate(x, 1)) * dims[0] +
+           cell_coordinate(x, 0);
+  };
+  // Spheres of `avoid` that cannot reach into the box are left out; the others go to the cell
+  // of their centre clamped to the box, which is adjacent to every cell they can reach.
+  for (std::size_t k = 0; k < avoid.positions.size(); ++k) {
+    const Eigen::Vector3d& x = avoid.positions[k];
+    bool near = true;
+    for (int a = 0; a < axes; ++a) {
+      near = near && x[a] > box_min[a] - avoid.radii[k] && x[a] < box_max[a] + avoid.radii[k];
+    }
+    if (!near) continue;
+    const auto id = static_cast<std::int64_t>(count + k);
+    const auto cell_id = cell_of(x);
+    next[id] = head[cell_id];
+    head[cell_id] = id;
+  }
+  auto position_of = [&](std::int64_t id) -> const Eigen::Vector3d& {
+    const auto u = static_cast<std::size_t>(id);
+    return u < count ? out.positions[u] : avoid.positions[u - count];
+  };
+  auto radius_of = [&](std::int64_t id) {
+    const auto u = static_cast<std::size_t>(id);
+    return u < count ? out.radii[u] : avoid.radii[u - count];
   };
 
   // Largest radius first; ties in id order.
@@ -117,8 +160,8 @@ RandomPlacement place_random(std::size_t count, const Eigen::Vector3d& box_min,
             }
             const auto cell_id = (static_cast<std::size_t>(cz) * dims[1] + cy) * dims[0] + cx;
             for (std::int64_t other = head[cell_id]; other >= 0; other = next[other]) {
-              const double reach = r + out.radii[other];
-              if ((out.positions[other] - x).squaredNorm() < reach * reach) {
+              const double reach = r + radius_of(other);
+              if ((position_of(other) - x).squaredNorm() < reach * reach) {
                 ok = false;
                 break;
               }
@@ -135,9 +178,7 @@ RandomPlacement place_random(std::size_t count, const Eigen::Vector3d& box_min,
       throw std::runtime_error(message.str());
     }
     out.positions[id] = x;
-    const int cz = axes == 3 ? cell_coordinate(x, 2) : 0;
-    const auto cell_id = (static_cast<std::size_t>(cz) * dims[1] + cell_coordinate(x, 1)) * dims[0] +
-                         cell_coordinate(x, 0);
+    const auto cell_id = cell_of(x);
     next[id] = head[cell_id];
     head[cell_id] = static_cast<std::int64_t>(id);
   }

@@ -29,6 +29,15 @@ RandomPlacement place_random(std::size_t count, const Eigen::Vector3d& box_min,
                              const std::vector<double>& fractions, std::uint64_t seed,
                              int dimension, std::size_t max_attempts_per_particle = 100000);
 
+// The same, also keeping clear of the spheres already in `avoid` (e.g. those of earlier
+// generators), so that several generators can fill one box. Spheres of `avoid` that never
+// touch a candidate change nothing: disjoint boxes give exactly the placement above.
+RandomPlacement place_random(std::size_t count, const Eigen::Vector3d& box_min,
+                             const Eigen::Vector3d& box_max, const std::vector<double>& radii,
+                             const std::vector<double>& fractions, std::uint64_t seed,
+                             int dimension, const RandomPlacement& avoid,
+                             std::size_t max_attempts_per_particle = 100000);
+
 // Uniform double in [0, 1) from the top 53 bits of one 64-bit draw; identical everywhere.
 double uniform_unit(std::uint64_t bits);
 

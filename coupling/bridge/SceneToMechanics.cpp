@@ -43,6 +43,8 @@ mechanics::NscdParameters make_nscd_parameters(const Scene& scene) {
   p.solver = scene.mechanics.solver;
   p.tolerance = scene.mechanics.tolerance;
   p.max_iterations = scene.mechanics.max_iterations;
+  p.penetration_slop_fraction = scene.mechanics.penetration_slop;
+  p.recovery_speed = scene.mechanics.recovery_speed_m_per_s;
   return p;
 }
 

@@ -86,6 +86,8 @@ struct MechanicsSettings {
   int max_iterations = 10000;
   double settle_time_s = 5.0;
   double settle_velocity_m_per_s = 1.0e-4;
+  double penetration_slop = 1.0e-4;  // fraction of the smallest radius
+  double recovery_speed_m_per_s = 0.0;  // 0 = no cap
 };
 
 struct ThermalSettings {

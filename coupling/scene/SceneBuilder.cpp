@@ -122,6 +122,8 @@ void SceneBuilder::read_settings() {
     m.max_iterations = static_cast<int>(iterations);
     m.settle_time_s = t.number("settle_time");
     m.settle_velocity_m_per_s = t.number("settle_velocity");
+    m.penetration_slop = t.number("penetration_slop");
+    m.recovery_speed_m_per_s = t.number("recovery_speed");
   }
   {
     const SceneTable t = section("thermal", true);

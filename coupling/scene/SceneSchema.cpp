@@ -255,7 +255,12 @@ std::vector<Section> build_sections() {
         value("max_iterations", "", "10000", "integer >= 1", "Gauss-Seidel sweeps per step, at most"),
         number("settle_time", "s", 5.0, Range::greater(0.0), "longest \"settle\" phase"),
         number("settle_velocity", "m/s", 1.0e-4, Range::greater(0.0),
-               "every particle slower than this counts as at rest")}});
+               "every particle slower than this counts as at rest"),
+        number("penetration_slop", "", 1.0e-4, Range::closed(0.0, 0.5),
+               "penetration, as a fraction of the smallest radius, that is held rather than "
+               "pushed out (pushing it out within a step turns it into speed)"),
+        number("recovery_speed", "m/s", 0.0, Range::at_least(0.0),
+               "largest speed at which penetration beyond the slop is pushed out; 0 = no cap")}});
   sections.push_back(
       {"thermal", "the thermal integrator and the contact conductance",
        {choice("integrator", "cvode", {"cvode", "ida", "explicit"},

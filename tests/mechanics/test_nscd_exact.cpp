@@ -249,3 +249,48 @@ TEST(NscdExact, FastSphereNeverPassesAWall) {
 TEST(NscdExact, FastSphereNeverPassesAnotherSphere) {
   EXPECT_GE(smallest_gap_of_fast_sphere(true), -1e-9 * kRadius);
 }
+
+// Penetration slop: an overlap d within the slop is held (no push-out, the sphere stays at
+// rest exactly); beyond it only d - slop is corrected, as a speed of (d - slop) / h at most.
+TEST(NscdExact, PenetrationWithinTheSlopIsHeldNotPushedOut) {
+  NscdParameters parameters;  // slop 1e-3 r
+  const double slop = parameters.penetration_slop_fraction * kRadius;
+  const double d = 0.5 * slop;
+  auto sim = single_sphere(Vector3d(0, kRadius - d, 0), {Wall::through({0, 0, 0}, {0, 1, 0}, 0)},
+                           0.3, parameters);
+  for (int step = 0; step < 1000; ++step) {
+    sim.step();
+    ASSERT_LT(sim.max_speed(), 1e-15) << "step " << step;
+    ASSERT_NEAR(sim.particles().position[0].y(), kRadius - d, 1e-15) << "step " << step;
+  }
+  // Without a slop the same overlap is pushed out within a step: speed d / h.
+  parameters.penetration_slop_fraction = 0.0;
+  auto pushed = single_sphere(Vector3d(0, kRadius - d, 0), {Wall::through({0, 0, 0}, {0, 1, 0}, 0)},
+                              0.3, parameters);
+  pushed.step();
+  EXPECT_NEAR(pushed.max_speed(), d / parameters.time_step, 1e-9 * d / parameters.time_step);
+}
+
+TEST(NscdExact, PenetrationBeyondTheSlopIsCorrectedDownToTheSlop) {
+  NscdParameters parameters;
+  const double slop = parameters.penetration_slop_fraction * kRadius;
+  const double h = parameters.time_step, theta = parameters.theta;
+  const double d = 5.0 * slop;
+  auto sim = single_sphere(Vector3d(0, kRadius - d, 0), {Wall::through({0, 0, 0}, {0, 1, 0}, 0)},
+                           0.3, parameters);
+  sim.step();
+  // U_n = u_n + (slop - d) / h >= 0 with the contact active: u_n = (d - slop) / h exactly.
+  EXPECT_NEAR(sim.particles().velocity[0].y(), (d - slop) / h, 1e-9 * (d - slop) / h);
+  EXPECT_NEAR(sim.particles().position[0].y(), kRadius - d + h * theta * (d - slop) / h, 1e-15);
+  for (int step = 0; step < 100; ++step) sim.step();
+  // Then the predicted gap sits at -slop: at rest, overlap within the slop.
+  EXPECT_LT(sim.max_speed(), 1e-15);
+  EXPECT_NEAR(kRadius - sim.particles().position[0].y(), slop, 1e-12 * kRadius);
+  // A recovery speed caps the push-out.
+  parameters.recovery_speed = 0.1 * (d - slop) / h;
+  auto capped = single_sphere(Vector3d(0, kRadius - d, 0), {Wall::through({0, 0, 0}, {0, 1, 0}, 0)},
+                              0.3, parameters);
+  capped.step();
+  EXPECT_NEAR(capped.particles().velocity[0].y(), parameters.recovery_speed,
+              1e-9 * parameters.recovery_speed);
+}

@@ -62,3 +62,26 @@ TEST(RandomPlacement, ThrowsWhenTheBoxIsTooSmall) {
   EXPECT_THROW(place_random(1, Vector3d(0, 0, 0), Vector3d(0.1, 0.1, 0.1), {0.001}, {1.0, 2.0}, 1, 3),
                std::invalid_argument);
 }
+
+// Several generators fill one box: the spheres of `avoid` are kept clear of, and an `avoid`
+// set that touches nothing changes nothing.
+TEST(RandomPlacement, KeepsClearOfEarlierSpheres) {
+  const Eigen::Vector3d lo(0, 0, 0), hi(0.02, 0.02, 0.02);
+  const auto first = place_random(150, lo, hi, {5e-4, 1e-3}, {0.5, 0.5}, 1, 3);
+  const auto second = place_random(150, lo, hi, {5e-4, 1e-3}, {0.5, 0.5}, 2, 3, first);
+  int overlaps_without = 0;
+  const auto blind = place_random(150, lo, hi, {5e-4, 1e-3}, {0.5, 0.5}, 2, 3);
+  for (std::size_t a = 0; a < first.radii.size(); ++a) {
+    for (std::size_t b = 0; b < second.radii.size(); ++b) {
+      const double reach = first.radii[a] + second.radii[b];
+      EXPECT_GE((first.positions[a] - second.positions[b]).norm(), reach) << a << " " << b;
+      if ((first.positions[a] - blind.positions[b]).norm() < reach) ++overlaps_without;
+    }
+  }
+  EXPECT_GT(overlaps_without, 0);  // the check above can fail
+  RandomPlacement far;
+  far.positions = {Eigen::Vector3d(1.0, 1.0, 1.0)};
+  far.radii = {1e-3};
+  const auto same = place_random(150, lo, hi, {5e-4, 1e-3}, {0.5, 0.5}, 2, 3, far);
+  EXPECT_EQ(same.positions, blind.positions);
+}

@@ -101,9 +101,7 @@ NscdIntegrator::NscdIntegrator(ParticleSet particles, std::vector<Material> mate
     }
   }
   keep_in_plane();
-  double r_min = 0.0;
-  for (std::size_t i = 0; i < n; ++i) r_min = i == 0 ? particles_.radius[i] : std::min(r_min, particles_.radius[i]);
-  slop_m_ = parameters_.penetration_slop_fraction * r_min;
+  slop_m_ = parameters_.penetration_slop_fraction * particles_.min_radius();
   SolverSettings settings;
   settings.tolerance = parameters_.tolerance;
   settings.max_iterations = parameters_.max_iterations;

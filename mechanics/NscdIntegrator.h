@@ -20,7 +20,10 @@
 // builds up (for spheres the linearised gap is a lower bound of the true one), a contact
 // reached at P = 0 ends with u_n = 0 (inelastic impact), a resting contact (g = 0, u = 0)
 // carries exactly the weight, and a negative P (initial overlap, round-off) is pushed out in
-// one step instead of drifting. Far candidates (P > 0) only act if they would close.
+// one step instead of drifting, except for the part within the penetration slop
+// (NscdParameters::penetration_slop_fraction), which is held (U_n = u_n) rather than turned
+// into a push-out speed (pushed out at most at recovery_speed when that is set). Far
+// candidates (P > 0) only act if they would close.
 //
 // Friction between two materials uses the smaller coefficient (see Material.h).
 // dimension 2: gravity, reactions and velocities are kept in the xy-plane exactly

@@ -2,9 +2,10 @@
 # Fails when a source file includes a layer it may not see. The layers, lowest first:
 #   mechanics, thermal        never include each other (nor anything of coupling/)
 #   coupling/common           small helpers every room may use (number formatting)
-#   coupling/scene            scene input: may use mechanics, and thermal for the heat-transfer
-#                             modes' declarations (ModeRegistry: sections, keys, ranges)
 #   coupling/output           result files, summary, checkpoints, progress: stands alone
+#   coupling/scene            scene input: may use mechanics, thermal for the heat-transfer
+#                             modes' declarations (ModeRegistry: sections, keys, ranges), and
+#                             output to read particles from a result file ([[import]])
 #   coupling/bridge           contacts -> thermal network: scene, mechanics, thermal
 #   coupling/run              the time loop: bridge, scene, output
 #   coupling/studies          studies: run and below
@@ -18,7 +19,7 @@ declare -A allowed=(
   [mechanics]="mechanics"
   [thermal]="thermal"
   [coupling/common]="coupling/common"
-  [coupling/scene]="mechanics thermal coupling/common coupling/scene"
+  [coupling/scene]="mechanics thermal coupling/common coupling/output coupling/scene"
   [coupling/output]="coupling/common coupling/output"
   [coupling/bridge]="mechanics thermal coupling/common coupling/scene coupling/bridge"
   [coupling/run]="mechanics thermal coupling/common coupling/scene coupling/output coupling/bridge coupling/run"

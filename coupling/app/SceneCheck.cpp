@@ -7,6 +7,7 @@
 #include "coupling/bridge/SceneToMechanics.h"
 #include "coupling/bridge/ThermalDiagnostics.h"
 #include "coupling/run/ThermalProblem.h"
+#include "coupling/scene/ParticleImport.h"
 #include "coupling/scene/SceneLimits.h"
 #include "mechanics/TouchingPairs.h"
 #include "thermal/ModeRegistry.h"
@@ -43,6 +44,7 @@ void check_scene(const Scene& scene, std::ostream& out) {
   out << "particles: " << n << ", radius " << r_min << " .. " << r_max << " m, temperature "
       << T_min << " .. " << T_max << " K; " << held << " held, " << sources
       << " with heat sources, " << fixed << " fixed\n";
+  for (const auto& report : scene.imports) out << describe_import(report) << "\n";
   out << "materials:";
   for (const auto& m : scene.materials) out << " " << m.name;
   out << "\nwalls: " << scene.walls.size();

@@ -7,10 +7,12 @@
 
 #include "coupling/app/AccuracyCommand.h"
 #include "coupling/app/ConductivityCommand.h"
+#include "coupling/app/ExportCommand.h"
 #include "coupling/common/ExitCode.h"
 #include "coupling/run/CoupledRun.h"
 #include "coupling/studies/CouplingStudy.h"
 #include "coupling/scene/DefaultScene.h"
+#include "coupling/scene/ParticleImport.h"
 #include "coupling/output/OutputError.h"
 #include "coupling/app/RunEndReport.h"
 #include "coupling/app/SceneCheck.h"
@@ -101,6 +103,16 @@ int tmdem_main(int argc, char** argv) {
   conductivity->add_flag("--quiet", conductivity_options.quiet, "no progress on stderr");
   study->require_subcommand(1);
 
+  ExportOptions export_options;
+  auto* export_command = app.add_subcommand(
+      "export", "write one frame of a result (default: the last) as CSV, in the columns "
+                "[[import]] reads");
+  export_command->add_option("result", export_options.result_path, "result file (HDF5)")->required();
+  export_command->add_option("--frame", export_options.frame,
+                             "\"last\" (default) or a frame number; negative counts from the end");
+  export_command->add_option("-o,--output", export_options.csv_path, "CSV file to write")->required();
+  export_command->add_flag("--overwrite", export_options.overwrite, "replace an existing CSV file");
+
   auto* docs = app.add_subcommand("docs", "print generated reference documentation");
   auto* docs_scene = docs->add_subcommand(
       "scene", "the scene file reference (Markdown): every key with unit, default, range");
@@ -120,6 +132,8 @@ int tmdem_main(int argc, char** argv) {
         return kExitInvalid;
       }
       const Scene scene = load(scene_path, sets);
+      if (!quiet)
+        for (const auto& report : scene.imports) std::cerr << describe_import(report) << std::endl;
       RunOptions options;
       options.output_path = output.empty()
                                 ? (scene_path.empty() && scene.output.file.empty() ? "tmdem-default.h5"
@@ -141,6 +155,7 @@ int tmdem_main(int argc, char** argv) {
                       outcome.exit_code == kExitOk ? options.output_path : "", quiet, std::cerr);
       return outcome.exit_code;
     }
+    if (*export_command) return run_export_command(export_options, std::cout, std::cerr);
     if (*docs_scene) {
       std::cout << scene_reference_markdown();
       return kExitOk;

@@ -67,6 +67,24 @@ inline double wall_signed_distance(const Wall& w, const Vec3& x) {
   return w.radius_m - std::sqrt(d2);
 }
 
+// What one [[import]] brought in; printed by `tmdem run` (stderr) and `tmdem check`
+// (describe_import, coupling/scene/ParticleImport.h).
+struct ImportReport {
+  std::string origin;       // "import[0]"
+  std::string file;
+  std::string format;       // "csv", "lammps" or "tmdem"
+  std::string description;  // e.g. "frame 20 of 21 (t = 1 s)"; may be empty
+  std::size_t first_id = 0;
+  std::size_t count = 0;
+  std::vector<std::string> ignored_columns;
+  double overlap_tolerance = 1e-9;  // fraction of the smaller radius accepted among its particles
+  // Largest overlap among its particles (and between them and the walls), as a fraction of the
+  // smaller radius, and in m; 0 when none overlap. largest_overlap_between: "particles 3 and 17".
+  double largest_overlap = 0.0;
+  double largest_overlap_m = 0.0;
+  std::string largest_overlap_between;
+};
+
 struct Effects {
   MechanicsMode mechanics = MechanicsMode::Settle;
   // effects.<key> of the heat-transfer modes ("conduction", "convection", ...), every key the
@@ -118,8 +136,10 @@ struct Scene {
   std::uint64_t seed = 1;
   Effects effects;
   std::vector<Material> materials;
-  std::vector<Particle> particles;  // ids: explicit [[particle]] first, then each [[generate]]
+  // ids: explicit [[particle]] first, then each [[generate]], then each [[import]]
+  std::vector<Particle> particles;
   std::vector<Wall> walls;
+  std::vector<ImportReport> imports;  // one per [[import]], in file order
   // Every registered mode's parameters from its own section (defaults filled in), by mode name
   // and key: heat_modes.find("convection", "coefficient").
   thermal::ModeSettings heat_modes;

@@ -30,15 +30,16 @@ Scene SceneBuilder::build() {
   read_materials();
   read_particles();
   read_generators();
+  read_imports();
   if (scene_.particles.empty())
     throw SceneError(source_ +
-                     ": the scene has no particles (add [[particle]] or [[generate]] entries)");
+                     ": the scene has no particles (add [[particle]], [[generate]] or [[import]] entries)");
   read_walls();
   read_assigns();
   read_heat_modes();
   read_settings();
   check_scene_limits(scene_, origins_, source_);
-  check_overlaps(scene_, origins_, source_);
+  check_overlaps(scene_, origins_, import_of_, source_);
   return std::move(scene_);
 }
 

@@ -3,7 +3,7 @@
 // build -> validate). Internal to coupling/scene; its members live in three files by what they
 // read: SceneBuilder.cpp (the settings sections, the effects and the heat-transfer modes'
 // sections), SceneBuilderBodies.cpp (materials, particles, walls, [[assign]]) and
-// SceneBuilderGenerators.cpp ([[generate]]). Checks across the whole scene are in
+// SceneBuilderGenerators.cpp ([[generate]]), ParticleImport.cpp ([[import]]). Checks across the whole scene are in
 // SceneValidation.h.
 #include <cstdint>
 #include <limits>
@@ -78,11 +78,14 @@ class SceneBuilder {
   void check_total(const SceneTable& t, std::string_view key, std::int64_t count) const;
   void read_random(const SceneTable& t, std::size_t index, std::vector<Vec3>& positions,
                    std::vector<double>& radii);
+  // ParticleImport.cpp
+  void read_imports();
 
   SceneTable root_;
   std::string source_;
   Scene scene_;
   std::vector<std::string> origins_;  // per particle: "particle[3]" or "generate[0]"
+  std::vector<int> import_of_;        // per particle: index of its [[import]], or -1
   std::map<std::string, int> material_ids_;
 };
 

@@ -63,6 +63,7 @@ void SceneBuilder::add_particle(const Vec3& position, double radius, const Parti
   settings.apply_to(p);
   scene_.particles.push_back(p);
   origins_.push_back(origin);
+  import_of_.push_back(-1);
 }
 
 void SceneBuilder::read_particles() {

@@ -154,6 +154,8 @@ std::vector<Section> build_sections() {
       table("material", Kind::TableArray, "materials, referred to by name", true),
       table("particle", Kind::TableArray, "one particle each"),
       table("generate", Kind::TableArray, "many particles each"),
+      table("import", Kind::TableArray,
+            "particles from a file: CSV, LAMMPS/LIGGGHTS text dump or a tmdem result"),
       table("assign", Kind::TableArray, "changes selected particles after generation"),
       table("wall", Kind::TableArray, "infinite planes and cylinders")};
   for (const auto& s : modes) top.push_back(table(s.name, Kind::Table, s.description));
@@ -215,6 +217,37 @@ std::vector<Section> build_sections() {
       {"box", "a box { min, max } (centres inside, inclusive)",
        {vector3("min", "m", "", "lowest corner"),
         vector3("max", "m", "", "highest corner (>= min)")}},
+      {"import",
+       "particles from a file, after the [[generate]] entries (ids in file order; rows sorted by "
+       "an id column when there is one). Columns by name: x, y, z (or xu, yu, zu; z may be left "
+       "out in 2D), radius (or diameter), and optionally material, type, id, temperature, fixed, "
+       "fixed_temperature, heat_source; other columns are ignored. temperature, "
+       "fixed_temperature, heat_source, fixed and material given here set every imported "
+       "particle, overriding the file",
+       concat({value("file", "", "", "path of a regular file", "particle file; relative paths "
+                     "are relative to the current folder", true),
+               choice("format", "auto", {"auto", "csv", "lammps", "tmdem"},
+                      "\"csv\": header line then one particle per line; \"lammps\": the last "
+                      "snapshot of a text dump (ITEM: ATOMS ...); \"tmdem\": a frame of a "
+                      "result file; \"auto\": .csv, .h5/.hdf5, or a dump by its first line"),
+               value("type_materials", "", "", "[[material]] names",
+                     "material of LAMMPS atom type 1, 2, ... (without material)"),
+               value("temperature_column", "", "\"temperature\"", "a column name",
+                     "the column holding the temperature in K, e.g. \"f_Temp[0]\" (LIGGGHTS)"),
+               number("length_scale", "m", 1.0, Range::greater(0.0),
+                      "metres per length unit of the file (positions and radii; 1e-3 for mm)"),
+               vector3("offset", "m", "[0, 0, 0]", "added to every position after scaling",
+                       false),
+               value("frame", "", "-1", "integer; negative counts from the end",
+                     "format = \"tmdem\": the frame read (-1: the last complete frame)"),
+               number("overlap_tolerance", "", 1.0e-9, Range::closed(0.0, 0.5),
+                      "overlap accepted between two particles of this import, and between one "
+                      "of them and a wall, as a fraction of the smaller radius (settled packings "
+                      "overlap slightly); the largest found is reported")},
+              concat(particle_settings(false),
+                     {value("material", "", "", "a [[material]] name",
+                            "material of every imported particle (else the file's material "
+                            "column, or its type with type_materials)")}))},
       {"assign",
        "changes selected particles: exactly one of ids, box, nearest; at least one setting",
        concat({value("ids", "", "", "integers >= 0, existing ids", "select these particle ids"),

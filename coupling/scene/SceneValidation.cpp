@@ -1,5 +1,7 @@
 #include "coupling/scene/SceneValidation.h"
 
+#include <algorithm>
+
 #include "coupling/scene/SceneBuilder.h"
 #include "coupling/scene/SceneError.h"
 #include "mechanics/ParticleSet.h"
@@ -16,10 +18,29 @@ std::string describe_particle(const Scene& scene, const std::vector<std::string>
          format_vec3(p.position_m) + " with radius " + format_number(p.radius_m);
 }
 
+// Records an overlap of `fraction` of the smaller radius in import `group` if it is the largest.
+void note_overlap(Scene& scene, int group, double fraction, double gap_m, const std::string& between) {
+  if (group < 0) return;
+  ImportReport& report = scene.imports[std::size_t(group)];
+  if (fraction > report.largest_overlap) {
+    report.largest_overlap = fraction;
+    report.largest_overlap_m = -gap_m;
+    report.largest_overlap_between = between;
+  }
+}
+
+std::string allowance(const Scene& scene, int group) {
+  if (group < 0) return "allowed down to -1e-9 x the smaller radius";
+  const ImportReport& report = scene.imports[std::size_t(group)];
+  return "more than " + report.origin + ".overlap_tolerance = " +
+         format_number(report.overlap_tolerance) +
+         " of the smaller radius; raise it to accept the overlaps of a settled packing";
+}
+
 }  // namespace
 
-void check_overlaps(const Scene& scene, const std::vector<std::string>& origins,
-                    const std::string& source) {
+void check_overlaps(Scene& scene, const std::vector<std::string>& origins,
+                    const std::vector<int>& import_of, const std::string& source) {
   mechanics::ParticleSet set;
   set.reserve(scene.particles.size());
   for (const auto& p : scene.particles) {
@@ -28,29 +49,54 @@ void check_overlaps(const Scene& scene, const std::vector<std::string>& origins,
     set.add(Eigen::Vector3d(p.position_m[0], p.position_m[1], p.position_m[2]), p.radius_m,
             mass, p.material, p.fixed);
   }
-  // Sorted by (i, j): the first is the pair with the smallest ids.
-  const auto overlaps = mechanics::find_overlaps(set, kOverlapTolerance);
-  if (!overlaps.empty()) {
-    const auto a = static_cast<std::size_t>(overlaps.front().i);
-    const auto b = static_cast<std::size_t>(overlaps.front().j);
+  // A pair may overlap by its group's tolerance when both particles come from the same import.
+  const auto group_of = [&](std::size_t a, std::size_t b) {
+    return import_of[a] >= 0 && import_of[a] == import_of[b] ? import_of[a] : -1;
+  };
+  const auto tolerance = [&](int group) {
+    return group < 0 ? kOverlapTolerance : scene.imports[std::size_t(group)].overlap_tolerance;
+  };
+  // Every overlapping pair, sorted by (i, j): the first refused is the one with the smallest ids.
+  const auto overlaps = mechanics::find_overlaps(set, 0.0);
+  const mechanics::TouchingPair* refused = nullptr;
+  std::size_t refused_count = 0;
+  for (const auto& pair : overlaps) {
+    const auto a = static_cast<std::size_t>(pair.i), b = static_cast<std::size_t>(pair.j);
+    const double fraction = -pair.gap_m / std::min(set.radius[a], set.radius[b]);
+    const int group = group_of(a, b);
+    note_overlap(scene, group, fraction, pair.gap_m,
+                 "particles " + std::to_string(a) + " and " + std::to_string(b));
+    if (fraction > tolerance(group)) {
+      if (refused == nullptr) refused = &pair;
+      ++refused_count;
+    }
+  }
+  if (refused != nullptr) {
+    const auto a = static_cast<std::size_t>(refused->i);
+    const auto b = static_cast<std::size_t>(refused->j);
     std::string more;
-    if (overlaps.size() > 1)
-      more = " (" + std::to_string(overlaps.size()) + " overlapping pairs in all)";
+    if (refused_count > 1)
+      more = " (" + std::to_string(refused_count) + " overlapping pairs in all)";
     throw SceneError(source + ": particles " + std::to_string(a) + " and " +
                      std::to_string(b) + " overlap at start (gap " +
-                     format_number(overlaps.front().gap_m) +
-                     " m, allowed down to -1e-9 x the smaller radius)" + more + ": " +
-                     describe_particle(scene, origins, a) + "; " + describe_particle(scene, origins, b));
+                     format_number(refused->gap_m) + " m, " + allowance(scene, group_of(a, b)) +
+                     ")" + more + ": " + describe_particle(scene, origins, a) + "; " +
+                     describe_particle(scene, origins, b));
   }
   for (std::size_t w = 0; w < scene.walls.size(); ++w) {
     const Wall& wall = scene.walls[w];
     for (std::size_t i = 0; i < scene.particles.size(); ++i) {
       const Particle& p = scene.particles[i];
       const double gap = wall_signed_distance(wall, p.position_m) - p.radius_m;
-      if (gap < -kOverlapTolerance * p.radius_m)
+      if (!(gap < 0.0)) continue;
+      const int group = import_of[i];
+      note_overlap(scene, group, -gap / p.radius_m, gap,
+                   "particle " + std::to_string(i) + " and wall[" + std::to_string(w) + "]");
+      if (gap < -tolerance(group) * p.radius_m)
         throw SceneError(source + ": particle " + std::to_string(i) + " and wall[" +
                          std::to_string(w) + "] overlap at start (gap " + format_number(gap) +
-                         " m; the wall normal points into the domain): " +
+                         " m; the wall normal points into the domain" +
+                         (group < 0 ? "" : "; " + allowance(scene, group)) + "): " +
                          describe_particle(scene, origins, i));
     }
   }

@@ -1,15 +1,72 @@
 #include "coupling/app/RunEndReport.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <limits>
 
 namespace tmdem::coupling {
+
+std::vector<TimingRow> timing_rows(const RunSummary& summary) {
+  if (!summary.wall_time_parts) return {};
+  const auto& w = *summary.wall_time_parts;
+  std::vector<TimingRow> rows{{"mechanics (detection + contact solve)", w.mechanics_s, 0.0},
+                              {"thermal", w.thermal_s, 0.0},
+                              {"output", w.output_s, 0.0},
+                              {"other", w.other_s, 0.0}};
+  double total = 0.0;
+  for (const auto& row : rows) total += row.seconds;
+  for (auto& row : rows) row.share = total > 0.0 ? row.seconds / total : 0.0;
+  return rows;
+}
+
+std::vector<WarningCount> warning_counts(const RunSummary& summary) {
+  const auto& m = summary.mechanics;
+  std::vector<WarningCount> kinds{
+      {"contact solve not converged", m.unconverged_steps - m.stalled_steps,
+       "raise mechanics.max_iterations or loosen mechanics.tolerance; the step goes on with the "
+       "last iterate"},
+      {"contact solve stalled", m.stalled_steps,
+       "no progress for 500 sweeps, typical of frictional piles creeping on a plateau; a higher "
+       "mechanics.max_iterations converges them (README, Mechanics: known limit)"}};
+  std::erase_if(kinds, [](const WarningCount& k) { return k.count <= 0; });
+  return kinds;
+}
+
+namespace {
+
+void print_timing(const RunSummary& summary, std::ostream& out) {
+  const auto rows = timing_rows(summary);
+  if (rows.empty()) return;
+  out << "timing (wall time " << summary.wall_time_s << " s):\n";
+  for (const auto& row : rows) {
+    char line[160];
+    std::snprintf(line, sizeof line, "  %-38s %10.3f s %6.1f%%\n", row.part.c_str(), row.seconds,
+                  100.0 * row.share);
+    out << line;
+  }
+}
+
+void print_warnings(const RunSummary& summary, std::ostream& out) {
+  const auto kinds = warning_counts(summary);
+  if (kinds.empty()) return;
+  const std::int64_t total = summary.mechanics.unconverged_steps;
+  out << "warnings: " << total << " mechanics steps unconverged, "
+      << (total > kWarningsShown ? "the first " + std::to_string(kWarningsShown) : std::string("all"))
+      << " printed above:\n";
+  for (const auto& w : kinds) out << "  " << w.count << " x " << w.kind << ": " << w.advice << "\n";
+}
+
+}  // namespace
 
 void print_run_end(const RunSummary& summary, const Scene& scene, const std::string& wrote_path,
                    bool quiet, std::ostream& out) {
   if (!quiet && !wrote_path.empty())
     out << "wrote " << wrote_path << " (" << summary.wall_time_s
         << " s wall time, energy balance error " << summary.energy.balance_error_rel << ")\n";
+  if (!quiet) {
+    print_timing(summary, out);
+    print_warnings(summary, out);
+  }
   const auto& m = summary.mechanics;
   if (!quiet && m.steps > 0) {
     double r_min_m = std::numeric_limits<double>::infinity();

@@ -66,6 +66,12 @@ nlohmann::json RunSummary::to_json() const {
                    {"steps", settle->steps},
                    {"max_speed_m_s", settle->max_speed_m_s}};
   }
+  if (wall_time_parts) {
+    j["wall_time_parts"] = {{"mechanics_s", wall_time_parts->mechanics_s},
+                            {"thermal_s", wall_time_parts->thermal_s},
+                            {"output_s", wall_time_parts->output_s},
+                            {"other_s", wall_time_parts->other_s}};
+  }
   if (!message.empty()) j["message"] = message;
   return j;
 }
@@ -94,6 +100,12 @@ RunSummary RunSummary::from_json(const nlohmann::json& j) {
     settle.steps = integer(st, "steps", 0);
     settle.max_speed_m_s = number(st, "max_speed_m_s", 0.0);
     s.settle = settle;
+  }
+
+  if (j.contains("wall_time_parts")) {
+    const nlohmann::json& w = j.at("wall_time_parts");
+    s.wall_time_parts = WallTimeParts{number(w, "mechanics_s", 0.0), number(w, "thermal_s", 0.0),
+                                      number(w, "output_s", 0.0), number(w, "other_s", 0.0)};
   }
 
   const nlohmann::json& t = section(j, "thermal");

@@ -1,7 +1,7 @@
 #pragma once
 // The run summary of contract section 4 (written by `tmdem run --summary SUMMARY.json`).
 // Key names in JSON are exactly the member names below; "message" and "thermal.linear_solver"
-// are extra keys written only when not empty, "settle" only when set (docs/summary.md).
+// are extra keys written only when not empty, "settle" and "wall_time_parts" only when set (docs/summary.md).
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -50,6 +50,15 @@ struct EnergySummary {
   double balance_error_rel = 0.0;
 };
 
+// The "wall_time_parts" block (extra): where the run's wall time went, s, measured around the
+// calls of the coupled run loop. The parts add up to wall_time_s.
+struct WallTimeParts {
+  double mechanics_s = 0.0;  // NSCD steps, settle and dynamic: contact detection + contact solve
+  double thermal_s = 0.0;    // the thermal side (= thermal.wall_time_s)
+  double output_s = 0.0;     // frames (HDF5 + XDMF) and checkpoints
+  double other_s = 0.0;      // the rest: set-up, scene checks, summary
+};
+
 struct RunSummary {
   std::string status = "ok";         // "ok", "failed" or "interrupted"
   std::string message;               // extra: what failed; omitted when empty
@@ -60,6 +69,7 @@ struct RunSummary {
   std::optional<SettleSummary> settle;  // extra: present for settle runs only
   ThermalSummary thermal;
   EnergySummary energy;
+  std::optional<WallTimeParts> wall_time_parts;  // extra: present for runs that got going
 
   nlohmann::json to_json() const;
   // Inverse of to_json (missing keys keep their defaults). Throws nlohmann::json::exception on

@@ -89,7 +89,9 @@ void CoupledRun::prepare_mechanics() {
 void CoupledRun::settle() {
   // A signal ends settling after the current step; the run then stops before t = 0: there is
   // no frame to write and nothing to resume (a restart starts from a settled packing).
+  const auto mechanics_start = std::chrono::steady_clock::now();
   summary_.settle = settle_packing(*nscd_, scene_, progress_, [] { return Interruption::pending() != 0; });
+  mechanics_seconds_ += seconds_since(mechanics_start);
   if (const int signal = Interruption::pending(); signal != 0)
     throw Interrupted{signal, summary_.settle->time_s};
   gather_contacts(nscd_->contacts(), contacts_);
@@ -149,6 +151,7 @@ std::span<const double> CoupledRun::velocities() const {
 }
 
 void CoupledRun::write_frame(double t_s) {
+  const auto output_start = std::chrono::steady_clock::now();
   FrameView f;
   f.time_s = t_s;
   f.position_m = positions();
@@ -163,6 +166,7 @@ void CoupledRun::write_frame(double t_s) {
   contact_heat_flow_W(contacts_, f.temperature_K, t_s, scene_, heat_flow_W_);
   f.heat_flow_W = heat_flow_W_;
   writer_->write_frame(f);
+  output_seconds_ += seconds_since(output_start);
 }
 
 std::vector<double> CoupledRun::frame_times() const {
@@ -205,10 +209,15 @@ void CoupledRun::run_dynamic() {
   while (t < scene_.duration_s - 1e-9 * h) {
     ++k;
     const double t_next = std::min(double(k) * h, scene_.duration_s);
+    const auto mechanics_start = std::chrono::steady_clock::now();
     const auto report = nscd_->step(t_next - t);
-    if (!report.converged && !options_.quiet && nscd_->stats().unconverged_steps <= 10)
-      progress_.message(unconverged_step_warning("mechanics step", t_next, *nscd_, report,
-                                                 scene_.mechanics.tolerance));
+    mechanics_seconds_ += seconds_since(mechanics_start);
+    if (!report.converged && !options_.quiet && nscd_->stats().unconverged_steps <= 10) {
+      std::string msg = unconverged_step_warning("mechanics step", t_next, *nscd_, report,
+                                                 scene_.mechanics.tolerance);
+      if (nscd_->stats().unconverged_steps == 10) msg += "; further such warnings are not shown";
+      progress_.message(msg);
+    }
     gather_contacts(nscd_->contacts(), contacts_);
     const auto thermal_start = std::chrono::steady_clock::now();
     dynamic_network_->update(contacts_, *integrator_, coupling_, &nscd_->particles());
@@ -232,6 +241,13 @@ void CoupledRun::fill_summary() {
   summary_.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   summary_.particles = std::int64_t(scene_.particles.size());
+  WallTimeParts parts;
+  parts.mechanics_s = mechanics_seconds_;
+  parts.thermal_s = thermal_seconds_;
+  parts.output_s = output_seconds_;
+  parts.other_s = std::max(0.0, summary_.wall_time_s - parts.mechanics_s - parts.thermal_s -
+                                    parts.output_s);
+  summary_.wall_time_parts = parts;
   if (nscd_) {
     const auto& ms = nscd_->stats();
     summary_.mechanics.steps = ms.steps;

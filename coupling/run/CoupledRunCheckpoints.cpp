@@ -86,7 +86,9 @@ void CoupledRun::checkpoint(double t_s) {
     cs.extra["settle_steps"] = double(summary_.settle->steps);
     cs.extra["settle_max_speed_m_s"] = summary_.settle->max_speed_m_s;
   }
+  const auto output_start = std::chrono::steady_clock::now();
   write_checkpoint(checkpoint_path_for(options_.output_path), cs);
+  output_seconds_ += seconds_since(output_start);
   last_checkpoint_s_ = t_s;
   begin_thermal_segment(cs);
 }

@@ -30,6 +30,11 @@ struct StartError : std::runtime_error {
 };
 
 // A first SIGINT/SIGTERM was handled: last frame and checkpoint are written.
+// Seconds since `start`: the measurement points of the loop add these up per part.
+inline double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 struct Interrupted {
   int signal = 0;
   double time_s = 0.0;    // simulated time reached, or settle time when settling
@@ -88,6 +93,8 @@ class CoupledRun {
   double next_checkpoint_s_ = 0.0;
   double last_checkpoint_s_ = -1.0;     // time of the last checkpoint written, -1: none
   double thermal_seconds_ = 0.0;        // wall time inside the thermal side
+  double mechanics_seconds_ = 0.0;      // wall time inside NSCD steps (settle and dynamic)
+  double output_seconds_ = 0.0;         // wall time writing frames and checkpoints
   RunSummary summary_;
 };
 

@@ -1,0 +1,71 @@
+// End to end: the final lines of a dynamic run. The timing table has its four rows, their
+// shares add up to 1 and their seconds to the run's wall time (summary "wall_time_parts"); the
+// warnings summary gives the true count per kind, which the summary's counters also give,
+// while only the first 10 warnings are printed.
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "E2eSupport.h"
+#include "coupling/app/RunEndReport.h"
+#include "coupling/output/RunSummary.h"
+
+using namespace tmdem::e2e;
+
+namespace {
+
+std::size_t count_of(const std::string& text, const std::string& part) {
+  std::size_t n = 0;
+  for (auto at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
+  return n;
+}
+
+TEST(EndToEndRunReport, TimingTableAndWarningCountsMatchTheSummary) {
+  const auto dir = scratch_dir("run_report");
+  // The poured bed at a tight tolerance: many of its 400 steps do not converge.
+  const auto r = run_tmdem("run " + std::string(TMDEM_SOURCE_DIR) +
+                               "/examples/poured_bed.toml -o bed.h5 --summary s.json "
+                               "--set simulation.duration=0.4 --set mechanics.max_iterations=200",
+                           dir);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto json = read_summary(dir + "/s.json");
+  ASSERT_TRUE(json.contains("wall_time_parts")) << json.dump(2);
+  const auto summary = tmdem::coupling::RunSummary::from_json(json);
+
+  // Timing: four rows, shares summing to 1, seconds to the wall time; each row printed.
+  const auto rows = tmdem::coupling::timing_rows(summary);
+  ASSERT_EQ(rows.size(), 4u);
+  double share = 0.0, seconds = 0.0;
+  for (const auto& row : rows) {
+    share += row.share;
+    seconds += row.seconds;
+    EXPECT_GE(row.seconds, 0.0);
+    EXPECT_NE(r.output.find("  " + row.part), std::string::npos) << row.part << "\n" << r.output;
+  }
+  EXPECT_NEAR(share, 1.0, 1e-12);
+  EXPECT_NEAR(seconds, summary.wall_time_s, 1e-9 * summary.wall_time_s);
+  EXPECT_GT(rows[0].seconds, 0.0);  // mechanics ran 400 steps
+  EXPECT_GT(rows[2].seconds, 0.0);  // 9 frames were written
+  EXPECT_EQ(summary.wall_time_parts->thermal_s, summary.thermal.wall_time_s);
+  EXPECT_NE(r.output.find("timing (wall time "), std::string::npos) << r.output;
+
+  // Warnings: the true count per kind, as the summary counts them; 10 printed during the run.
+  const auto& m = summary.mechanics;
+  ASSERT_GT(m.unconverged_steps, 10) << r.output;
+  EXPECT_EQ(count_of(r.output, "warning: mechanics step at t = "), 10u) << r.output;
+  EXPECT_NE(r.output.find("further such warnings are not shown"), std::string::npos);
+  EXPECT_NE(r.output.find("warnings: " + std::to_string(m.unconverged_steps) +
+                          " mechanics steps unconverged, the first 10 printed above:"),
+            std::string::npos) << r.output;
+  const auto kinds = tmdem::coupling::warning_counts(summary);
+  std::int64_t total = 0;
+  for (const auto& kind : kinds) {
+    total += kind.count;
+    EXPECT_NE(r.output.find("  " + std::to_string(kind.count) + " x " + kind.kind + ": "),
+              std::string::npos) << kind.kind << "\n" << r.output;
+  }
+  EXPECT_EQ(total, m.unconverged_steps);
+  EXPECT_EQ(kinds.front().count, m.unconverged_steps - m.stalled_steps);
+}
+
+}  // namespace

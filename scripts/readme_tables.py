@@ -1,0 +1,144 @@
+#!/usr/bin/env python3
+"""Regenerates measured tables of README.md from fresh runs of build/tmdem.
+
+Each table sits between the markers
+    <!-- readme_tables: NAME -->
+    ...table...
+    <!-- /readme_tables -->
+and is rebuilt by running the commands its section names. Columns that depend on timing
+(wall-clock seconds) are marked "[timing]" in their header: they change from run to run and
+machine to machine; every other value (steps, errors, counts) is reproducible for a given build.
+
+  scripts/readme_tables.py                  # rewrite every table in README.md
+  scripts/readme_tables.py --check          # compare only: exit 1 naming the values that drifted
+  scripts/readme_tables.py --only coupling  # one table
+
+Tables: checkpoints (thermal steps added by checkpoint boundaries), coupling (`tmdem study
+coupling examples/poured_bed.toml`). Both run in about half a minute on one core.
+Needs python3 (standard library only). The ctest test readme_tables (label readme) runs --check.
+"""
+import argparse
+import csv
+import json
+import os
+import pathlib
+import re
+import subprocess
+import sys
+import tempfile
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+TIMING = "[timing]"
+
+
+def tmdem(binary, args, cwd):
+    subprocess.run([str(binary)] + args, cwd=cwd, check=True, stdout=subprocess.DEVNULL,
+                   stderr=subprocess.DEVNULL)
+
+
+def thermal_steps(binary, scene, sets, work):
+    summary = pathlib.Path(work) / "s.json"
+    tmdem(binary, ["run", str(ROOT / "examples" / scene), "-o", "r.h5", "--overwrite", "--quiet",
+                   "--summary", str(summary)] + sum([["--set", s] for s in sets], []), work)
+    return json.loads(summary.read_text())["thermal"]["steps"]
+
+
+def checkpoints_table(binary, work):
+    """Thermal steps without checkpoints, with 2 (or 1) and with 9 boundaries inside the run."""
+    cases = [("lattice_constant.toml", "lattice_constant, 50 s", f"{i}/{s}" if i != "explicit" else i,
+              ([f"thermal.integrator={i}"] + ([f"thermal.linear_solver={s}"] if s else [])), 20, 5)
+             for i, s in [("cvode", "klu"), ("cvode", "pcg"), ("ida", "klu"), ("ida", "pcg"),
+                          ("explicit", None)]]
+    cases += [("paper_triangle.toml", "paper_triangle, 200 s", "cvode/klu", [], 100, 20),
+              ("poured_bed.toml", "poured_bed, 0.5 s", "cvode/klu", ["simulation.duration=0.5"],
+               0.2, 0.05)]
+    rows = ["| scene | integrator | no checkpoint | 2 boundaries inside the run | 9 boundaries |",
+            "|---|---|---|---|---|"]
+    for k, (scene, label, integrator, sets, few, many) in enumerate(cases):
+        counts = [thermal_steps(binary, scene, sets, work)]
+        for x in (few, many):
+            counts.append(thermal_steps(binary, scene, sets + [f"output.checkpoint_interval={x}"],
+                                        work))
+        first = k == 0 or scene != cases[k - 1][0]
+        inside = " inside" if scene == "paper_triangle.toml" else ""
+        few_text = f"{counts[1]} (X = {few:g}{', 1' + inside if inside else ''})" if first else str(counts[1])
+        many_text = f"{counts[2]} (X = {many:g})" if first else str(counts[2])
+        rows.append(f"| {label} | {integrator} | {counts[0]} | {few_text} | {many_text} |")
+    return rows
+
+
+def coupling_table(binary, work):
+    out = pathlib.Path(work) / "coupling.csv"
+    tmdem(binary, ["study", "coupling", str(ROOT / "examples" / "poured_bed.toml"), "--csv",
+                   str(out)], work)
+    rows = ["| strategy | rtol / step | max error (K) | thermal time (s) " + TIMING +
+            " | thermal steps | re-initialisations |", "|---|---|---|---|---|---|"]
+    with open(out) as f:
+        for r in csv.DictReader(f):
+            explicit = r["integrator"] == "explicit"
+            strategy = "explicit at the mechanical step" if explicit else r["strategy"]
+            parameter = f"{float(r['parameter']):.0e} s" if explicit else f"{float(r['parameter']):.0e}"
+            parameter = re.sub(r"e-0(\d)", r"e-\1", parameter)
+            error = re.sub(r"e-0(\d)", r"e-\1", f"{float(r['max_error_K']):.1e}")
+            rows.append(f"| {strategy} | {parameter} | {error} | "
+                        f"{float(r['thermal_wall_time_s']):.3f} | {r['thermal_steps']} | "
+                        f"{r['reinitializations']} |")
+    return rows
+
+
+TABLES = {"checkpoints": checkpoints_table, "coupling": coupling_table}
+
+
+def timing_columns(header):
+    return {k for k, cell in enumerate(header.strip("|").split("|")) if TIMING in cell}
+
+
+def drift(old_rows, new_rows):
+    """The reproducible cells that differ: (row, column, old, new)."""
+    out = []
+    skip = timing_columns(new_rows[0]) if new_rows else set()
+    for r, (a, b) in enumerate(zip(old_rows, new_rows)):
+        for c, (x, y) in enumerate(zip(a.strip("|").split("|"), b.strip("|").split("|"))):
+            if c not in skip and x.strip() != y.strip():
+                out.append((r, c, x.strip(), y.strip()))
+    if len(old_rows) != len(new_rows):
+        out.append((len(old_rows), 0, f"{len(old_rows)} rows", f"{len(new_rows)} rows"))
+    return out
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("--readme", default=str(ROOT / "README.md"))
+    p.add_argument("--tmdem", default=str(ROOT / "build" / "tmdem"))
+    p.add_argument("--only", choices=sorted(TABLES), action="append")
+    p.add_argument("--check", action="store_true", help="compare only; exit 1 on drift")
+    args = p.parse_args(argv)
+    text = pathlib.Path(args.readme).read_text()
+    drifted = False
+    with tempfile.TemporaryDirectory() as work:
+        for name in args.only or sorted(TABLES):
+            pattern = re.compile(r"(<!-- readme_tables: " + name + r" -->\n)(.*?)(\n *<!-- /readme_tables -->)",
+                                 re.S)
+            found = pattern.search(text)
+            if not found:
+                sys.exit(f"{args.readme}: no <!-- readme_tables: {name} --> ... <!-- /readme_tables --> block")
+            indent = re.match(r" *", found.group(2)).group(0)
+            old_rows = [line.strip() for line in found.group(2).splitlines() if line.strip()]
+            new_rows = TABLES[name](args.tmdem, work)
+            for r, c, old, new in drift(old_rows, new_rows):
+                drifted = True
+                print(f"{name}: row {r}, column {c + 1}: README {old!r}, now {new!r}")
+            block = "\n".join(indent + row for row in new_rows)
+            text = text[:found.start(2)] + block + text[found.end(2):]
+    if args.check:
+        print("README tables drifted from fresh runs: rewrite them with scripts/readme_tables.py "
+              "(and check the prose that cites them)" if drifted
+              else "README tables match fresh runs (timing columns aside)")
+        return 1 if drifted else 0
+    pathlib.Path(args.readme).write_text(text)
+    print(f"rewrote {', '.join(args.only or sorted(TABLES))} in {args.readme}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <optional>
 #include <utility>
 
 #include "mechanics/CoulombCone.h"
@@ -28,6 +29,15 @@ Eigen::Vector3d project_in_metric(const Eigen::Vector3d& tau, double w_n, double
 
 double tangential_speed(const Eigen::Vector3d& u) { return std::hypot(u[1], u[2]); }
 
+// Contact c's second body when it moves (a particle or a piston), none for a fixed wall.
+std::optional<std::size_t> moving_body_j(const ContactProblem& problem, std::size_t c) {
+  const std::int32_t j = problem.body_j[c];
+  if (!is_wall(j)) return std::size_t(j);
+  const std::size_t b = problem.wall_body(j);
+  if (problem.inverse_mass[b] > 0.0) return b;
+  return std::nullopt;
+}
+
 }  // namespace
 
 ApgdSolver::ApgdSolver(const SolverSettings& settings, std::ptrdiff_t parallel_from)
@@ -39,7 +49,7 @@ void ApgdSolver::build_body_lists(const ContactProblem& problem) {
   for (std::size_t c = 0; c < count; ++c) {
     if (!problem.solvable(c)) continue;
     ++body_start_[problem.body_i[c] + 1];
-    if (problem.body_j[c] >= 0) ++body_start_[problem.body_j[c] + 1];
+    if (const auto j = moving_body_j(problem, c)) ++body_start_[*j + 1];
   }
   for (std::size_t b = 0; b < bodies; ++b) body_start_[b + 1] += body_start_[b];
   body_contact_.resize(static_cast<std::size_t>(body_start_[bodies]));
@@ -49,8 +59,8 @@ void ApgdSolver::build_body_lists(const ContactProblem& problem) {
   for (std::size_t c = 0; c < count; ++c) {
     if (!problem.solvable(c)) continue;
     body_contact_[body_fill_[problem.body_i[c]]++] = static_cast<std::int32_t>(c);
-    if (problem.body_j[c] >= 0) {
-      body_contact_[body_fill_[problem.body_j[c]]++] = -1 - static_cast<std::int32_t>(c);
+    if (const auto j = moving_body_j(problem, c)) {
+      body_contact_[body_fill_[*j]++] = -1 - static_cast<std::int32_t>(c);
     }
   }
 }
@@ -62,6 +72,7 @@ void ApgdSolver::local_velocities(const ContactProblem& problem,
                                   std::vector<Eigen::Vector3d>& u) {
   const auto count = static_cast<std::ptrdiff_t>(problem.size());
   const auto bodies = static_cast<std::ptrdiff_t>(problem.body_count());
+  const auto particles = static_cast<std::ptrdiff_t>(problem.particle_count);
 #pragma omp parallel if (count >= parallel_from_)
   {
 #pragma omp for schedule(static)
@@ -78,10 +89,13 @@ void ApgdSolver::local_velocities(const ContactProblem& problem,
         if (e >= 0) {  // body i: +p at x_i - R_i n
           v += inverse_mass * impulse_[e];
           w -= (inverse_inertia * problem.lever_i[e]) * torque_arm_[e];
-        } else {       // body j: -p at x_j + R_j n
+        } else if (b < particles) {  // body j: -p at x_j + R_j n
           const std::int32_t c = -1 - e;
           v -= inverse_mass * impulse_[c];
           w -= (inverse_inertia * problem.lever_j[c]) * torque_arm_[c];
+        } else {       // a piston: -r_n n, along its normal only
+          const std::int32_t c = -1 - e;
+          v -= (inverse_mass * x[c][0]) * problem.normal[c];
         }
       }
       velocity[b] = v;

@@ -22,7 +22,8 @@ ContactDetector::ContactDetector(double min_margin_m, double max_margin_m)
 
 void ContactDetector::restore(double margin_m, std::size_t rebuilds,
                               std::vector<Eigen::Vector3d> reference_m,
-                              std::vector<CandidatePair> pairs) {
+                              std::vector<CandidatePair> pairs,
+                              std::vector<Eigen::Vector3d> reference_wall_points_m) {
   for (std::size_t p = 1; p < pairs.size(); ++p)
     if (!pair_less(pairs[p - 1], pairs[p]))
       throw std::invalid_argument("ContactDetector::restore: pairs not in strictly increasing (i, j) order");
@@ -31,12 +32,14 @@ void ContactDetector::restore(double margin_m, std::size_t rebuilds,
   valid_ = !reference_m.empty();
   reference_position_ = std::move(reference_m);
   pairs_ = std::move(pairs);
+  reference_wall_point_ = std::move(reference_wall_points_m);
   previous_pairs_.clear();
   previous_index_.clear();
 }
 
 bool ContactDetector::update(const ParticleSet& particles, const std::vector<Wall>& walls,
-                             const std::vector<double>& lookahead_m) {
+                             const std::vector<double>& lookahead_m,
+                             const std::vector<double>& wall_lookahead_m) {
   const std::size_t n = particles.size();
   double lookahead_max = 0.0;
   bool need = !valid_ || reference_position_.size() != n;
@@ -46,6 +49,16 @@ bool ContactDetector::update(const ParticleSet& particles, const std::vector<Wal
     if (!need && (particles.position[i] - reference_position_[i]).norm() + ahead > 0.5 * margin_) {
       need = true;
     }
+  }
+  // A restored table without wall points takes today's (fixed walls never move).
+  if (reference_wall_point_.size() != walls.size()) {
+    reference_wall_point_.clear();
+    for (const auto& w : walls) reference_wall_point_.push_back(w.point);
+  }
+  for (std::size_t w = 0; w < wall_lookahead_m.size() && w < walls.size(); ++w) {
+    lookahead_max = std::max(lookahead_max, wall_lookahead_m[w]);
+    if ((walls[w].point - reference_wall_point_[w]).norm() + wall_lookahead_m[w] > 0.5 * margin_)
+      need = true;
   }
   if (!need) return false;
   rebuild(particles, walls, lookahead_max);
@@ -97,6 +110,8 @@ void ContactDetector::rebuild(const ParticleSet& particles, const std::vector<Wa
   }
 
   reference_position_.assign(x.begin(), x.end());
+  reference_wall_point_.clear();
+  for (const auto& w : walls) reference_wall_point_.push_back(w.point);
   valid_ = true;
   ++rebuilds_;
 }

@@ -7,7 +7,9 @@
 // d_i + s_i <= margin / 2 for every particle (s_i = look-ahead: how far it can move during
 // the coming step), no unlisted pair can touch before the next check. This is the
 // "half the margin" Verlet criterion, with a look-ahead so that fast particles trigger the
-// rebuild one step early rather than one step late.
+// rebuild one step early rather than one step late. A moving wall (a piston) is held to the
+// same test with its own displacement and look-ahead: a particle-wall gap then closes by at
+// most margin / 2 + margin / 2.
 //
 // Everything lives in reused vectors: no allocation once warm.
 
@@ -35,9 +37,11 @@ class ContactDetector {
   ContactDetector(double min_margin_m, double max_margin_m);
 
   // Rebuilds the table if needed (or if forced). lookahead_m[i] is how far particle i may
-  // move before the next call (may be empty: 0). Returns true if the table was rebuilt.
+  // move before the next call (may be empty: 0), wall_lookahead_m[w] the same for wall w (may
+  // be empty: walls are fixed). Returns true if the table was rebuilt.
   bool update(const ParticleSet& particles, const std::vector<Wall>& walls,
-              const std::vector<double>& lookahead_m);
+              const std::vector<double>& lookahead_m,
+              const std::vector<double>& wall_lookahead_m = {});
 
   // Forces a rebuild at the next update (after particles were moved by hand).
   void invalidate() { valid_ = false; }
@@ -51,12 +55,16 @@ class ContactDetector {
   double margin() const { return margin_; }
   // Positions at the last rebuild (empty before the first one or after invalidate()).
   const std::vector<Eigen::Vector3d>& reference_positions() const { return reference_position_; }
+  // Wall points at the last rebuild (empty before the first one).
+  const std::vector<Eigen::Vector3d>& reference_wall_points() const { return reference_wall_point_; }
 
-  // Puts back a table saved from pairs(), reference_positions(), margin() and rebuild_count()
-  // (restart from a checkpoint): the next update() decides exactly as the saved detector would.
-  // Empty reference positions leave the table invalid (rebuilt at the next update).
+  // Puts back a table saved from pairs(), reference_positions(), reference_wall_points(),
+  // margin() and rebuild_count() (restart from a checkpoint): the next update() decides exactly
+  // as the saved detector would. Empty reference positions leave the table invalid (rebuilt at
+  // the next update); empty wall points: the walls' points at the next update.
   void restore(double margin_m, std::size_t rebuilds, std::vector<Eigen::Vector3d> reference_m,
-               std::vector<CandidatePair> pairs);
+               std::vector<CandidatePair> pairs,
+               std::vector<Eigen::Vector3d> reference_wall_points_m = {});
 
  private:
   void rebuild(const ParticleSet& particles, const std::vector<Wall>& walls, double lookahead_max);
@@ -67,6 +75,7 @@ class ContactDetector {
   bool valid_ = false;
   std::size_t rebuilds_ = 0;
   std::vector<Eigen::Vector3d> reference_position_;  // positions at the last rebuild
+  std::vector<Eigen::Vector3d> reference_wall_point_;  // wall points at the last rebuild
   std::vector<CandidatePair> pairs_, previous_pairs_;
   std::vector<std::int32_t> previous_index_;
   CellGrid grid_;

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cassert>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -22,15 +23,19 @@ namespace tmdem::mechanics {
 struct ContactProblem {
   int dimension = 3;  // 2: reactions stay in the xy-plane (t2 = z, r_t2 = 0)
 
-  // Bodies (one per particle; walls are not bodies).
-  std::vector<double> inverse_mass;                     // 1/kg, 0 for fixed particles
+  // Bodies: the particles, then one per wall (body particle_count + w for wall w). A wall body
+  // has inverse mass 0 unless it is a piston, no rotation, and its velocity stays along its
+  // normal, which for a plane is the normal of every contact it has: a piston's inverse mass
+  // adds to w_n of its contacts and the Delassus blocks stay diag(w_n, w_t, w_t).
+  std::size_t particle_count = 0;
+  std::vector<double> inverse_mass;                     // 1/kg, 0 for fixed particles and walls
   std::vector<double> inverse_inertia;                  // 1/(kg m^2), 0 for fixed particles
   std::vector<Eigen::Vector3d> free_velocity;           // m/s, v + h M^-1 F_ext
   std::vector<Eigen::Vector3d> free_angular_velocity;   // rad/s
 
   // Contacts.
   std::vector<std::int32_t> body_i;     // particle
-  std::vector<std::int32_t> body_j;     // particle, or wall_code(wall) (PairIndex.h; a wall is immobile)
+  std::vector<std::int32_t> body_j;     // particle, or wall_code(wall) (PairIndex.h; body wall_body(j))
   std::vector<Eigen::Vector3d> normal;  // unit, from j to i
   std::vector<Eigen::Vector3d> tangent1, tangent2;
   std::vector<double> lever_i, lever_j; // m, contact point offsets (radii; 0 for a wall)
@@ -40,6 +45,16 @@ struct ContactProblem {
 
   std::size_t size() const { return body_i.size(); }
   std::size_t body_count() const { return inverse_mass.size(); }
+  // The body of the wall named by j (is_wall(j)).
+  std::size_t wall_body(std::int32_t j) const { return particle_count + wall_index(j); }
+  // Sets particle_count and appends `walls` immobile wall bodies (a problem built by hand).
+  void add_fixed_wall_bodies(std::size_t walls) {
+    particle_count = inverse_mass.size();
+    inverse_mass.resize(particle_count + walls, 0.0);
+    inverse_inertia.resize(particle_count + walls, 0.0);
+    free_velocity.resize(particle_count + walls, Eigen::Vector3d::Zero());
+    free_angular_velocity.resize(particle_count + walls, Eigen::Vector3d::Zero());
+  }
   void resize_contacts(std::size_t count);
 
   // A contact between two immobile bodies carries no reaction (W_cc = 0).
@@ -78,7 +93,8 @@ inline Eigen::Vector3d ContactProblem::local_velocity(
   if (!is_wall(j)) {
     u = velocity[i] - velocity[j] - (lever_i[c] * angular_velocity[i] + lever_j[c] * angular_velocity[j]).cross(n);
   } else {
-    u = velocity[i] - (lever_i[c] * angular_velocity[i]).cross(n);
+    assert(wall_body(j) < velocity.size() && "a wall contact needs its wall body (add_fixed_wall_bodies)");
+    u = velocity[i] - velocity[wall_body(j)] - (lever_i[c] * angular_velocity[i]).cross(n);
   }
   return Eigen::Vector3d(u.dot(n) + bias[c], u.dot(tangent1[c]),
                          dimension == 2 ? 0.0 : u.dot(tangent2[c]));
@@ -96,6 +112,8 @@ inline void ContactProblem::apply_impulse(std::size_t c, const Eigen::Vector3d& 
   if (!is_wall(j)) {
     velocity[j] -= inverse_mass[j] * p;
     angular_velocity[j] -= (inverse_inertia[j] * lever_j[c]) * nxp;
+  } else if (const std::size_t b = wall_body(j); inverse_mass[b] > 0.0) {
+    velocity[b] -= (inverse_mass[b] * r_local[0]) * normal[c];  // a piston: along n only
   }
 }
 

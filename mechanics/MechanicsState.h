@@ -2,7 +2,7 @@
 // Everything NscdIntegrator::step() reads from earlier steps, so that an integrator built anew
 // from the same scene and given this state continues bit for bit (restart from a checkpoint).
 //
-// Beyond the particles' positions and velocities that is the candidate table (ContactDetector:
+// Beyond the particles' positions and velocities (and the pistons': Wall.h) that is the candidate table (ContactDetector:
 // its pairs, the positions at its last rebuild, which decide the next rebuild, and the margin
 // and rebuild count) and each candidate's last reaction force, the warm start of the next solve
 // (normal and tangential parts). The step's own scratch (velocities at the start of the step,
@@ -30,6 +30,12 @@ struct MechanicsState {
   std::vector<CandidatePair> candidates;               // sorted as ContactDetector::pairs()
   std::vector<Eigen::Vector3d> candidate_force_N;      // per candidate, global frame, on i
   std::vector<double> solver_state;                    // ContactSolver::carried_state()
+
+  // Walls, one entry each (pistons move; fixed walls keep the scene's values). Empty: the
+  // walls as the integrator was built with (a state saved before pistons existed).
+  std::vector<Eigen::Vector3d> wall_point_m;
+  std::vector<double> wall_velocity_m_per_s;           // along the wall normal
+  std::vector<Eigen::Vector3d> reference_wall_point_m; // at the last rebuild (ContactDetector)
 
   MechanicsStats stats;
 };

@@ -76,6 +76,15 @@ NscdIntegrator::NscdIntegrator(ParticleSet particles, std::vector<Material> mate
     require(walls_[w].point.allFinite() && walls_[w].normal.allFinite() &&
                 std::abs(walls_[w].normal.norm() - 1.0) < 1e-12,
             "wall " + std::to_string(w) + ": normal must be a unit vector");
+    if (walls_[w].moves()) {
+      require(walls_[w].shape == WallShape::Plane, "wall " + std::to_string(w) + ": a piston must be a plane");
+      require(std::isfinite(walls_[w].mass_kg) && std::isfinite(walls_[w].load_N) &&
+                  std::isfinite(walls_[w].velocity_m_per_s),
+              "wall " + std::to_string(w) + ": piston mass, load and velocity must be finite");
+      has_piston_ = true;
+    } else {
+      walls_[w].velocity_m_per_s = 0.0;
+    }
   }
   if (dimension_ == 2) {
     gravity_.z() = 0.0;
@@ -109,13 +118,43 @@ NscdIntegrator::NscdIntegrator(ParticleSet particles, std::vector<Material> mate
   settings.stall_sweeps = parameters_.stall_sweeps;
   solver_ = make_contact_solver(parameters_.solver, settings);
   problem_.dimension = dimension_;
+  problem_.particle_count = n;
   problem_.inverse_mass = inverse_mass_;
   problem_.inverse_inertia = inverse_inertia_;
-  problem_.free_velocity.resize(n);
-  problem_.free_angular_velocity.resize(n);
-  old_velocity_.resize(n);
-  old_angular_velocity_.resize(n);
+  for (const auto& wall : walls_) {
+    problem_.inverse_mass.push_back(wall.moves() ? 1.0 / wall.mass_kg : 0.0);
+    problem_.inverse_inertia.push_back(0.0);
+  }
+  const std::size_t bodies = problem_.body_count();
+  problem_.free_velocity.assign(bodies, Eigen::Vector3d::Zero());
+  problem_.free_angular_velocity.assign(bodies, Eigen::Vector3d::Zero());
+  old_velocity_.assign(bodies, Eigen::Vector3d::Zero());
+  old_angular_velocity_.assign(bodies, Eigen::Vector3d::Zero());
+  body_velocity_.assign(bodies, Eigen::Vector3d::Zero());
+  body_angular_velocity_.assign(bodies, Eigen::Vector3d::Zero());
   lookahead_.resize(n);
+  if (has_piston_) wall_lookahead_.assign(walls_.size(), 0.0);
+}
+
+void NscdIntegrator::set_piston_load(std::size_t wall, double load_N) {
+  require(wall < walls_.size() && walls_[wall].moves(),
+          "wall " + std::to_string(wall) + " is not a piston");
+  require(std::isfinite(load_N), "wall " + std::to_string(wall) + ": piston load must be finite");
+  walls_[wall].load_N = load_N;
+}
+
+void NscdIntegrator::refresh_wall_bodies(double h) {
+  // Wall bodies: start-of-step and free velocities along the normal (fixed walls stay at 0),
+  // and how far a piston may move in the coming step (as for particles in refresh_candidates).
+  const std::size_t n = particles_.size();
+  for (std::size_t w = 0; w < walls_.size(); ++w) {
+    const Wall& wall = walls_[w];
+    if (!wall.moves()) continue;
+    const double acceleration = wall.load_N / wall.mass_kg + gravity_.dot(wall.normal);
+    old_velocity_[n + w] = wall.velocity_m_per_s * wall.normal;
+    problem_.free_velocity[n + w] = (wall.velocity_m_per_s + h * acceleration) * wall.normal;
+    wall_lookahead_[w] = 2.0 * h * (std::abs(wall.velocity_m_per_s) + h * std::abs(acceleration));
+  }
 }
 
 void NscdIntegrator::invalidate_contacts() { detector_.invalidate(); }
@@ -138,7 +177,7 @@ void NscdIntegrator::refresh_candidates(double h) {
   for (std::size_t i = 0; i < particles_.size(); ++i) {
     lookahead_[i] = 2.0 * h * (particles_.velocity[i].norm() + h * g);
   }
-  if (!detector_.update(particles_, walls_, lookahead_)) return;
+  if (!detector_.update(particles_, walls_, lookahead_, wall_lookahead_)) return;
   // Carry the forces of pairs that stay candidates over to the new table (warm start).
   std::swap(force_, old_force_);
   const auto& previous = detector_.previous_index();
@@ -187,6 +226,7 @@ void NscdIntegrator::setup_contacts(double h) {
       n = wall.normal_at(xi);
       gap = wall.signed_distance(xi) - lever_i;
       other_material = wall.material;
+      inverse_mass += p.inverse_mass[p.wall_body(j)];  // 0 unless a piston
     }
     p.normal[k] = n;
     p.lever_i[k] = lever_i;
@@ -203,6 +243,7 @@ void NscdIntegrator::setup_contacts(double h) {
     // Position term P / h, with the normal velocity at the start of the step.
     Eigen::Vector3d u_old = old_velocity_[i] - (lever_i * old_angular_velocity_[i]).cross(n);
     if (!is_wall(j)) u_old -= old_velocity_[j] + (lever_j * old_angular_velocity_[j]).cross(n);
+    else if (has_piston_) u_old -= old_velocity_[p.wall_body(j)];
     // A predicted penetration within the slop is held, not pushed out; beyond it, only the
     // excess is corrected, at most at recovery_speed (NscdParameters.h).
     const double predicted = gap + h * (1.0 - theta) * u_old.dot(n);
@@ -226,6 +267,7 @@ StepReport NscdIntegrator::step(double h) {
   StepReport report;
   const std::size_t n = particles_.size();
   const std::size_t rebuilds_before = detector_.rebuild_count();
+  if (has_piston_) refresh_wall_bodies(h);
   refresh_candidates(h);
   report.rebuilt_candidates = detector_.rebuild_count() != rebuilds_before;
 
@@ -240,7 +282,9 @@ StepReport NscdIntegrator::step(double h) {
   setup_contacts(h);
   report.candidates = problem_.size();
   const SolveReport solved =
-      solver_->solve(problem_, reactions_, particles_.velocity, particles_.angular_velocity);
+      solver_->solve(problem_, reactions_, body_velocity_, body_angular_velocity_);
+  std::copy_n(body_velocity_.begin(), n, particles_.velocity.begin());
+  std::copy_n(body_angular_velocity_.begin(), n, particles_.angular_velocity.begin());
   report.sweeps = solved.sweeps;
   report.residual = solved.residual;
   report.converged = solved.converged;
@@ -252,6 +296,13 @@ StepReport NscdIntegrator::step(double h) {
   for (std::size_t i = 0; i < n; ++i) {
     if (inverse_mass_[i] == 0.0) continue;
     particles_.position[i] += h * (theta * particles_.velocity[i] + (1.0 - theta) * old_velocity_[i]);
+  }
+  for (std::size_t w = 0; w < walls_.size(); ++w) {
+    Wall& wall = walls_[w];
+    if (!wall.moves()) continue;
+    const double before = wall.velocity_m_per_s;
+    wall.velocity_m_per_s = body_velocity_[n + w].dot(wall.normal);
+    wall.point += h * (theta * wall.velocity_m_per_s + (1.0 - theta) * before) * wall.normal;
   }
 
   // Forces for the warm start and the contact list; penetration after the step.
@@ -294,6 +345,7 @@ double NscdIntegrator::kinetic_energy() const {
     energy += 0.5 * particles_.mass[i] * particles_.velocity[i].squaredNorm() +
               0.5 * particles_.inertia[i] * particles_.angular_velocity[i].squaredNorm();
   }
+  for (const auto& wall : walls_) energy += 0.5 * wall.mass_kg * wall.velocity_m_per_s * wall.velocity_m_per_s;
   return energy;
 }
 
@@ -303,6 +355,7 @@ double NscdIntegrator::potential_energy() const {
     if (inverse_mass_[i] == 0.0) continue;
     energy -= particles_.mass[i] * gravity_.dot(particles_.position[i]);
   }
+  for (const auto& wall : walls_) energy -= wall.mass_kg * gravity_.dot(wall.point);
   return energy;
 }
 
@@ -312,6 +365,7 @@ double NscdIntegrator::max_speed() const {
     if (inverse_mass_[i] == 0.0) continue;
     speed = std::max(speed, particles_.velocity[i].norm());
   }
+  for (const auto& wall : walls_) speed = std::max(speed, std::abs(wall.velocity_m_per_s));
   return speed;
 }
 

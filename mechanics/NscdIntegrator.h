@@ -25,6 +25,12 @@
 // into a push-out speed (pushed out at most at recovery_speed when that is set). Far
 // candidates (P > 0) only act if they would close.
 //
+// Pistons (Wall.h: a plane wall with a mass) are bodies of the contact problem with one
+// translational degree of freedom along their normal n_w: free velocity
+// v + h (load / m + g.n_w) n_w, their inverse mass in w_n of their contacts (exact, no
+// penalty), and the same theta update of their point as the particles. The candidate table
+// follows their motion (ContactDetector.h); max_speed and the energies include them.
+//
 // Friction between two materials uses the smaller coefficient (see Material.h).
 // dimension 2: gravity, reactions and velocities are kept in the xy-plane exactly
 // (z, v_z, omega_x, omega_y stay as they are: 0 for a planar scene); spheres still roll.
@@ -86,7 +92,10 @@ class NscdIntegrator {
   ParticleSet& particles() { return particles_; }
   void invalidate_contacts();
 
+  // Walls as they are now (a piston's point and velocity change with every step).
   const std::vector<Wall>& walls() const { return walls_; }
+  // Changes the imposed force of piston `wall`, N (throws for a fixed wall or a non-finite load).
+  void set_piston_load(std::size_t wall, double load_N);
   const std::vector<Material>& materials() const { return materials_; }
   const Eigen::Vector3d& gravity() const { return gravity_; }
   int dimension() const { return dimension_; }
@@ -100,6 +109,7 @@ class NscdIntegrator {
   void refresh_candidates(double h);
   void setup_contacts(double h);
   void keep_in_plane();
+  void refresh_wall_bodies(double h);
 
   ParticleSet particles_;
   std::vector<Material> materials_;
@@ -110,8 +120,13 @@ class NscdIntegrator {
   ContactDetector detector_;
 
   std::vector<double> inverse_mass_, inverse_inertia_;  // 0 for fixed particles
+  // Per body (particles, then walls: ContactProblem.h): start-of-step velocities, and the
+  // solver's velocities (copied back to the particles and walls after the solve).
   std::vector<Eigen::Vector3d> old_velocity_, old_angular_velocity_;
+  std::vector<Eigen::Vector3d> body_velocity_, body_angular_velocity_;
   std::vector<double> lookahead_;
+  std::vector<double> wall_lookahead_;  // m; empty when no wall moves
+  bool has_piston_ = false;
   double slop_m_ = 0.0;  // penetration slop (NscdParameters), m
   ContactProblem problem_;
   std::unique_ptr<ContactSolver> solver_;

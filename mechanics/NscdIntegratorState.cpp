@@ -22,6 +22,11 @@ MechanicsState NscdIntegrator::save_state() const {
     s.candidate_force_N[k] = force_[k];
   s.solver_state = solver_->carried_state();
   s.stats = stats_;
+  for (const auto& w : walls_) {
+    s.wall_point_m.push_back(w.point);
+    s.wall_velocity_m_per_s.push_back(w.velocity_m_per_s);
+  }
+  s.reference_wall_point_m = detector_.reference_wall_points();
   return s;
 }
 
@@ -36,10 +41,21 @@ void NscdIntegrator::restore_state(const MechanicsState& s) {
     throw std::invalid_argument("mechanics: a saved state needs one force per candidate (" +
                                 std::to_string(s.candidates.size()) + " candidates, " +
                                 std::to_string(s.candidate_force_N.size()) + " forces)");
+  const std::size_t w = walls_.size();
+  if ((!s.wall_point_m.empty() && s.wall_point_m.size() != w) ||
+      s.wall_velocity_m_per_s.size() != s.wall_point_m.size() ||
+      (!s.reference_wall_point_m.empty() && s.reference_wall_point_m.size() != w))
+    throw std::invalid_argument("mechanics: a saved state of " + std::to_string(s.wall_point_m.size()) +
+                                " walls does not fit an integrator of " + std::to_string(w));
+  for (std::size_t k = 0; k < s.wall_point_m.size(); ++k) {
+    walls_[k].point = s.wall_point_m[k];
+    walls_[k].velocity_m_per_s = s.wall_velocity_m_per_s[k];
+  }
   particles_.position = s.position_m;
   particles_.velocity = s.velocity_m_per_s;
   particles_.angular_velocity = s.angular_velocity_rad_per_s;
-  detector_.restore(s.margin_m, std::size_t(s.rebuilds), s.reference_position_m, s.candidates);
+  detector_.restore(s.margin_m, std::size_t(s.rebuilds), s.reference_position_m, s.candidates,
+                    s.reference_wall_point_m);
   force_ = s.candidate_force_N;
   old_force_.clear();
   contacts_.clear();

@@ -2,6 +2,10 @@
 // A wall: an infinite plane (particles on the side the normal points to), or an infinite
 // cylinder with the particles inside it. Contacts ask only signed_distance and normal_at, so
 // the detector, the touching-pair search and NSCD treat both shapes alike.
+//
+// A plane wall with a mass is a piston: a body with one translational degree of freedom along
+// its normal, pushed into the domain by load_N and gravity (NscdIntegrator.h). Its point and
+// velocity then change from step to step; every other wall is fixed.
 
 #include <Eigen/Core>
 #include <cmath>
@@ -18,6 +22,23 @@ struct Wall {
   int material = 0;                                     // index into the material list
   WallShape shape = WallShape::Plane;
   double radius_m = 0.0;                                // cylinder radius
+  double mass_kg = 0.0;            // piston mass; 0: a fixed wall
+  double load_N = 0.0;             // piston: imposed force along the normal (into the domain)
+  double velocity_m_per_s = 0.0;   // piston: velocity along the normal
+
+  bool moves() const { return mass_kg > 0.0; }
+
+  // Makes this plane a piston of `mass_kg` pushed into the domain by `load_N` (throws for a
+  // cylinder, a mass that is not positive and finite or a load that is not finite).
+  Wall& make_piston(double piston_mass_kg, double piston_load_N) {
+    if (shape != WallShape::Plane) throw std::invalid_argument("a piston must be a plane wall");
+    if (!(piston_mass_kg > 0.0) || !std::isfinite(piston_mass_kg))
+      throw std::invalid_argument("piston mass must be positive and finite");
+    if (!std::isfinite(piston_load_N)) throw std::invalid_argument("piston load must be finite");
+    mass_kg = piston_mass_kg;
+    load_N = piston_load_N;
+    return *this;
+  }
 
   // Builds a wall, normalising the normal (throws if it is zero or not finite).
   static Wall through(const Eigen::Vector3d& point, const Eigen::Vector3d& normal, int material) {

@@ -5,6 +5,7 @@
 
 #include "coupling/app/StudyCsvFile.h"
 #include "coupling/common/ExitCode.h"
+#include "coupling/common/ShortestNumber.h"
 #include "coupling/output/ProgressReporter.h"
 #include "coupling/studies/ConductivityReport.h"
 #include "thermal/ThermalSolverError.h"
@@ -13,21 +14,16 @@ namespace tmdem::coupling {
 
 int run_conductivity_command(const Scene& scene, const ConductivityCommandOptions& options,
                              std::ostream& out, std::ostream& log) {
-  if (!options.pressures_Pa.empty()) {
-    // A load needs a plane wall that moves along its normal under an imposed pressure, with
-    // its own mass; the mechanics has no such wall yet.
-    log << "error: --pressures needs a piston (a plane wall moving along its normal under an "
-           "imposed pressure), which tmdem's mechanics does not have yet (issue 12); run "
-           "without --pressures for the bed as the scene gives it" << std::endl;
-    return kExitInvalid;
-  }
   StudyCsvFile csv(options.csv_path);
   if (!csv.open(log)) return kExitIo;
 
   std::vector<ConductivityResult> results;
   try {
     ProgressReporter progress(log, options.quiet, options.terminal);
-    results.push_back(run_conductivity_study(scene, progress));
+    if (options.pressures_Pa.empty())
+      results.push_back(run_conductivity_study(scene, progress));
+    else
+      results = run_conductivity_pressure_study(scene, options.pressures_Pa, progress);
   } catch (const thermal::ThermalSolverError& e) {
     log << "error: " << e.what() << std::endl;
     csv.discard();
@@ -45,8 +41,13 @@ int run_conductivity_command(const Scene& scene, const ConductivityCommandOption
       if (count == 0)
         log << "warning: the " << side << " wall[" << wall
             << "] touches no particle, so no heat crosses the bed (k_eff = 0): place it where the "
-               "bed ends (a settled bed's top is uneven: a piston that presses the wall onto it "
-               "does not exist yet)" << std::endl;
+               "bed ends, or make it a piston (piston = true) that presses onto the bed"
+            << std::endl;
+  for (const auto& r : results)
+    if (!r.at_rest)
+      log << "warning: the bed" << (r.pressure_Pa ? " at " + shortest_number(*r.pressure_Pa) + " Pa" : std::string())
+          << " was not at rest after mechanics.settle_time; k_eff is that of the packing as it was"
+          << std::endl;
   for (const auto& r : results)
     if (r.balance_rel > 1e-9)
       log << "warning: heat in (" << r.heat_hot_W << " W) and heat out (" << r.heat_cold_W

@@ -32,8 +32,14 @@ std::vector<mechanics::Wall> make_mechanics_walls(const Scene& scene) {
     const Eigen::Vector3d direction(w.normal[0], w.normal[1], w.normal[2]);
     out.push_back(w.cylinder ? mechanics::Wall::cylinder(point, direction, w.radius_m, w.material)
                              : mechanics::Wall::through(point, direction, w.material));
+    if (w.piston) out.back().make_piston(w.piston_mass_kg, w.piston_force_N);
   }
   return out;
+}
+
+void move_scene_walls(Scene& scene, const std::vector<mechanics::Wall>& walls) {
+  for (std::size_t w = 0; w < scene.walls.size() && w < walls.size(); ++w)
+    for (int k = 0; k < 3; ++k) scene.walls[w].point_m[k] = walls[w].point[k];
 }
 
 mechanics::NscdParameters make_nscd_parameters(const Scene& scene) {

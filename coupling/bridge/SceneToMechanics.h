@@ -19,6 +19,9 @@ mechanics::NscdParameters make_nscd_parameters(const Scene& scene);
 // The scene's NSCD integrator over `particles` (the scene's own, or restored from a checkpoint).
 std::unique_ptr<mechanics::NscdIntegrator> make_nscd_integrator(const Scene& scene,
                                                                 mechanics::ParticleSet particles);
+// Puts the points of the mechanics' walls (pistons move) back into scene.walls, so that what
+// reads wall geometry from the scene (gaps to walls, the study's length) sees them where they are.
+void move_scene_walls(Scene& scene, const std::vector<mechanics::Wall>& walls);
 // Solid sphere mass, kg: particles are spheres in 2D runs too.
 double particle_mass_kg(const Scene& scene, std::size_t id);
 

@@ -54,6 +54,11 @@ void write_contents(hid_t file, const CheckpointState& s) {
     hdf5::write_array(mechanics.get(), "candidate_pair", s.candidate_pair, 2, "1");
     hdf5::write_array(mechanics.get(), "candidate_force", s.candidate_force_N, 3, "N");
     hdf5::write_array(mechanics.get(), "solver_state", s.contact_solver_state, 0, "1");
+    if (!s.wall_point_m.empty()) {
+      hdf5::write_array(mechanics.get(), "wall_point", s.wall_point_m, 3, "m");
+      hdf5::write_array(mechanics.get(), "wall_velocity", s.wall_velocity_m_per_s, 0, "m/s");
+      hdf5::write_array(mechanics.get(), "reference_wall_point", s.detector_reference_wall_point_m, 3, "m");
+    }
   }
   if (!s.thermal_pattern_pair.empty()) {
     Hdf5Handle thermal = hdf5::create_group(file, "thermal");
@@ -119,6 +124,11 @@ CheckpointState read_contents(hid_t file) {
     s.candidate_force_N = hdf5::read_double_array(mechanics.get(), "candidate_force", 3);
     if (hdf5::exists(mechanics.get(), "solver_state"))
       s.contact_solver_state = hdf5::read_double_array(mechanics.get(), "solver_state", 0);
+    if (hdf5::exists(mechanics.get(), "wall_point")) {
+      s.wall_point_m = hdf5::read_double_array(mechanics.get(), "wall_point", 3);
+      s.wall_velocity_m_per_s = hdf5::read_double_array(mechanics.get(), "wall_velocity", 0);
+      s.detector_reference_wall_point_m = hdf5::read_double_array(mechanics.get(), "reference_wall_point", 3);
+    }
   }
   if (hdf5::exists(file, "thermal")) {
     Hdf5Handle thermal = hdf5::open_group(file, "thermal");

@@ -8,7 +8,8 @@
 // /contacts/normal_force [C] N, /extra/<name> scalar double; for a bitwise restart (README
 // "Restart, interruption and files") also /mechanics (attributes margin_m, rebuilds; datasets
 // reference_position [N,3] or [0,3] m, candidate_pair [K,2], candidate_force [K,3] N,
-// solver_state [S]: the mechanics' MechanicsState) when the packing moves, and /thermal/pattern_pair [P,2] (a dynamic
+// solver_state [S], wall_point [W,3] m, wall_velocity [W] m/s, reference_wall_point [W,3] m:
+// the mechanics' MechanicsState; the wall datasets may be absent: walls as built) when the packing moves, and /thermal/pattern_pair [P,2] (a dynamic
 // run's sticky edge set). The integrators' and the mechanics' counters are /extra scalars.
 // A checkpoint without tangential_force or normal_force (written before they existed) reads as
 // tangential force 0 and normal force impulse / time step; without /mechanics or /thermal it
@@ -49,6 +50,9 @@ struct CheckpointState {
   std::vector<std::int64_t> candidate_pair;          // K*2
   std::vector<double> candidate_force_N;             // K*3, global frame, on i
   std::vector<double> contact_solver_state;          // the contact solver's carried numbers
+  std::vector<double> wall_point_m;                  // W*3, walls' points (pistons move), or empty
+  std::vector<double> wall_velocity_m_per_s;         // W, along each wall's normal
+  std::vector<double> detector_reference_wall_point_m;  // W*3 at the last rebuild, or empty
   std::vector<std::int64_t> thermal_pattern_pair;    // P*2, dynamic runs
   std::map<std::string, double> extra;               // free-form named scalars for the run loop
 };

@@ -70,6 +70,7 @@ void CoupledRun::prepare_mechanics() {
     if (mode == MechanicsMode::Dynamic && restart_->has_mechanics) {
       try {
         nscd_->restore_state(mechanics_state_of(*restart_));
+        move_scene_walls(scene_, nscd_->walls());
       } catch (const std::invalid_argument& e) {
         throw StartError("checkpoint " + options_.restart_path + ": " + e.what());
       }
@@ -96,6 +97,7 @@ void CoupledRun::settle() {
     throw Interrupted{signal, summary_.settle->time_s};
   gather_contacts(nscd_->contacts(), contacts_);
   particles_ = nscd_->particles();
+  move_scene_walls(scene_, nscd_->walls());
 }
 
 double CoupledRun::max_temperature_K() const {
@@ -219,6 +221,7 @@ void CoupledRun::run_dynamic() {
       progress_.message(msg);
     }
     gather_contacts(nscd_->contacts(), contacts_);
+    move_scene_walls(scene_, nscd_->walls());  // near pairs see the pistons where they are
     const auto thermal_start = std::chrono::steady_clock::now();
     dynamic_network_->update(contacts_, *integrator_, coupling_, &nscd_->particles());
     integrator_->advance_to(t_next);

@@ -67,7 +67,7 @@ class CoupledRun {
   double max_temperature_K() const;
   std::vector<double> frame_times() const;
 
-  const Scene& scene_;
+  Scene scene_;  // a copy: its pistons' points follow the mechanics (move_scene_walls)
   RunOptions options_;
   std::ostream& log_;
   ProgressReporter progress_;

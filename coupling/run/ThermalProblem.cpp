@@ -119,23 +119,38 @@ thermal::IntegratorSettings integrator_settings(const Scene& scene) {
   return s;
 }
 
+void freeze_packing(const Scene& scene, const mechanics::NscdIntegrator& nscd,
+                    FrozenThermalProblem& problem) {
+  Scene moved = scene;
+  move_scene_walls(moved, nscd.walls());
+  problem.contacts.clear();
+  gather_contacts(nscd.contacts(), problem.contacts);
+  problem.positions_m.clear();
+  for (const auto& x : nscd.particles().position) problem.positions_m.push_back({x.x(), x.y(), x.z()});
+  problem.wall_points_m.clear();
+  for (const auto& w : moved.walls) problem.wall_points_m.push_back(w.point_m);
+  problem.system = build_thermal_system(moved, problem.contacts, &nscd.particles());
+  problem.T0_K.clear();
+  for (const auto& p : scene.particles) problem.T0_K.push_back(p.temperature_K);
+}
+
 FrozenThermalProblem build_frozen_thermal_problem(const Scene& scene, ProgressReporter& progress) {
   FrozenThermalProblem problem;
-  auto particles = make_particle_set(scene);
-  const auto walls = make_mechanics_walls(scene);
   switch (scene.effects.mechanics) {
-    case MechanicsMode::Off:
-      for (const auto& p : mechanics::find_touching_pairs(particles, walls, 1e-9))
+    case MechanicsMode::Off: {
+      const auto particles = make_particle_set(scene);
+      for (const auto& p : mechanics::find_touching_pairs(particles, make_mechanics_walls(scene), 1e-9))
         problem.contacts.add(p.i, p.j, 0.0);
       for (const auto& x : particles.position) problem.positions_m.push_back({x.x(), x.y(), x.z()});
+      for (const auto& w : scene.walls) problem.wall_points_m.push_back(w.point_m);
+      problem.system = build_thermal_system(scene, problem.contacts, &particles);
+      for (const auto& p : scene.particles) problem.T0_K.push_back(p.temperature_K);
       break;
+    }
     case MechanicsMode::Settle: {
-      auto nscd = make_nscd_integrator(scene, particles);
+      auto nscd = make_nscd_integrator(scene, make_particle_set(scene));
       problem.settle = settle_packing(*nscd, scene, progress);
-      gather_contacts(nscd->contacts(), problem.contacts);
-      for (const auto& x : nscd->particles().position)
-        problem.positions_m.push_back({x.x(), x.y(), x.z()});
-      particles = nscd->particles();
+      freeze_packing(scene, *nscd, problem);
       break;
     }
     case MechanicsMode::Dynamic:
@@ -143,8 +158,6 @@ FrozenThermalProblem build_frozen_thermal_problem(const Scene& scene, ProgressRe
           "the thermal problem of a dynamic scene changes every mechanical step; it has no frozen "
           "contact graph");
   }
-  problem.system = build_thermal_system(scene, problem.contacts, &particles);
-  for (const auto& p : scene.particles) problem.T0_K.push_back(p.temperature_K);
   return problem;
 }
 

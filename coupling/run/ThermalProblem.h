@@ -60,7 +60,14 @@ struct FrozenThermalProblem {
   std::unique_ptr<thermal::ThermalSystem> system;
   std::vector<double> T0_K;
   std::vector<Vec3> positions_m;  // particle centres of the frozen packing (after settling)
+  std::vector<Vec3> wall_points_m;  // walls' points (a piston's after settling)
 };
 FrozenThermalProblem build_frozen_thermal_problem(const Scene& scene, ProgressReporter& progress);
+
+// The frozen thermal problem of the packing `nscd` holds now (after settle_packing): its
+// contacts and positions, and the thermal system built with the walls where the mechanics has
+// them (pistons move). Sets everything but `settle`.
+void freeze_packing(const Scene& scene, const mechanics::NscdIntegrator& nscd,
+                    FrozenThermalProblem& problem);
 
 }  // namespace tmdem::coupling

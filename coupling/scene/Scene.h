@@ -53,6 +53,14 @@ struct Wall {
   // the power is shared among the touching particles by conductance. Excludes temperature.
   std::optional<double> heat_flux_W_per_m2;
   double heat_flux_area_m2 = 0.0;
+  // piston = true (planes): the wall moves along its normal, pushed into the domain by
+  // piston_force_N plus its weight (mechanics/Wall.h). The force is `force`, or `pressure` x
+  // `pressure_area` (then both are kept, so a study can impose other pressures).
+  bool piston = false;
+  double piston_mass_kg = 0.0;
+  double piston_force_N = 0.0;
+  std::optional<double> piston_pressure_Pa;
+  double piston_area_m2 = 0.0;  // pressure_area; 0: not given
 };
 
 // Signed distance of x from the wall's surface, m (positive inside the domain).

@@ -118,6 +118,26 @@ void read_wall_heat(const SceneTable& t, Wall& w) {
   w.heat_flux_area_m2 = area.value_or(0.0);
 }
 
+// piston = true and its keys (mass; force, or pressure with pressure_area).
+void read_piston(const SceneTable& t, Wall& w) {
+  w.piston = t.boolean("piston", false);
+  if (!w.piston) {
+    for (const char* key : {"mass", "force", "pressure", "pressure_area"})
+      if (t.has(key)) t.fail(key, "only a piston = true wall takes this key");
+    return;
+  }
+  if (w.cylinder) t.fail("piston", "a piston must be a plane wall (shape = \"plane\")");
+  w.piston_mass_kg = t.required_number("mass");
+  const auto force = t.optional_number("force");
+  w.piston_pressure_Pa = t.optional_number("pressure");
+  const auto area = t.optional_number("pressure_area");
+  if (force && w.piston_pressure_Pa) t.fail("force", "a piston has a force or a pressure, not both");
+  if (w.piston_pressure_Pa.has_value() != area.has_value())
+    t.fail(area ? "pressure_area" : "pressure", "pressure and pressure_area go together");
+  w.piston_area_m2 = area.value_or(0.0);
+  w.piston_force_N = force ? *force : w.piston_pressure_Pa.value_or(0.0) * w.piston_area_m2;
+}
+
 }  // namespace
 
 void SceneBuilder::read_walls() {
@@ -141,6 +161,7 @@ void SceneBuilder::read_walls() {
     w.normal = {n[0] / length, n[1] / length, n[2] / length};
     w.material = material_of(t, "material");
     read_wall_heat(t, w);
+    read_piston(t, w);
     scene_.walls.push_back(w);
   }
 }

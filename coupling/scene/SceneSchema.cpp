@@ -275,7 +275,18 @@ std::vector<Section> build_sections() {
                "power heat_flux x heat_flux_area is shared among the touching particles in "
                "proportion to their contact conductance"),
         number("heat_flux_area", "m^2", std::nullopt, Range::greater(0.0),
-               "the area the heat flux is imposed over (with heat_flux)")}}};
+               "the area the heat flux is imposed over (with heat_flux)"),
+        boolean("piston", "false",
+                "plane: the wall moves along its normal under force (or pressure x "
+                "pressure_area) plus its weight, as a body of the contact problem"),
+        number("mass", "kg", std::nullopt, Range::greater(0.0), "piston: its mass (required)"),
+        number("force", "N", std::nullopt, Range::at_least(0.0),
+               "piston: force pushing it into the domain (not with pressure); neither: 0, "
+               "its weight only"),
+        number("pressure", "Pa", std::nullopt, Range::at_least(0.0),
+               "piston: pressure pushing it into the domain, over pressure_area"),
+        number("pressure_area", "m^2", std::nullopt, Range::greater(0.0),
+               "piston: the area the pressure acts over (e.g. the box cross-section)")}}};
   for (const auto& s : modes) sections.push_back(s);
   sections.push_back(
       {"mechanics", "NSCD (Moreau-Jean, Gauss-Seidel); range checks apply when mechanics is on",

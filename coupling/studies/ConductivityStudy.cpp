@@ -2,10 +2,12 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <sstream>
 
+#include "coupling/bridge/SceneToMechanics.h"
 #include "coupling/run/ThermalProblem.h"
 #include "coupling/scene/SceneError.h"
 #include "mechanics/PairIndex.h"
@@ -143,11 +145,14 @@ std::pair<std::size_t, std::size_t> conductivity_walls(const Scene& scene) {
   return *a.temperature_K > *b.temperature_K ? std::pair(iso[0], iso[1]) : std::pair(iso[1], iso[0]);
 }
 
-ConductivityResult run_conductivity_study(const Scene& input, ProgressReporter& progress) {
+namespace {
+
+// k_eff and the rest from a frozen problem; `scene` has the walls where the problem has them.
+ConductivityResult measure_conductivity(const Scene& scene, const FrozenThermalProblem& problem,
+                                        std::size_t hot_wall, std::size_t cold_wall) {
   ConductivityResult r;
-  std::tie(r.hot_wall, r.cold_wall) = conductivity_walls(input);
-  Scene scene = input;
-  if (scene.effects.mechanics == MechanicsMode::Dynamic) scene.effects.mechanics = MechanicsMode::Settle;
+  r.hot_wall = hot_wall;
+  r.cold_wall = cold_wall;
   const auto& hot = scene.walls[r.hot_wall];
   const auto& cold = scene.walls[r.cold_wall];
   r.T_hot_K = *hot.temperature_K;
@@ -158,8 +163,8 @@ ConductivityResult run_conductivity_study(const Scene& input, ProgressReporter& 
     throw SceneError("study conductivity: the cold wall[" + std::to_string(r.cold_wall) +
                      "] is not on the inner side of the hot wall[" + std::to_string(r.hot_wall) +
                      "] (distance " + std::to_string(r.length_m) + " m)");
+  if (problem.settle) r.at_rest = problem.settle->at_rest;
 
-  auto problem = build_frozen_thermal_problem(scene, progress);
   const auto& system = *problem.system;
   const auto steady = thermal::solve_steady_state(system, problem.T0_K);
   r.T_K = steady.T_K;
@@ -220,6 +225,78 @@ ConductivityResult run_conductivity_study(const Scene& input, ProgressReporter& 
   r.balance_rel = r.heat_hot_W != 0.0 ? std::abs(r.heat_hot_W - r.heat_cold_W) / std::abs(r.heat_hot_W) : 0.0;
   r.k_eff_W_per_mK = r.heat_hot_W * r.length_m / (r.area_m2 * (r.T_hot_K - r.T_cold_K));
   return r;
+}
+
+// The scene's walls moved to where the problem has them.
+Scene with_walls_of(const Scene& scene, const FrozenThermalProblem& problem) {
+  Scene moved = scene;
+  for (std::size_t w = 0; w < moved.walls.size() && w < problem.wall_points_m.size(); ++w)
+    moved.walls[w].point_m = problem.wall_points_m[w];
+  return moved;
+}
+
+// The one piston of a --pressures study (SceneError otherwise).
+std::size_t study_piston(const Scene& scene) {
+  std::vector<std::size_t> pistons;
+  for (std::size_t w = 0; w < scene.walls.size(); ++w)
+    if (scene.walls[w].piston) pistons.push_back(w);
+  if (pistons.size() != 1)
+    throw SceneError("study conductivity --pressures needs exactly one wall with piston = true "
+                     "(it loads the bed), the scene has " + std::to_string(pistons.size()));
+  if (scene.effects.mechanics == MechanicsMode::Off)
+    throw SceneError("study conductivity --pressures needs effects.mechanics = \"settle\" (the "
+                     "piston loads the bed through the contact mechanics), the scene has \"off\"");
+  return pistons[0];
+}
+
+}  // namespace
+
+ConductivityResult run_conductivity_study(const Scene& input, ProgressReporter& progress) {
+  const auto [hot, cold] = conductivity_walls(input);
+  Scene scene = input;
+  if (scene.effects.mechanics == MechanicsMode::Dynamic) scene.effects.mechanics = MechanicsMode::Settle;
+  const auto problem = build_frozen_thermal_problem(scene, progress);
+  auto r = measure_conductivity(with_walls_of(scene, problem), problem, hot, cold);
+  const auto& piston = std::find_if(scene.walls.begin(), scene.walls.end(), [](const Wall& w) { return w.piston; });
+  if (piston != scene.walls.end() && piston->piston_pressure_Pa && scene.effects.mechanics != MechanicsMode::Off)
+    r.pressure_Pa = piston->piston_pressure_Pa;
+  return r;
+}
+
+double piston_area_m2(const Scene& scene) {
+  const std::size_t w = study_piston(scene);
+  if (scene.walls[w].piston_area_m2 > 0.0) return scene.walls[w].piston_area_m2;
+  const auto [hot, cold] = conductivity_walls(scene);
+  std::vector<Vec3> positions;
+  for (const auto& p : scene.particles) positions.push_back(p.position_m);
+  return cross_section_m2(scene, positions, vec(scene.walls[hot].normal).normalized(), hot, cold);
+}
+
+std::vector<ConductivityResult> run_conductivity_pressure_study(
+    const Scene& input, const std::vector<double>& pressures_Pa, ProgressReporter& progress) {
+  const auto [hot, cold] = conductivity_walls(input);
+  Scene scene = input;
+  if (scene.effects.mechanics == MechanicsMode::Dynamic) scene.effects.mechanics = MechanicsMode::Settle;
+  const std::size_t piston = study_piston(scene);
+  const double area = piston_area_m2(scene);
+  for (double p : pressures_Pa)
+    if (!(p >= 0.0) || !std::isfinite(p))
+      throw SceneError("study conductivity --pressures: every pressure must be a finite number "
+                       ">= 0 Pa (got " + std::to_string(p) + ")");
+  auto nscd = make_nscd_integrator(scene, make_particle_set(scene));
+  std::vector<ConductivityResult> results;
+  for (double p : pressures_Pa) {
+    // Each load re-settles the bed left by the previous one (the piston keeps its place and
+    // the contacts their forces as the warm start).
+    nscd->set_piston_load(piston, p * area);
+    FrozenThermalProblem problem;
+    problem.settle = settle_packing(*nscd, scene, progress);
+    freeze_packing(scene, *nscd, problem);
+    auto r = measure_conductivity(with_walls_of(scene, problem), problem, hot, cold);
+    r.pressure_Pa = p;
+    results.push_back(std::move(r));
+  }
+  return results;
 }
 
 }  // namespace tmdem::coupling

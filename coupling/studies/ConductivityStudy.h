@@ -42,7 +42,7 @@ struct ModeShare {
 };
 
 struct ConductivityResult {
-  std::optional<double> pressure_Pa;   // the piston's load; none without a piston
+  std::optional<double> pressure_Pa;   // the piston's pressure (--pressures, or its pressure key)
   std::size_t hot_wall = 0, cold_wall = 0;  // indices into scene.walls
   double T_hot_K = 0.0, T_cold_K = 0.0;
   double length_m = 0.0, area_m2 = 0.0;
@@ -70,5 +70,17 @@ std::pair<std::size_t, std::size_t> conductivity_walls(const Scene& scene);
 // Runs the study on the scene (settling first if it asks for mechanics). Throws SceneError for
 // an unsuitable scene, thermal::ThermalSolverError when the steady state fails.
 ConductivityResult run_conductivity_study(const Scene& scene, ProgressReporter& progress);
+
+// The area a --pressures pressure acts over, m^2: the piston's pressure_area, else the study's
+// cross-section (side walls, else the particles' extent as the scene places them).
+double piston_area_m2(const Scene& scene);
+
+// `--pressures`: the scene's one piston (piston = true) loads the bed with each pressure in turn
+// (force = pressure x piston_area_m2), the bed re-settles from where the previous load left it
+// (mechanics.settle_time and settle_velocity per load), and the steady state is solved on that
+// packing, with the piston where it came to rest: one result per pressure, in the given order.
+// Throws SceneError without exactly one piston, for mechanics "off" or a negative pressure.
+std::vector<ConductivityResult> run_conductivity_pressure_study(
+    const Scene& scene, const std::vector<double>& pressures_Pa, ProgressReporter& progress);
 
 }  // namespace tmdem::coupling

@@ -44,6 +44,7 @@ ContactProblem column_problem(int count, double m, double h, double g, double mu
     p.bias[k] = 0.0;
     p.mu[k] = mu;
   }
+  p.add_fixed_wall_bodies(1);  // the floor
   return p;
 }
 

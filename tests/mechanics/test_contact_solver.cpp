@@ -56,6 +56,7 @@ ContactProblem stack_problem(double m0, double m1, double h, double g) {
   p.w_t = {1.0 / m0 + 1e-6, 1.0 / m0 + 1.0 / m1 + 2e-6};
   p.bias = {0.0, 0.0};
   p.mu = {0.3, 0.3};
+  p.add_fixed_wall_bodies(1);  // the floor
   return p;
 }
 
@@ -72,7 +73,7 @@ TEST(GaussSeidelSolver, StackCarriesTheWeightAboveAndStops) {
   EXPECT_TRUE(report.converged);
   EXPECT_NEAR(r[0][0], (m0 + m1) * g * h, 1e-9 * (m0 + m1) * g * h);
   EXPECT_NEAR(r[1][0], m1 * g * h, 1e-9 * m1 * g * h);
-  ASSERT_EQ(v.size(), 2u);
+  ASSERT_EQ(v.size(), 3u);  // two spheres and the floor's (immobile) wall body
   EXPECT_LT(v[0].norm() + v[1].norm(), 1e-9 * g * h);
   // Warm-started from the answer, it stops at once (a second sweep may confirm round-off).
   const SolveReport warm = solver->solve(problem, r, v, w);

@@ -19,15 +19,14 @@ namespace {
 
 Eigen::Vector3d vec(const Vec3& v) { return {v[0], v[1], v[2]}; }
 
-// Which wall each of the network's wall edges belongs to, in the order build_edges adds them
-// (contact order, isothermal walls only).
-std::vector<std::size_t> wall_of_wall_edge(const Scene& scene, const ContactList& contacts) {
+// Which wall each of the network's wall edges belongs to. The study's only isothermal walls are
+// the hot and the cold one, at different constant temperatures, so an edge's wall temperature
+// names its wall; near pairs (gas across a gap) add wall edges that are not contacts.
+std::vector<std::size_t> wall_of_wall_edge(const thermal::ThermalNetwork& net, double T_hot_K,
+                                           std::size_t hot, std::size_t cold) {
   std::vector<std::size_t> wall;
-  for (std::size_t c = 0; c < contacts.size(); ++c) {
-    const auto j = contacts.pair[2 * c + 1];
-    if (mechanics::is_wall(j) && scene.walls[mechanics::wall_index(j)].temperature_K)
-      wall.push_back(mechanics::wall_index(j));
-  }
+  for (std::size_t e = 0; e < net.wall_edge_count(); ++e)
+    wall.push_back(net.wall_temperature_K[e] == T_hot_K ? hot : cold);
   return wall;
 }
 
@@ -195,11 +194,7 @@ ConductivityResult measure_conductivity(const Scene& scene, const FrozenThermalP
 
   // Heat per mode through each wall and across the bed.
   const auto& net = system.network();
-  const auto edge_wall = wall_of_wall_edge(scene, problem.contacts);
-  if (edge_wall.size() != net.wall_edge_count() && net.wall_edge_count() != 0)
-    throw std::logic_error("conductivity study: " + std::to_string(edge_wall.size()) +
-                           " isothermal wall contacts but " + std::to_string(net.wall_edge_count()) +
-                           " wall edges in the network");
+  const auto edge_wall = wall_of_wall_edge(net, r.T_hot_K, r.hot_wall, r.cold_wall);
   const auto no_walls = with_wall_edges_of(net, edge_wall, SIZE_MAX);
   const auto hot_only = with_wall_edges_of(net, edge_wall, r.hot_wall);
   const auto cold_only = with_wall_edges_of(net, edge_wall, r.cold_wall);

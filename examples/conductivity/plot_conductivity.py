@@ -30,7 +30,11 @@ def main():
     if loaded:
         p = [float(r["pressure_Pa"]) for r in loaded]
         k = [float(r["k_eff_W_per_mK"]) for r in loaded]
-        ax.loglog(p, k, "o-")
+        ax.loglog(p, k, "o-", label="tmdem")
+        # Hertz at a fixed contact network: every conductance goes as F^(1/3).
+        ax.loglog(p, [k[0] * (v / p[0]) ** (1.0 / 3.0) for v in p], "--", color="gray",
+                  label="p^(1/3) through the first point")
+        ax.legend(fontsize=8)
         if len(p) > 1:
             lp, lk = [math.log(v) for v in p], [math.log(v) for v in k]
             mp, mk = sum(lp) / len(lp), sum(lk) / len(lk)

@@ -34,6 +34,17 @@ std::string lattice_between_walls(int nx, int ny, int nz, double T_hot, double T
       .str();
 }
 
+// The same in air (surrounding-layer gas), the lid `lid_gap_m` above the top layer.
+std::string lattice_in_air(int nx, int ny, int nz, double lid_gap_m) {
+  return SceneBuilder(thermal_scene())
+      .set("effects.gas_conduction", true)
+      .set("fluid.model", "surrounding_layer")
+      .add("generate", lattice({nx, ny, nz}, {{"temperature", 300.0}}))
+      .add("wall", floor_wall({{"temperature", 310.0}}))
+      .add("wall", plane_wall({0.0, ny * kD + lid_gap_m, 0.0}, {0.0, -1.0, 0.0}, {{"temperature", 290.0}}))
+      .str();
+}
+
 ProgressReporter quiet_progress() {
   static std::ostringstream sink;
   return ProgressReporter(sink, true, false);
@@ -122,14 +133,7 @@ TEST(ConductivityStudy, ColumnInACylinderUsesItsCrossSection) {
 // contact, wall and gas conduction add up to 1 and heat in equals heat out.
 TEST(ConductivityStudy, LatticeInAirIsSeriesOfContactPlusGas) {
   const int nx = 3, ny = 4, nz = 2;
-  const auto text = SceneBuilder(thermal_scene())
-                        .set("effects.gas_conduction", true)
-                        .set("fluid.model", "surrounding_layer")
-                        .add("generate", lattice({nx, ny, nz}, {{"temperature", 300.0}}))
-                        .add("wall", floor_wall({{"temperature", 310.0}}))
-                        .add("wall", plane_wall({0.0, ny * kD, 0.0}, {0.0, -1.0, 0.0}, {{"temperature", 290.0}}))
-                        .str();
-  const auto scene = load_scene_text(text, "air");
+  const auto scene = load_scene_text(lattice_in_air(nx, ny, nz, 0.0), "air");
   auto progress = quiet_progress();
   const auto r = run_conductivity_study(scene, progress);
   auto problem = build_frozen_thermal_problem(scene, progress);
@@ -157,6 +161,20 @@ TEST(ConductivityStudy, LatticeInAirIsSeriesOfContactPlusGas) {
   ASSERT_NE(gas, r.modes.end());
   EXPECT_GT(gas->share, 0.0);
   EXPECT_GT(gas->hot_wall_W, 0.0);
+}
+
+// A lid 0.1 R above the top layer touches nothing, so all its heat crosses the gas gap: its
+// wall edges are near pairs, not contacts (the study once counted only contacts and stopped
+// with a logic error). Heat in equals heat out and the shares add up to 1.
+TEST(ConductivityStudy, LidAcrossAGasGapCarriesHeat) {
+  auto progress = quiet_progress();
+  const auto r = run_conductivity_study(load_scene_text(lattice_in_air(2, 3, 2, 1e-4), "gap"), progress);
+  EXPECT_EQ(r.cold_wall_contacts, 0u);
+  EXPECT_GT(r.heat_cold_W, 0.0);
+  EXPECT_LE(r.balance_rel, 1e-12);
+  double sum = 0.0;
+  for (const auto& m : r.modes) sum += m.share;
+  EXPECT_NEAR(sum, 1.0, 1e-12);
 }
 
 TEST(ConductivityStudy, RefusesScenesWithoutTwoFacingIsothermalWalls) {

@@ -290,6 +290,11 @@ StepReport NscdIntegrator::step(double h) {
   report.converged = solved.converged;
   report.stalled = solved.stalled;
   keep_in_plane();
+  // The bodies' view again (keep_in_plane may have trimmed the particles'), for the energy
+  // account and the contacts' dissipation below.
+  std::copy_n(particles_.velocity.begin(), n, body_velocity_.begin());
+  std::copy_n(particles_.angular_velocity.begin(), n, body_angular_velocity_.begin());
+  account_energy(h, report);
 
   // Positions: q_{n+1} = q_n + h (theta v_{n+1} + (1 - theta) v_n).
   const double theta = parameters_.theta;
@@ -320,6 +325,13 @@ StepReport NscdIntegrator::step(double h) {
       gap = walls_[wall_index(j)].signed_distance(particles_.position[i]) - problem_.lever_i[k];
     }
     penetration = std::max(penetration, -gap);
+    // -r . u_theta, u_theta the relative velocity the position update uses (bias removed).
+    const Eigen::Vector3d u_theta =
+        theta * problem_.local_velocity(k, body_velocity_, body_angular_velocity_) +
+        (1.0 - theta) * problem_.local_velocity(k, old_velocity_, old_angular_velocity_) -
+        Eigen::Vector3d(problem_.bias[k], 0.0, 0.0);
+    const double dissipated_J = -r.dot(u_theta);
+    report.contact_dissipation_J += dissipated_J;
     if (r[0] > 0.0) {
       ContactForce out;
       out.i = i;
@@ -329,6 +341,7 @@ StepReport NscdIntegrator::step(double h) {
       out.normal_impulse_Ns = r[0];
       out.normal_force_N = r[0] / h;
       out.tangential_force_N = (r[1] * problem_.tangent1[k] + r[2] * problem_.tangent2[k]) / h;
+      out.dissipated_power_W = dissipated_J / h;
       contacts_.push_back(out);
     }
   }
@@ -336,6 +349,38 @@ StepReport NscdIntegrator::step(double h) {
   report.active_contacts = contacts_.size();
   stats_.add(report);
   return report;
+}
+
+void NscdIntegrator::account_energy(double h, StepReport& report) const {
+  // Exact increments (no difference of large totals): dK = sum (m/2) (v+ - v-).(v+ + v-) (+ the
+  // same for spin), dV = -sum m g . dx with dx the position update's own displacement.
+  const double theta = parameters_.theta;
+  double kinetic = 0.0, potential = 0.0, jump = 0.0;
+  for (std::size_t i = 0; i < particles_.size(); ++i) {
+    if (inverse_mass_[i] == 0.0) continue;
+    const Eigen::Vector3d& v = particles_.velocity[i];
+    const Eigen::Vector3d& v0 = old_velocity_[i];
+    const Eigen::Vector3d& w = particles_.angular_velocity[i];
+    const Eigen::Vector3d& w0 = old_angular_velocity_[i];
+    const double m = particles_.mass[i], I = particles_.inertia[i];
+    kinetic += 0.5 * (m * (v - v0).dot(v + v0) + I * (w - w0).dot(w + w0));
+    potential -= m * gravity_.dot(h * (theta * v + (1.0 - theta) * v0));
+    jump += m * (v - v0).squaredNorm() + I * (w - w0).squaredNorm();
+  }
+  // Pistons: their kinetic energy, and the potential of the constant external force on them
+  // (load along the normal plus weight), -F . dx.
+  for (std::size_t w = 0; w < walls_.size(); ++w) {
+    if (!walls_[w].moves()) continue;
+    const Eigen::Vector3d& v = body_velocity_[particles_.size() + w];
+    const Eigen::Vector3d& v0 = old_velocity_[particles_.size() + w];
+    const double m = walls_[w].mass_kg;
+    const Eigen::Vector3d force = walls_[w].load_N * walls_[w].normal + m * gravity_;
+    kinetic += 0.5 * m * (v - v0).dot(v + v0);
+    potential -= force.dot(h * (theta * v + (1.0 - theta) * v0));
+    jump += m * (v - v0).squaredNorm();
+  }
+  report.energy_change_J = kinetic + potential;
+  report.numerical_dissipation_J = (theta - 0.5) * jump;
 }
 
 double NscdIntegrator::kinetic_energy() const {

@@ -31,6 +31,17 @@
 // penalty), and the same theta update of their point as the particles. The candidate table
 // follows their motion (ContactDetector.h); max_speed and the energies include them.
 //
+// Energy account of a step. With M (v+ - v-) = h F_gravity + sum_c H_c r_c and the position
+// update above, kinetic plus gravitational energy change exactly by
+//   dK + dV = sum_c r_c . u_theta,c - (theta - 1/2) |v+ - v-|_M^2,
+// u_theta,c = theta u_c(v+) + (1 - theta) u_c(v-) the contact's relative velocity (no bias).
+// So D_c = -r_c . u_theta,c is what contact c dissipated (slip work plus impact loss; >= 0
+// except where a penetration beyond the slop is pushed out, which does work), and
+// (theta - 1/2) |v+ - v-|_M^2 is the scheme's own numerical damping (0 for theta = 1/2, > 0
+// above). StepReport carries the three terms; ContactForce::dissipated_power_W is D_c / h.
+// A piston counts as a body: its kinetic energy, and its load plus weight as a constant
+// external force whose potential is -F . x.
+//
 // Friction between two materials uses the smaller coefficient (see Material.h).
 // dimension 2: gravity, reactions and velocities are kept in the xy-plane exactly
 // (z, v_z, omega_x, omega_y stay as they are: 0 for a planar scene); spheres still roll.
@@ -110,6 +121,8 @@ class NscdIntegrator {
   void setup_contacts(double h);
   void keep_in_plane();
   void refresh_wall_bodies(double h);
+  // The step's energy change and numerical damping (see above), from v- and v+.
+  void account_energy(double h, StepReport& report) const;
 
   ParticleSet particles_;
   std::vector<Material> materials_;

@@ -15,6 +15,11 @@ struct StepReport {
   std::size_t candidates = 0;      // contacts handed to the solver
   std::size_t active_contacts = 0; // contacts with r_n > 0
   bool rebuilt_candidates = false; // the candidate table was rebuilt this step
+  // Energy account of the step (NscdIntegrator.h): energy_change + contact_dissipation +
+  // numerical_dissipation = 0 up to round-off, all in J.
+  double energy_change_J = 0.0;        // kinetic + gravitational potential, after - before
+  double contact_dissipation_J = 0.0;  // -sum_c r_c . u_theta,c
+  double numerical_dissipation_J = 0.0;  // (theta - 1/2) |v+ - v-|_M^2, 0 for theta = 1/2
 };
 
 struct MechanicsStats {
@@ -24,6 +29,9 @@ struct MechanicsStats {
   std::int64_t unconverged_steps = 0;
   std::int64_t stalled_steps = 0;      // of the unconverged ones, stopped early for no progress
   double max_penetration_m = 0.0;
+  double energy_change_J = 0.0;          // sums of the steps' energy accounts (StepReport)
+  double contact_dissipation_J = 0.0;
+  double numerical_dissipation_J = 0.0;
 
   double mean_sweeps() const {         // "mean_iterations" in the run summary
     return steps > 0 ? static_cast<double>(total_sweeps) / static_cast<double>(steps) : 0.0;

@@ -99,6 +99,10 @@ struct ModeDescription {
   // True for modes that read the contact conductances: contacts become network edges (with their
   // conductances) only while such a mode is switched on.
   bool uses_contact_conductance = false;
+  // True for modes that read the mechanical power dissipated at the contacts
+  // (ThermalNetwork::dissipation_W): the coupling then fills it every mechanical step, and the
+  // scene refuses the mode's switch unless effects.mechanics = "dynamic".
+  bool uses_contact_dissipation = false;
   // Key of the parameter that holds the mode's reach across gaps, as a fraction of the smaller
   // radius ("" = contacts only). The network then also holds every pair (and isothermal-wall
   // pair) whose gap is at most that fraction, with its gap (thermal/ThermalNetwork.h). Near

@@ -27,6 +27,9 @@ void ThermalNetwork::clear_edges() {
   flux_node.clear();
   flux_wall.clear();
   flux_conductance_W_per_K.clear();
+  dissipation_a.clear();
+  dissipation_b.clear();
+  dissipation_W.clear();
 }
 
 void ThermalNetwork::clear_wall_edges() {
@@ -66,6 +69,12 @@ void ThermalNetwork::add_flux_edge(std::int32_t node, std::int32_t flux_wall_ind
   flux_node.push_back(node);
   flux_wall.push_back(flux_wall_index);
   flux_conductance_W_per_K.push_back(conductance_W_per_K);
+}
+
+void ThermalNetwork::add_dissipation(std::int32_t a, std::int32_t b, double power_W) {
+  dissipation_a.push_back(a);
+  dissipation_b.push_back(b);
+  dissipation_W.push_back(power_W);
 }
 
 void ThermalNetwork::apply_time(double t_s) {
@@ -130,6 +139,16 @@ void ThermalNetwork::validate() const {
     const double h = flux_conductance_W_per_K[f];
     if (!(h >= 0.0) || !std::isfinite(h))
       fail("flux edge " + std::to_string(f) + " has conductance " + std::to_string(h) + " W/K");
+  }
+  if (dissipation_b.size() != dissipation_a.size() || dissipation_W.size() != dissipation_a.size())
+    fail("dissipation arrays have different sizes");
+  for (std::size_t k = 0; k < dissipation_a.size(); ++k) {
+    const auto a = dissipation_a[k], b = dissipation_b[k];
+    if (a < 0 || std::size_t(a) >= n || b < -1 || (b >= 0 && std::size_t(b) >= n) || a == b ||
+        !std::isfinite(dissipation_W[k]))
+      fail("dissipation " + std::to_string(k) + " joins nodes " + std::to_string(a) + " and " +
+           std::to_string(b) + " with " + std::to_string(dissipation_W[k]) +
+           " W (need node a below " + std::to_string(n) + ", b another node or -1, finite power)");
   }
 }
 

@@ -48,6 +48,13 @@ struct ThermalNetwork {
   std::vector<std::int32_t> flux_node, flux_wall;             // per flux edge
   std::vector<double> flux_conductance_W_per_K;               // per flux edge
 
+  // Mechanical power dissipated at the contacts over the current mechanical step (W; slip work
+  // plus impact loss, mechanics' -r . u_theta / h), one entry per contact of a moving packing:
+  // particle a, and particle b or -1 for a wall. Replaced every step like the edges; read by
+  // the modes that turn it into heat (ModeDescription::uses_contact_dissipation).
+  std::vector<std::int32_t> dissipation_a, dissipation_b;
+  std::vector<double> dissipation_W;
+
   std::size_t node_count() const { return heat_capacity_J_per_K.size(); }
   std::size_t edge_count() const { return edge_a.size(); }
   std::size_t wall_edge_count() const { return wall_node.size(); }
@@ -65,6 +72,8 @@ struct ThermalNetwork {
                      std::int32_t schedule = -1, double gap_m = 0.0,
                      double contact_radius_m = 0.0, bool in_contact = true);
   void add_flux_edge(std::int32_t node, std::int32_t flux_wall_index, double conductance_W_per_K);
+  // b = -1: a contact with a wall.
+  void add_dissipation(std::int32_t a, std::int32_t b, double power_W);
   // Wall temperatures of the scheduled wall edges at time t_s.
   void apply_time(double t_s);
   // Throws std::invalid_argument naming the first inconsistency (sizes, ids, non-finite or

@@ -41,6 +41,9 @@ void ThermalSystem::replace_edges(const ThermalNetwork& edges) {
   network_.wall_gap_m = edges.wall_gap_m;
   network_.wall_contact_radius_m = edges.wall_contact_radius_m;
   network_.wall_in_contact = edges.wall_in_contact;
+  network_.dissipation_a = edges.dissipation_a;
+  network_.dissipation_b = edges.dissipation_b;
+  network_.dissipation_W = edges.dissipation_W;
   network_.validate();
   network_.apply_time(time_s_);
   for (auto& mode : modes_) mode->update_geometry(network_);

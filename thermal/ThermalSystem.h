@@ -27,7 +27,8 @@ class ThermalSystem {
   std::size_t size() const { return network_.node_count(); }
   const std::vector<std::unique_ptr<HeatTransferMode>>& modes() const { return modes_; }
 
-  // Takes the edges (particle-particle and particle-wall) of `edges`; node data is untouched.
+  // Takes the edges (particle-particle and particle-wall) and the contacts' dissipated powers of
+  // `edges`; node data is untouched.
   // Same pairs in the same order: a values-only change. Otherwise the contact graph changed
   // shape and the pattern is rebuilt.
   void replace_edges(const ThermalNetwork& edges);

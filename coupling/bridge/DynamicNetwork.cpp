@@ -2,10 +2,12 @@
 
 #include <stdexcept>
 
+#include "coupling/scene/HeatModes.h"
+
 namespace tmdem::coupling {
 
 DynamicNetwork::DynamicNetwork(const Scene& scene, thermal::ThermalSystem& system)
-    : system_(system), builder_(scene) {}
+    : system_(system), builder_(scene), dissipation_(contacts_dissipate_heat(scene.effects)) {}
 
 void DynamicNetwork::reset() {
   pattern_ = ContactPattern();
@@ -27,6 +29,16 @@ void DynamicNetwork::load(const ContactList& active, const mechanics::ParticleSe
     pattern_.update(active, pattern_contacts_, pattern_active_);
     builder_.build_edges(pattern_contacts_, edges_, &pattern_active_);
   }
+  edges_.dissipation_a.clear();
+  edges_.dissipation_b.clear();
+  edges_.dissipation_W.clear();
+  if (dissipation_)
+    for (std::size_t c = 0; c < active.size(); ++c) {
+      const std::int64_t j = active.pair[2 * c + 1];
+      if (active.dissipated_power_W[c] != 0.0)
+        edges_.add_dissipation(std::int32_t(active.pair[2 * c]), j >= 0 ? std::int32_t(j) : -1,
+                               active.dissipated_power_W[c]);
+    }
   system_.replace_edges(edges_);
 }
 

@@ -23,7 +23,8 @@ class DynamicNetwork {
 
   // No contact, empty pattern (t = 0 of a dynamic run).
   void reset();
-  // active: this step's contacts in canonical order; their conductances are filled in.
+  // active: this step's contacts in canonical order; their conductances are filled in, and
+  // their dissipated powers handed to the network when a mode reads them (friction heat).
   // geometry: the packing of this step, required when a mode works across gaps (gas, pair
   // radiation): its near pairs then join the sticky pattern like contacts, and every pattern
   // edge carries this step's gap.
@@ -46,6 +47,7 @@ class DynamicNetwork {
   std::vector<std::uint8_t> pattern_active_;
   ContactList with_near_;  // this step's contacts and near pairs, canonical order
   thermal::ThermalNetwork edges_;
+  bool dissipation_;  // some switched-on mode turns the contacts' dissipation into heat
 };
 
 }  // namespace tmdem::coupling

@@ -53,6 +53,18 @@ nlohmann::json RunSummary::to_json() const {
                       {"final_J", energy.final_J},
                       {"boundary_heat_J", energy.boundary_heat_J},
                       {"balance_error_rel", energy.balance_error_rel}};
+  if (energy.mechanical) {
+    const auto& a = *energy.mechanical;
+    nlohmann::json me = {{"energy_change_J", a.energy_change_J},
+                         {"contact_dissipation_J", a.contact_dissipation_J},
+                         {"numerical_dissipation_J", a.numerical_dissipation_J},
+                         {"balance_error_rel", a.balance_error_rel}};
+    if (a.heat) {
+      me["heat_generated_J"] = a.heat_generated_J;
+      me["heat_error_rel"] = a.heat_error_rel;
+    }
+    e["mechanical"] = std::move(me);
+  }
   nlohmann::json j = {{"status", status},
                       {"wall_time_s", wall_time_s},
                       {"simulated_time_s", simulated_time_s},
@@ -126,6 +138,18 @@ RunSummary RunSummary::from_json(const nlohmann::json& j) {
   s.energy.final_J = number(e, "final_J", 0.0);
   s.energy.boundary_heat_J = number(e, "boundary_heat_J", 0.0);
   s.energy.balance_error_rel = number(e, "balance_error_rel", 0.0);
+  if (e.contains("mechanical")) {
+    const nlohmann::json& me = e.at("mechanical");
+    MechanicalEnergySummary a;
+    a.energy_change_J = number(me, "energy_change_J", 0.0);
+    a.contact_dissipation_J = number(me, "contact_dissipation_J", 0.0);
+    a.numerical_dissipation_J = number(me, "numerical_dissipation_J", 0.0);
+    a.balance_error_rel = number(me, "balance_error_rel", 0.0);
+    a.heat = me.contains("heat_generated_J");
+    a.heat_generated_J = number(me, "heat_generated_J", 0.0);
+    a.heat_error_rel = number(me, "heat_error_rel", 0.0);
+    s.energy.mechanical = a;
+  }
   return s;
 }
 
@@ -136,6 +160,24 @@ void RunSummary::write(const std::string& path) const {
   out << text;
   out.close();
   if (!out) throw OutputError("cannot write run summary '" + path + "': write failed");
+}
+
+MechanicalEnergySummary MechanicalEnergySummary::with_errors(bool heat_on) const {
+  MechanicalEnergySummary a = *this;
+  const double scale =
+      std::max(std::abs(energy_change_J), std::abs(contact_dissipation_J) + std::abs(numerical_dissipation_J));
+  a.balance_error_rel =
+      scale == 0.0 ? 0.0
+                   : std::abs(energy_change_J + contact_dissipation_J + numerical_dissipation_J) / scale;
+  a.heat = heat_on;
+  if (!heat_on)
+    a.heat_error_rel = 0.0;
+  else if (contact_dissipation_J == 0.0)
+    a.heat_error_rel = heat_generated_J == 0.0 ? 0.0 : 1.0;  // heat out of nothing: all wrong
+  else
+    a.heat_error_rel =
+        std::abs(heat_generated_J - contact_dissipation_J) / std::abs(contact_dissipation_J);
+  return a;
 }
 
 double RunSummary::balance_error_rel(double initial_J, double final_J, double boundary_heat_J) {

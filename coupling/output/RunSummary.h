@@ -43,11 +43,31 @@ struct ThermalSummary {
   std::string coupling;              // extra: thermal.coupling of a dynamic run; omitted when empty
 };
 
+// extra: energy.mechanical, dynamic runs only. The mechanics' energy account over the run
+// (mechanics/NscdIntegrator.h): energy_change + contact_dissipation + numerical_dissipation = 0
+// exactly in arithmetic; balance_error_rel measures it. With a mode that turns the contacts'
+// dissipation into heat (effects.friction_heat), heat_generated_J is what the thermal side
+// received (each step's contact powers times the time it advanced) and heat_error_rel compares
+// it with contact_dissipation_J; both keys are written only then.
+struct MechanicalEnergySummary {
+  double energy_change_J = 0.0;          // kinetic + gravitational potential, end - start
+  double contact_dissipation_J = 0.0;    // sum over steps and contacts of -r . u_theta
+  double numerical_dissipation_J = 0.0;  // theta scheme's damping, (theta - 1/2) |dv|_M^2
+  double balance_error_rel = 0.0;        // |change + contact + numerical| / max(|change|, |contact| + |numerical|)
+  bool heat = false;                     // heat_generated_J and heat_error_rel are meaningful
+  double heat_generated_J = 0.0;
+  double heat_error_rel = 0.0;           // |heat_generated - contact_dissipation| / |contact_dissipation|
+
+  // This account with balance_error_rel (and, when `heat_on`, heat_error_rel) filled in.
+  MechanicalEnergySummary with_errors(bool heat_on) const;
+};
+
 struct EnergySummary {
   double initial_J = 0.0;
   double final_J = 0.0;
   double boundary_heat_J = 0.0;
   double balance_error_rel = 0.0;
+  std::optional<MechanicalEnergySummary> mechanical;  // extra: dynamic runs only
 };
 
 // The "wall_time_parts" block (extra): where the run's wall time went, s, measured around the

@@ -26,6 +26,7 @@
 #include "coupling/run/OutputPaths.h"
 #include "coupling/run/RestartState.h"
 #include "coupling/run/ThermalProblem.h"
+#include "coupling/scene/HeatModes.h"
 #include "mechanics/NscdIntegrator.h"
 #include "mechanics/TouchingPairs.h"
 #include "thermal/IntegratorRegistry.h"
@@ -202,6 +203,7 @@ void CoupledRun::run_static() {
 
 void CoupledRun::run_dynamic() {
   const double h = scene_.mechanics.time_step_s;
+  dissipation_heats_ = contacts_dissipate_heat(scene_.effects);
   const auto times = frame_times();
   std::size_t next_frame = 0;
   while (next_frame < times.size() && times[next_frame] < t0_ + 0.5 * h) ++next_frame;
@@ -225,6 +227,11 @@ void CoupledRun::run_dynamic() {
     const auto thermal_start = std::chrono::steady_clock::now();
     dynamic_network_->update(contacts_, *integrator_, coupling_, &nscd_->particles());
     integrator_->advance_to(t_next);
+    if (dissipation_heats_) {  // the power the network carried over [t, t_next]
+      double power_W = 0.0;
+      for (const double P : contacts_.dissipated_power_W) power_W += P;
+      contact_heat_J_ += power_W * (t_next - t);
+    }
     thermal_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - thermal_start).count();
     t = t_next;
     bool frame_written = false;
@@ -259,6 +266,14 @@ void CoupledRun::fill_summary() {
     summary_.mechanics.unconverged_steps = ms.unconverged_steps;
     summary_.mechanics.max_penetration_m = ms.max_penetration_m;
     summary_.mechanics.stalled_steps = ms.stalled_steps;
+    if (!frozen_) {
+      MechanicalEnergySummary m;
+      m.energy_change_J = ms.energy_change_J;
+      m.contact_dissipation_J = ms.contact_dissipation_J;
+      m.numerical_dissipation_J = ms.numerical_dissipation_J;
+      m.heat_generated_J = contact_heat_J_;
+      summary_.energy.mechanical = m.with_errors(contacts_dissipate_heat(scene_.effects));
+    }
   }
   summary_.thermal.integrator = scene_.thermal.integrator;
   const bool explicit_update =

@@ -31,6 +31,8 @@ void CoupledRun::restore_checkpoint() {
   boundary_heat0_J_ = restart_->boundary_heat_J;
   if (auto it = restart_->extra.find("initial_energy_J"); it != restart_->extra.end())
     initial_energy_J_ = it->second;
+  if (auto it = restart_->extra.find("contact_heat_J"); it != restart_->extra.end())
+    contact_heat_J_ = it->second;
   // A restarted settle run does not settle again: it reports how the checkpointed run settled.
   const auto& extra = restart_->extra;
   if (extra.contains("settle_at_rest") && extra.contains("settle_time_s") &&
@@ -80,6 +82,7 @@ void CoupledRun::checkpoint(double t_s) {
   if (dynamic_network_) cs.thermal_pattern_pair = dynamic_network_->pattern_pairs();
   store_thermal_stats(integrator_->stats(), cs);
   cs.extra["initial_energy_J"] = initial_energy_J_;
+  cs.extra["contact_heat_J"] = contact_heat_J_;
   if (summary_.settle) {
     cs.extra["settle_at_rest"] = summary_.settle->at_rest ? 1.0 : 0.0;
     cs.extra["settle_time_s"] = summary_.settle->time_s;

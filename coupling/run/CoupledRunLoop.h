@@ -90,6 +90,8 @@ class CoupledRun {
   std::vector<double> T0_;
   double boundary_heat0_J_ = 0.0;
   double initial_energy_J_ = 0.0;
+  double contact_heat_J_ = 0.0;          // contacts' dissipation handed to the thermal side
+  bool dissipation_heats_ = false;       // a switched-on mode turns it into heat
   double next_checkpoint_s_ = 0.0;
   double last_checkpoint_s_ = -1.0;     // time of the last checkpoint written, -1: none
   double thermal_seconds_ = 0.0;        // wall time inside the thermal side

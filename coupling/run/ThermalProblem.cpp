@@ -83,7 +83,8 @@ void gather_contacts(const std::vector<mechanics::ContactForce>& forces, Contact
       throw std::logic_error(msg.str());
     }
     const auto& t = forces[k].tangential_force_N;
-    out.add(forces[k].i, forces[k].j, forces[k].normal_force_N, {t.x(), t.y(), t.z()});
+    out.add(forces[k].i, forces[k].j, forces[k].normal_force_N, {t.x(), t.y(), t.z()},
+            forces[k].dissipated_power_W);
   }
 }
 

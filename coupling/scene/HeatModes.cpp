@@ -30,6 +30,12 @@ bool contacts_carry_heat(const Effects& effects) {
   return false;
 }
 
+bool contacts_dissipate_heat(const Effects& effects) {
+  for (const auto* mode : thermal::heat_transfer_modes())
+    if (mode->uses_contact_dissipation && switched_on(effects, *mode)) return true;
+  return false;
+}
+
 double max_mode_temperature_K(const Scene& scene) {
   double T_max = 0.0;
   for (const auto* mode : thermal::heat_transfer_modes()) {

@@ -21,6 +21,10 @@ double near_pair_reach(const Scene& scene);
 // Some switched-on mode reads the contact conductances: contacts become network edges.
 bool contacts_carry_heat(const Effects& effects);
 
+// Some switched-on mode turns the contacts' dissipated mechanical power into heat
+// (ModeDescription::uses_contact_dissipation): the coupling hands it to the network every step.
+bool contacts_dissipate_heat(const Effects& effects);
+
 // Largest reservoir temperature (fluid, surroundings, ...) of the switched-on modes, K; 0 if none.
 double max_mode_temperature_K(const Scene& scene);
 

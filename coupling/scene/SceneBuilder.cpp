@@ -77,6 +77,12 @@ void SceneBuilder::read_effects() {
   // The heat-transfer modes' switches, as each mode declares them.
   for (const auto& e : thermal::heat_transfer_effects())
     scene_.effects.heat[std::string(e.key)] = t.boolean(e.key, e.default_on);
+  // A mode fed by the contacts' dissipation needs contacts that move during the run.
+  for (const auto* mode : thermal::heat_transfer_modes())
+    if (mode->uses_contact_dissipation && !mode->effect.empty() &&
+        switched_on(scene_.effects, *mode) && scene_.effects.mechanics != MechanicsMode::Dynamic)
+      t.fail(mode->effect, "needs effects.mechanics = \"dynamic\" (heat from contacts that "
+                           "move during the run; mechanics is \"" + mechanics + "\")");
 }
 
 // Every registered mode reads its own section by its own declaration: ranges (and the mode's own

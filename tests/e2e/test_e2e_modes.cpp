@@ -133,7 +133,8 @@ TEST(EndToEndModes, ARegisteredModeValidatesItsOwnKeysWithExitTwo) {
   std::tie(code, log) = run_testing("check s.toml --set fault_injection.after_rhs_evaluations=7");
   EXPECT_EQ(code, 0) << log;
   EXPECT_NE(log.find("effects: mechanics off, conduction on, convection off, radiation off, "
-                     "gas_conduction off, fault_injection on"), std::string::npos) << log;
+                     "gas_conduction off, friction_heat off, fault_injection on"),
+            std::string::npos) << log;
   EXPECT_NE(log.find("modes: contact_conduction wall_conduction heat_source fault_injection"),
             std::string::npos) << log;
 }

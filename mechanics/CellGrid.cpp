@@ -47,15 +47,17 @@ void CellGrid::build(const std::vector<Eigen::Vector3d>& points, double min_cell
   cell_start_.assign(cells + 1, 0);
   sorted_.resize(n);
   const double inv = 1.0 / cell;
-  for (std::size_t i = 0; i < n; ++i) {
+  // Cells of the points: one write per point, so threads cannot change the answer.
+  const auto count = static_cast<std::ptrdiff_t>(n);
+#pragma omp parallel for schedule(static) if (count >= parallel_from_)
+  for (std::ptrdiff_t i = 0; i < count; ++i) {
     const Eigen::Vector3d r = (points[i] - origin_) * inv;
     const int x = std::min(static_cast<int>(r.x()), nx_ - 1);
     const int y = std::min(static_cast<int>(r.y()), ny_ - 1);
     const int z = std::min(static_cast<int>(r.z()), nz_ - 1);
-    const auto c = static_cast<std::uint32_t>((static_cast<std::size_t>(z) * ny_ + y) * nx_ + x);
-    cell_of_[i] = c;
-    ++cell_start_[c + 1];
+    cell_of_[i] = static_cast<std::uint32_t>((static_cast<std::size_t>(z) * ny_ + y) * nx_ + x);
   }
+  for (std::size_t i = 0; i < n; ++i) ++cell_start_[cell_of_[i] + 1];
   for (std::size_t c = 0; c < cells; ++c) cell_start_[c + 1] += cell_start_[c];
   // Fill back to front so that points keep increasing id order inside each cell.
   for (std::size_t i = n; i-- > 0;) {

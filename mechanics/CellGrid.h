@@ -7,6 +7,7 @@
 // Rebuilding reuses the arrays' capacity: no allocation once the particle count is stable.
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -26,13 +27,24 @@ class CellGrid {
   template <class Visit>
   void for_each_candidate_pair(Visit&& visit) const;
 
+  // Calls visit(b) for every point b != a in the cell of point a or in one of its 26
+  // neighbours (cells in increasing index order, points in increasing id order inside a
+  // cell). Read-only: any number of threads may call it at once (parallel detection).
+  template <class Visit>
+  void for_each_neighbour(std::uint32_t a, Visit&& visit) const;
+
   double cell_size() const { return cell_size_; }
   std::size_t cell_count() const { return cell_start_.empty() ? 0 : cell_start_.size() - 1; }
+
+  // Point count from which build() uses OpenMP threads (below, waking them costs more than
+  // the work); 0: always (tests). The grid is the same for any thread count.
+  void set_parallel_from(std::ptrdiff_t points) { parallel_from_ = points; }
 
  private:
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
   double cell_size_ = 0.0;
   int nx_ = 0, ny_ = 0, nz_ = 0;
+  std::ptrdiff_t parallel_from_ = 4096;
   std::vector<std::uint32_t> cell_of_;     // cell of each point
   std::vector<std::uint32_t> cell_start_;  // points of cell c are sorted_[start[c], start[c+1])
   std::vector<std::uint32_t> sorted_;      // point ids ordered by cell
@@ -62,6 +74,24 @@ void CellGrid::for_each_candidate_pair(Visit&& visit) const {
           for (std::uint32_t a = begin; a < end; ++a) {
             for (std::uint32_t b = dbegin; b < dend; ++b) visit(sorted_[a], sorted_[b]);
           }
+        }
+      }
+    }
+  }
+}
+
+template <class Visit>
+void CellGrid::for_each_neighbour(std::uint32_t a, Visit&& visit) const {
+  const std::uint32_t c = cell_of_[a];
+  const int cx = static_cast<int>(c % static_cast<std::uint32_t>(nx_));
+  const int cy = static_cast<int>((c / static_cast<std::uint32_t>(nx_)) % static_cast<std::uint32_t>(ny_));
+  const int cz = static_cast<int>(c / (static_cast<std::uint32_t>(nx_) * static_cast<std::uint32_t>(ny_)));
+  for (int z = std::max(cz - 1, 0); z <= std::min(cz + 1, nz_ - 1); ++z) {
+    for (int y = std::max(cy - 1, 0); y <= std::min(cy + 1, ny_ - 1); ++y) {
+      for (int x = std::max(cx - 1, 0); x <= std::min(cx + 1, nx_ - 1); ++x) {
+        const std::size_t d = (static_cast<std::size_t>(z) * ny_ + y) * nx_ + x;
+        for (std::uint32_t k = cell_start_[d]; k < cell_start_[d + 1]; ++k) {
+          if (sorted_[k] != a) visit(sorted_[k]);
         }
       }
     }

@@ -1,5 +1,7 @@
 #include "mechanics/ContactDetector.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -13,8 +15,10 @@ bool pair_less(const CandidatePair& a, const CandidatePair& b) {
 
 }  // namespace
 
-ContactDetector::ContactDetector(double min_margin_m, double max_margin_m)
-    : min_margin_(min_margin_m), max_margin_(max_margin_m) {
+ContactDetector::ContactDetector(double min_margin_m, double max_margin_m,
+                                 std::ptrdiff_t parallel_from)
+    : min_margin_(min_margin_m), max_margin_(max_margin_m), parallel_from_(parallel_from) {
+  grid_.set_parallel_from(parallel_from);
   if (!(min_margin_m > 0.0) || !(max_margin_m >= min_margin_m) || !std::isfinite(max_margin_m)) {
     throw std::invalid_argument("ContactDetector: need 0 < min_margin <= max_margin");
   }
@@ -43,6 +47,8 @@ bool ContactDetector::update(const ParticleSet& particles, const std::vector<Wal
   const std::size_t n = particles.size();
   double lookahead_max = 0.0;
   bool need = !valid_ || reference_position_.size() != n;
+  // Serial on purpose: about 3 ns per particle, less than waking threads costs on a loaded
+  // machine (measured: 100,000 particles, 0.3 ms serial, 1 to 20 ms with 2 threads at load 11).
   for (std::size_t i = 0; i < n; ++i) {
     const double ahead = lookahead_m.empty() ? 0.0 : lookahead_m[i];
     lookahead_max = std::max(lookahead_max, ahead);
@@ -74,39 +80,66 @@ void ContactDetector::rebuild(const ParticleSet& particles, const std::vector<Wa
   margin_ = std::max(std::clamp(4.0 * lookahead_max, min_margin_, max_margin_),
                      2.0 * lookahead_max);
   std::swap(pairs_, previous_pairs_);
-  pairs_.clear();
   const auto& x = particles.position;
   const auto& r = particles.radius;
   const auto& fixed = particles.fixed;
-  if (n >= 2) {
-    grid_.build(x, 2.0 * particles.max_radius() + margin_);
-    grid_.for_each_candidate_pair([&](std::uint32_t a, std::uint32_t b) {
-      if (fixed[a] && fixed[b]) return;  // two fixed bodies never exchange impulses
-      const double reach = r[a] + r[b] + margin_;
-      if ((x[a] - x[b]).squaredNorm() <= reach * reach) {
-        pairs_.push_back({static_cast<std::int32_t>(std::min(a, b)),
-                          static_cast<std::int32_t>(std::max(a, b))});
-      }
-    });
+  const auto count = static_cast<std::ptrdiff_t>(n);
+  if (n >= 2) grid_.build(x, 2.0 * particles.max_radius() + margin_);
+  const bool parallel = count >= parallel_from_;
+  const auto threads = static_cast<std::size_t>(parallel ? omp_get_max_threads() : 1);
+  if (thread_pairs_.size() < threads) {
+    thread_pairs_.resize(threads);
+    thread_neighbours_.resize(threads);
   }
-  for (std::size_t i = 0; i < n; ++i) {
-    if (fixed[i]) continue;
-    for (std::size_t w = 0; w < walls.size(); ++w) {
-      if (walls[w].signed_distance(x[i]) - r[i] <= margin_) {
-        pairs_.push_back({static_cast<std::int32_t>(i), wall_code<std::int32_t>(w)});
+#pragma omp parallel if (parallel)
+  {
+    const auto team = static_cast<std::ptrdiff_t>(omp_get_num_threads());
+    const auto t = static_cast<std::ptrdiff_t>(omp_get_thread_num());
+    auto& local = thread_pairs_[t];
+    auto& neighbours = thread_neighbours_[t];
+    local.clear();
+    // Table order: for each i, walls first (j = -1 - w ascending, i.e. w descending), then
+    // particles j > i ascending.
+    for (std::ptrdiff_t i = count * t / team; i < count * (t + 1) / team; ++i) {
+      const auto a = static_cast<std::uint32_t>(i);
+      const auto ii = static_cast<std::int32_t>(i);
+      if (!fixed[a]) {
+        for (std::size_t w = walls.size(); w-- > 0;) {
+          if (walls[w].signed_distance(x[a]) - r[a] <= margin_) {
+            local.push_back({ii, wall_code<std::int32_t>(w)});
+          }
+        }
       }
+      if (n < 2) continue;
+      neighbours.clear();
+      grid_.for_each_neighbour(a, [&](std::uint32_t b) {
+        if (b < a || (fixed[a] && fixed[b])) return;  // fixed bodies never exchange impulses
+        const double reach = r[a] + r[b] + margin_;
+        if ((x[a] - x[b]).squaredNorm() <= reach * reach) neighbours.push_back(b);
+      });
+      std::sort(neighbours.begin(), neighbours.end());
+      for (const std::uint32_t b : neighbours) local.push_back({ii, static_cast<std::int32_t>(b)});
     }
+#pragma omp barrier
+#pragma omp single
+    {
+      std::size_t total = 0;
+      for (std::ptrdiff_t k = 0; k < team; ++k) total += thread_pairs_[k].size();
+      pairs_.resize(total);
+    }
+    std::size_t offset = 0;
+    for (std::ptrdiff_t k = 0; k < t; ++k) offset += thread_pairs_[k].size();
+    std::copy(local.begin(), local.end(), pairs_.begin() + static_cast<std::ptrdiff_t>(offset));
   }
-  std::sort(pairs_.begin(), pairs_.end(), pair_less);
 
   // Match against the previous table (both sorted) so reactions can be warm-started.
   previous_index_.resize(pairs_.size());
-  std::size_t k = 0;
-  for (std::size_t p = 0; p < pairs_.size(); ++p) {
-    while (k < previous_pairs_.size() && pair_less(previous_pairs_[k], pairs_[p])) ++k;
-    const bool same = k < previous_pairs_.size() && previous_pairs_[k].i == pairs_[p].i &&
-                      previous_pairs_[k].j == pairs_[p].j;
-    previous_index_[p] = same ? static_cast<std::int32_t>(k) : -1;
+  const auto listed = static_cast<std::ptrdiff_t>(pairs_.size());
+#pragma omp parallel for schedule(static) if (parallel)
+  for (std::ptrdiff_t p = 0; p < listed; ++p) {
+    const auto k = std::lower_bound(previous_pairs_.begin(), previous_pairs_.end(), pairs_[p], pair_less);
+    const bool same = k != previous_pairs_.end() && k->i == pairs_[p].i && k->j == pairs_[p].j;
+    previous_index_[p] = same ? static_cast<std::int32_t>(k - previous_pairs_.begin()) : -1;
   }
 
   reference_position_.assign(x.begin(), x.end());

@@ -12,6 +12,12 @@
 // most margin / 2 + margin / 2.
 //
 // Everything lives in reused vectors: no allocation once warm.
+//
+// Parallel (OpenMP, from parallel_from particles on): each thread lists the pairs (i, j > i)
+// and walls of one contiguous range of particles i, already in table order, and the ranges
+// are concatenated in order; the previous-table map is one binary search per pair. Every
+// pair is decided by the same arithmetic whichever thread does it, so the table is the same
+// bits for any thread count.
 
 #include <cstddef>
 #include <cstdint>
@@ -34,7 +40,8 @@ class ContactDetector {
   // margin bounds, m: the margin used at a rebuild is 4 * (largest look-ahead) clamped to
   // (never below 2 * the largest look-ahead, so fast particles cannot tunnel)
   // [min_margin_m, max_margin_m] (wider when particles are fast, so rebuilds stay rare).
-  ContactDetector(double min_margin_m, double max_margin_m);
+  // parallel_from: particles from which rebuilds and checks use OpenMP threads (0: always).
+  ContactDetector(double min_margin_m, double max_margin_m, std::ptrdiff_t parallel_from = 4096);
 
   // Rebuilds the table if needed (or if forced). lookahead_m[i] is how far particle i may
   // move before the next call (may be empty: 0), wall_lookahead_m[w] the same for wall w (may
@@ -79,6 +86,10 @@ class ContactDetector {
   std::vector<CandidatePair> pairs_, previous_pairs_;
   std::vector<std::int32_t> previous_index_;
   CellGrid grid_;
+  std::ptrdiff_t parallel_from_;
+  // Per thread: its range's pairs, and the neighbours of one particle being sorted.
+  std::vector<std::vector<CandidatePair>> thread_pairs_;
+  std::vector<std::vector<std::uint32_t>> thread_neighbours_;
 };
 
 }  // namespace tmdem::mechanics

@@ -45,7 +45,8 @@ NscdIntegrator::NscdIntegrator(ParticleSet particles, std::vector<Material> mate
       dimension_(dimension),
       parameters_(parameters),
       detector_(parameters.min_margin_fraction * std::max(particles_.max_radius(), 1e-300),
-                parameters.max_margin_fraction * std::max(particles_.max_radius(), 1e-300)) {
+                parameters.max_margin_fraction * std::max(particles_.max_radius(), 1e-300),
+                parameters.parallel_from) {
   particles_.validate();
   require(dimension == 2 || dimension == 3, "dimension must be 2 or 3");
   require(gravity_.allFinite(), "gravity must be finite");
@@ -194,6 +195,9 @@ void NscdIntegrator::setup_contacts(double h) {
   p.resize_contacts(pairs.size());
   reactions_.resize(pairs.size());
   gap_.resize(pairs.size());
+  // Every candidate writes only its own entries: the same bits for any thread count.
+#pragma omp parallel for schedule(static) \
+    if (static_cast<std::ptrdiff_t>(pairs.size()) >= parameters_.parallel_from)
   for (std::size_t k = 0; k < pairs.size(); ++k) {
     const std::int32_t i = pairs[k].i, j = pairs[k].j;
     p.body_i[k] = i;

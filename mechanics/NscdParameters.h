@@ -1,6 +1,7 @@
 #pragma once
 // Settings of the Moreau-Jean / bipotential contact dynamics ([mechanics] in the scene).
 
+#include <cstddef>
 #include <string>
 
 namespace tmdem::mechanics {
@@ -38,6 +39,10 @@ struct NscdParameters {
   // Candidate margin, as fractions of the largest radius (see ContactDetector).
   double min_margin_fraction = 0.1;
   double max_margin_fraction = 2.0;
+  // Particles (detection) or candidates (contact set-up) from which those loops use OpenMP
+  // threads; below it waking the threads costs more than the loop. 0: always (tests). The
+  // results are the same bits for any thread count.
+  std::ptrdiff_t parallel_from = 4096;
 };
 
 }  // namespace tmdem::mechanics

@@ -1,5 +1,6 @@
 // Candidate table: complete within the margin, rebuilt only when needed, warm-start map.
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <set>
 
@@ -141,4 +142,54 @@ TEST(ContactDetector, RestoredTableDecidesLikeTheSavedOne) {
   EXPECT_TRUE(cold.update(set, {}, {}));
   EXPECT_THROW(cold.restore(1e-4, 1, saved.reference_positions(), {{1, 2}, {0, 1}}),
                std::invalid_argument);
+}
+
+// Parallel rebuilds (parallel_from = 0: threads at any size) list the same table, in the same
+// order, with the same warm-start map, for 1 and 2 threads, and it is the brute-force one.
+TEST(ContactDetector, OneAndTwoThreadsListTheSameTable) {
+  ParticleSet set = random_set(500, 3);
+  set.fixed[0] = set.fixed[1] = 1;
+  const std::vector<Wall> walls = {Wall::through({0, 0.002, 0}, {0, 1, 0}, 0),
+                                   Wall::through({0.018, 0, 0}, {-1, 0, 0}, 0)};
+  const int threads_before = omp_get_max_threads();
+  auto run = [&](int threads) {
+    omp_set_num_threads(threads);
+    ParticleSet moved = set;
+    ContactDetector detector(3e-4, 3e-4, 0);
+    detector.update(moved, walls, {});
+    for (std::size_t i = 0; i < moved.size(); i += 3) moved.position[i].y() -= 2e-4;
+    EXPECT_TRUE(detector.update(moved, walls, {}));
+    return detector;
+  };
+  const ContactDetector one = run(1), two = run(2);
+  omp_set_num_threads(threads_before);
+  ASSERT_EQ(one.pairs().size(), two.pairs().size());
+  ASSERT_GT(one.pairs().size(), 200u);
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < one.pairs().size(); ++k) {
+    EXPECT_EQ(one.pairs()[k].i, two.pairs()[k].i) << k;
+    EXPECT_EQ(one.pairs()[k].j, two.pairs()[k].j) << k;
+    EXPECT_EQ(one.previous_index()[k], two.previous_index()[k]) << k;
+    kept += one.previous_index()[k] >= 0 ? 1 : 0;
+  }
+  EXPECT_GT(kept, one.pairs().size() / 2);
+  // The table itself: exactly the pairs within the margin (none of two fixed particles).
+  ParticleSet moved = set;
+  for (std::size_t i = 0; i < moved.size(); i += 3) moved.position[i].y() -= 2e-4;
+  auto expected = brute_force(moved, walls, 3e-4);
+  expected.erase({0, 1});
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    expected.erase({0, -1 - static_cast<int>(w)});
+    expected.erase({1, -1 - static_cast<int>(w)});
+  }
+  std::set<std::pair<int, int>> found;
+  for (std::size_t k = 0; k < two.pairs().size(); ++k) {
+    found.insert({two.pairs()[k].i, two.pairs()[k].j});
+    if (k > 0) {
+      const auto& a = two.pairs()[k - 1];
+      const auto& b = two.pairs()[k];
+      EXPECT_TRUE(a.i < b.i || (a.i == b.i && a.j < b.j)) << k;
+    }
+  }
+  EXPECT_EQ(found, expected);
 }

@@ -8,14 +8,13 @@
 #include <utility>
 
 #include "mechanics/CoulombCone.h"
+#include "mechanics/FixedBlockSums.h"
 #include "mechanics/NaturalMapResidual.h"
 
 namespace tmdem::mechanics {
 namespace {
 
-// Reductions sum blocks of this many contacts, then the blocks in order: the same sums
-// whatever the thread count.
-constexpr std::ptrdiff_t kBlock = 256;
+constexpr std::ptrdiff_t kBlock = kSumBlock;  // FixedBlockSums.h
 
 // Projection onto K_mu in the metric D = diag(w_n, w_t, w_t): the Euclidean projection of
 // D^1/2 tau onto the scaled cone, mapped back.
@@ -114,7 +113,7 @@ SolveReport ApgdSolver::solve(const ContactProblem& problem, std::vector<Eigen::
   const std::size_t count = problem.size();
   const auto n = static_cast<std::ptrdiff_t>(count);
   const bool planar = problem.dimension == 2;
-  const std::ptrdiff_t blocks = (n + kBlock - 1) / kBlock;
+  const std::ptrdiff_t blocks = sum_block_count(n);
   for (auto* v : {&x_, &x_old_, &y_, &ux_, &ux_old_, &uy_, &best_, &impulse_, &torque_arm_}) {
     v->resize(count);
   }
@@ -144,11 +143,7 @@ SolveReport ApgdSolver::solve(const ContactProblem& problem, std::vector<Eigen::
       partial_b_[2 * block] = defect;
       partial_b_[2 * block + 1] = total;
     }
-    double defect = 0.0, total = 0.0;
-    for (std::ptrdiff_t block = 0; block < blocks; ++block) {
-      defect += partial_b_[2 * block];
-      total += partial_b_[2 * block + 1];
-    }
+    const auto [defect, total] = add_block_sums<2>(partial_b_, blocks);
     return natural_map_ratio(defect, total);
   };
 
@@ -204,13 +199,8 @@ SolveReport ApgdSolver::solve(const ContactProblem& problem, std::vector<Eigen::
         partial_a_[3 * block + 1] = metric;
         partial_a_[3 * block + 2] = ascent;
       }
-      double curvature = 0.0, metric = 0.0;
-      restart_test = 0.0;
-      for (std::ptrdiff_t block = 0; block < blocks; ++block) {
-        curvature += partial_a_[3 * block];
-        metric += partial_a_[3 * block + 1];
-        restart_test += partial_a_[3 * block + 2];
-      }
+      const auto [curvature, metric, ascent] = add_block_sums<3>(partial_a_, blocks);
+      restart_test = ascent;
       // 60 halvings: the curvature is not finite (NaN input); the residual will say so.
       if (curvature <= lipschitz * metric * (1.0 + 1e-12) || halvings == 60) break;
       lipschitz *= 2.0;  // step too long for the local curvature: halve it

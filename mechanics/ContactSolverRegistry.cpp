@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "mechanics/ApgdSolver.h"
+#include "mechanics/ColouredGaussSeidelSolver.h"
 #include "mechanics/GaussSeidelSolver.h"
 
 namespace tmdem::mechanics {
@@ -22,6 +23,7 @@ const std::vector<Entry>& entries() {
   static const std::vector<Entry> table = {
       {"nlgs", &make<GaussSeidelSolver>},
       {"apgd", &make<ApgdSolver>},
+      {"nlgs_coloured", &make<ColouredGaussSeidelSolver>},
   };
   return table;
 }

@@ -7,13 +7,17 @@
 #include <cstring>
 #include <string>
 
-#include "MechanicsTestScenes.h"
+#include "SolverTestPile.h"
 #include "mechanics/ApgdSolver.h"
 #include "mechanics/ContactSolverRegistry.h"
 #include "mechanics/NaturalMapResidual.h"
 
 using namespace tmdem::mechanics;
 using Eigen::Vector3d;
+using test::lattice_pile;
+using test::Solved;
+using test::solve_cold;
+using test::tight;
 
 namespace {
 
@@ -46,50 +50,6 @@ ContactProblem column_problem(int count, double m, double h, double g, double mu
   }
   p.add_fixed_wall_bodies(1);  // the floor
   return p;
-}
-
-// A 3D frictional pile at rest: side x side x layers touching spheres on a simple cubic
-// lattice on a floor (mu = 0.3), after one step. Statics: in each column the contact under
-// the sphere of layer k carries (layers - k) m g h; side contacts carry nothing.
-constexpr int kSide = 5, kLayers = 6;
-const NscdIntegrator& lattice_pile() {
-  static const NscdIntegrator sim = [] {
-    ParticleSet set;
-    const double m = sphere_mass(test::kRadius, test::kDensity), d = 2.0 * test::kRadius;
-    for (int y = 0; y < kLayers; ++y)
-      for (int z = 0; z < kSide; ++z)
-        for (int x = 0; x < kSide; ++x)
-          set.add(Vector3d(test::kRadius + x * d, test::kRadius + y * d, test::kRadius + z * d),
-                  test::kRadius, m, 0);
-    NscdIntegrator s(std::move(set), {test::steel(0.3)}, {Wall::through({0, 0, 0}, {0, 1, 0}, 0)},
-                     Vector3d(0, -test::kG, 0), 3, NscdParameters{});
-    s.step();
-    return s;
-  }();
-  return sim;
-}
-
-struct Solved {
-  std::vector<Vector3d> r, v, w;
-  SolveReport report;
-};
-
-SolverSettings tight(double tolerance) {
-  SolverSettings settings;
-  settings.tolerance = tolerance;
-  settings.max_iterations = 200000;
-  return settings;
-}
-
-Solved solve_cold(const ContactProblem& problem, ContactSolver& solver) {
-  Solved out;
-  out.r.assign(problem.size(), Vector3d::Zero());
-  out.report = solver.solve(problem, out.r, out.v, out.w);
-  return out;
-}
-
-Solved solve_cold(const ContactProblem& problem, const std::string& name, double tolerance) {
-  return solve_cold(problem, *make_contact_solver(name, tight(tolerance)));
 }
 
 }  // namespace
@@ -128,30 +88,9 @@ TEST(ApgdSolver, FrictionlessColumnCarriesTheWeightAbove) {
 }
 
 TEST(ApgdSolver, FrictionalPileAtRestMatchesGaussSeidelAndStatics) {
-  const NscdIntegrator& sim = lattice_pile();
-  const ContactProblem& problem = sim.problem();
-  ASSERT_GT(problem.size(), 300u);
+  // Statics hold exactly; the solvers agree to the tolerance.
   const double tolerance = 1e-8;
-  const Solved gs = solve_cold(problem, "nlgs", tolerance);
-  const Solved ap = solve_cold(problem, "apgd", tolerance);
-  ASSERT_TRUE(gs.report.converged) << gs.report.residual;
-  ASSERT_TRUE(ap.report.converged) << ap.report.residual << " after " << ap.report.sweeps;
-  EXPECT_LE(natural_map_residual(problem, ap.r, ap.v, ap.w), tolerance);
-  const double m = sphere_mass(test::kRadius, test::kDensity);
-  const double h = sim.parameters().time_step, weight = m * test::kG * h;  // N s
-  double difference = 0.0;
-  for (std::size_t c = 0; c < problem.size(); ++c) {
-    difference = std::max(difference, (gs.r[c] - ap.r[c]).norm());
-    // Statics: a vertical contact under sphere i carries the spheres above i and i itself.
-    const bool vertical = std::abs(problem.normal[c].y()) > 0.5;
-    const double y = sim.particles().position[problem.body_i[c]].y();
-    const int layer = static_cast<int>(std::lround((y - test::kRadius) / (2.0 * test::kRadius)));
-    const bool on_floor = problem.body_j[c] < 0;
-    const double expected = !vertical ? 0.0 : (kLayers - layer - (on_floor ? 0 : 1)) * weight;
-    EXPECT_NEAR(ap.r[c][0], expected, 1e-6 * kLayers * weight) << "contact " << c;
-    EXPECT_NEAR(ap.r[c].tail<2>().norm(), 0.0, 1e-6 * kLayers * weight) << "contact " << c;
-  }
-  EXPECT_LE(difference, 1e-6 * kLayers * weight);
+  test::expect_pile_solved_like_gauss_seidel("apgd", tolerance, tolerance);
 }
 
 TEST(ApgdSolver, SameThreadCountGivesBitwiseIdenticalReactions) {
@@ -175,11 +114,5 @@ TEST(ApgdSolver, SameThreadCountGivesBitwiseIdenticalReactions) {
   EXPECT_EQ(0, std::memcmp(first.v.data(), second.v.data(), first.v.size() * sizeof(Vector3d)));
   // 1 and 2 threads: the reductions sum fixed blocks in a fixed order, so they agree too
   // (asserted within the tolerance, the contract; bitwise in practice).
-  double largest = 0.0, difference = 0.0;
-  for (std::size_t c = 0; c < problem.size(); ++c) {
-    largest = std::max(largest, serial.r[c].norm());
-    difference = std::max(difference, (serial.r[c] - first.r[c]).norm());
-  }
-  ASSERT_GT(largest, 0.0);
-  EXPECT_LE(difference, 1e-8 * largest);
+  test::expect_close_reactions(serial.r, first.r, 1e-8);
 }

@@ -1,0 +1,164 @@
+// Pour and settle: examples/pour_3d.toml scaled to N spheres (issue 10 item 7). Not in ctest.
+//
+// The scene is examples/pour_3d.toml itself (materials, radii 0.5 and 1 mm, half steel and
+// half glass, [mechanics] settings) with three changes: N/2 spheres per material, and the
+// box's x and z widths scaled by sqrt(N / 2000) (fill region and side walls alike), so the
+// bed keeps the example's depth (about 20 mm once settled) and only its footprint grows.
+// Each benchmark settles once: steps until every sphere is slower than
+// mechanics.settle_velocity (at rest) or mechanics.settle_time runs out, as `tmdem run`'s
+// settle phase does (coupling/run/ThermalProblem.cpp).
+//
+//   build/bench/bench_pour --benchmark_filter=BM_Pour/2000/1/ --benchmark_counters_tabular=true
+//
+// Args: N, OpenMP threads. Environment:
+//   TMDEM_POUR_MAX_STEPS   stop after this many steps (partial measurement of large N)
+//   TMDEM_POUR_MAX_WALL_S  stop after this much wall time, s
+//   TMDEM_POUR_SET         scene overrides as `tmdem run --set`, separated by ';'
+//                          (e.g. "mechanics.solver=nlgs_coloured;mechanics.tolerance=1e-5")
+// Counters: particles; contacts (active, at the end) and candidates; settle_steps; sim_time_s;
+// at_rest (1/0); mean_sweeps; converged_pct (steps whose solver converged); pen_rmin (largest
+// penetration during the run / smallest radius) and pen_end_rmin (after the last step);
+// wall_s (wall time of the steps: to rest when at_rest = 1); s_per_step; ns_step (wall time
+// of the steps per candidate per sweep: detection and set-up included); ns_sweep (the
+// solver alone: 40 sweeps of a fresh solver of the same kind on the last step's problem,
+// per candidate per sweep); threads.
+#include <benchmark/benchmark.h>
+#include <omp.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "coupling/bridge/SceneToMechanics.h"
+#include "coupling/scene/SceneLoader.h"
+#include "mechanics/ContactSolverRegistry.h"
+
+using namespace tmdem;
+
+namespace {
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("bench_pour: cannot open " + path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void replace_all(std::string& text, const std::string& from, const std::string& to,
+                 int expected) {
+  int found = 0;
+  for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size())) {
+    text.replace(at, from.size(), to);
+    ++found;
+  }
+  if (found != expected) {
+    throw std::runtime_error("bench_pour: examples/pour_3d.toml changed: expected " +
+                             std::to_string(expected) + " x \"" + from + "\", found " +
+                             std::to_string(found));
+  }
+}
+
+// examples/pour_3d.toml with `count` spheres in a box `width` m wide in x and z.
+coupling::Scene pour_scene(std::int64_t count, double width) {
+  std::string text = read_file(std::string(TMDEM_SOURCE_DIR) + "/examples/pour_3d.toml");
+  std::ostringstream w;
+  w.precision(17);
+  w << width;
+  replace_all(text, "count = 1000", "count = " + std::to_string(count / 2), 2);
+  replace_all(text, "max = [0.02, 0.06, 0.02]", "max = [" + w.str() + ", 0.06, " + w.str() + "]", 2);
+  replace_all(text, "point = [0.02, 0.0, 0.0]", "point = [" + w.str() + ", 0.0, 0.0]", 1);
+  replace_all(text, "point = [0.0, 0.0, 0.02]", "point = [0.0, 0.0, " + w.str() + "]", 1);
+  std::vector<std::string> overrides;
+  if (const char* set = std::getenv("TMDEM_POUR_SET")) {
+    std::stringstream list(set);
+    for (std::string item; std::getline(list, item, ';');) {
+      if (!item.empty()) overrides.push_back(item);
+    }
+  }
+  return coupling::load_scene_text(text, "pour_3d.toml (bench_pour)", overrides);
+}
+
+double env_number(const char* name, double fallback) {
+  const char* value = std::getenv(name);
+  return value ? std::stod(value) : fallback;
+}
+
+void BM_Pour(benchmark::State& state) {
+  const std::int64_t count = state.range(0);
+  const int threads = static_cast<int>(state.range(1));
+  const double width = 0.02 * std::sqrt(static_cast<double>(count) / 2000.0);
+  const double max_steps = env_number("TMDEM_POUR_MAX_STEPS", 1e18);
+  const double max_wall_s = env_number("TMDEM_POUR_MAX_WALL_S", 1e18);
+  const int threads_before = omp_get_max_threads();
+  omp_set_num_threads(threads);
+  for (auto _ : state) {
+    const coupling::Scene scene = pour_scene(count, width);
+    auto sim = coupling::make_nscd_integrator(scene, coupling::make_particle_set(scene));
+    const double h = scene.mechanics.time_step_s;
+    const double r_min = sim->particles().min_radius();
+    double t = 0.0, wall = 0.0, contact_sweeps = 0.0, pen_end = 0.0;
+    std::int64_t steps = 0, converged = 0;
+    bool at_rest = false;
+    const auto start = std::chrono::steady_clock::now();
+    while (t < scene.mechanics.settle_time_s - 0.5 * h && steps < max_steps && wall < max_wall_s) {
+      const mechanics::StepReport report = sim->step(h);
+      t += h;
+      ++steps;
+      converged += report.converged ? 1 : 0;
+      contact_sweeps += static_cast<double>(report.sweeps) * static_cast<double>(report.candidates);
+      pen_end = report.max_penetration_m;
+      wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      if (sim->max_speed() < scene.mechanics.settle_velocity_m_per_s) {
+        at_rest = true;
+        break;
+      }
+    }
+    // The solver alone on the last problem: 40 sweeps from zero reactions.
+    mechanics::SolverSettings fixed;
+    fixed.tolerance = 1e-300;
+    fixed.max_iterations = 40;
+    fixed.stall_sweeps = 1 << 30;
+    auto solver = mechanics::make_contact_solver(scene.mechanics.solver, fixed);
+    const mechanics::ContactProblem& problem = sim->problem();
+    std::vector<Eigen::Vector3d> r(problem.size(), Eigen::Vector3d::Zero()), v, w;
+    const auto solve_start = std::chrono::steady_clock::now();
+    const mechanics::SolveReport solved = solver->solve(problem, r, v, w);
+    const double solve_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - solve_start).count();
+
+    state.SetIterationTime(wall);
+    state.SetLabel(scene.mechanics.solver);
+    state.counters["particles"] = static_cast<double>(sim->particles().size());
+    state.counters["contacts"] = static_cast<double>(sim->contacts().size());
+    state.counters["candidates"] = static_cast<double>(problem.size());
+    state.counters["settle_steps"] = static_cast<double>(steps);
+    state.counters["sim_time_s"] = t;
+    state.counters["at_rest"] = at_rest ? 1.0 : 0.0;
+    state.counters["max_speed"] = sim->max_speed();
+    state.counters["mean_sweeps"] = sim->stats().mean_sweeps();
+    state.counters["converged_pct"] = 100.0 * static_cast<double>(converged) / static_cast<double>(steps);
+    state.counters["pen_rmin"] = sim->stats().max_penetration_m / r_min;
+    state.counters["pen_end_rmin"] = pen_end / r_min;
+    state.counters["wall_s"] = wall;
+    state.counters["s_per_step"] = wall / static_cast<double>(steps);
+    state.counters["ns_step"] = wall * 1e9 / contact_sweeps;
+    state.counters["ns_sweep"] =
+        solve_s * 1e9 / (static_cast<double>(std::max(solved.sweeps, 1)) * static_cast<double>(problem.size()));
+    state.counters["threads"] = threads;
+  }
+  omp_set_num_threads(threads_before);
+}
+BENCHMARK(BM_Pour)
+    ->ArgsProduct({{2000, 20000, 100000}, {1, 2}})
+    ->UseManualTime()
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,93 @@
+#include "mechanics/ColouredGaussSeidelSolver.h"
+
+#include <algorithm>
+
+#include "mechanics/FixedBlockSums.h"
+#include "mechanics/GaussSeidelUpdate.h"
+
+namespace tmdem::mechanics {
+
+ColouredGaussSeidelSolver::ColouredGaussSeidelSolver(const SolverSettings& settings,
+                                                     std::ptrdiff_t parallel_from)
+    : settings_(settings), parallel_from_(parallel_from) {}
+
+SolveReport ColouredGaussSeidelSolver::solve(const ContactProblem& problem,
+                                             std::vector<Eigen::Vector3d>& r,
+                                             std::vector<Eigen::Vector3d>& velocity,
+                                             std::vector<Eigen::Vector3d>& angular_velocity) {
+  colouring_.update(problem);
+  const auto count = static_cast<std::ptrdiff_t>(problem.size());
+  const auto colours = static_cast<std::ptrdiff_t>(colouring_.colour_count());
+  const std::ptrdiff_t blocks = sum_block_count(count);
+  const auto& order = colouring_.order();
+  const auto& start = colouring_.start();
+  const bool parallel = count >= parallel_from_;
+  // The problem in colour order: contact p of ordered_ is contact order[p] of problem.
+  ordered_.dimension = problem.dimension;
+  ordered_.inverse_mass.assign(problem.inverse_mass.begin(), problem.inverse_mass.end());
+  ordered_.inverse_inertia.assign(problem.inverse_inertia.begin(), problem.inverse_inertia.end());
+  ordered_.free_velocity.assign(problem.free_velocity.begin(), problem.free_velocity.end());
+  ordered_.free_angular_velocity.assign(problem.free_angular_velocity.begin(),
+                                        problem.free_angular_velocity.end());
+  ordered_.resize_contacts(static_cast<std::size_t>(count));
+  ordered_r_.resize(static_cast<std::size_t>(count));
+#pragma omp parallel for schedule(static) if (parallel)
+  for (std::ptrdiff_t p = 0; p < count; ++p) {
+    const auto c = static_cast<std::size_t>(order[p]);
+    ordered_.body_i[p] = problem.body_i[c];
+    ordered_.body_j[p] = problem.body_j[c];
+    ordered_.normal[p] = problem.normal[c];
+    ordered_.tangent1[p] = problem.tangent1[c];
+    ordered_.tangent2[p] = problem.tangent2[c];
+    ordered_.lever_i[p] = problem.lever_i[c];
+    ordered_.lever_j[p] = problem.lever_j[c];
+    ordered_.w_n[p] = problem.w_n[c];
+    ordered_.w_t[p] = problem.w_t[c];
+    ordered_.bias[p] = problem.bias[c];
+    ordered_.mu[p] = problem.mu[c];
+    ordered_r_[p] = r[c];
+  }
+  ordered_.velocities_from_reactions(ordered_r_, velocity, angular_velocity);
+  change_.assign(static_cast<std::size_t>(count), 0.0);
+  total_.assign(static_cast<std::size_t>(count), 0.0);
+  block_sums_.resize(static_cast<std::size_t>(2 * blocks));
+  const double relaxation = settings_.relaxation;
+  SolveReport report;
+  GaussSeidelStopTest stop(settings_.tolerance, settings_.stall_sweeps);
+  while (report.sweeps < settings_.max_iterations) {
+    ++report.sweeps;
+    const bool forward = report.sweeps % 2 == 1;
+#pragma omp parallel if (parallel)
+    {
+      for (std::ptrdiff_t visit = 0; visit < colours; ++visit) {
+        const std::ptrdiff_t k = forward ? visit : colours - 1 - visit;
+#pragma omp for schedule(static)
+        for (std::ptrdiff_t p = start[k]; p < start[k + 1]; ++p) {
+          const auto c = static_cast<std::size_t>(p);
+          if (!ordered_.solvable(c)) continue;
+          const ContactUpdate u = gauss_seidel_update(ordered_, c, relaxation, ordered_r_[c],
+                                                      velocity, angular_velocity);
+          change_[c] = u.change;
+          total_[c] = u.total;
+        }
+      }
+#pragma omp for schedule(static)
+      for (std::ptrdiff_t block = 0; block < blocks; ++block) {
+        double change = 0.0, total = 0.0;
+        for (std::ptrdiff_t c = block * kSumBlock; c < std::min(count, (block + 1) * kSumBlock); ++c) {
+          change += change_[c];
+          total += total_[c];
+        }
+        block_sums_[2 * block] = change;
+        block_sums_[2 * block + 1] = total;
+      }
+    }
+    const auto [change, total] = add_block_sums<2>(block_sums_, blocks);
+    if (stop.after_sweep(change, total, report)) break;
+  }
+#pragma omp parallel for schedule(static) if (parallel)
+  for (std::ptrdiff_t p = 0; p < count; ++p) r[static_cast<std::size_t>(order[p])] = ordered_r_[p];
+  return report;
+}
+
+}  // namespace tmdem::mechanics

@@ -1,0 +1,116 @@
+#pragma once
+// The settled frictional pile the contact-solver tests share ("nlgs", "apgd",
+// "nlgs_coloured"), its closed-form statics, and cold solves.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "MechanicsTestScenes.h"
+#include "mechanics/ContactSolverRegistry.h"
+#include "mechanics/NaturalMapResidual.h"
+
+namespace tmdem::mechanics::test {
+
+// A 3D frictional pile at rest: kPileSide x kPileSide x kPileLayers touching spheres on a
+// simple cubic lattice on a floor (mu = 0.3), after one step. Statics: in each column the
+// contact under the sphere of layer k carries (layers - k) m g h; side contacts carry nothing.
+inline constexpr int kPileSide = 5, kPileLayers = 6;
+inline const NscdIntegrator& lattice_pile() {
+  static const NscdIntegrator sim = [] {
+    ParticleSet set;
+    const double m = sphere_mass(kRadius, kDensity), d = 2.0 * kRadius;
+    for (int y = 0; y < kPileLayers; ++y)
+      for (int z = 0; z < kPileSide; ++z)
+        for (int x = 0; x < kPileSide; ++x)
+          set.add(Eigen::Vector3d(kRadius + x * d, kRadius + y * d, kRadius + z * d), kRadius, m, 0);
+    NscdIntegrator s(std::move(set), {steel(0.3)}, {Wall::through({0, 0, 0}, {0, 1, 0}, 0)},
+                     Eigen::Vector3d(0, -kG, 0), 3, NscdParameters{});
+    s.step();
+    return s;
+  }();
+  return sim;
+}
+
+// Weight of one sphere of the pile over one step, N s.
+inline double pile_weight_impulse() {
+  return sphere_mass(kRadius, kDensity) * kG * lattice_pile().parameters().time_step;
+}
+
+// Checks reactions r of the pile's problem against the statics, to `tolerance` N s.
+inline void expect_pile_statics(const std::vector<Eigen::Vector3d>& r, double tolerance) {
+  const NscdIntegrator& sim = lattice_pile();
+  const ContactProblem& problem = sim.problem();
+  const double weight = pile_weight_impulse();
+  for (std::size_t c = 0; c < problem.size(); ++c) {
+    // A vertical contact under sphere i carries the spheres above i and i itself.
+    const bool vertical = std::abs(problem.normal[c].y()) > 0.5;
+    const double y = sim.particles().position[problem.body_i[c]].y();
+    const int layer = static_cast<int>(std::lround((y - kRadius) / (2.0 * kRadius)));
+    const bool on_floor = problem.body_j[c] < 0;
+    const double expected = !vertical ? 0.0 : (kPileLayers - layer - (on_floor ? 0 : 1)) * weight;
+    EXPECT_NEAR(r[c][0], expected, tolerance) << "contact " << c;
+    EXPECT_NEAR(r[c].tail<2>().norm(), 0.0, tolerance) << "contact " << c;
+  }
+}
+
+// Largest |a_c - b_c| over the contacts.
+inline double largest_difference(const std::vector<Eigen::Vector3d>& a,
+                                 const std::vector<Eigen::Vector3d>& b) {
+  double difference = 0.0;
+  for (std::size_t c = 0; c < a.size(); ++c) difference = std::max(difference, (a[c] - b[c]).norm());
+  return difference;
+}
+
+inline SolverSettings tight(double tolerance) {
+  SolverSettings settings;
+  settings.tolerance = tolerance;
+  settings.max_iterations = 200000;
+  return settings;
+}
+
+struct Solved {
+  std::vector<Eigen::Vector3d> r, v, w;
+  SolveReport report;
+};
+
+inline Solved solve_cold(const ContactProblem& problem, ContactSolver& solver) {
+  Solved out;
+  out.r.assign(problem.size(), Eigen::Vector3d::Zero());
+  out.report = solver.solve(problem, out.r, out.v, out.w);
+  return out;
+}
+
+inline Solved solve_cold(const ContactProblem& problem, const std::string& name, double tolerance) {
+  return solve_cold(problem, *make_contact_solver(name, tight(tolerance)));
+}
+
+// Solver `name` and "nlgs", cold at `tolerance`, on the pile: both converge, `name`'s answer
+// meets the common residual within residual_bound, the statics, and "nlgs"'s reactions.
+inline void expect_pile_solved_like_gauss_seidel(const std::string& name, double tolerance,
+                                                 double residual_bound) {
+  const ContactProblem& problem = lattice_pile().problem();
+  ASSERT_GT(problem.size(), 300u);
+  const Solved gs = solve_cold(problem, "nlgs", tolerance);
+  const Solved other = solve_cold(problem, name, tolerance);
+  ASSERT_TRUE(gs.report.converged) << gs.report.residual;
+  ASSERT_TRUE(other.report.converged) << other.report.residual << " after " << other.report.sweeps;
+  EXPECT_LE(natural_map_residual(problem, other.r, other.v, other.w), residual_bound);
+  const double weight = pile_weight_impulse();
+  expect_pile_statics(other.r, 1e-6 * kPileLayers * weight);
+  EXPECT_LE(largest_difference(gs.r, other.r), 1e-6 * kPileLayers * weight);
+}
+
+// a and b agree to `relative` times the largest |a_c| (which must be positive).
+inline void expect_close_reactions(const std::vector<Eigen::Vector3d>& a,
+                                   const std::vector<Eigen::Vector3d>& b, double relative) {
+  double largest = 0.0;
+  for (const Eigen::Vector3d& r : a) largest = std::max(largest, r.norm());
+  ASSERT_GT(largest, 0.0);
+  EXPECT_LE(largest_difference(a, b), relative * largest);
+}
+
+}  // namespace tmdem::mechanics::test

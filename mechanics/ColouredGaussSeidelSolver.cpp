@@ -24,6 +24,7 @@ SolveReport ColouredGaussSeidelSolver::solve(const ContactProblem& problem,
   const bool parallel = count >= parallel_from_;
   // The problem in colour order: contact p of ordered_ is contact order[p] of problem.
   ordered_.dimension = problem.dimension;
+  ordered_.particle_count = problem.particle_count;
   ordered_.inverse_mass.assign(problem.inverse_mass.begin(), problem.inverse_mass.end());
   ordered_.inverse_inertia.assign(problem.inverse_inertia.begin(), problem.inverse_inertia.end());
   ordered_.free_velocity.assign(problem.free_velocity.begin(), problem.free_velocity.end());

@@ -23,8 +23,10 @@ bool ContactColouring::colour(const ContactProblem& problem, std::size_t words) 
   std::size_t colours = 0;
   for (std::size_t c = 0; c < count; ++c) {
     const std::size_t i = static_cast<std::size_t>(problem.body_i[c]);
-    const bool particle_j = !is_wall(problem.body_j[c]);
-    const std::size_t j = particle_j ? static_cast<std::size_t>(problem.body_j[c]) : 0;
+    // A fixed wall is only read (its velocity stays 0); a piston's velocity is written.
+    const std::int32_t body_j = problem.body_j[c];
+    const std::size_t j = is_wall(body_j) ? problem.wall_body(body_j) : static_cast<std::size_t>(body_j);
+    const bool particle_j = !is_wall(body_j) || problem.inverse_mass[j] > 0.0;
     std::size_t k = words * 64;
     for (std::size_t w = 0; w < words; ++w) {
       const std::uint64_t taken = used_[i * words + w] | (particle_j ? used_[j * words + w] : 0);

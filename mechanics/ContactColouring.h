@@ -1,8 +1,8 @@
 #pragma once
 // Greedy colouring of the contact graph for a parallel Gauss-Seidel: two contacts that share
 // a particle get different colours, so the contacts of one colour touch disjoint bodies and
-// can be visited at the same time (walls are not bodies: any number of contacts of one
-// colour may touch the same wall). Deterministic: contacts are coloured in index order, each
+// can be visited at the same time (a fixed wall is not a body here: any number of contacts of
+// one colour may touch it; a piston, whose velocity the contacts change, is one). Deterministic: contacts are coloured in index order, each
 // taking the smallest colour that none of its bodies' earlier contacts has (at most
 // 2 * (largest contacts per body) - 1 colours).
 //

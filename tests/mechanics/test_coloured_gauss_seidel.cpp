@@ -76,6 +76,30 @@ TEST(ColouredGaussSeidel, ColoursAreProperAndRecomputedOnlyWhenTheListChanges) {
   EXPECT_EQ(colouring.recolourings(), 2u);
 }
 
+// Contacts with one fixed wall may share a colour; contacts with one piston may not (the
+// piston's velocity is written by each of them).
+TEST(ColouredGaussSeidel, APistonIsABodyAFixedWallIsNot) {
+  ContactProblem problem;
+  problem.inverse_mass.assign(4, 1.0);
+  problem.inverse_inertia.assign(4, 1.0);
+  problem.free_velocity.assign(4, Vector3d::Zero());
+  problem.free_angular_velocity.assign(4, Vector3d::Zero());
+  problem.add_fixed_wall_bodies(2);
+  problem.inverse_mass[problem.wall_body(-2)] = 0.5;  // wall 1 is a piston
+  problem.resize_contacts(8);
+  for (int k = 0; k < 8; ++k) {
+    problem.body_i[k] = k % 4;
+    problem.body_j[k] = k < 4 ? -1 : -2;  // every sphere touches both walls
+  }
+  ContactColouring colouring;
+  colouring.update(problem);
+  // Wall 0 (fixed): contacts 0-3 take colour 0. Wall 1 (piston): contacts 4-7 need four
+  // colours, none of them 0 (each sphere already has colour 0).
+  ASSERT_EQ(colouring.colour_count(), 5u);
+  EXPECT_EQ(colouring.start()[1], 4);
+  for (int k = 1; k < 5; ++k) EXPECT_EQ(colouring.start()[k + 1] - colouring.start()[k], 1);
+}
+
 TEST(ColouredGaussSeidel, FrictionalPileAtRestMatchesGaussSeidelAndStatics) {
   // Statics hold exactly; the solvers agree to the tolerance.
   const double tolerance = 1e-8;

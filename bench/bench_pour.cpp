@@ -21,7 +21,7 @@
 // wall_s (wall time of the steps: to rest when at_rest = 1); s_per_step; ns_step (wall time
 // of the steps per candidate per sweep: detection and set-up included); ns_sweep (the
 // solver alone: 40 sweeps of a fresh solver of the same kind on the last step's problem,
-// per candidate per sweep); threads.
+// per candidate per sweep); colours (of the last problem, ContactColouring.h); threads.
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
@@ -35,6 +35,7 @@
 
 #include "coupling/bridge/SceneToMechanics.h"
 #include "coupling/scene/SceneLoader.h"
+#include "mechanics/ContactColouring.h"
 #include "mechanics/ContactSolverRegistry.h"
 
 using namespace tmdem;
@@ -149,6 +150,9 @@ void BM_Pour(benchmark::State& state) {
     state.counters["ns_step"] = wall * 1e9 / contact_sweeps;
     state.counters["ns_sweep"] =
         solve_s * 1e9 / (static_cast<double>(std::max(solved.sweeps, 1)) * static_cast<double>(problem.size()));
+    mechanics::ContactColouring colouring;  // what "nlgs_coloured" would use on that problem
+    colouring.update(problem);
+    state.counters["colours"] = static_cast<double>(colouring.colour_count());
     state.counters["threads"] = threads;
   }
   omp_set_num_threads(threads_before);

@@ -84,6 +84,11 @@ nlohmann::json RunSummary::to_json() const {
                             {"output_s", wall_time_parts->output_s},
                             {"other_s", wall_time_parts->other_s}};
   }
+  for (const auto& i : imports)
+    j["imports"].push_back({{"file", i.file},
+                            {"particles", i.particles},
+                            {"largest_overlap_rel", i.largest_overlap_rel},
+                            {"overlap_tolerance", i.overlap_tolerance}});
   if (!message.empty()) j["message"] = message;
   return j;
 }
@@ -119,6 +124,11 @@ RunSummary RunSummary::from_json(const nlohmann::json& j) {
     s.wall_time_parts = WallTimeParts{number(w, "mechanics_s", 0.0), number(w, "thermal_s", 0.0),
                                       number(w, "output_s", 0.0), number(w, "other_s", 0.0)};
   }
+
+  if (j.contains("imports"))
+    for (const auto& i : j.at("imports"))
+      s.imports.push_back({text(i, "file", ""), integer(i, "particles", 0),
+                           number(i, "largest_overlap_rel", 0.0), number(i, "overlap_tolerance", 0.0)});
 
   const nlohmann::json& t = section(j, "thermal");
   s.thermal.integrator = text(t, "integrator", s.thermal.integrator);

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -79,6 +80,14 @@ struct WallTimeParts {
   double other_s = 0.0;      // the rest: set-up, scene checks, summary
 };
 
+// One entry of the "imports" list (extra): what an [[import]] of the scene brought in.
+struct ImportSummary {
+  std::string file;
+  std::int64_t particles = 0;
+  double largest_overlap_rel = 0.0;  // largest overlap among its particles / the smaller radius
+  double overlap_tolerance = 0.0;    // what the scene accepted, same measure
+};
+
 struct RunSummary {
   std::string status = "ok";         // "ok", "failed" or "interrupted"
   std::string message;               // extra: what failed; omitted when empty
@@ -90,6 +99,7 @@ struct RunSummary {
   ThermalSummary thermal;
   EnergySummary energy;
   std::optional<WallTimeParts> wall_time_parts;  // extra: present for runs that got going
+  std::vector<ImportSummary> imports;            // extra: written only when not empty
 
   nlohmann::json to_json() const;
   // Inverse of to_json (missing keys keep their defaults). Throws nlohmann::json::exception on

@@ -258,6 +258,9 @@ void CoupledRun::fill_summary() {
   parts.other_s = std::max(0.0, summary_.wall_time_s - parts.mechanics_s - parts.thermal_s -
                                     parts.output_s);
   summary_.wall_time_parts = parts;
+  summary_.imports.clear();
+  for (const auto& i : scene_.imports)
+    summary_.imports.push_back({i.file, std::int64_t(i.count), i.largest_overlap, i.overlap_tolerance});
   if (nscd_) {
     const auto& ms = nscd_->stats();
     summary_.mechanics.steps = ms.steps;

@@ -86,6 +86,12 @@ TEST(E2eImport, SettledBedExportedAndImportedBackRuns) {
   const auto summary = read_summary(dir + "/again.json");
   EXPECT_EQ(summary["status"].get<std::string>(), "ok");
   EXPECT_LT(summary["energy"]["balance_error_rel"].get<double>(), 1e-9);
+  ASSERT_EQ(summary["imports"].size(), 1u);
+  EXPECT_EQ(summary["imports"][0]["file"].get<std::string>(), "bed.csv");
+  EXPECT_EQ(summary["imports"][0]["particles"].get<int>(), 80);
+  EXPECT_EQ(summary["imports"][0]["largest_overlap_rel"].get<double>(),
+            from_csv.imports[0].largest_overlap);
+  EXPECT_EQ(summary["imports"][0]["overlap_tolerance"].get<double>(), 0.01);
   // poured_bed is dynamic: the imported bed starts exactly where the export left it and stays
   // at rest for its 1 s (measured: 1.5e-7 m at most, 3e-4 of the smallest radius).
   const H5::H5File run(dir + "/again.h5", H5F_ACC_RDONLY);

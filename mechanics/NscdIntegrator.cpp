@@ -118,6 +118,7 @@ NscdIntegrator::NscdIntegrator(ParticleSet particles, std::vector<Material> mate
   settings.relaxation = parameters_.relaxation;
   settings.stall_sweeps = parameters_.stall_sweeps;
   solver_ = make_contact_solver(parameters_.solver, settings);
+  correction_ = PenetrationCorrection(settings);
   problem_.dimension = dimension_;
   problem_.particle_count = n;
   problem_.inverse_mass = inverse_mass_;
@@ -248,15 +249,10 @@ void NscdIntegrator::setup_contacts(double h) {
     Eigen::Vector3d u_old = old_velocity_[i] - (lever_i * old_angular_velocity_[i]).cross(n);
     if (!is_wall(j)) u_old -= old_velocity_[j] + (lever_j * old_angular_velocity_[j]).cross(n);
     else if (has_piston_) u_old -= old_velocity_[p.wall_body(j)];
-    // A predicted penetration within the slop is held, not pushed out; beyond it, only the
-    // excess is corrected, at most at recovery_speed (NscdParameters.h).
+    // Activation by predicted gap only: an overlap is never turned into a push-out speed
+    // (U_n = u_n there); the position step removes it (PenetrationCorrection.h).
     const double predicted = gap + h * (1.0 - theta) * u_old.dot(n);
-    double bias = predicted / h;
-    if (predicted < 0.0) {
-      bias = std::min(predicted + slop_m_, 0.0) / h;
-      if (parameters_.recovery_speed > 0.0) bias = std::max(bias, -parameters_.recovery_speed);
-    }
-    p.bias[k] = bias;
+    p.bias[k] = std::max(predicted, 0.0) / h;
 
     // Warm start: last step's force of this pair, in the new frame, as an impulse.
     const Eigen::Vector3d impulse = force_[k] * h;
@@ -313,6 +309,18 @@ StepReport NscdIntegrator::step(double h) {
     wall.velocity_m_per_s = body_velocity_[n + w].dot(wall.normal);
     wall.point += h * (theta * wall.velocity_m_per_s + (1.0 - theta) * before) * wall.normal;
   }
+  // Then overlaps deeper than the slop are removed by moving positions only.
+  gaps_after_step(gap_after_);
+  const SolveReport corrected = correction_.correct(problem_, gap_after_, slop_m_,
+                                                    parameters_.recovery_speed, h,
+                                                    particles_.position);
+  report.correction_sweeps = corrected.sweeps;
+  if (!corrected.converged) {
+    report.converged = false;
+    report.stalled = report.stalled || corrected.stalled;
+    report.residual = std::max(report.residual, corrected.residual);
+  }
+  if (corrected.sweeps > 0) gaps_after_step(gap_after_);
 
   // Forces for the warm start and the contact list; penetration after the step.
   contacts_.clear();
@@ -321,14 +329,7 @@ StepReport NscdIntegrator::step(double h) {
     const Eigen::Vector3d& r = reactions_[k];
     const std::int32_t i = problem_.body_i[k], j = problem_.body_j[k];
     force_[k] = problem_.to_global(k, r) / h;
-    double gap;
-    if (!is_wall(j)) {
-      gap = (particles_.position[i] - particles_.position[j]).norm() - problem_.lever_i[k] -
-            problem_.lever_j[k];
-    } else {
-      gap = walls_[wall_index(j)].signed_distance(particles_.position[i]) - problem_.lever_i[k];
-    }
-    penetration = std::max(penetration, -gap);
+    penetration = std::max(penetration, -gap_after_[k]);
     // -r . u_theta, u_theta the relative velocity the position update uses (bias removed).
     const Eigen::Vector3d u_theta =
         theta * problem_.local_velocity(k, body_velocity_, body_angular_velocity_) +
@@ -385,6 +386,19 @@ void NscdIntegrator::account_energy(double h, StepReport& report) const {
   }
   report.energy_change_J = kinetic + potential;
   report.numerical_dissipation_J = (theta - 0.5) * jump;
+}
+
+void NscdIntegrator::gaps_after_step(std::vector<double>& gap) const {
+  gap.resize(problem_.size());
+  for (std::size_t k = 0; k < problem_.size(); ++k) {
+    const std::int32_t i = problem_.body_i[k], j = problem_.body_j[k];
+    if (!is_wall(j)) {
+      gap[k] = (particles_.position[i] - particles_.position[j]).norm() - problem_.lever_i[k] -
+               problem_.lever_j[k];
+    } else {
+      gap[k] = walls_[wall_index(j)].signed_distance(particles_.position[i]) - problem_.lever_i[k];
+    }
+  }
 }
 
 double NscdIntegrator::kinetic_energy() const {

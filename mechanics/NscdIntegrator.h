@@ -10,20 +10,23 @@
 //   4. the contact solver chosen by name (ContactSolverRegistry.h; "nlgs": Gauss-Seidel sweeps,
 //      each contact solving its own law with the others frozen), warm-started from the
 //      previous step's forces of the same pair;
-//   5. q_{n+1} = q_n + h (theta v_{n+1} + (1 - theta) v_n).
+//   5. q_{n+1} = q_n + h (theta v_{n+1} + (1 - theta) v_n);
+//   6. penetration correction by positions only (split impulse, PenetrationCorrection.h).
 //
-// Signorini with a position term. Let g be the gap at the start of the step and
+// Signorini, activated by the predicted gap. Let g be the gap at the start of the step and
 // P = g + h (1 - theta) u_n(v_n) the gap predicted with the part of the position update that
-// is already known. The normal condition is applied to U_n = u_n(v_{n+1}) + P / h:
+// is already known. The normal condition is applied to U_n = u_n(v_{n+1}) + max(P, 0) / h:
 //   U_n >= 0, r_n >= 0, r_n U_n = 0   (inside the bipotential law, u_n is replaced by U_n).
-// This keeps P >= 0 from step to step, hence g_{n+1} >= (1 - theta) P >= 0: no penetration
-// builds up (for spheres the linearised gap is a lower bound of the true one), a contact
-// reached at P = 0 ends with u_n = 0 (inelastic impact), a resting contact (g = 0, u = 0)
-// carries exactly the weight, and a negative P (initial overlap, round-off) is pushed out in
-// one step instead of drifting, except for the part within the penetration slop
-// (NscdParameters::penetration_slop_fraction), which is held (U_n = u_n) rather than turned
-// into a push-out speed (pushed out at most at recovery_speed when that is set). Far
-// candidates (P > 0) only act if they would close.
+// For P >= 0 this keeps P >= 0 from step to step, hence g_{n+1} >= (1 - theta) P >= 0 (for
+// spheres the linearised gap is a lower bound of the true one): a contact reached at P = 0
+// ends with u_n = 0 (inelastic impact), a resting contact (g = 0, u = 0) carries exactly the
+// weight, and far candidates (P > 0) only act if they would close. An overlap (P < 0, from
+// solver error or an initial overlap) only gets u_n >= 0: it may not deepen, and it is never
+// pushed out by the velocity. Pushing it out there (bias P / h, as before) turned an overlap
+// d into a speed d / h (1e-6 m in 1e-3 s = 1e-3 m/s), so solver error alone kept piles
+// moving. Instead step 6 moves the centres apart (pseudo-velocities that are thrown away)
+// when an overlap is deeper than twice the slop (NscdParameters::penetration_slop_fraction),
+// back to the slop: no velocity, no energy is ever made of an overlap.
 //
 // Pistons (Wall.h: a plane wall with a mass) are bodies of the contact problem with one
 // translational degree of freedom along their normal n_w: free velocity
@@ -60,6 +63,7 @@
 #include "mechanics/MechanicsState.h"
 #include "mechanics/NscdParameters.h"
 #include "mechanics/ParticleSet.h"
+#include "mechanics/PenetrationCorrection.h"
 #include "mechanics/StepReport.h"
 #include "mechanics/Wall.h"
 
@@ -123,6 +127,7 @@ class NscdIntegrator {
   void refresh_wall_bodies(double h);
   // The step's energy change and numerical damping (see above), from v- and v+.
   void account_energy(double h, StepReport& report) const;
+  void gaps_after_step(std::vector<double>& gap) const;  // per candidate, current positions, m
 
   ParticleSet particles_;
   std::vector<Material> materials_;
@@ -145,6 +150,8 @@ class NscdIntegrator {
   std::unique_ptr<ContactSolver> solver_;
   std::vector<Eigen::Vector3d> reactions_;   // local impulse per candidate (n, t1, t2), N s
   std::vector<double> gap_;                  // per candidate at the start of the step, m
+  std::vector<double> gap_after_;            // per candidate after the step, m
+  PenetrationCorrection correction_{SolverSettings{}};
   std::vector<Eigen::Vector3d> force_;       // global reaction force per candidate, N
   std::vector<Eigen::Vector3d> old_force_;   // same, before a candidate rebuild
   std::vector<ContactForce> contacts_;

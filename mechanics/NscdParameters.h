@@ -25,16 +25,14 @@ struct NscdParameters {
   // Gauss-Seidel stops early (stalled, counted as unconverged) when its residual has not
   // fallen below 0.9x its best value over this many sweeps.
   int stall_sweeps = 500;
-  // Penetration slop, as a fraction of the smallest radius. A contact whose predicted gap P
-  // (see NscdIntegrator.h) lies in [-slop, 0) is held where it is (u_n >= 0) instead of being
-  // pushed out: pushing out a penetration d within one step gives the particle a speed d / h
-  // (1e-6 m in 1e-3 s = 1e-3 m/s), so round-off and solver error alone kept packings moving.
-  // Only the part beyond the slop is corrected, at most at recovery_speed. Measured on the
-  // default 256-disk scene (tmdem run --set mechanics.penetration_slop=X): slop 0: at rest
-  // after 141 steps, 59 unconverged; 1e-4: 145 steps, 48 unconverged; 1e-3: 2,165 steps (the
-  // push-out also damped the settling), 47 unconverged. Wall times equal (4.2 s).
+  // Penetration slop s, as a fraction of the smallest radius. The velocity solve never pushes
+  // an overlap out (NscdIntegrator.h); the position step (PenetrationCorrection.h) holds
+  // overlaps up to 2 s and brings a deeper one back to s by moving centres only, so at the end
+  // of every step no overlap is deeper than 2 s (to the position solve's 1% tolerance).
+  // 0: every overlap is removed within its step (still without speed).
   double penetration_slop_fraction = 1.0e-4;
-  // Largest speed, m/s, at which a penetration beyond the slop is pushed out (0 = no cap).
+  // Largest distance per unit time, m/s, by which the position step moves an overlap out
+  // (correction at most h * recovery_speed per step; 0 = no cap). No speed is made of it.
   double recovery_speed = 0.0;
   // Candidate margin, as fractions of the largest radius (see ContactDetector).
   double min_margin_fraction = 0.1;

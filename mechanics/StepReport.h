@@ -11,6 +11,8 @@ struct StepReport {
   double residual = 0.0;           // sum |dr| / sum |r| of the last sweep (see NscdParameters)
   bool converged = true;           // residual <= tolerance within max_iterations
   bool stalled = false;            // the solver gave up early: no progress (not converged)
+  int correction_sweeps = 0;       // penetration correction (PenetrationCorrection.h); 0: none
+                                   // needed. Its failure makes the step unconverged too.
   double max_penetration_m = 0.0;  // largest overlap after the step, >= 0
   std::size_t candidates = 0;      // contacts handed to the solver
   std::size_t active_contacts = 0; // contacts with r_n > 0

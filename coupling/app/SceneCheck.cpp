@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "coupling/app/StepTravel.h"
 #include "coupling/bridge/ContactList.h"
 #include "coupling/bridge/SceneToMechanics.h"
 #include "coupling/bridge/ThermalDiagnostics.h"
@@ -60,6 +61,18 @@ void check_scene(const Scene& scene, std::ostream& out) {
       << resources.output_bytes / 1e6 << " MB (result file and XDMF"
       << (scene.output.contacts ? ", contacts estimated at 3 per particle" : "")
       << "); memory about " << resources.memory_bytes / 1e6 << " MB\n";
+  const StepTravel travel = estimate_step_travel(scene);
+  if (travel.speed_m_per_s > 0.0) {
+    out << "mechanics: largest speed estimated " << travel.speed_m_per_s
+        << " m/s (gravity; coupling/app/StepTravel.h), " << travel.travel_m << " m per step = "
+        << travel.travel_m / travel.smallest_radius_m << " of the smallest radius\n";
+    if (travel.too_far())
+      out << "warning: a particle can move more than " << kStepTravelFraction
+          << " of the smallest radius per step (" << travel.travel_m << " m against "
+          << travel.smallest_radius_m << " m): contact normals and gaps are frozen over a step, "
+          << "so impacts and overlaps get coarse; lower mechanics.time_step below "
+          << kStepTravelFraction * travel.smallest_radius_m / travel.speed_m_per_s << " s\n";
+  }
   out << "thermal: integrator " << scene.thermal.integrator << ", linear solver "
       << scene.thermal.linear_solver << ", conductance " << scene.thermal.conductance << "\n";
 

@@ -301,10 +301,11 @@ std::vector<Section> build_sections() {
         number("settle_velocity", "m/s", 1.0e-4, Range::greater(0.0),
                "every particle slower than this counts as at rest"),
         number("penetration_slop", "", 1.0e-4, Range::closed(0.0, 0.5),
-               "penetration, as a fraction of the smallest radius, that is held rather than "
-               "pushed out (pushing it out within a step turns it into speed)"),
+               "slop s, as a fraction of the smallest radius: overlaps up to 2 s are held, a "
+               "deeper one is moved back to s by positions only (no speed is made of it)"),
         number("recovery_speed", "m/s", 0.0, Range::at_least(0.0),
-               "largest speed at which penetration beyond the slop is pushed out; 0 = no cap")}});
+               "largest rate at which the position step moves an overlap out (at most h x this "
+               "per step); 0 = no cap")}});
   sections.push_back(
       {"thermal", "the thermal integrator and the contact conductance",
        {choice("integrator", "cvode", {"cvode", "ida", "explicit"},

@@ -250,47 +250,81 @@ TEST(NscdExact, FastSphereNeverPassesAnotherSphere) {
   EXPECT_GE(smallest_gap_of_fast_sphere(true), -1e-9 * kRadius);
 }
 
-// Penetration slop: an overlap d within the slop is held (no push-out, the sphere stays at
-// rest exactly); beyond it only d - slop is corrected, as a speed of (d - slop) / h at most.
+// Penetration slop and split-impulse correction (PenetrationCorrection.h): an overlap d
+// within the slop is held (no push-out, the sphere stays at rest exactly); beyond it the
+// position step removes d - slop by moving the centre, and the velocity stays exactly zero.
 TEST(NscdExact, PenetrationWithinTheSlopIsHeldNotPushedOut) {
-  NscdParameters parameters;  // slop 1e-3 r
+  NscdParameters parameters;  // slop 1e-4 r
   const double slop = parameters.penetration_slop_fraction * kRadius;
   const double d = 0.5 * slop;
   auto sim = single_sphere(Vector3d(0, kRadius - d, 0), {Wall::through({0, 0, 0}, {0, 1, 0}, 0)},
                            0.3, parameters);
   for (int step = 0; step < 1000; ++step) {
-    sim.step();
+    const StepReport report = sim.step();
     ASSERT_LT(sim.max_speed(), 1e-15) << "step " << step;
     ASSERT_NEAR(sim.particles().position[0].y(), kRadius - d, 1e-15) << "step " << step;
+    ASSERT_EQ(report.correction_sweeps, 0) << "step " << step;
   }
-  // Without a slop the same overlap is pushed out within a step: speed d / h.
+  // Without a slop the same overlap is removed by the position step within one step, and
+  // still no speed is made of it (the old push-out left the sphere moving at d / h).
   parameters.penetration_slop_fraction = 0.0;
   auto pushed = single_sphere(Vector3d(0, kRadius - d, 0), {Wall::through({0, 0, 0}, {0, 1, 0}, 0)},
                               0.3, parameters);
   pushed.step();
-  EXPECT_NEAR(pushed.max_speed(), d / parameters.time_step, 1e-9 * d / parameters.time_step);
+  EXPECT_LT(pushed.max_speed(), 1e-15);
+  EXPECT_NEAR(pushed.particles().position[0].y(), kRadius, 1e-15);
 }
 
-TEST(NscdExact, PenetrationBeyondTheSlopIsCorrectedDownToTheSlop) {
+TEST(NscdExact, PenetrationBeyondTheSlopIsRemovedWithoutSpeed) {
   NscdParameters parameters;
   const double slop = parameters.penetration_slop_fraction * kRadius;
-  const double h = parameters.time_step, theta = parameters.theta;
+  const double h = parameters.time_step;
   const double d = 5.0 * slop;
   auto sim = single_sphere(Vector3d(0, kRadius - d, 0), {Wall::through({0, 0, 0}, {0, 1, 0}, 0)},
                            0.3, parameters);
-  sim.step();
-  // U_n = u_n + (slop - d) / h >= 0 with the contact active: u_n = (d - slop) / h exactly.
-  EXPECT_NEAR(sim.particles().velocity[0].y(), (d - slop) / h, 1e-9 * (d - slop) / h);
-  EXPECT_NEAR(sim.particles().position[0].y(), kRadius - d + h * theta * (d - slop) / h, 1e-15);
-  for (int step = 0; step < 100; ++step) sim.step();
-  // Then the predicted gap sits at -slop: at rest, overlap within the slop.
+  const StepReport first = sim.step();
+  EXPECT_GT(first.correction_sweeps, 0);
+  // Velocity step: U_n = u_n >= 0 (no bias for an overlap), so gravity is simply stopped.
   EXPECT_LT(sim.max_speed(), 1e-15);
-  EXPECT_NEAR(kRadius - sim.particles().position[0].y(), slop, 1e-12 * kRadius);
-  // A recovery speed caps the push-out.
+  // Position step: the centre moves up by d - slop, the overlap is exactly the slop.
+  EXPECT_NEAR(sim.particles().position[0].y(), kRadius - slop, 1e-15);
+  for (int step = 0; step < 100; ++step) {
+    sim.step();
+    ASSERT_LT(sim.max_speed(), 1e-15) << "step " << step;
+    ASSERT_NEAR(sim.particles().position[0].y(), kRadius - slop, 1e-15) << "step " << step;
+  }
+  // A recovery speed caps the correction per step at h * recovery_speed (still no speed).
   parameters.recovery_speed = 0.1 * (d - slop) / h;
   auto capped = single_sphere(Vector3d(0, kRadius - d, 0), {Wall::through({0, 0, 0}, {0, 1, 0}, 0)},
                               0.3, parameters);
   capped.step();
-  EXPECT_NEAR(capped.particles().velocity[0].y(), parameters.recovery_speed,
-              1e-9 * parameters.recovery_speed);
+  EXPECT_LT(capped.max_speed(), 1e-15);
+  EXPECT_NEAR(capped.particles().position[0].y(), kRadius - d + 0.1 * (d - slop), 1e-15);
+  // 0.4 slop per step: 5, 4.6, ..., 2.2, 1.8 slops deep after 8 steps; then within twice the
+  // slop (PenetrationCorrection::kTrigger), where an overlap is held.
+  for (int step = 1; step < 20; ++step) capped.step();
+  EXPECT_NEAR(capped.particles().position[0].y(), kRadius - 1.8 * slop, 1e-15);
+  EXPECT_LT(capped.max_speed(), 1e-15);
+}
+
+// Two free spheres of different masses overlapping by d (no gravity, no walls): the position
+// step moves them apart along the normal in the ratio of their inverse masses, so that the
+// overlap is the slop and the centre of mass stays where it was; both stay at rest.
+TEST(NscdExact, OverlapOfTwoSpheresIsSharedByInverseMass) {
+  NscdParameters parameters;
+  const double slop = parameters.penetration_slop_fraction * kRadius;
+  const double d = 20.0 * slop;
+  ParticleSet set;
+  const double m0 = sphere_mass(kRadius, kDensity), m1 = sphere_mass(kRadius, 3.0 * kDensity);
+  set.add(Vector3d(0, 0, 0), kRadius, m0, 0);
+  set.add(Vector3d(2 * kRadius - d, 0, 0), kRadius, m1, 0);
+  NscdIntegrator sim(std::move(set), {steel(0.3)}, {}, Vector3d::Zero(), 3, parameters);
+  sim.step();
+  const auto& x = sim.particles().position;
+  EXPECT_LT(sim.max_speed(), 1e-15);
+  EXPECT_NEAR((x[1] - x[0]).norm(), 2 * kRadius - slop, 1e-15);
+  // Displacements (d - slop) m1 / (m0 + m1) and (d - slop) m0 / (m0 + m1), opposite.
+  EXPECT_NEAR(x[0].x(), -(d - slop) * m1 / (m0 + m1), 1e-16);
+  EXPECT_NEAR(x[1].x(), 2 * kRadius - d + (d - slop) * m0 / (m0 + m1), 1e-16);
+  EXPECT_NEAR(m0 * x[0].x() + m1 * x[1].x(), m1 * (2 * kRadius - d), 1e-15 * m1 * kRadius);
 }

@@ -1,0 +1,73 @@
+// `tmdem check`'s estimate of the largest travel per mechanics step (coupling/app/StepTravel.h)
+// against free fall by hand.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "coupling/app/StepTravel.h"
+
+namespace tmdem::coupling {
+namespace {
+
+constexpr double kG = 9.81;
+
+Scene one_sphere(double bottom_above_floor_m, double floor_tilt_rad) {
+  Scene scene;
+  scene.effects.mechanics = MechanicsMode::Settle;
+  scene.gravity_m_per_s2 = {0.0, -kG, 0.0};
+  scene.mechanics.time_step_s = 1e-3;
+  scene.mechanics.settle_time_s = 5.0;
+  Particle p;
+  p.radius_m = 1e-3;
+  // Above the origin, where the (possibly tilted) floor passes.
+  p.position_m = {0.0, (bottom_above_floor_m + p.radius_m) / std::cos(floor_tilt_rad), 0.0};
+  scene.particles.push_back(p);
+  Wall floor;
+  floor.normal = {std::sin(floor_tilt_rad), std::cos(floor_tilt_rad), 0.0};
+  scene.walls.push_back(floor);
+  return scene;
+}
+
+TEST(StepTravel, FallOntoTheFloorCapsTheSpeed) {
+  const StepTravel t = estimate_step_travel(one_sphere(0.1, 0.0));
+  EXPECT_NEAR(t.speed_m_per_s, std::sqrt(2 * kG * 0.1), 1e-12);
+  EXPECT_NEAR(t.travel_m, 1e-3 * std::sqrt(2 * kG * 0.1), 1e-15);
+  EXPECT_EQ(t.smallest_radius_m, 1e-3);
+  EXPECT_TRUE(t.too_far());  // 1.4 mm per step against half of 1 mm
+}
+
+TEST(StepTravel, TiltedFloorIsReachedAlongGravity) {
+  // Distance d to a floor tilted by 60 degrees: the vertical fall onto it is 2 d.
+  const double tilt = std::acos(0.5);
+  const StepTravel t = estimate_step_travel(one_sphere(0.01, tilt));
+  // The sphere is 0.01 m from the floor along its normal; falling vertically it closes
+  // cos(tilt) of each metre, so it falls 0.01 / cos(tilt) = 0.02 m.
+  const double fall = 0.01 / std::cos(tilt);
+  EXPECT_NEAR(t.speed_m_per_s, std::sqrt(2 * kG * fall), 1e-12);
+}
+
+TEST(StepTravel, WithoutAFloorTheSpeedGrowsOverTheWholePhase) {
+  Scene scene = one_sphere(0.1, 0.0);
+  scene.walls.clear();
+  EXPECT_NEAR(estimate_step_travel(scene).speed_m_per_s, kG * 5.0, 1e-12);
+  scene.effects.mechanics = MechanicsMode::Dynamic;
+  scene.duration_s = 0.01;
+  const StepTravel t = estimate_step_travel(scene);
+  EXPECT_NEAR(t.speed_m_per_s, kG * 0.01, 1e-15);
+  EXPECT_FALSE(t.too_far());  // 0.1 mm per step against 0.5 mm
+}
+
+TEST(StepTravel, RestingOrStillScenesDoNotWarn) {
+  const StepTravel resting = estimate_step_travel(one_sphere(0.0, 0.0));
+  EXPECT_EQ(resting.speed_m_per_s, 0.0);
+  EXPECT_FALSE(resting.too_far());
+  Scene off = one_sphere(0.1, 0.0);
+  off.effects.mechanics = MechanicsMode::Off;
+  EXPECT_EQ(estimate_step_travel(off).travel_m, 0.0);
+  Scene fixed = one_sphere(0.1, 0.0);
+  fixed.particles[0].fixed = true;
+  EXPECT_EQ(estimate_step_travel(fixed).travel_m, 0.0);
+}
+
+}  // namespace
+}  // namespace tmdem::coupling

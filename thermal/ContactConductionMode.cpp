@@ -2,6 +2,7 @@
 // edge is exactly conservative (the flow one node gains is the flow the other loses, bit for bit).
 #include <memory>
 
+#include "thermal/KirchhoffContactFlow.h"
 #include "thermal/ModeDescription.h"
 
 namespace tmdem::thermal {
@@ -9,10 +10,31 @@ namespace {
 
 class ContactConductionMode final : public HeatTransferMode {
  public:
+  // With k(T) (ThermalNetwork::conductance_follows_conductivity): the flow from b into a, with
+  // 2 a recovered from H at the reference conductivities.
+  static ContactFlow flow(const ThermalNetwork& net, std::size_t e, std::span<const double> T) {
+    const auto a = std::size_t(net.edge_a[e]), b = std::size_t(net.edge_b[e]);
+    const auto& ka = net.material_conductivity[std::size_t(net.node_material[a])];
+    const auto& kb = net.material_conductivity[std::size_t(net.node_material[b])];
+    const double two_a =
+        net.edge_conductance_W_per_K[e] / harmonic_mean_conductivity(ka.y.front(), kb.y.front());
+    return kirchhoff_contact_flow(two_a, kb, T[b], ka, T[a]);
+  }
+
   std::string_view name() const override { return "contact_conduction"; }
 
   bool add_heat_flow(const ThermalNetwork& net, std::span<const double> T,
                      std::span<double> q, double& boundary_W) const override {
+    if (net.conductance_follows_conductivity) {
+      for (std::size_t e = 0; e < net.edge_count(); ++e) {
+        const auto a = std::size_t(net.edge_a[e]), b = std::size_t(net.edge_b[e]);
+        const double flow_into_a = flow(net, e, T).W;
+        q[a] += flow_into_a;
+        q[b] -= flow_into_a;
+        if (net.held[a] != net.held[b]) boundary_W += net.held[a] ? -flow_into_a : flow_into_a;
+      }
+      return true;
+    }
     const std::size_t m = net.edge_count();
     const auto* a = net.edge_a.data();
     const auto* b = net.edge_b.data();
@@ -28,8 +50,19 @@ class ContactConductionMode final : public HeatTransferMode {
     return true;
   }
 
-  void add_jacobian(const ThermalNetwork& net, std::span<const double>,
+  void add_jacobian(const ThermalNetwork& net, std::span<const double> T,
                     JacobianView J) const override {
+    if (net.conductance_follows_conductivity) {
+      // flow into a = Q(b -> a): d q_a / d T_b = dQ/dT1, d q_a / d T_a = dQ/dT2, q_b = -q_a.
+      for (std::size_t e = 0; e < net.edge_count(); ++e) {
+        const ContactFlow f = flow(net, e, T);
+        J.diagonal_W_per_K[std::size_t(net.edge_a[e])] += f.dW_dT2;
+        J.diagonal_W_per_K[std::size_t(net.edge_b[e])] -= f.dW_dT1;
+        J.edge_ab_W_per_K[e] += f.dW_dT1;
+        J.edge_ba_W_per_K[e] -= f.dW_dT2;
+      }
+      return;
+    }
     for (std::size_t e = 0; e < net.edge_count(); ++e) {
       const double h = net.edge_conductance_W_per_K[e];
       J.edge_W_per_K[e] += h;

@@ -123,7 +123,7 @@ int CvodeIntegrator::rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* self) {
   if (!me->system_.time_derivative(me->T_work_, out, boundary_W)) return 1;  // recoverable
   double sum = 0.0;
   for (std::size_t i = 0; i < out.size(); ++i) {
-    if (!me->scale_.empty()) out[i] *= me->scale_[i];
+    out[i] *= me->state_factor(i);
     sum += out[i];
   }
   return std::isfinite(sum) ? 0 : 1;
@@ -154,7 +154,8 @@ int CvodeIntegrator::jtimes_setup(sunrealtype, N_Vector y, N_Vector, void* self)
 int CvodeIntegrator::jtimes(N_Vector v, N_Vector Jv, sunrealtype, N_Vector, N_Vector, void* self,
                             N_Vector) {
   auto* me = static_cast<CvodeIntegrator*>(self);
-  me->system_.jacobian_times(me->mode_jacobian_, nvector_view(v), nvector_view(Jv), me->scale_);
+  me->system_.jacobian_times(me->mode_jacobian_, nvector_view(v), nvector_view(Jv),
+                             me->jacobian_scale());
   return 0;
 }
 

@@ -10,7 +10,14 @@
 namespace tmdem::thermal {
 
 ExplicitIntegrator::ExplicitIntegrator(ThermalSystem& system, const IntegratorSettings& settings)
-    : system_(system), settings_(settings) {}
+    : system_(system), settings_(settings) {
+  // Its stability bound (Gershgorin at the largest temperature, constant C) does not bound a
+  // network whose k and C change with T; the implicit integrators have the exact Jacobian.
+  if (system_.network().temperature_dependent())
+    throw std::invalid_argument(
+        "thermal.integrator = \"explicit\" does not support temperature-dependent material "
+        "properties (a conductivity or heat_capacity table); use \"cvode\" or \"ida\"");
+}
 
 void ExplicitIntegrator::choose_step(bool at_start) {
   bound_s_ = system_.explicit_stability_bound_s(max_temperature_K_);

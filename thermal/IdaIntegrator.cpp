@@ -36,8 +36,7 @@ void IdaIntegrator::consistent_derivative() {
   system_.set_time(t_);
   if (!system_.time_derivative(T_work_, yp, boundary_W))
     throw ThermalSolverError("IDA: heat flow undefined at the initial temperatures", 0, t_);
-  if (!scale_.empty())
-    for (std::size_t i = 0; i < yp.size(); ++i) yp[i] *= scale_[i];
+  for (std::size_t i = 0; i < yp.size(); ++i) yp[i] *= state_factor(i);
 }
 
 void IdaIntegrator::initialize(double t0_s, std::span<const double> T0_K, double boundary_heat0_J) {
@@ -151,8 +150,7 @@ int IdaIntegrator::residual(sunrealtype t, N_Vector y, N_Vector yp, N_Vector r, 
   const auto& held = me->system_.network().held;
   double sum = 0.0;
   for (std::size_t i = 0; i < rr.size(); ++i) {
-    const double s = me->scale_.empty() ? 1.0 : me->scale_[i];
-    rr[i] = held[i] ? yd[i] - me->held_value_[i] : ypd[i] - s * rr[i];
+    rr[i] = held[i] ? yd[i] - me->held_value_[i] : ypd[i] - me->state_factor(i) * rr[i];
     sum += rr[i];
   }
   return std::isfinite(sum) ? 0 : 1;
@@ -192,7 +190,7 @@ int IdaIntegrator::jtimes(sunrealtype, N_Vector, N_Vector, N_Vector, N_Vector v,
                           sunrealtype cj, void* self, N_Vector, N_Vector) {
   auto* me = static_cast<IdaIntegrator*>(self);
   auto vv = nvector_view(v), out = nvector_view(Jv);
-  me->system_.jacobian_times(me->mode_jacobian_, vv, out, me->scale_);
+  me->system_.jacobian_times(me->mode_jacobian_, vv, out, me->jacobian_scale());
   const auto& held = me->system_.network().held;
   for (std::size_t i = 0; i < out.size(); ++i) out[i] = (held[i] ? 1.0 : cj) * vv[i] - out[i];
   return 0;

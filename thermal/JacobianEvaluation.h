@@ -13,6 +13,8 @@ struct JacobianEvaluation {
   std::vector<double> edge_W_per_K;      // per edge, in the network's edge order (symmetric)
   std::vector<double> edge_ab_W_per_K;   // per edge: extra d q_a / d T_b (non-symmetric modes)
   std::vector<double> edge_ba_W_per_K;   // per edge: extra d q_b / d T_a
+  // Temperature-dependent capacities only (empty otherwise): C_i(T_i), J/K.
+  std::vector<double> capacity_J_per_K;
 };
 
 }  // namespace tmdem::thermal

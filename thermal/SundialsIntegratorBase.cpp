@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 
 #include "thermal/IntegratorKind.h"
 #include "thermal/ThermalSolverError.h"
@@ -20,8 +21,14 @@ SundialsIntegratorBase::SundialsIntegratorBase(ThermalSystem& system,
     : system_(system), settings_(settings), pcg_(parse_linear_solver_kind(settings.linear_solver) == LinearSolverKind::Pcg) {
   if (pcg_ && !system_.symmetric_jacobian())
     throw std::invalid_argument(
-        "thermal.linear_solver = \"pcg\" needs a symmetric Jacobian, but a switched-on mode "
-        "(particle-particle radiation) couples T^4 terms one-sidedly; use \"klu\"");
+        "thermal.linear_solver = \"pcg\" needs a symmetric Jacobian, but " +
+        std::string(system_.network().temperature_dependent()
+                        ? "temperature-dependent material properties (a conductivity or "
+                          "heat_capacity table) make it one-sided"
+                        : "a switched-on mode (particle-particle radiation) couples T^4 terms "
+                          "one-sidedly") +
+        "; use \"klu\"");
+  energy_state_ = system_.network().temperature_dependent();
   if (pcg_) {
     scale_.resize(system_.size());
     for (std::size_t i = 0; i < scale_.size(); ++i)
@@ -53,8 +60,9 @@ bool SundialsIntegratorBase::begin(double t0_s, std::span<const double> T0_K,
   }
   auto y = nvector_view(y_.get()), atol = nvector_view(abstol_.get());
   for (std::size_t i = 0; i < n; ++i) {
-    const double s = scale_.empty() ? 1.0 : scale_[i];
-    y[i] = s * T0_K[i];
+    T_work_[i] = T0_K[i];
+    const double s = state_factor(i);
+    y[i] = energy_state_ ? system_.network().thermal_energy_at(i, T0_K[i]) : s * T0_K[i];
     atol[i] = s * settings_.absolute_tolerance_K;
   }
   NV_Ith_S(yQ_.get(), 0) = 0.0;
@@ -94,11 +102,21 @@ bool SundialsIntegratorBase::pattern_changed() {
 
 void SundialsIntegratorBase::unscale(N_Vector y) {
   const double* yd = N_VGetArrayPointer(y);
-  if (scale_.empty()) {
+  if (energy_state_) {
+    for (std::size_t i = 0; i < T_work_.size(); ++i)
+      T_work_[i] = system_.network().temperature_at_energy(i, yd[i]);
+  } else if (scale_.empty()) {
     std::copy(yd, yd + T_work_.size(), T_work_.begin());
   } else {
     for (std::size_t i = 0; i < T_work_.size(); ++i) T_work_[i] = yd[i] / scale_[i];
   }
+}
+
+std::span<const double> SundialsIntegratorBase::jacobian_scale() {
+  if (!energy_state_) return scale_;
+  jacobian_scale_.resize(T_work_.size());
+  for (std::size_t i = 0; i < T_work_.size(); ++i) jacobian_scale_[i] = state_factor(i);
+  return jacobian_scale_;
 }
 
 bool SundialsIntegratorBase::fill_jacobian(N_Vector y, SUNMatrix J) {
@@ -109,7 +127,7 @@ bool SundialsIntegratorBase::fill_jacobian(N_Vector y, SUNMatrix J) {
   // SUNDIALS zeroes the whole matrix (pattern included) before each evaluation: rewrite it.
   std::copy(p.column_start.begin(), p.column_start.end(), SM_INDEXPTRS_S(J));
   std::copy(p.row_index.begin(), p.row_index.end(), SM_INDEXVALS_S(J));
-  system_.jacobian_values(mode_jacobian_, {SM_DATA_S(J), p.nonzeros()}, scale_);
+  system_.jacobian_values(mode_jacobian_, {SM_DATA_S(J), p.nonzeros()}, jacobian_scale());
   return true;
 }
 
@@ -126,7 +144,7 @@ bool SundialsIntegratorBase::setup_preconditioner(N_Vector y, bool reuse_jacobia
   if (!reuse_jacobian) {
     unscale(y);
     system_.evaluate_jacobian(T_work_, mode_jacobian_);
-    system_.jacobian_values(mode_jacobian_, jacobian_values_, scale_);
+    system_.jacobian_values(mode_jacobian_, jacobian_values_, jacobian_scale());
   }
   const auto& held = system_.network().held;
   newton_shift_.resize(held.size());

@@ -46,8 +46,16 @@ class SundialsIntegratorBase : public ThermalIntegrator {
   // After a contact-graph shape change: KLU gets a new pattern size and a fresh symbolic
   // factorization. Returns true when the derived class must re-initialise its solver.
   bool pattern_changed();
-  // T_work_ = y / scale.
+  // T_work_ = y / scale (enthalpy state: T_i with E_i(T_i) = y_i).
   void unscale(N_Vector y);
+  // d y_i / d T_i at T_work_: scale_[i], C_i(T_work_i) for the enthalpy state, else 1. The
+  // state's rate is this factor times dT/dt.
+  double state_factor(std::size_t i) const {
+    if (energy_state_) return system_.network().heat_capacity_at(i, T_work_[i]);
+    return scale_.empty() ? 1.0 : scale_[i];
+  }
+  // The S of S J S^-1 for jacobian_values / jacobian_times at T_work_ (see state_factor).
+  std::span<const double> jacobian_scale();
   // Writes the system's pattern and J = d(dT/dt)/dT (scaled) at y into the sparse matrix.
   bool fill_jacobian(N_Vector y, SUNMatrix J);
   // "pcg" preconditioner: IC(0) of the Newton matrix
@@ -84,6 +92,11 @@ class SundialsIntegratorBase : public ThermalIntegrator {
   MatrixPtr A_;
   LinearSolverPtr LS_;
   std::vector<double> scale_;  // sqrt(C) for pcg, empty for klu
+  // Temperature-dependent capacities: the state is the enthalpy y_i = E_i(T_i) = int_0^T_i C_i,
+  // whose rate is q_i, so sum_i y_i is a linear invariant the BDF/Newton steps keep to
+  // round-off (the energy balance closes as for constant C). Jacobian d q / d E = (dq/dT) C^-1.
+  bool energy_state_ = false;
+  std::vector<double> jacobian_scale_;  // C(T_work_) for the enthalpy state
   std::vector<double> T_work_, dT_work_;
   JacobianEvaluation mode_jacobian_;     // d q / d T at the last Jacobian or preconditioner setup
   IncompleteCholesky preconditioner_;

@@ -34,6 +34,7 @@ void ThermalNetwork::clear_edges() {
 
 void ThermalNetwork::clear_wall_edges() {
   wall_node.clear();
+  wall_material.clear();
   wall_temperature_K.clear();
   wall_conductance_W_per_K.clear();
   wall_schedule.clear();
@@ -69,6 +70,26 @@ void ThermalNetwork::add_flux_edge(std::int32_t node, std::int32_t flux_wall_ind
   flux_node.push_back(node);
   flux_wall.push_back(flux_wall_index);
   flux_conductance_W_per_K.push_back(conductance_W_per_K);
+}
+
+double ThermalNetwork::heat_capacity_at(std::size_t i, double T) const {
+  if (!temperature_dependent()) return heat_capacity_J_per_K[i];
+  return mass_kg[i] * material_specific_heat[std::size_t(node_material[i])](T);
+}
+
+double ThermalNetwork::heat_capacity_slope_at(std::size_t i, double T) const {
+  if (!temperature_dependent()) return 0.0;
+  return mass_kg[i] * material_specific_heat[std::size_t(node_material[i])].slope(T);
+}
+
+double ThermalNetwork::thermal_energy_at(std::size_t i, double T) const {
+  if (!temperature_dependent()) return heat_capacity_J_per_K[i] * T;
+  return mass_kg[i] * material_specific_heat[std::size_t(node_material[i])].integral(T);
+}
+
+double ThermalNetwork::temperature_at_energy(std::size_t i, double E) const {
+  if (!temperature_dependent()) return E / heat_capacity_J_per_K[i];
+  return material_specific_heat[std::size_t(node_material[i])].inverse_integral(E / mass_kg[i]);
 }
 
 void ThermalNetwork::add_dissipation(std::int32_t a, std::int32_t b, double power_W) {
@@ -139,6 +160,25 @@ void ThermalNetwork::validate() const {
     const double h = flux_conductance_W_per_K[f];
     if (!(h >= 0.0) || !std::isfinite(h))
       fail("flux edge " + std::to_string(f) + " has conductance " + std::to_string(h) + " W/K");
+  }
+  if (temperature_dependent()) {
+    const auto materials = material_conductivity.size();
+    if (node_material.size() != n || mass_kg.size() != n || material_specific_heat.size() != materials)
+      fail("temperature-dependent node arrays have different sizes");
+    for (std::size_t i = 0; i < n; ++i)
+      if (node_material[i] < 0 || std::size_t(node_material[i]) >= materials || !(mass_kg[i] > 0.0))
+        fail("node " + std::to_string(i) + " names material " + std::to_string(node_material[i]) +
+             " with mass " + std::to_string(mass_kg[i]) + " kg");
+    for (const auto* tables : {&material_conductivity, &material_specific_heat})
+      for (const auto& t : *tables)
+        if (t.x.empty() || t.x.size() != t.y.size() || !std::is_sorted(t.x.begin(), t.x.end()) ||
+            !(t.min_y() > 0.0))
+          fail("a material property table is empty, uneven, unsorted or not positive");
+    if (conductance_follows_conductivity && wall_material.size() != wall_node.size())
+      fail("wall material has " + std::to_string(wall_material.size()) + " entries for " +
+           std::to_string(wall_node.size()) + " wall edges");
+    for (const auto m : wall_material)
+      if (m < 0 || std::size_t(m) >= materials) fail("wall edge names material " + std::to_string(m));
   }
   if (dissipation_b.size() != dissipation_a.size() || dissipation_W.size() != dissipation_a.size())
     fail("dissipation arrays have different sizes");

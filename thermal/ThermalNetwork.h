@@ -48,6 +48,21 @@ struct ThermalNetwork {
   std::vector<std::int32_t> flux_node, flux_wall;             // per flux edge
   std::vector<double> flux_conductance_W_per_K;               // per flux edge
 
+  // Temperature-dependent materials (README "Temperature-dependent properties"): empty unless
+  // some material gives its conductivity or heat capacity as a table [[T, value], ...]. Then
+  // every material has both tables (a constant is a one-point table), C_i(T) = m_i c(T_i), the
+  // thermal energy is sum m_i int_0^T_i c, and, with conductance_follows_conductivity, each
+  // contact's H carries k(T) by the Kirchhoff form (thermal/KirchhoffContactFlow.h).
+  std::vector<PiecewiseLinearTable> material_conductivity;   // k(T), W/(m K) against K
+  std::vector<PiecewiseLinearTable> material_specific_heat;  // c(T), J/(kg K) against K
+  std::vector<std::int32_t> node_material;                   // per node
+  std::vector<double> mass_kg;                               // per node
+  std::vector<std::int32_t> wall_material;                   // per wall edge
+  // The contact law is Hertz (H = 2 a k_h): edge_conductance_W_per_K and
+  // wall_conductance_W_per_K hold H at the reference conductivities (each table's first value),
+  // from which the modes take 2 a = H / k_h(reference).
+  bool conductance_follows_conductivity = false;
+
   // Mechanical power dissipated at the contacts over the current mechanical step (W; slip work
   // plus impact loss, mechanics' -r . u_theta / h), one entry per contact of a moving packing:
   // particle a, and particle b or -1 for a wall. Replaced every step like the edges; read by
@@ -56,6 +71,14 @@ struct ThermalNetwork {
   std::vector<double> dissipation_W;
 
   std::size_t node_count() const { return heat_capacity_J_per_K.size(); }
+  bool temperature_dependent() const { return !node_material.empty(); }
+  // C_i(T) (J/K), dC_i/dT (J/K^2) and int_0^T C_i (J): from the tables when temperature
+  // dependent, else heat_capacity_J_per_K[i] (slope 0, energy C_i T).
+  double heat_capacity_at(std::size_t i, double T_K) const;
+  double heat_capacity_slope_at(std::size_t i, double T_K) const;
+  double thermal_energy_at(std::size_t i, double T_K) const;
+  // The inverse of thermal_energy_at: T_i at energy E_J (temperature-dependent networks).
+  double temperature_at_energy(std::size_t i, double E_J) const;
   std::size_t edge_count() const { return edge_a.size(); }
   std::size_t wall_edge_count() const { return wall_node.size(); }
   std::size_t flux_edge_count() const { return flux_node.size(); }

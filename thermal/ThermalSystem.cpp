@@ -18,6 +18,8 @@ ThermalSystem::ThermalSystem(ThermalNetwork network,
 }
 
 bool ThermalSystem::symmetric_jacobian() const {
+  // k(T) makes d q_a / d T_b differ from d q_b / d T_a, and C(T) the sqrt(C) scaling variable.
+  if (network_.temperature_dependent()) return false;
   for (const auto& mode : modes_)
     if (!mode->symmetric_jacobian()) return false;
   return true;
@@ -41,6 +43,7 @@ void ThermalSystem::replace_edges(const ThermalNetwork& edges) {
   network_.wall_gap_m = edges.wall_gap_m;
   network_.wall_contact_radius_m = edges.wall_contact_radius_m;
   network_.wall_in_contact = edges.wall_in_contact;
+  network_.wall_material = edges.wall_material;
   network_.dissipation_a = edges.dissipation_a;
   network_.dissipation_b = edges.dissipation_b;
   network_.dissipation_W = edges.dissipation_W;
@@ -73,9 +76,9 @@ bool ThermalSystem::heat_flow(std::span<const double> T, std::span<double> q,
 bool ThermalSystem::time_derivative(std::span<const double> T, std::span<double> dTdt,
                                     double& boundary_W) const {
   if (!heat_flow(T, dTdt, boundary_W)) return false;
-  const auto& C = network_.heat_capacity_J_per_K;
   const auto& held = network_.held;
-  for (std::size_t i = 0; i < dTdt.size(); ++i) dTdt[i] = held[i] ? 0.0 : dTdt[i] / C[i];
+  for (std::size_t i = 0; i < dTdt.size(); ++i)
+    dTdt[i] = held[i] ? 0.0 : dTdt[i] / network_.heat_capacity_at(i, T[i]);
   return true;
 }
 
@@ -88,6 +91,18 @@ void ThermalSystem::evaluate_jacobian(std::span<const double> T, JacobianEvaluat
     mode->add_jacobian(network_, T,
                        JacobianView{J.diagonal_W_per_K, J.edge_W_per_K, J.edge_ab_W_per_K,
                                     J.edge_ba_W_per_K});
+  J.capacity_J_per_K.clear();
+  if (!network_.temperature_dependent()) return;
+  // Rows divided by C_i(T_i) below. The capacity's own slope (-q_i C_i' / C_i^2 on the
+  // diagonal) is left out on purpose: the implicit integrators then use the enthalpy E_i as
+  // their state (SundialsIntegratorBase), whose Jacobian d q / d E = (d q / d T) C^-1 is exactly
+  // diag(C) J diag(C)^-1 of this J.
+  J.capacity_J_per_K.resize(size());
+  for (std::size_t i = 0; i < size(); ++i) J.capacity_J_per_K[i] = network_.heat_capacity_at(i, T[i]);
+}
+
+double ThermalSystem::capacity(const JacobianEvaluation& J, std::size_t i) const {
+  return J.capacity_J_per_K.empty() ? network_.heat_capacity_J_per_K[i] : J.capacity_J_per_K[i];
 }
 
 void ThermalSystem::check_evaluation(const JacobianEvaluation& J) const {
@@ -102,26 +117,26 @@ void ThermalSystem::check_evaluation(const JacobianEvaluation& J) const {
 void ThermalSystem::jacobian_values(const JacobianEvaluation& J, std::span<double> values,
                                     std::span<const double> scale) const {
   check_evaluation(J);
-  const auto& C = network_.heat_capacity_J_per_K;
   const auto& held = network_.held;
   std::fill(values.begin(), values.end(), 0.0);
   for (std::size_t i = 0; i < size(); ++i)
-    if (!held[i]) values[pattern_.diagonal_slot[i]] += J.diagonal_W_per_K[i] / C[i];
+    if (!held[i])
+      values[pattern_.diagonal_slot[i]] +=
+          J.diagonal_W_per_K[i] / capacity(J, i);
   for (std::size_t e = 0; e < network_.edge_count(); ++e) {
     const auto a = network_.edge_a[e], b = network_.edge_b[e];
     if (held[a] || held[b]) continue;
     const double h_ab = J.edge_W_per_K[e] + J.edge_ab_W_per_K[e];
     const double h_ba = J.edge_W_per_K[e] + J.edge_ba_W_per_K[e];
     const double sab = scale.empty() ? 1.0 : scale[a] / scale[b];
-    values[pattern_.slot_ab[e]] += h_ab / C[a] * sab;
-    values[pattern_.slot_ba[e]] += h_ba / C[b] / sab;
+    values[pattern_.slot_ab[e]] += h_ab / capacity(J, std::size_t(a)) * sab;
+    values[pattern_.slot_ba[e]] += h_ba / capacity(J, std::size_t(b)) / sab;
   }
 }
 
 void ThermalSystem::jacobian_times(const JacobianEvaluation& J, std::span<const double> v,
                                    std::span<double> Jv, std::span<const double> scale) const {
   check_evaluation(J);
-  const auto& C = network_.heat_capacity_J_per_K;
   const auto& held = network_.held;
   // Work in unscaled variables: u = S^-1 v, w = J u, Jv = S w.
   for (std::size_t i = 0; i < size(); ++i) {
@@ -136,7 +151,7 @@ void ThermalSystem::jacobian_times(const JacobianEvaluation& J, std::span<const 
     Jv[a] += (J.edge_W_per_K[e] + J.edge_ab_W_per_K[e]) * ub;
     Jv[b] += (J.edge_W_per_K[e] + J.edge_ba_W_per_K[e]) * ua;
   }
-  for (std::size_t i = 0; i < size(); ++i) Jv[i] *= (scale.empty() ? 1.0 : scale[i]) / C[i];
+  for (std::size_t i = 0; i < size(); ++i) Jv[i] *= (scale.empty() ? 1.0 : scale[i]) / capacity(J, i);
 }
 
 double ThermalSystem::explicit_stability_bound_s(double T_max_K) const {
@@ -158,7 +173,7 @@ double ThermalSystem::explicit_stability_bound_s(double T_max_K) const {
 
 double ThermalSystem::thermal_energy_J(std::span<const double> T) const {
   double sum = 0.0;
-  for (std::size_t i = 0; i < size(); ++i) sum += network_.heat_capacity_J_per_K[i] * T[i];
+  for (std::size_t i = 0; i < size(); ++i) sum += network_.thermal_energy_at(i, T[i]);
   return sum;
 }
 

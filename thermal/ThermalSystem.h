@@ -52,7 +52,10 @@ class ThermalSystem {
   // allocation once J has seen the largest edge count).
   void evaluate_jacobian(std::span<const double> T_K, JacobianEvaluation& J) const;
   // Values of J = d(dT/dt)/dT in pattern order, scaled as S J S^-1 with S = diag(scale)
-  // (empty scale: none), from an evaluation of the current contact graph.
+  // (empty scale: none), from an evaluation of the current contact graph. With
+  // temperature-dependent capacities J is C(T)^-1 dq/dT, without the capacity's own slope:
+  // with S = C(T) that is the exact Jacobian d q / d E of the enthalpy state.
+
   void jacobian_values(const JacobianEvaluation& J, std::span<double> values,
                        std::span<const double> scale = {}) const;
   // Jv = S J S^-1 v, matrix-free, from an evaluation of the current contact graph.
@@ -65,6 +68,7 @@ class ThermalSystem {
   // Uses its own evaluation: a caller's JacobianEvaluation is never touched.
   double explicit_stability_bound_s(double T_max_K) const;
 
+  // sum_i int_0^T_i C_i(T) dT: sum C_i T_i for constant capacities.
   double thermal_energy_J(std::span<const double> T_K) const;
 
   // False when some mode's Jacobian is not symmetric (HeatTransferMode::symmetric_jacobian).
@@ -73,6 +77,8 @@ class ThermalSystem {
  private:
   // Throws std::logic_error when J was evaluated before the contact graph changed shape.
   void check_evaluation(const JacobianEvaluation& J) const;
+  // C_i at J's temperatures (the network's constant C_i when nothing depends on T).
+  double capacity(const JacobianEvaluation& J, std::size_t i) const;
 
   ThermalNetwork network_;
   std::vector<std::unique_ptr<HeatTransferMode>> modes_;

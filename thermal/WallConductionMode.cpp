@@ -2,6 +2,7 @@
 // Adiabatic walls have no edge in the network, so they exchange nothing.
 #include <memory>
 
+#include "thermal/KirchhoffContactFlow.h"
 #include "thermal/ModeDescription.h"
 
 namespace tmdem::thermal {
@@ -15,17 +16,32 @@ class WallConductionMode final : public HeatTransferMode {
                      std::span<double> q, double& boundary_W) const override {
     for (std::size_t w = 0; w < net.wall_edge_count(); ++w) {
       const auto i = net.wall_node[w];
-      const double flow = net.wall_conductance_W_per_K[w] * (net.wall_temperature_K[w] - T[i]);
+      const double flow = net.conductance_follows_conductivity
+                              ? wall_flow(net, w, T).W
+                              : net.wall_conductance_W_per_K[w] * (net.wall_temperature_K[w] - T[i]);
       q[i] += flow;
       if (!net.held[i]) boundary_W += flow;
     }
     return true;
   }
 
-  void add_jacobian(const ThermalNetwork& net, std::span<const double>,
+  void add_jacobian(const ThermalNetwork& net, std::span<const double> T,
                     JacobianView J) const override {
     for (std::size_t w = 0; w < net.wall_edge_count(); ++w)
-      J.diagonal_W_per_K[net.wall_node[w]] -= net.wall_conductance_W_per_K[w];
+      J.diagonal_W_per_K[net.wall_node[w]] += net.conductance_follows_conductivity
+                                                  ? wall_flow(net, w, T).dW_dT2
+                                                  : -net.wall_conductance_W_per_K[w];
+  }
+
+ private:
+  // With k(T): the flow from the wall (its material at T_w) into the particle.
+  static ContactFlow wall_flow(const ThermalNetwork& net, std::size_t w, std::span<const double> T) {
+    const auto i = std::size_t(net.wall_node[w]);
+    const auto& ki = net.material_conductivity[std::size_t(net.node_material[i])];
+    const auto& kw = net.material_conductivity[std::size_t(net.wall_material[w])];
+    const double two_a =
+        net.wall_conductance_W_per_K[w] / harmonic_mean_conductivity(ki.y.front(), kw.y.front());
+    return kirchhoff_contact_flow(two_a, kw, net.wall_temperature_K[w], ki, T[i]);
   }
 };
 

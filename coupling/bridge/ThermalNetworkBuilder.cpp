@@ -19,7 +19,9 @@ ThermalNetworkBuilder::ThermalNetworkBuilder(const Scene& scene)
     : scene_(scene),
       law_(thermal::conductance_law_from_name(scene.thermal.conductance)),
       contacts_carry_heat_(contacts_carry_heat(scene.effects)),
-      near_reach_(near_pair_reach(scene)) {
+      near_reach_(near_pair_reach(scene)),
+      temperature_dependent_(std::any_of(scene.materials.begin(), scene.materials.end(),
+                                         [](const Material& m) { return m.temperature_dependent(); })) {
   std::int32_t tables = 0, fluxes = 0;
   for (const auto& w : scene.walls) {
     wall_table_.push_back(w.temperature_table.empty() ? -1 : tables++);
@@ -41,19 +43,47 @@ thermal::ThermalNetwork ThermalNetworkBuilder::nodes() const {
     net.heat_source_W[i] = p.heat_source_W;
     net.held[i] = p.fixed_temperature ? 1 : 0;
   }
+  if (temperature_dependent_) add_material_tables(net);
   for (const auto& w : scene_.walls) {
     net.isothermal_walls += w.temperature_K.has_value();
     if (!w.temperature_table.empty()) {
       thermal::PiecewiseLinearTable table;
-      for (const auto& [t, T] : w.temperature_table) {
-        table.x.push_back(t);
-        table.y.push_back(T);
-      }
+      points_to_table(w.temperature_table, table);
       net.wall_temperature_tables.push_back(std::move(table));
     }
     if (w.heat_flux_W_per_m2) net.flux_wall_power_W.push_back(*w.heat_flux_W_per_m2 * w.heat_flux_area_m2);
   }
   return net;
+}
+
+void ThermalNetworkBuilder::add_material_tables(thermal::ThermalNetwork& net) const {
+  auto table_of = [](const std::vector<std::array<double, 2>>& points, double constant) {
+    thermal::PiecewiseLinearTable table;
+    if (points.empty()) points_to_table({{1.0, constant}}, table);
+    else points_to_table(points, table);
+    return table;
+  };
+  for (const auto& m : scene_.materials) {
+    net.material_conductivity.push_back(table_of(m.conductivity_table, m.conductivity_W_per_mK));
+    net.material_specific_heat.push_back(table_of(m.heat_capacity_table, m.heat_capacity_J_per_kgK));
+  }
+  for (std::size_t i = 0; i < scene_.particles.size(); ++i) {
+    const auto& p = scene_.particles[i];
+    net.node_material.push_back(p.material);
+    net.mass_kg.push_back(particle_mass_kg(scene_, i));
+    // The constant C_i the result file reports: C at the initial temperature.
+    net.heat_capacity_J_per_K[i] = net.heat_capacity_at(i, p.temperature_K);
+  }
+  // The Hertz law carries k; the constant law does not depend on it.
+  net.conductance_follows_conductivity = law_ == thermal::ConductanceLawKind::Hertz;
+}
+
+void ThermalNetworkBuilder::points_to_table(const std::vector<std::array<double, 2>>& points,
+                                            thermal::PiecewiseLinearTable& table) {
+  for (const auto& [x, y] : points) {
+    table.x.push_back(x);
+    table.y.push_back(y);
+  }
 }
 
 thermal::ContactBody ThermalNetworkBuilder::body(std::int64_t id) const {
@@ -109,7 +139,7 @@ void ThermalNetworkBuilder::build_edges(ContactList& contacts, thermal::ThermalN
     else if (flux_wall)
       edges.add_flux_edge(std::int32_t(i), wall_flux_[wall], H);
     else
-      edges.add_wall_edge(std::int32_t(i), *scene_.walls[wall].temperature_K, H, wall_table_[wall]);
+      add_wall_edge(edges, i, wall, H);
   }
 }
 
@@ -131,9 +161,16 @@ void ThermalNetworkBuilder::add_gap_edge(thermal::ThermalNetwork& edges, std::in
     if (contacts_carry_heat_) edges.add_flux_edge(std::int32_t(i), wall_flux_[w], H);
   } else if (scene_.walls[w].temperature_K) {
     const double gap = walls[w].signed_distance(x[si]) - r[si];
-    edges.add_wall_edge(std::int32_t(i), *scene_.walls[w].temperature_K, H, wall_table_[w], gap, a,
-                        contact);
+    add_wall_edge(edges, i, w, H, gap, a, contact);
   }
+}
+
+void ThermalNetworkBuilder::add_wall_edge(thermal::ThermalNetwork& edges, std::int64_t i,
+                                          std::size_t wall, double H, double gap_m,
+                                          double contact_radius_m, bool contact) const {
+  edges.add_wall_edge(std::int32_t(i), *scene_.walls[wall].temperature_K, H, wall_table_[wall],
+                      gap_m, contact_radius_m, contact);
+  if (temperature_dependent_) edges.wall_material.push_back(scene_.walls[wall].material);
 }
 
 bool ThermalNetworkBuilder::contact_carries_heat(std::int64_t j) const {

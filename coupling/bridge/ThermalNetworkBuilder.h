@@ -75,6 +75,15 @@ class ThermalNetworkBuilder {
                     double force_N, bool contact, const mechanics::ParticleSet& geometry,
                     const std::vector<mechanics::Wall>& walls) const;
   bool contact_carries_heat(std::int64_t j) const;  // j: particle or wall code
+  // An isothermal-wall edge (with its wall's material when properties follow T).
+  void add_wall_edge(thermal::ThermalNetwork& edges, std::int64_t i, std::size_t wall, double H,
+                     double gap_m = 0.0, double contact_radius_m = 0.0, bool contact = true) const;
+  // Temperature-dependent materials: every material's k(T) and c(T) tables (a constant as one
+  // point), each node's material and mass (ThermalNetwork).
+  void add_material_tables(thermal::ThermalNetwork& net) const;
+  static void points_to_table(const std::vector<std::array<double, 2>>& points,
+                              thermal::PiecewiseLinearTable& table);
+  bool temperature_dependent_;  // some material gives k or c as a table
 };
 
 }  // namespace tmdem::coupling

@@ -25,9 +25,16 @@ struct Material {
   double young_modulus_Pa = 0.0;
   double poisson_ratio = 0.0;
   double friction = 0.0;                 // Coulomb coefficient
-  double conductivity_W_per_mK = 0.0;
-  double heat_capacity_J_per_kgK = 0.0;  // specific heat c
+  double conductivity_W_per_mK = 0.0;    // with a table: its first value (the reference)
+  double heat_capacity_J_per_kgK = 0.0;  // specific heat c; with a table: its first value
   double emissivity = 0.0;               // 0..1
+  // [T_K, value] points when the scene gives the property as a table (piecewise linear in T,
+  // clamped outside); empty for a constant.
+  std::vector<std::array<double, 2>> conductivity_table;
+  std::vector<std::array<double, 2>> heat_capacity_table;
+  bool temperature_dependent() const {
+    return !conductivity_table.empty() || !heat_capacity_table.empty();
+  }
 };
 
 struct Particle {

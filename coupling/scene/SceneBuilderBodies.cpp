@@ -7,6 +7,34 @@ namespace tmdem::coupling {
 
 namespace {
 constexpr double kDefaultTemperature_K = 293.15;  // new particles without a temperature
+
+// A material property that is a number > 0, or a table [[T_K, value], ...] with temperatures
+// increasing strictly and values > 0 (piecewise linear in T, clamped outside it). Returns the
+// number, or the table's first value with the table in `table`.
+double read_property(const SceneTable& t, std::string_view key,
+                     std::vector<std::array<double, 2>>& table) {
+  const toml::node* node = t.node(key);
+  if (node == nullptr || !node->is_array())
+    return t.required_number(key, thermal::ParameterRange::greater(0.0));
+  const auto& rows = *node->as_array();
+  if (rows.empty()) t.fail(key, "a table needs at least one [T_K, value] entry");
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const auto* row = rows[k].as_array();
+    const auto T_read = row && row->size() == 2 ? (*row)[0].value<double>() : std::nullopt;
+    const auto value_read = row && row->size() == 2 ? (*row)[1].value<double>() : std::nullopt;
+    const std::string entry = "entry " + std::to_string(k) + ": ";
+    if (!T_read || !value_read) t.fail(key, entry + "expected [T_K, value], two numbers");
+    const double T = T_read.value_or(0.0), value = value_read.value_or(0.0);
+    if (!std::isfinite(T) || !(T > 0.0) || !std::isfinite(value) || !(value > 0.0))
+      t.fail(key, entry + "needs a temperature > 0 K and a finite value > 0 (got [" +
+                      format_number(T) + ", " + format_number(value) + "])");
+    if (k > 0 && !(T > table.back()[0]))
+      t.fail(key, entry + "temperatures must increase strictly (" + format_number(T) +
+                      " K after " + format_number(table.back()[0]) + " K)");
+    table.push_back({T, value});
+  }
+  return table.front()[1];
+}
 }  // namespace
 
 void SceneBuilder::read_materials() {
@@ -24,8 +52,8 @@ void SceneBuilder::read_materials() {
     m.young_modulus_Pa = t.required_number("young_modulus");
     m.poisson_ratio = t.required_number("poisson_ratio");
     m.friction = t.number("friction");
-    m.conductivity_W_per_mK = t.required_number("conductivity");
-    m.heat_capacity_J_per_kgK = t.required_number("heat_capacity");
+    m.conductivity_W_per_mK = read_property(t, "conductivity", m.conductivity_table);
+    m.heat_capacity_J_per_kgK = read_property(t, "heat_capacity", m.heat_capacity_table);
     m.emissivity = t.number("emissivity");
     material_ids_.emplace(m.name, static_cast<int>(scene_.materials.size()));
     scene_.materials.push_back(std::move(m));

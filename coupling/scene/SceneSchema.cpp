@@ -186,8 +186,12 @@ std::vector<Section> build_sections() {
         required_number("young_modulus", "Pa", Range::greater(0.0), "Young's modulus"),
         required_number("poisson_ratio", "", Range::open(-1.0, 0.5), "Poisson ratio"),
         number("friction", "", 0.3, Range::at_least(0.0), "Coulomb friction coefficient"),
-        required_number("conductivity", "W/(m K)", Range::greater(0.0), "thermal conductivity"),
-        required_number("heat_capacity", "J/(kg K)", Range::greater(0.0), "specific heat c"),
+        value("conductivity", "W/(m K)", "", "> 0, or [[T_K, k], ...] (T increasing, k > 0)",
+              "thermal conductivity; a table: piecewise linear in T, clamped outside it (needs "
+              "thermal.integrator cvode or ida with linear_solver klu)", true),
+        value("heat_capacity", "J/(kg K)", "", "> 0, or [[T_K, c], ...] (T increasing, c > 0)",
+              "specific heat c; a table: piecewise linear in T, clamped outside it, the energy "
+              "being m int c dT (cvode or ida with klu)", true),
         number("emissivity", "", 0.0, Range::closed(0.0, 1.0), "surface emissivity")}},
       {"particle", "one particle (ids: [[particle]] entries first, then [[generate]])",
        concat({vector3("position", "m", "", "centre"),

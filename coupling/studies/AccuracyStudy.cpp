@@ -121,7 +121,10 @@ AccuracyReference accuracy_reference(thermal::ThermalSystem& system, std::span<c
               std::to_string(options.exact_reference_max_nodes) + " for a dense exponential";
   } else {
     affine = affine_thermal_system(system, modes);
-    if (!affine) why_not = "the network is nonlinear (radiation)";
+    if (!affine)
+      why_not = system.network().temperature_dependent()
+                    ? "the network is nonlinear (properties that follow T)"
+                    : "the network is nonlinear (radiation)";
   }
   if (affine) {
     try {

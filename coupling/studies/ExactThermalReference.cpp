@@ -25,6 +25,8 @@ std::optional<AffineThermalSystem> affine_thermal_system(const thermal::ThermalN
       return std::nullopt;
   // Wall temperatures that follow a table make the system time-dependent: not affine-constant.
   if (!net.wall_temperature_tables.empty()) return std::nullopt;
+  // Conductivities or heat capacities that follow T make it nonlinear.
+  if (net.temperature_dependent()) return std::nullopt;
   const auto n = Eigen::Index(net.node_count());
   Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n);  // d q / d T, W/K
   Eigen::VectorXd f = Eigen::VectorXd::Zero(n);     // q at T = 0, W

@@ -12,6 +12,7 @@
 #include "coupling/run/CoupledRun.h"
 #include "coupling/scene/SceneError.h"
 #include "coupling/scene/SceneLoader.h"
+#include "support/RunSceneText.h"
 #include "support/SceneBuilder.h"
 #include "thermal/ModeRegistry.h"
 
@@ -27,18 +28,8 @@ constexpr double kT0 = 1.0;
 const double kMass = 4.0 / 3.0 * std::numbers::pi * kRadius * kRadius * kRadius * kDensity;
 
 RunOutcome run(const std::string& text, const std::string& name) {
-  const auto scene = load_scene_text(text, name);
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("tmdem_friction_heat_" + name + "_" + std::to_string(::getpid()));
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  RunOptions options;
-  options.output_path = (dir / "out.h5").string();
-  options.quiet = true;
-  std::ostringstream log;
-  auto outcome = run_scene(scene, options, log);
-  EXPECT_EQ(outcome.exit_code, 0) << log.str();
-  std::filesystem::remove_all(dir);
+  auto outcome = run_scene_text(text, name);
+  EXPECT_EQ(outcome.exit_code, 0) << outcome.summary.message;
   return outcome;
 }
 

@@ -123,6 +123,30 @@ TEST(SceneRules, MaterialPropertiesPositive) {
   }
 }
 
+// conductivity and heat_capacity may be tables [[T_K, value], ...]: read as given (first value
+// the reference), refused with the entry named when malformed.
+TEST(SceneRules, MaterialPropertyTables) {
+  for (const char* key : {"conductivity", "heat_capacity"}) {
+    SCOPED_TRACE(key);
+    const std::string path = std::string("material[1].") + key;
+    const Scene scene =
+        load_scene_text(kBaseScene, "t", {path + "=[[250.0, 2.0], [400, 3.5], [600, 4.0]]"});
+    const Material& m = scene.materials[1];
+    const auto& table = std::string(key) == "conductivity" ? m.conductivity_table : m.heat_capacity_table;
+    ASSERT_EQ(table.size(), 3u);
+    EXPECT_EQ(table[1][0], 400.0);
+    EXPECT_EQ(table[1][1], 3.5);
+    EXPECT_EQ(std::string(key) == "conductivity" ? m.conductivity_W_per_mK : m.heat_capacity_J_per_kgK, 2.0);
+    EXPECT_TRUE(m.temperature_dependent());
+    EXPECT_FALSE(scene.materials[0].temperature_dependent());
+    expect_scene_error(kBaseScene, {path + "=[[300.0, 2.0], [300.0, 3.0]]"},
+                       {path, "entry 1", "increase strictly"});
+    expect_scene_error(kBaseScene, {path + "=[[300.0, -2.0]]"}, {path, "entry 0", "value > 0"});
+    expect_scene_error(kBaseScene, {path + "=[[300.0]]"}, {path, "entry 0", "[T_K, value]"});
+    expect_scene_error(kBaseScene, {path + "=[]"}, {path, "at least one"});
+  }
+}
+
 TEST(SceneRules, MaterialRequiredKeys) {
   for (const char* key :
        {"name", "density", "young_modulus", "poisson_ratio", "conductivity", "heat_capacity"}) {

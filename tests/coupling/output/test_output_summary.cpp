@@ -30,7 +30,8 @@ RunSummary sample() {
   s.thermal.error_test_failures = 3;
   s.thermal.convergence_failures = 1;
   s.thermal.reinitializations = 7;
-  s.energy = {1000.0, 1010.0, 10.5, RunSummary::balance_error_rel(1000.0, 1010.0, 10.5)};
+  s.energy = {1000.0, 1010.0, 10.5, RunSummary::balance_error_rel(1000.0, 1010.0, 10.5),
+              std::nullopt};
   return s;
 }
 

@@ -25,11 +25,12 @@ TEST(SceneReference, DocsSceneMdIsTheGeneratedReference) {
 TEST(SceneReference, ListsEveryModesSectionKeysWithUnitDefaultAndRange) {
   const std::string text = scene_reference_markdown();
   for (const auto* mode : thermal::heat_transfer_modes()) {
-    if (!mode->effect.empty())
+    if (!mode->effect.empty()) {
       EXPECT_NE(text.find("| `" + std::string(mode->effect) + "` | - | " +
                           (mode->effect_default ? "true" : "false") + " | true, false |"),
                 std::string::npos)
           << mode->effect;
+    }
     if (mode->section.empty()) continue;
     EXPECT_NE(text.find("## `[" + std::string(mode->section) + "]`"), std::string::npos);
     for (const auto& p : mode->parameters) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <chrono>
 #include <stdexcept>
 #include <string>
 
@@ -267,9 +268,18 @@ StepReport NscdIntegrator::step(double h) {
   StepReport report;
   const std::size_t n = particles_.size();
   const std::size_t rebuilds_before = detector_.rebuild_count();
+  auto clock = std::chrono::steady_clock::now();
+  // Seconds since the last lap, and a new lap (no allocation: a clock read).
+  auto lap = [&clock] {
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - clock).count();
+    clock = now;
+    return seconds;
+  };
   if (has_piston_) refresh_wall_bodies(h);
   refresh_candidates(h);
   report.rebuilt_candidates = detector_.rebuild_count() != rebuilds_before;
+  report.detection_s = lap();
 
   // Free velocities (gravity only; no external torque).
   for (std::size_t i = 0; i < n; ++i) {
@@ -279,10 +289,13 @@ StepReport NscdIntegrator::step(double h) {
     if (inverse_mass_[i] > 0.0) problem_.free_velocity[i] += h * gravity_;
     problem_.free_angular_velocity[i] = particles_.angular_velocity[i];
   }
+  lap();
   setup_contacts(h);
+  report.detection_s += lap();
   report.candidates = problem_.size();
   const SolveReport solved =
       solver_->solve(problem_, reactions_, body_velocity_, body_angular_velocity_);
+  report.solve_s = lap();
   std::copy_n(body_velocity_.begin(), n, particles_.velocity.begin());
   std::copy_n(body_angular_velocity_.begin(), n, particles_.angular_velocity.begin());
   report.sweeps = solved.sweeps;
@@ -310,6 +323,7 @@ StepReport NscdIntegrator::step(double h) {
     wall.point += h * (theta * wall.velocity_m_per_s + (1.0 - theta) * before) * wall.normal;
   }
   // Then overlaps deeper than the slop are removed by moving positions only.
+  lap();
   gaps_after_step(gap_after_);
   const SolveReport corrected = correction_.correct(problem_, gap_after_, slop_m_,
                                                     parameters_.recovery_speed, h,
@@ -321,6 +335,7 @@ StepReport NscdIntegrator::step(double h) {
     report.residual = std::max(report.residual, corrected.residual);
   }
   if (corrected.sweeps > 0) gaps_after_step(gap_after_);
+  report.correction_s = lap();
 
   // Forces for the warm start and the contact list; penetration after the step.
   contacts_.clear();

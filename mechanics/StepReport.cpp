@@ -14,6 +14,9 @@ void MechanicsStats::add(const StepReport& report) {
   energy_change_J += report.energy_change_J;
   contact_dissipation_J += report.contact_dissipation_J;
   numerical_dissipation_J += report.numerical_dissipation_J;
+  detection_s += report.detection_s;
+  solve_s += report.solve_s;
+  correction_s += report.correction_s;
 }
 
 }  // namespace tmdem::mechanics

@@ -22,6 +22,12 @@ struct StepReport {
   double energy_change_J = 0.0;        // kinetic + gravitational potential, after - before
   double contact_dissipation_J = 0.0;  // -sum_c r_c . u_theta,c
   double numerical_dissipation_J = 0.0;  // (theta - 1/2) |v+ - v-|_M^2, 0 for theta = 1/2
+  // Wall time of the step's parts, s (steady clock; where a run's time goes, not a result:
+  // never in a checkpoint). The rest of the step (free velocities, energy account, position
+  // update, contact list) is step time minus these three.
+  double detection_s = 0.0;   // candidate table refresh + gaps, normals, warm start
+  double solve_s = 0.0;       // the velocity-level contact solve
+  double correction_s = 0.0;  // gaps after the step + penetration correction
 };
 
 struct MechanicsStats {
@@ -34,6 +40,9 @@ struct MechanicsStats {
   double energy_change_J = 0.0;          // sums of the steps' energy accounts (StepReport)
   double contact_dissipation_J = 0.0;
   double numerical_dissipation_J = 0.0;
+  double detection_s = 0.0;             // sums of the steps' part times (StepReport), s; since
+  double solve_s = 0.0;                 //   this process started stepping (a restart counts
+  double correction_s = 0.0;            //   from the restart, as the run's wall time does)
 
   double mean_sweeps() const {         // "mean_iterations" in the run summary
     return steps > 0 ? static_cast<double>(total_sweeps) / static_cast<double>(steps) : 0.0;

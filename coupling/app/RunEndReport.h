@@ -22,12 +22,14 @@ void print_run_end(const RunSummary& summary, const Scene& scene, const std::str
 
 // One row of the timing table.
 struct TimingRow {
-  std::string part;      // "mechanics (detection + contact solve)", "thermal", "output", "other"
+  std::string part;      // "contact detection", "contact solve", "penetration correction",
+                         // "thermal", "output", "other"
   double seconds = 0.0;
   double share = 0.0;    // of the rows' total (= wall_time_s); the shares add up to 1
 };
-// The rows of summary.wall_time_parts, in that order; empty without it. The mechanics step is
-// one row: mechanics::StepReport does not time detection and the contact solve apart.
+// The rows of summary.wall_time_parts, in that order; empty without it. "other" is other_s plus
+// the part of mechanics_s outside detection, solve and correction (the step's bookkeeping), so
+// the rows add up to wall_time_s.
 std::vector<TimingRow> timing_rows(const RunSummary& summary);
 
 // One kind of warning the run can repeat, with its true count.

@@ -82,7 +82,10 @@ nlohmann::json RunSummary::to_json() const {
     j["wall_time_parts"] = {{"mechanics_s", wall_time_parts->mechanics_s},
                             {"thermal_s", wall_time_parts->thermal_s},
                             {"output_s", wall_time_parts->output_s},
-                            {"other_s", wall_time_parts->other_s}};
+                            {"other_s", wall_time_parts->other_s},
+                            {"detection_s", wall_time_parts->detection_s},
+                            {"contact_solve_s", wall_time_parts->contact_solve_s},
+                            {"correction_s", wall_time_parts->correction_s}};
   }
   for (const auto& i : imports)
     j["imports"].push_back({{"file", i.file},
@@ -122,7 +125,10 @@ RunSummary RunSummary::from_json(const nlohmann::json& j) {
   if (j.contains("wall_time_parts")) {
     const nlohmann::json& w = j.at("wall_time_parts");
     s.wall_time_parts = WallTimeParts{number(w, "mechanics_s", 0.0), number(w, "thermal_s", 0.0),
-                                      number(w, "output_s", 0.0), number(w, "other_s", 0.0)};
+                                      number(w, "output_s", 0.0), number(w, "other_s", 0.0),
+                                      number(w, "detection_s", 0.0),
+                                      number(w, "contact_solve_s", 0.0),
+                                      number(w, "correction_s", 0.0)};
   }
 
   if (j.contains("imports"))

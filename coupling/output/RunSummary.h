@@ -72,12 +72,17 @@ struct EnergySummary {
 };
 
 // The "wall_time_parts" block (extra): where the run's wall time went, s, measured around the
-// calls of the coupled run loop. The parts add up to wall_time_s.
+// calls of the coupled run loop. The first four add up to wall_time_s; the last three are parts
+// of mechanics_s, timed inside each NSCD step (mechanics::StepReport), 0 in summaries written
+// before they existed.
 struct WallTimeParts {
   double mechanics_s = 0.0;  // NSCD steps, settle and dynamic: contact detection + contact solve
   double thermal_s = 0.0;    // the thermal side (= thermal.wall_time_s)
   double output_s = 0.0;     // frames (HDF5 + XDMF) and checkpoints
   double other_s = 0.0;      // the rest: set-up, scene checks, summary
+  double detection_s = 0.0;      // of mechanics_s: candidate refresh, gaps, normals, warm start
+  double contact_solve_s = 0.0;  // of mechanics_s: the velocity-level contact solve
+  double correction_s = 0.0;     // of mechanics_s: penetration correction (position-only)
 };
 
 // One entry of the "imports" list (extra): what an [[import]] of the scene brought in.

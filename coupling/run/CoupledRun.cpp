@@ -257,6 +257,11 @@ void CoupledRun::fill_summary() {
   parts.output_s = output_seconds_;
   parts.other_s = std::max(0.0, summary_.wall_time_s - parts.mechanics_s - parts.thermal_s -
                                     parts.output_s);
+  if (nscd_) {  // timed inside the steps, so within mechanics_s
+    parts.detection_s = nscd_->stats().detection_s;
+    parts.contact_solve_s = nscd_->stats().solve_s;
+    parts.correction_s = nscd_->stats().correction_s;
+  }
   summary_.wall_time_parts = parts;
   summary_.imports.clear();
   for (const auto& i : scene_.imports)

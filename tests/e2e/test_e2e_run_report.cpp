@@ -1,5 +1,5 @@
-// End to end: the final lines of a dynamic run. The timing table has its four rows, their
-// shares add up to 1 and their seconds to the run's wall time (summary "wall_time_parts"); the
+// End to end: the final lines of a dynamic run. The timing table has its six rows (detection,
+// contact solve and penetration correction timed inside the steps), their shares add up to 1 and their seconds to the run's wall time (summary "wall_time_parts"); the
 // warnings summary gives the true count per kind, which the summary's counters also give,
 // while only the first 10 warnings are printed.
 #include <gtest/gtest.h>
@@ -32,9 +32,9 @@ TEST(EndToEndRunReport, TimingTableAndWarningCountsMatchTheSummary) {
   ASSERT_TRUE(json.contains("wall_time_parts")) << json.dump(2);
   const auto summary = tmdem::coupling::RunSummary::from_json(json);
 
-  // Timing: four rows, shares summing to 1, seconds to the wall time; each row printed.
+  // Timing: six rows, shares summing to 1, seconds to the wall time; each row printed.
   const auto rows = tmdem::coupling::timing_rows(summary);
-  ASSERT_EQ(rows.size(), 4u);
+  ASSERT_EQ(rows.size(), 6u);
   double share = 0.0, seconds = 0.0;
   for (const auto& row : rows) {
     share += row.share;
@@ -44,8 +44,21 @@ TEST(EndToEndRunReport, TimingTableAndWarningCountsMatchTheSummary) {
   }
   EXPECT_NEAR(share, 1.0, 1e-12);
   EXPECT_NEAR(seconds, summary.wall_time_s, 1e-9 * summary.wall_time_s);
-  EXPECT_GT(rows[0].seconds, 0.0);  // mechanics ran 400 steps
-  EXPECT_GT(rows[2].seconds, 0.0);  // 9 frames were written
+  const auto& parts = *summary.wall_time_parts;
+  EXPECT_GT(rows[0].seconds, 0.0);  // detection and solve in each of 400 steps
+  EXPECT_GT(rows[1].seconds, 0.0);
+  EXPECT_GT(rows[4].seconds, 0.0);  // 9 frames were written
+  EXPECT_EQ(rows[0].seconds, parts.detection_s);
+  EXPECT_EQ(rows[1].seconds, parts.contact_solve_s);
+  EXPECT_EQ(rows[2].seconds, parts.correction_s);
+  EXPECT_GE(parts.correction_s, 0.0);
+  // The three are timed inside the steps that mechanics_s times from outside.
+  EXPECT_LE(parts.detection_s + parts.contact_solve_s + parts.correction_s, parts.mechanics_s);
+  // "other" holds other_s and the rest of the steps, nothing else.
+  EXPECT_NEAR(rows[5].seconds,
+              parts.other_s + parts.mechanics_s - parts.detection_s - parts.contact_solve_s -
+                  parts.correction_s,
+              1e-12 * summary.wall_time_s);
   EXPECT_EQ(summary.wall_time_parts->thermal_s, summary.thermal.wall_time_s);
   EXPECT_NE(r.output.find("timing (wall time "), std::string::npos) << r.output;
 

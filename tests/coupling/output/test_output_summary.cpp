@@ -144,7 +144,7 @@ TEST(RunSummary, NonFiniteNumbersSurviveAsNull) {
 TEST(RunSummary, WallTimePartsAndImportsRoundTrip) {
   RunSummary s = sample();
   EXPECT_FALSE(s.to_json().contains("imports"));  // only for scenes with [[import]]
-  s.wall_time_parts = tmdem::coupling::WallTimeParts{0.75, 0.25, 0.125, 0.125};
+  s.wall_time_parts = tmdem::coupling::WallTimeParts{0.75, 0.25, 0.125, 0.125, 0.5, 0.125, 0.0625};
   s.imports.push_back({"bed.csv", 80, 9.942771135237893e-05, 0.01});
   const nlohmann::json j = nlohmann::json::parse(s.to_json().dump());
   EXPECT_EQ(j["wall_time_parts"]["mechanics_s"].get<double>(), 0.75);
@@ -155,6 +155,8 @@ TEST(RunSummary, WallTimePartsAndImportsRoundTrip) {
   const RunSummary r = RunSummary::from_json(j);
   ASSERT_TRUE(r.wall_time_parts.has_value());
   EXPECT_EQ(r.wall_time_parts->thermal_s, 0.25);
+  EXPECT_EQ(r.wall_time_parts->contact_solve_s, 0.125);
+  EXPECT_EQ(r.wall_time_parts->correction_s, 0.0625);
   ASSERT_EQ(r.imports.size(), 1u);
   EXPECT_EQ(r.imports[0].particles, 80);
   EXPECT_EQ(r.to_json(), s.to_json());

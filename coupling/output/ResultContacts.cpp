@@ -2,12 +2,18 @@
 
 #include <algorithm>
 #include <limits>
+#include <stdexcept>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "coupling/output/Hdf5Io.h"
 
 namespace tmdem::coupling {
 namespace {
+
+constexpr const char* kContactBlocks = "/contacts/blocks";  // BlockSeries of frozen contacts
+constexpr auto kRows = BlockSeries::Rows::BlockRows;         // a frame's C contacts per block
 
 // Rows of a contact chunk: about one frame's contacts, within [256, 65536].
 hsize_t contact_chunk_rows(std::size_t particles) {
@@ -18,17 +24,34 @@ hsize_t contact_chunk_rows(std::size_t particles) {
 
 }  // namespace
 
-void ResultContacts::create(hid_t file, std::size_t particles, bool stored) {
+void ResultContacts::create(hid_t file, std::size_t particles, bool stored,
+                            std::size_t frozen_contacts) {
   stored_ = stored;
+  file_ = file;
   Hdf5Handle contacts = hdf5::create_group(file, "contacts");
   const hid_t g = contacts.get();
   hdf5::write_int_attribute(g, "stored", stored ? 1 : 0);
   const hsize_t chunk = contact_chunk_rows(particles);
-  pair_ = hdf5::create_dataset(g, "pair", H5T_STD_I64LE, {0, 2}, chunk, "1");
-  normal_force_ = hdf5::create_dataset(g, "normal_force", H5T_IEEE_F64LE, {0}, chunk, "N");
-  tangential_force_ =
-      hdf5::create_dataset(g, "tangential_force", H5T_IEEE_F64LE, {0, 3}, chunk, "N");
-  conductance_ = hdf5::create_dataset(g, "conductance", H5T_IEEE_F64LE, {0}, chunk, "W/K");
+  const hsize_t c = frozen_contacts;
+  if (stored && c > 0) {
+    pair_blocks_.create(file, "/contacts/pair", kContactBlocks, H5T_STD_I64LE, {c, 2}, kRows, "1");
+    normal_force_blocks_.create(file, "/contacts/normal_force", kContactBlocks, H5T_IEEE_F64LE,
+                                {c}, kRows, "N");
+    tangential_force_blocks_.create(file, "/contacts/tangential_force", kContactBlocks,
+                                    H5T_IEEE_F64LE, {c, 3}, kRows, "N");
+    conductance_blocks_.create(file, "/contacts/conductance", kContactBlocks, H5T_IEEE_F64LE,
+                               {c}, kRows, "W/K");
+    pair_ = hdf5::open_dataset(g, "pair");
+    normal_force_ = hdf5::open_dataset(g, "normal_force");
+    tangential_force_ = hdf5::open_dataset(g, "tangential_force");
+    conductance_ = hdf5::open_dataset(g, "conductance");
+  } else {
+    pair_ = hdf5::create_dataset(g, "pair", H5T_STD_I64LE, {0, 2}, chunk, "1");
+    normal_force_ = hdf5::create_dataset(g, "normal_force", H5T_IEEE_F64LE, {0}, chunk, "N");
+    tangential_force_ =
+        hdf5::create_dataset(g, "tangential_force", H5T_IEEE_F64LE, {0, 3}, chunk, "N");
+    conductance_ = hdf5::create_dataset(g, "conductance", H5T_IEEE_F64LE, {0}, chunk, "W/K");
+  }
   heat_flow_ = hdf5::create_dataset(g, "heat_flow", H5T_IEEE_F64LE, {0}, chunk, "W");
 }
 
@@ -38,6 +61,11 @@ void ResultContacts::open(hid_t file, bool writable) {
   int stored = 1;
   hdf5::read_int_attribute(g, "stored", stored);
   stored_ = stored != 0;
+  file_ = file;
+  pair_blocks_.open(file, "/contacts/pair", kContactBlocks, kRows);
+  normal_force_blocks_.open(file, "/contacts/normal_force", kContactBlocks, kRows);
+  tangential_force_blocks_.open(file, "/contacts/tangential_force", kContactBlocks, kRows);
+  conductance_blocks_.open(file, "/contacts/conductance", kContactBlocks, kRows);
   pair_ = hdf5::open_dataset(g, "pair");
   normal_force_ = hdf5::open_dataset(g, "normal_force");
   conductance_ = hdf5::open_dataset(g, "conductance");
@@ -68,21 +96,35 @@ std::int64_t ResultContacts::rows() const {
   return static_cast<std::int64_t>(rows);
 }
 
+void ResultContacts::write(const Hdf5Handle& dataset, BlockSeries& blocks, hsize_t at,
+                           hsize_t c, const void* data, hid_t memory_type) {
+  if (!blocks.active()) {
+    hdf5::write_rows(dataset.get(), at, c, data, memory_type);
+    return;
+  }
+  if (c != blocks.block_rows())
+    throw std::invalid_argument("ResultContacts: a frozen contact list has " +
+                                std::to_string(blocks.block_rows()) + " contacts, the frame " +
+                                std::to_string(c));
+  blocks.append(file_, std::size_t(at / c), data, memory_type);
+}
+
 void ResultContacts::append(std::int64_t first, const FrameView& frame) {
   const hsize_t c = frame.normal_force_N.size();
   if (c == 0) return;
   const hsize_t at = static_cast<hsize_t>(first);
-  hdf5::write_rows(pair_.get(), at, c, frame.contact_pair.data(), H5T_NATIVE_INT64);
-  hdf5::write_rows(normal_force_.get(), at, c, frame.normal_force_N.data(), H5T_NATIVE_DOUBLE);
+  write(pair_, pair_blocks_, at, c, frame.contact_pair.data(), H5T_NATIVE_INT64);
+  write(normal_force_, normal_force_blocks_, at, c, frame.normal_force_N.data(),
+        H5T_NATIVE_DOUBLE);
   if (frame.tangential_force_N.empty()) {
     filler_.assign(3 * c, 0.0);
-    hdf5::write_rows(tangential_force_.get(), at, c, filler_.data(), H5T_NATIVE_DOUBLE);
+    write(tangential_force_, tangential_force_blocks_, at, c, filler_.data(), H5T_NATIVE_DOUBLE);
   } else {
-    hdf5::write_rows(tangential_force_.get(), at, c, frame.tangential_force_N.data(),
-                     H5T_NATIVE_DOUBLE);
+    write(tangential_force_, tangential_force_blocks_, at, c, frame.tangential_force_N.data(),
+          H5T_NATIVE_DOUBLE);
   }
-  hdf5::write_rows(conductance_.get(), at, c, frame.conductance_W_per_K.data(),
-                   H5T_NATIVE_DOUBLE);
+  write(conductance_, conductance_blocks_, at, c, frame.conductance_W_per_K.data(),
+        H5T_NATIVE_DOUBLE);
   if (frame.heat_flow_W.empty()) {
     filler_.assign(c, std::numeric_limits<double>::quiet_NaN());
     hdf5::write_rows(heat_flow_.get(), at, c, filler_.data(), H5T_NATIVE_DOUBLE);
@@ -92,10 +134,18 @@ void ResultContacts::append(std::int64_t first, const FrameView& frame) {
 }
 
 void ResultContacts::cut_back(std::int64_t rows) {
-  for (const Hdf5Handle* d : {&pair_, &normal_force_, &tangential_force_, &conductance_,
-                              &heat_flow_}) {
-    if (!d->valid()) continue;
-    hdf5::set_rows(d->get(), static_cast<hsize_t>(rows));
+  const std::pair<const Hdf5Handle*, BlockSeries*> parts[] = {
+      {&pair_, &pair_blocks_},
+      {&normal_force_, &normal_force_blocks_},
+      {&tangential_force_, &tangential_force_blocks_},
+      {&conductance_, &conductance_blocks_},
+      {&heat_flow_, nullptr}};
+  for (const auto& [dataset, blocks] : parts) {
+    if (blocks != nullptr && blocks->active()) {
+      blocks->cut_back(file_, std::size_t(rows) / blocks->block_rows());
+    } else if (dataset->valid()) {
+      hdf5::set_rows(dataset->get(), static_cast<hsize_t>(rows));
+    }
   }
 }
 

@@ -8,16 +8,28 @@ namespace tmdem::coupling {
 namespace {
 
 constexpr hsize_t kFrameChunk = 1024;  // rows per chunk of the [F] datasets
+constexpr const char* kGeometryBlocks = "/frames/blocks";  // BlockSeries of shared geometry
 
 }  // namespace
 
-void ResultFrames::create(hid_t file, std::size_t particles) {
+void ResultFrames::create(hid_t file, std::size_t particles, bool shared_geometry) {
   const hsize_t n = particles;
+  file_ = file;
   Hdf5Handle frames = hdf5::create_group(file, "frames");
   const hid_t g = frames.get();
   time_ = hdf5::create_dataset(g, "time", H5T_IEEE_F64LE, {0}, kFrameChunk, "s");
-  position_ = hdf5::create_dataset(g, "position", H5T_IEEE_F64LE, {0, n, 3}, 1, "m");
-  velocity_ = hdf5::create_dataset(g, "velocity", H5T_IEEE_F64LE, {0, n, 3}, 1, "m/s");
+  if (shared_geometry && n > 0) {
+    constexpr auto kRow = BlockSeries::Rows::OnePerBlock;
+    position_blocks_.create(file, "/frames/position", kGeometryBlocks, H5T_IEEE_F64LE, {n, 3},
+                            kRow, "m");
+    velocity_blocks_.create(file, "/frames/velocity", kGeometryBlocks, H5T_IEEE_F64LE, {n, 3},
+                            kRow, "m/s");
+    position_ = hdf5::open_dataset(g, "position");
+    velocity_ = hdf5::open_dataset(g, "velocity");
+  } else {
+    position_ = hdf5::create_dataset(g, "position", H5T_IEEE_F64LE, {0, n, 3}, 1, "m");
+    velocity_ = hdf5::create_dataset(g, "velocity", H5T_IEEE_F64LE, {0, n, 3}, 1, "m/s");
+  }
   temperature_ = hdf5::create_dataset(g, "temperature", H5T_IEEE_F64LE, {0, n}, 1, "K");
   thermal_energy_ = hdf5::create_dataset(g, "thermal_energy", H5T_IEEE_F64LE, {0}, kFrameChunk, "J");
   boundary_heat_ = hdf5::create_dataset(g, "boundary_heat", H5T_IEEE_F64LE, {0}, kFrameChunk, "J");
@@ -28,6 +40,9 @@ void ResultFrames::create(hid_t file, std::size_t particles) {
 }
 
 void ResultFrames::open(hid_t file) {
+  file_ = file;
+  position_blocks_.open(file, "/frames/position", kGeometryBlocks, BlockSeries::Rows::OnePerBlock);
+  velocity_blocks_.open(file, "/frames/velocity", kGeometryBlocks, BlockSeries::Rows::OnePerBlock);
   time_ = hdf5::open_dataset(file, "/frames/time");
   position_ = hdf5::open_dataset(file, "/frames/position");
   velocity_ = hdf5::open_dataset(file, "/frames/velocity");
@@ -61,8 +76,13 @@ std::vector<double> ResultFrames::times(std::size_t frames) const {
 
 void ResultFrames::append(std::size_t index, const FrameView& frame, std::int64_t contact_end) {
   const hsize_t f = index;
-  hdf5::write_rows(position_.get(), f, 1, frame.position_m.data(), H5T_NATIVE_DOUBLE);
-  hdf5::write_rows(velocity_.get(), f, 1, frame.velocity_m_per_s.data(), H5T_NATIVE_DOUBLE);
+  if (position_blocks_.active()) {
+    position_blocks_.append(file_, index, frame.position_m.data(), H5T_NATIVE_DOUBLE);
+    velocity_blocks_.append(file_, index, frame.velocity_m_per_s.data(), H5T_NATIVE_DOUBLE);
+  } else {
+    hdf5::write_rows(position_.get(), f, 1, frame.position_m.data(), H5T_NATIVE_DOUBLE);
+    hdf5::write_rows(velocity_.get(), f, 1, frame.velocity_m_per_s.data(), H5T_NATIVE_DOUBLE);
+  }
   hdf5::write_rows(temperature_.get(), f, 1, frame.temperature_K.data(), H5T_NATIVE_DOUBLE);
   hdf5::write_rows(thermal_energy_.get(), f, 1, &frame.thermal_energy_J, H5T_NATIVE_DOUBLE);
   hdf5::write_rows(boundary_heat_.get(), f, 1, &frame.boundary_heat_J, H5T_NATIVE_DOUBLE);
@@ -71,10 +91,12 @@ void ResultFrames::append(std::size_t index, const FrameView& frame, std::int64_
 }
 
 void ResultFrames::cut_back(std::size_t frames) {
-  for (const Hdf5Handle* d :
-       {&time_, &position_, &velocity_, &temperature_, &thermal_energy_, &boundary_heat_}) {
+  for (const Hdf5Handle* d : {&time_, &temperature_, &thermal_energy_, &boundary_heat_})
     hdf5::set_rows(d->get(), frames);
-  }
+  for (BlockSeries* blocks : {&position_blocks_, &velocity_blocks_})
+    if (blocks->active()) blocks->cut_back(file_, frames);
+  for (const Hdf5Handle* d : {&position_, &velocity_})
+    if (!position_blocks_.active()) hdf5::set_rows(d->get(), frames);
   hdf5::set_rows(contact_offset_.get(), frames + 1);
 }
 

@@ -1,12 +1,15 @@
 #pragma once
 // The /frames group of a result file: time, position, velocity, temperature, thermal_energy,
 // boundary_heat and contact_offset, one row per frame. /frames/time is written last in each
-// frame, so len(time) is the number of complete frames.
+// frame, so len(time) is the number of complete frames. With shared geometry (a frozen bed),
+// position and velocity are block series (BlockSeries.h, blocks in /frames/blocks): written
+// once, every later frame a hard link.
 #include <hdf5.h>
 
 #include <cstdint>
 #include <vector>
 
+#include "coupling/output/BlockSeries.h"
 #include "coupling/output/Hdf5Handle.h"
 #include "coupling/output/ResultWriter.h"
 
@@ -15,7 +18,7 @@ namespace tmdem::coupling {
 class ResultFrames {
  public:
   // Creates the empty datasets for `particles` particles; contact_offset = [0].
-  void create(hid_t file, std::size_t particles);
+  void create(hid_t file, std::size_t particles, bool shared_geometry = false);
   void open(hid_t file);
 
   // Complete frames present: min over the frame datasets and len(contact_offset) - 1.
@@ -31,6 +34,8 @@ class ResultFrames {
  private:
   Hdf5Handle time_, position_, velocity_, temperature_, thermal_energy_, boundary_heat_,
       contact_offset_;
+  hid_t file_ = -1;  // not owned
+  BlockSeries position_blocks_, velocity_blocks_;  // active with shared geometry
 };
 
 }  // namespace tmdem::coupling

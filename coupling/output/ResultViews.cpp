@@ -258,12 +258,26 @@ FrameViewCounts ResultViews::add_frame(hid_t file, std::size_t frame, const Fram
   auto same = [](const auto& kept, const auto& now) {
     return kept.size() == now.size() && std::equal(now.begin(), now.end(), kept.begin());
   };
+  // A frozen bed's blocks (BlockSeries.h): the view is the block itself, a hard link.
+  auto block = [&](const char* group, const char* name) {
+    const std::string path = std::string(group) + "/" + name + "_" + std::to_string(frame);
+    return hdf5::exists(file, path.c_str()) ? path : std::string();
+  };
+  auto link_block = [&](const std::string& source, const char* name) {
+    hdf5::check_ok(H5Lcreate_hard(file, source.c_str(), file, (here + name).c_str(), H5P_DEFAULT,
+                                  H5P_DEFAULT),
+                   "H5Lcreate_hard " + here + name);
+  };
+  const std::string position_block = block("/frames/blocks", "position");
   const bool complete = data.velocity_m_per_s.size() == 3 * n;  // not a rebuilt view
   const bool geometry_same = previous_.valid && complete &&
                              same(previous_.position, position_m) &&
                              same(previous_.velocity, data.velocity_m_per_s);
   const hsize_t frames = f + 1;
-  if (geometry_same) {
+  if (!position_block.empty()) {
+    link_block(position_block, "position");
+    link_block(block("/frames/blocks", "velocity"), "velocity");
+  } else if (geometry_same) {
     link(previous_.geometry_frame, "position");
     link(previous_.geometry_frame, "velocity");
   } else {
@@ -282,6 +296,7 @@ FrameViewCounts ResultViews::add_frame(hid_t file, std::size_t frame, const Fram
                              same(previous_.force, data.normal_force_N) &&
                              same(previous_.conductance, data.conductance_W_per_K) &&
                              same(previous_.tangential, data.tangential_force_N);
+  const std::string force_block = block("/contacts/blocks", "normal_force");
   if (contacts_same) {
     counts.wall_contacts = previous_.counts.wall_contacts;
     for (const char* name : {"contact_lines", "contact_points", "normal_force", "conductance",
@@ -307,18 +322,26 @@ FrameViewCounts ResultViews::add_frame(hid_t file, std::size_t frame, const Fram
     }
     hdf5::write_array(g, "contact_lines", lines, 2, "1");
     const hsize_t w = counts.wall_contacts;
-    std::vector<Mapping> points = {{0, n, "/frames/position", {frames, n, 3}, f, 1}};
+    std::vector<Mapping> points = {
+        position_block.empty() ? Mapping{0, n, "/frames/position", {frames, n, 3}, f, 1}
+                               : Mapping{0, n, position_block, {n, 3}, 0, n}};
     if (w > 0) {
       hdf5::write_array(g, "wall_feet", feet, 3, "m");
       points.push_back({n, w, here + "wall_feet", {w, 3}, 0, w});
     }
     create_virtual(g, "contact_points", {n + w, 3}, points, "m");
-    create_virtual(g, "normal_force", {c}, {{0, c, "/contacts/normal_force", {rows}, first, c}},
-                   "N");
-    create_virtual(g, "conductance", {c}, {{0, c, "/contacts/conductance", {rows}, first, c}},
-                   "W/K");
-    create_virtual(g, "tangential_force", {c, 3},
-                   {{0, c, "/contacts/tangential_force", {rows, 3}, first, c}}, "N");
+    if (!force_block.empty()) {
+      link_block(force_block, "normal_force");
+      link_block(block("/contacts/blocks", "conductance"), "conductance");
+      link_block(block("/contacts/blocks", "tangential_force"), "tangential_force");
+    } else {
+      create_virtual(g, "normal_force", {c}, {{0, c, "/contacts/normal_force", {rows}, first, c}},
+                     "N");
+      create_virtual(g, "conductance", {c}, {{0, c, "/contacts/conductance", {rows}, first, c}},
+                     "W/K");
+      create_virtual(g, "tangential_force", {c, 3},
+                     {{0, c, "/contacts/tangential_force", {rows, 3}, first, c}}, "N");
+    }
   }
   if (c > 0)
     create_virtual(g, "heat_flow", {c}, {{0, c, "/contacts/heat_flow", {rows}, first, c}}, "W");

@@ -229,8 +229,9 @@ ResultWriter::ResultWriter(const std::string& path, const ResultHeader& header,
     Hdf5ErrorSilence silence;
     w.file = hdf5::create_file(path, kHdf5Lock);
     write_result_metadata(w.file.get(), header);
-    w.frames.create(w.file.get(), n);
-    w.contacts.create(w.file.get(), n, store_contacts);
+    w.frames.create(w.file.get(), n, header.frozen);
+    w.contacts.create(w.file.get(), n, store_contacts,
+                      header.frozen ? header.frozen_contacts : 0);
     w.views.create(w.file.get(), n, header.walls);
     hdf5::check_ok(H5Fflush(w.file.get(), H5F_SCOPE_LOCAL), "H5Fflush");
   } catch (const Hdf5Failure& e) {

@@ -12,6 +12,9 @@
 //      tangential_force [C,3] N, conductance [C] W/K, heat_flow [C] W; group attribute
 //      "stored" = 1 or 0
 //   /walls and /xdmf: the walls and the per-frame views RESULT.xdmf points at (ResultViews.h)
+//   A frozen bed (ResultHeader::frozen): /frames/position and velocity, /contacts/pair,
+//   normal_force, tangential_force and conductance are virtual datasets over blocks in
+//   /frames/blocks and /contacts/blocks, one per frame, a hard link when unchanged.
 // The parts are written by ResultMetadata, ResultFrames, ResultContacts and ResultViews.
 //
 // Reading while the run goes on: every write_frame() ends with H5Fflush, and the writer opens the
@@ -66,6 +69,11 @@ struct ResultHeader {
   std::vector<int> material;                  // index into the scene's materials
   std::vector<std::string> material_names;    // optional; attribute "names" of /particles/material
   std::vector<WallPlane> walls;               // /walls, drawn in RESULT.xdmf
+  // A frozen bed (mechanics "settle" or "off"): every frame has the same positions, velocities
+  // and frozen_contacts contacts. Those are then written once (BlockSeries.h: each later frame
+  // is a hard link while the values stay the same); readers see the same [F, ...] datasets.
+  bool frozen = false;
+  std::size_t frozen_contacts = 0;
 };
 
 // One frame. The spans point into the caller's arrays; nothing is kept after write_frame().

@@ -417,6 +417,8 @@ RunOutcome CoupledRun::run() {
         if (wall.temperature_K) plane.temperature_K = *wall.temperature_K;
         header.walls.push_back(plane);
       }
+      header.frozen = frozen_;  // the contacts too: fixed after settling (or from the start)
+      header.frozen_contacts = contacts_.size();
       writer_.emplace(options_.output_path, header, scene_.output.contacts,
                       options_.overwrite ? ExistingResult::Overwrite : ExistingResult::Refuse);
     }

@@ -11,22 +11,26 @@ namespace {
 
 std::string number(double value) { return shortest_number(value); }
 
-// Measured on examples (default scene, settle, 256 particles, 81 frames: 1.60 MB + 0.27 MB
-// XDMF; poured_bed.toml, dynamic, 80 particles, 21 frames: 0.42 MB + 0.07 MB), datasets
-// compressed (shuffle + deflate 1), rounded up. Bytes per particle and frame: position 17,
-// velocity 17 (0 in a frozen bed: all zero), temperature 6.
+// Measured on examples, datasets compressed (shuffle + deflate 1), rounded up. Dynamic
+// (poured_bed.toml, 80 particles, 21 frames: 0.41 MB + 0.07 MB XDMF): bytes per particle and
+// frame: position 17, velocity 17, temperature 6. Frozen (settle or off: paper_bed.toml, 256
+// particles, 453 contacts, 101 frames: 0.80 MB + 0.36 MB XDMF): positions, velocities and the
+// contacts' pair, forces and conductance are written once (BlockSeries.h); per frame only the
+// temperature (4.3 bytes per particle) and the heat flow (6.5 bytes per contact) are new.
 constexpr double kMovingBytesPerParticle = 40.0;
-constexpr double kFrozenBytesPerParticle = 23.0;
+constexpr double kFrozenBytesPerParticle = 5.0;
 // Contacts per particle in a packing (coordination about 6, each contact counted once).
 constexpr double kContactsPerParticle = 3.0;
 // A contact row (pair, normal and tangential force, conductance, heat flow; 64 bytes raw)
-// compressed, plus 16 bytes of the XDMF line set when the contacts change every frame.
+// compressed, plus 16 bytes of the XDMF line set when the contacts change every frame; frozen:
+// the heat flow alone.
 constexpr double kMovingBytesPerContact = 56.0;
-constexpr double kFrozenBytesPerContact = 24.0;
+constexpr double kFrozenBytesPerContact = 8.0;
 // HDF5 metadata of a frame's XDMF views (ResultViews.h): virtual datasets of about 1.5 kB
-// each, most of them hard links in a frozen bed.
+// each; in a frozen bed only temperature and heat_flow are new, the rest are hard links
+// (paper_bed.toml: 3.3 kB per frame).
 constexpr double kMovingViewBytesPerFrame = 12000.0;
-constexpr double kFrozenViewBytesPerFrame = 4500.0;
+constexpr double kFrozenViewBytesPerFrame = 3500.0;
 // XDMF text per frame: the particle grid, the contact grid and the wall grid.
 constexpr double kXdmfParticleBytes = 1200.0;
 constexpr double kXdmfContactBytes = 1300.0;
@@ -52,8 +56,11 @@ SceneResources estimate_resources(const Scene& scene) {
   const double xdmf_bytes = kXdmfParticleBytes +
                             (scene.output.contacts ? kXdmfContactBytes : 0.0) +
                             (scene.walls.empty() ? 0.0 : kXdmfWallBytes);
+  // Once: the particles' constants, the XDMF's connectivity and, frozen, the blocks written
+  // once (positions and velocities 48 bytes per particle, contacts 64 per contact, raw).
   r.output_bytes = r.frames * (frame_bytes + contact_bytes + view_bytes + xdmf_bytes) +
-                   n * (28.0 + 8.0) + 16.0 * kContactsPerParticle * n;
+                   n * (28.0 + 8.0) + 16.0 * kContactsPerParticle * n +
+                   (frozen ? n * 48.0 + 64.0 * kContactsPerParticle * n : 0.0);
   // Mechanics and thermal state, contact lists and the Newton matrix: about 2 kB per particle;
   // the XDMF text and frame times are held in memory once.
   r.memory_bytes = n * 2048.0 + r.frames * (xdmf_bytes + 8.0);

@@ -11,22 +11,15 @@
 
 #include "coupling/output/Hdf5Io.h"
 #include "coupling/output/ResultWriter.h"
+#include "ScratchResultFile.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 using namespace tmdem::coupling;
 
-struct ViewFile {
-  fs::path dir;
-  std::string path;
-  ViewFile() {
-    dir = fs::temp_directory_path() / ("tmdem-output-views-" + std::to_string(getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    path = (dir / "bed.h5").string();
-  }
-  ~ViewFile() { fs::remove_all(dir); }
+struct ViewFile : test::ScratchResultFile {
+  ViewFile() : ScratchResultFile("views") {}
 };
 
 ResultHeader three_particles() {

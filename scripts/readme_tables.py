@@ -13,9 +13,19 @@ machine to machine; every other value (steps, errors, counts) is reproducible fo
   scripts/readme_tables.py --check          # compare only: exit 1 naming the values that drifted
   scripts/readme_tables.py --only coupling  # one table
 
+  scripts/readme_tables.py --list           # every table of README.md and how it is kept true
+
 Tables: checkpoints (thermal steps added by checkpoint boundaries), coupling (`tmdem study
 coupling examples/poured_bed.toml`). Both run in about half a minute on one core.
 Needs python3 (standard library only). The ctest test readme_tables (label readme) runs --check.
+
+The other measured tables are marked `<!-- readme_tables: hand-measured (why); command ... -->`
+on the line above: the accuracy summary (its "cheapest run" is chosen by wall time), the
+conductivity of the piston bed (4 min) and its gas-model comparison (2 min), and the
+bench_thermal and bench_mechanics benchmarks (timings). Their timing columns say `[timing]`;
+they are refreshed by rerunning the command the README shows above them. The solver
+comparisons of "Contact solvers" and the bench_pour table are measured by hand too (same
+machine, commands above them).
 """
 import argparse
 import csv
@@ -106,14 +116,40 @@ def drift(old_rows, new_rows):
     return out
 
 
+def table_inventory(text):
+    """(line number, header, how) for every table of the text: the regenerating block's name,
+    the hand-measured marker, or "not marked" (descriptive tables)."""
+    lines = text.splitlines()
+    out, block = [], None
+    for k, line in enumerate(lines):
+        opened = re.match(r" *<!-- readme_tables: (\w+) -->", line)
+        if opened:
+            block = opened.group(1)
+        elif "<!-- /readme_tables -->" in line:
+            block = None
+        starts = line.lstrip().startswith("|") and (k == 0 or not lines[k - 1].lstrip().startswith("|"))
+        if not starts:
+            continue
+        above = lines[k - 1].strip() if k > 0 else ""
+        marker = re.match(r"<!-- readme_tables: (hand-measured.*?) -->", above)
+        how = (f"regenerated: {block}" if block else marker.group(1) if marker else "not marked")
+        out.append((k + 1, line.strip()[:60], how))
+    return out
+
+
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("--readme", default=str(ROOT / "README.md"))
     p.add_argument("--tmdem", default=str(ROOT / "build" / "tmdem"))
     p.add_argument("--only", choices=sorted(TABLES), action="append")
     p.add_argument("--check", action="store_true", help="compare only; exit 1 on drift")
+    p.add_argument("--list", action="store_true", help="list every table and how it is kept")
     args = p.parse_args(argv)
     text = pathlib.Path(args.readme).read_text()
+    if args.list:
+        for line, header, how in table_inventory(text):
+            print(f"README.md:{line}: {how}: {header}")
+        return 0
     drifted = False
     with tempfile.TemporaryDirectory() as work:
         for name in args.only or sorted(TABLES):

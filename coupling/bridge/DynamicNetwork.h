@@ -2,7 +2,8 @@
 // Hands a moving packing's contacts to the thermal system, one mechanical step at a time, the
 // same way for `tmdem run` and for the studies' replays: a sticky contact pattern (open
 // contacts keep a zero-conductance edge until a new pair closes), the step's conductances, and
-// with thermal.coupling = "restart" a re-initialised integrator every step.
+// with thermal.coupling = "restart" a re-initialised integrator every step ("continue": only
+// when the step's friction-heat source changed).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -48,6 +49,9 @@ class DynamicNetwork {
   ContactList with_near_;  // this step's contacts and near pairs, canonical order
   thermal::ThermalNetwork edges_;
   bool dissipation_;  // some switched-on mode turns the contacts' dissipation into heat
+  // The previous step's dissipation entries: "continue" restarts the integrator when they change.
+  std::vector<std::int32_t> previous_dissipation_a_, previous_dissipation_b_;
+  std::vector<double> previous_dissipation_W_;
 };
 
 }  // namespace tmdem::coupling

@@ -60,6 +60,8 @@ void write_contents(hid_t file, const CheckpointState& s) {
       hdf5::write_array(mechanics.get(), "reference_wall_point", s.detector_reference_wall_point_m, 3, "m");
     }
   }
+  if (!s.settled_wall_point_m.empty())
+    hdf5::write_array(file, "settled_wall_point", s.settled_wall_point_m, 3, "m");
   if (!s.thermal_pattern_pair.empty()) {
     Hdf5Handle thermal = hdf5::create_group(file, "thermal");
     hdf5::write_array(thermal.get(), "pattern_pair", s.thermal_pattern_pair, 2, "1");
@@ -130,6 +132,8 @@ CheckpointState read_contents(hid_t file) {
       s.detector_reference_wall_point_m = hdf5::read_double_array(mechanics.get(), "reference_wall_point", 3);
     }
   }
+  if (hdf5::exists(file, "settled_wall_point"))
+    s.settled_wall_point_m = hdf5::read_double_array(file, "settled_wall_point", 3);
   if (hdf5::exists(file, "thermal")) {
     Hdf5Handle thermal = hdf5::open_group(file, "thermal");
     s.thermal_pattern_pair = hdf5::read_int64_array(thermal.get(), "pattern_pair", 2);

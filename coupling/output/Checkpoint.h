@@ -10,7 +10,9 @@
 // reference_position [N,3] or [0,3] m, candidate_pair [K,2], candidate_force [K,3] N,
 // solver_state [S], wall_point [W,3] m, wall_velocity [W] m/s, reference_wall_point [W,3] m:
 // the mechanics' MechanicsState; the wall datasets may be absent: walls as built) when the packing moves, and /thermal/pattern_pair [P,2] (a dynamic
-// run's sticky edge set). The integrators' and the mechanics' counters are /extra scalars.
+// run's sticky edge set), /settled_wall_point [W,3] m (a settled run: the walls where settling
+// left them; absent: where the scene puts them). The integrators' and the mechanics' counters
+// are /extra scalars.
 // A checkpoint without tangential_force or normal_force (written before they existed) reads as
 // tangential force 0 and normal force impulse / time step; without /mechanics or /thermal it
 // reads with has_mechanics = false and no pattern.
@@ -54,6 +56,8 @@ struct CheckpointState {
   std::vector<double> wall_velocity_m_per_s;         // W, along each wall's normal
   std::vector<double> detector_reference_wall_point_m;  // W*3 at the last rebuild, or empty
   std::vector<std::int64_t> thermal_pattern_pair;    // P*2, dynamic runs
+  // W*3, a settled run's walls where settling left them (pistons move), or empty: the scene's.
+  std::vector<double> settled_wall_point_m;
   std::map<std::string, double> extra;               // free-form named scalars for the run loop
 };
 

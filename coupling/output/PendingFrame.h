@@ -16,6 +16,7 @@ struct PendingFrame {
   std::vector<double> position_m, velocity_m_per_s, temperature_K;
   std::vector<std::int64_t> contact_pair;
   std::vector<double> normal_force_N, conductance_W_per_K, tangential_force_N, heat_flow_W;
+  std::vector<double> wall_point_m;
 
   static PendingFrame copy_of(const FrameView& f) {
     PendingFrame p;
@@ -30,6 +31,7 @@ struct PendingFrame {
     p.conductance_W_per_K.assign(f.conductance_W_per_K.begin(), f.conductance_W_per_K.end());
     p.tangential_force_N.assign(f.tangential_force_N.begin(), f.tangential_force_N.end());
     p.heat_flow_W.assign(f.heat_flow_W.begin(), f.heat_flow_W.end());
+    p.wall_point_m.assign(f.wall_point_m.begin(), f.wall_point_m.end());
     return p;
   }
 
@@ -46,13 +48,14 @@ struct PendingFrame {
     f.conductance_W_per_K = conductance_W_per_K;
     f.tangential_force_N = tangential_force_N;
     f.heat_flow_W = heat_flow_W;
+    f.wall_point_m = wall_point_m;
     return f;
   }
 
   std::size_t bytes() const {
     return 8 * (position_m.size() + velocity_m_per_s.size() + temperature_K.size() +
                 contact_pair.size() + normal_force_N.size() + conductance_W_per_K.size() +
-                tangential_force_N.size() + heat_flow_W.size());
+                tangential_force_N.size() + heat_flow_W.size() + wall_point_m.size());
   }
 };
 

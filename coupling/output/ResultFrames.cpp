@@ -12,7 +12,8 @@ constexpr const char* kGeometryBlocks = "/frames/blocks";  // BlockSeries of sha
 
 }  // namespace
 
-void ResultFrames::create(hid_t file, std::size_t particles, bool shared_geometry) {
+void ResultFrames::create(hid_t file, std::size_t particles, std::size_t walls,
+                          bool shared_geometry) {
   const hsize_t n = particles;
   file_ = file;
   Hdf5Handle frames = hdf5::create_group(file, "frames");
@@ -35,6 +36,9 @@ void ResultFrames::create(hid_t file, std::size_t particles, bool shared_geometr
   boundary_heat_ = hdf5::create_dataset(g, "boundary_heat", H5T_IEEE_F64LE, {0}, kFrameChunk, "J");
   contact_offset_ =
       hdf5::create_dataset(g, "contact_offset", H5T_STD_I64LE, {0}, kFrameChunk, "1");
+  if (walls > 0)
+    wall_position_ =
+        hdf5::create_dataset(g, "wall_position", H5T_IEEE_F64LE, {0, hsize_t(walls), 3}, 1, "m");
   const std::int64_t zero = 0;
   hdf5::write_rows(contact_offset_.get(), 0, 1, &zero, H5T_NATIVE_INT64);
 }
@@ -50,15 +54,22 @@ void ResultFrames::open(hid_t file) {
   thermal_energy_ = hdf5::open_dataset(file, "/frames/thermal_energy");
   boundary_heat_ = hdf5::open_dataset(file, "/frames/boundary_heat");
   contact_offset_ = hdf5::open_dataset(file, "/frames/contact_offset");
+  wall_position_.reset();
+  if (hdf5::exists(file, "/frames/wall_position"))
+    wall_position_ = hdf5::open_dataset(file, "/frames/wall_position");
+}
+
+std::vector<const Hdf5Handle*> ResultFrames::row_datasets() const {
+  std::vector<const Hdf5Handle*> out{&time_,           &position_,      &velocity_,
+                                     &temperature_,    &thermal_energy_, &boundary_heat_};
+  if (wall_position_.valid()) out.push_back(&wall_position_);
+  return out;
 }
 
 std::size_t ResultFrames::complete_frames() const {
   hsize_t complete = hdf5::dataset_rows(contact_offset_.get());
   complete = complete == 0 ? 0 : complete - 1;
-  for (const Hdf5Handle* d :
-       {&time_, &position_, &velocity_, &temperature_, &thermal_energy_, &boundary_heat_}) {
-    complete = std::min(complete, hdf5::dataset_rows(d->get()));
-  }
+  for (const Hdf5Handle* d : row_datasets()) complete = std::min(complete, hdf5::dataset_rows(d->get()));
   return complete;
 }
 
@@ -87,12 +98,15 @@ void ResultFrames::append(std::size_t index, const FrameView& frame, std::int64_
   hdf5::write_rows(thermal_energy_.get(), f, 1, &frame.thermal_energy_J, H5T_NATIVE_DOUBLE);
   hdf5::write_rows(boundary_heat_.get(), f, 1, &frame.boundary_heat_J, H5T_NATIVE_DOUBLE);
   hdf5::write_rows(contact_offset_.get(), f + 1, 1, &contact_end, H5T_NATIVE_INT64);
+  if (wall_position_.valid())
+    hdf5::write_rows(wall_position_.get(), f, 1, frame.wall_point_m.data(), H5T_NATIVE_DOUBLE);
   hdf5::write_rows(time_.get(), f, 1, &frame.time_s, H5T_NATIVE_DOUBLE);  // last: commits
 }
 
 void ResultFrames::cut_back(std::size_t frames) {
   for (const Hdf5Handle* d : {&time_, &temperature_, &thermal_energy_, &boundary_heat_})
     hdf5::set_rows(d->get(), frames);
+  if (wall_position_.valid()) hdf5::set_rows(wall_position_.get(), frames);
   for (BlockSeries* blocks : {&position_blocks_, &velocity_blocks_})
     if (blocks->active()) blocks->cut_back(file_, frames);
   for (const Hdf5Handle* d : {&position_, &velocity_})
@@ -102,7 +116,7 @@ void ResultFrames::cut_back(std::size_t frames) {
 
 void ResultFrames::close() {
   for (Hdf5Handle* d : {&time_, &position_, &velocity_, &temperature_, &thermal_energy_,
-                        &boundary_heat_, &contact_offset_}) {
+                        &boundary_heat_, &contact_offset_, &wall_position_}) {
     d->reset();
   }
 }

@@ -312,7 +312,11 @@ FrameViewCounts ResultViews::add_frame(hid_t file, std::size_t frame, const Fram
       const std::size_t i = std::size_t(pair[2 * k]);
       const std::size_t wall = std::size_t(-1 - j);
       // A wall the file does not describe (written before /walls existed): a zero-length line.
-      const auto end = wall < walls_.size() ? foot(walls_[wall], &position_m[3 * i])
+      // The foot lies on the wall where it stands in this frame (a piston moves).
+      WallPlane here_now = wall < walls_.size() ? walls_[wall] : WallPlane{};
+      if (data.wall_point_m.size() == 3 * walls_.size() && wall < walls_.size())
+        for (int k = 0; k < 3; ++k) here_now.point_m[k] = data.wall_point_m[3 * wall + k];
+      const auto end = wall < walls_.size() ? foot(here_now, &position_m[3 * i])
                                             : std::array<double, 3>{position_m[3 * i],
                                                                     position_m[3 * i + 1],
                                                                     position_m[3 * i + 2]};

@@ -42,6 +42,7 @@ class ResultViews {
   void open(hid_t file, std::size_t particles);
 
   std::size_t wall_quads() const { return wall_quads_; }  // 0 before the first frame
+  const std::vector<WallPlane>& walls() const { return walls_; }  // as /walls describes them
   bool has_frame(hid_t file, std::size_t frame) const;
 
   // The view of frame `frame` (its contacts are rows first_contact.. of /contacts; none when

@@ -229,7 +229,7 @@ ResultWriter::ResultWriter(const std::string& path, const ResultHeader& header,
     Hdf5ErrorSilence silence;
     w.file = hdf5::create_file(path, kHdf5Lock);
     write_result_metadata(w.file.get(), header);
-    w.frames.create(w.file.get(), n, header.frozen);
+    w.frames.create(w.file.get(), n, header.walls.size(), header.frozen);
     w.contacts.create(w.file.get(), n, store_contacts,
                       header.frozen ? header.frozen_contacts : 0);
     w.views.create(w.file.get(), n, header.walls);
@@ -347,12 +347,22 @@ void ResultWriter::write_frame(const FrameView& frame) {
           "tangential_force_N 3 C or none");
     }
   }
+  const auto& walls = w.views.walls();
+  if (!frame.wall_point_m.empty() && frame.wall_point_m.size() != 3 * walls.size())
+    throw std::invalid_argument("FrameView: wall_point_m needs " + std::to_string(3 * walls.size()) +
+                                " values (3 per wall) or none");
+  FrameView with_walls = frame;
+  std::vector<double> still_walls;  // no wall positions given: the walls stand where /walls says
+  if (frame.wall_point_m.empty() && !walls.empty()) {
+    for (const WallPlane& wall : walls) still_walls.insert(still_walls.end(), wall.point_m.begin(), wall.point_m.end());
+    with_walls.wall_point_m = still_walls;
+  }
   const std::size_t total_frames = w.times.size() + w.pending.size() + 1;
   if (w.pending.empty() && w.sync_due(total_frames)) {
-    w.store({frame});  // no copy while every frame is stored at once
+    w.store({with_walls});  // no copy while every frame is stored at once
     return;
   }
-  w.pending.push_back(PendingFrame::copy_of(frame));
+  w.pending.push_back(PendingFrame::copy_of(with_walls));
   w.pending_bytes += w.pending.back().bytes();
   if (w.sync_due(total_frames)) w.store_pending();
 }

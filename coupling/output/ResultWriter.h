@@ -7,7 +7,9 @@
 //   /particles/radius [N] m, mass [N] kg, heat_capacity [N] J/K, material [N] int32 ("1";
 //      attribute "names" lists the material names when given)
 //   /frames/time [F] s, position [F,N,3] m, velocity [F,N,3] m/s, temperature [F,N] K,
-//      thermal_energy [F] J, boundary_heat [F] J, contact_offset [F+1] int64 ("1")
+//      thermal_energy [F] J, boundary_heat [F] J, contact_offset [F+1] int64 ("1"),
+//      wall_position [F,W,3] m (files with walls: each wall's point, which a piston moves along
+//      its normal; files written before it existed lack it)
 //   /contacts/pair [C,2] int64 ("1"; j < 0 is wall -1-j), normal_force [C] N,
 //      tangential_force [C,3] N, conductance [C] W/K, heat_flow [C] W; group attribute
 //      "stored" = 1 or 0
@@ -89,6 +91,8 @@ struct FrameView {
   std::span<const double> conductance_W_per_K;  // C
   std::span<const double> tangential_force_N;   // C*3 (xyz, on i), or empty: stored as 0
   std::span<const double> heat_flow_W;          // C, from i to j (or the wall), or empty: NaN
+  std::span<const double> wall_point_m;         // W*3, each wall's point now (pistons move), or
+                                                // empty: where /walls/point puts it
 };
 
 // What reopen() checks before it changes a byte of an existing result file.

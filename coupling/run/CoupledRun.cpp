@@ -83,6 +83,12 @@ void CoupledRun::prepare_mechanics() {
   }
   if (restart_) {
     particles_ = nscd_->particles();
+    // The walls where settling left them, not where the scene put them: a piston's gas gaps
+    // and its contacts' geometry are those of the checkpointed run (older checkpoints: scene's).
+    const auto& points = restart_->settled_wall_point_m;
+    if (points.size() == 3 * scene_.walls.size())
+      for (std::size_t w = 0; w < scene_.walls.size(); ++w)
+        for (int k = 0; k < 3; ++k) scene_.walls[w].point_m[k] = points[3 * w + k];
     return;
   }
   settle();
@@ -168,6 +174,9 @@ void CoupledRun::write_frame(double t_s) {
   f.tangential_force_N = contacts_.tangential_force_N;
   contact_heat_flow_W(contacts_, f.temperature_K, t_s, scene_, heat_flow_W_);
   f.heat_flow_W = heat_flow_W_;
+  wall_point_m_.clear();  // where the walls are now: pistons move (move_scene_walls)
+  for (const auto& wall : scene_.walls) wall_point_m_.insert(wall_point_m_.end(), wall.point_m.begin(), wall.point_m.end());
+  f.wall_point_m = wall_point_m_;
   writer_->write_frame(f);
   output_seconds_ += seconds_since(output_start);
 }

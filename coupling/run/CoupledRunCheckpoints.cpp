@@ -70,7 +70,12 @@ void CoupledRun::checkpoint(double t_s) {
       for (int k = 0; k < 3; ++k) cs.position_m.push_back(particles_.position[i][k]);
     cs.velocity_m_per_s.assign(cs.position_m.size(), 0.0);
     cs.angular_velocity_rad_per_s.assign(cs.position_m.size(), 0.0);
-    if (nscd_) store_mechanics_stats(nscd_->stats(), cs);
+    if (nscd_) {
+      store_mechanics_stats(nscd_->stats(), cs);
+      // Where settling left the walls (a piston came to rest on the bed): a restart's gaps.
+      for (const auto& wall : scene_.walls)
+        cs.settled_wall_point_m.insert(cs.settled_wall_point_m.end(), wall.point_m.begin(), wall.point_m.end());
+    }
   }
   const auto T = integrator_->temperatures_K();
   cs.temperature_K.assign(T.begin(), T.end());

@@ -190,6 +190,11 @@ void SceneBuilder::read_walls() {
     w.material = material_of(t, "material");
     read_wall_heat(t, w);
     read_piston(t, w);
+    // Only the contact mechanics moves a piston: without it, it would silently stand still.
+    if (w.piston && scene_.effects.mechanics == MechanicsMode::Off)
+      t.fail("piston", "a piston needs effects.mechanics = \"settle\" or \"dynamic\" (the "
+                       "contact mechanics moves it); with \"off\" it would stand still: set "
+                       "piston = false");
     scene_.walls.push_back(w);
   }
 }

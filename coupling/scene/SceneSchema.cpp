@@ -282,7 +282,8 @@ std::vector<Section> build_sections() {
                "the area the heat flux is imposed over (with heat_flux)"),
         boolean("piston", "false",
                 "plane: the wall moves along its normal under force (or pressure x "
-                "pressure_area) plus its weight, as a body of the contact problem"),
+                "pressure_area) plus its weight, as a body of the contact problem; needs "
+                "effects.mechanics \"settle\" or \"dynamic\""),
         number("mass", "kg", std::nullopt, Range::greater(0.0), "piston: its mass (required)"),
         number("force", "N", std::nullopt, Range::at_least(0.0),
                "piston: force pushing it into the domain (not with pressure); neither: 0, "

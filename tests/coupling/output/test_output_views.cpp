@@ -44,7 +44,7 @@ struct Frame {
   std::vector<double> x, v, T, force, H, tangential, Q;
   std::vector<std::int64_t> pair;
   FrameView view(double t) const {
-    return FrameView{t, x, v, T, 1.0, 0.0, pair, force, H, tangential, Q};
+    return FrameView{t, x, v, T, 1.0, 0.0, pair, force, H, tangential, Q, {}};
   }
 };
 

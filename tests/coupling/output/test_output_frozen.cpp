@@ -53,7 +53,7 @@ struct Frame {
     H = f >= 4 ? std::vector<double>{0.02, 0.05} : std::vector<double>{0.01, 0.04};
     Q = {-0.5 - double(f), 1.0 + double(f)};
   }
-  FrameView view(double t) const { return FrameView{t, x, v, T, 1.0, 0.0, pair, force, H, tangential, Q}; }
+  FrameView view(double t) const { return FrameView{t, x, v, T, 1.0, 0.0, pair, force, H, tangential, Q, {}}; }
 };
 
 void write_frames(ResultWriter& writer, std::size_t from, std::size_t to) {

@@ -4,7 +4,8 @@
 // F_ab is the share of the radiation leaving the centre of a that meets sphere b (exact for a
 // small emitter, the far-field limit r_b^2 / (4 d^2) of the sphere-to-sphere view factor); the
 // average makes G symmetric, so every pair conserves energy exactly. No shadowing by third
-// particles: pairs beyond [radiation] pair_cutoff are left out. Exact Jacobian, one-sided:
+// particles: pairs beyond [radiation] pair_cutoff are left out. The share F_ab of a's radiation
+// that meets b does not also reach the surroundings (RadiationMode.cpp). Exact Jacobian, one-sided:
 // d q_a / d T_b = 4 G T_b^3, d q_b / d T_a = 4 G T_a^3. README "Radiation between particles".
 #include <cmath>
 #include <memory>
@@ -12,17 +13,10 @@
 #include <vector>
 
 #include "thermal/ModeDescription.h"
+#include "thermal/PairRadiationGeometry.h"
 
 namespace tmdem::thermal {
 namespace {
-
-constexpr double kStefanBoltzmann_W_per_m2K4 = 5.670374419e-8;
-
-// Share of isotropic radiation from a point at distance d that meets a sphere of radius r.
-double point_view_factor(double r_m, double d_m) {
-  const double s = std::min(r_m / d_m, 1.0);
-  return 0.5 * (1.0 - std::sqrt(1.0 - s * s));
-}
 
 class ParticleRadiationMode final : public HeatTransferMode {
  public:
@@ -35,13 +29,12 @@ class ParticleRadiationMode final : public HeatTransferMode {
     G_.assign(net.edge_count(), 0.0);
     const double pi = std::numbers::pi;
     for (std::size_t e = 0; e < net.edge_count(); ++e) {
+      if (!radiating_pair(net, e, reach_)) continue;
       const auto a = net.edge_a[e], b = net.edge_b[e];
       const double ra = net.radius_m[a], rb = net.radius_m[b];
-      if (net.edge_gap_m[e] > reach_ * std::min(ra, rb)) continue;
       const double ea = net.emissivity[a], eb = net.emissivity[b];
-      if (!(ea > 0.0) || !(eb > 0.0)) continue;
       const double eps = 1.0 / (1.0 / ea + 1.0 / eb - 1.0);
-      const double d = ra + rb + net.edge_gap_m[e];
+      const double d = pair_distance_m(net, e);
       const double AF = 0.5 * (4.0 * pi * ra * ra * point_view_factor(rb, d) +
                                4.0 * pi * rb * rb * point_view_factor(ra, d));
       G_[e] = kStefanBoltzmann_W_per_m2K4 * eps * AF;
@@ -108,18 +101,7 @@ const ModeDescription& particle_radiation_mode() {
       .effect_description = "particle-ambient radiation, see [radiation]",
       .section = "radiation",
       .section_description = "particle-ambient radiation; used when effects.radiation = true",
-      .parameters = {{.key = "between_particles",
-                      .default_value = 0.0,
-                      .range = ParameterRange::any(),
-                      .description = "also exchange radiation between neighbouring particles "
-                                     "(view factor of a sphere seen from its neighbour's centre)",
-                      .boolean = true},
-                     {.key = "pair_cutoff",
-                      .unit = "",
-                      .default_value = 0.5,
-                      .range = ParameterRange::open_closed(0.0, 2.0),
-                      .description = "largest gap of a radiating pair, as a fraction of the "
-                                     "smaller radius (no shadowing: keep it small)"}},
+      .parameters = {between_particles_parameter(), pair_cutoff_parameter()},
       .near_pair_reach = "pair_cutoff",
       .enabled_by = "between_particles",
       .make = [](const ModeParameters& p) -> std::unique_ptr<HeatTransferMode> {

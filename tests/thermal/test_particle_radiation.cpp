@@ -77,6 +77,48 @@ TEST(ParticleRadiation, TwoSpheresFollowTheClosedForm) {
   }
 }
 
+// Radiation to the ambient next to pair radiation: the share F of each sphere's radiation that
+// meets its neighbour is exchanged with the neighbour, not with the surroundings. For black
+// spheres (eps = 1) the flow into sphere 0 is then the radiosity balance that counts each
+// emission once: sigma A (-T0^4 + F T1^4 + (1 - F) T_amb^4), F = (1 - sqrt(1 - (R/d)^2)) / 2.
+// (Counting the whole surface to the ambient emitted sigma A (1 + F) T0^4.)
+TEST(ParticleRadiation, AmbientSeesOnlyTheShareTheNeighbourLeavesOpen) {
+  const double gap = 0.1 * kR, Ta = 300.0, T0 = 1000.0, T1 = 600.0;
+  ModeSettings s = pair_radiation();
+  for (const auto& [key, value] : {std::pair{"ambient_temperature", Ta}, {"between_particles", 1.0},
+                                   {"pair_cutoff", 0.5}})
+    s.set("radiation", key, value);
+  auto net = two_spheres(1e-2, gap);
+  net.emissivity = {1.0, 1.0};
+  auto sys = make_system(net, {"radiation", "particle_radiation"}, s);
+  std::vector<double> q(2);
+  double boundary = 0.0;
+  ASSERT_TRUE(sys->heat_flow(std::vector<double>{T0, T1}, q, boundary));
+  const double d = 2.0 * kR + gap, F = 0.5 * (1.0 - std::sqrt(1.0 - (kR / d) * (kR / d)));
+  const double A = sphere_area(kR), Ta4 = std::pow(Ta, 4), T04 = std::pow(T0, 4), T14 = std::pow(T1, 4);
+  EXPECT_NEAR(q[0], kSigma * A * (-T04 + F * T14 + (1.0 - F) * Ta4), 1e-14 * kSigma * A * T04);
+  EXPECT_NEAR(q[1], kSigma * A * (-T14 + F * T04 + (1.0 - F) * Ta4), 1e-14 * kSigma * A * T04);
+  // What leaves the pair is what its open shares exchange with the surroundings.
+  EXPECT_NEAR(boundary, kSigma * A * (1.0 - F) * (2.0 * Ta4 - T04 - T14), 1e-14 * kSigma * A * T04);
+  // Its exact Jacobian: -4 sigma A ((1 - F) + F) T^3 on the diagonal.
+  JacobianEvaluation J;
+  sys->evaluate_jacobian(std::vector<double>{T0, T1}, J);
+  EXPECT_NEAR(J.diagonal_W_per_K[0], -4.0 * kSigma * A * std::pow(T0, 3), 1e-14 * kSigma * A * T04);
+  EXPECT_NEAR(J.diagonal_W_per_K[1], -4.0 * kSigma * A * std::pow(T1, 3), 1e-14 * kSigma * A * T04);
+
+  // Beyond pair_cutoff, or with between_particles off, each surface sees only the surroundings.
+  auto far_net = two_spheres(1e-2, 0.6 * kR);
+  far_net.emissivity = {1.0, 1.0};
+  auto far = make_system(far_net, {"radiation", "particle_radiation"}, s);
+  ASSERT_TRUE(far->heat_flow(std::vector<double>{T0, T1}, q, boundary));
+  EXPECT_NEAR(q[0], kSigma * A * (Ta4 - T04), 1e-14 * kSigma * A * T04);
+  ModeSettings alone;
+  alone.set("radiation", "ambient_temperature", Ta);
+  auto ambient_only = make_system(net, {"radiation"}, alone);
+  ASSERT_TRUE(ambient_only->heat_flow(std::vector<double>{T0, T1}, q, boundary));
+  EXPECT_NEAR(q[0], kSigma * A * (Ta4 - T04), 1e-14 * kSigma * A * T04);
+}
+
 TEST(ParticleRadiation, JacobianIsExactAndOneSided) {
   auto sys = make_system(two_spheres(1e-2, 0.1 * kR), {"particle_radiation"}, pair_radiation());
   EXPECT_FALSE(sys->symmetric_jacobian());

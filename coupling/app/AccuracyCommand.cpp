@@ -20,7 +20,7 @@ int run_accuracy_command(const Scene& scene, const AccuracyCommandOptions& optio
   if (!csv.open(log)) return kExitIo;
 
   AccuracyStudyResult result;
-  try {
+  const int computed = csv.compute_or_discard<ReferenceError>([&] {
     ProgressReporter progress(log, options.quiet, options.terminal);
     const auto base = integrator_settings(scene);
     const auto modes = ThermalNetworkBuilder(scene).mode_settings();
@@ -28,7 +28,6 @@ int run_accuracy_command(const Scene& scene, const AccuracyCommandOptions& optio
       log << "error: tmdem study accuracy replays a dynamic scene's recorded contacts without "
              "positions, so it cannot follow the near pairs of effects.gas_conduction or "
              "[radiation] between_particles; switch them off or use \"settle\"\n";
-      csv.discard();
       return kExitInvalid;
     }
     if (scene.effects.mechanics == MechanicsMode::Dynamic) {
@@ -53,14 +52,9 @@ int run_accuracy_command(const Scene& scene, const AccuracyCommandOptions& optio
       result = run_accuracy_study(*problem.system, problem.T0_K, scene.duration_s, base, modes,
                                   options.study, options.quiet ? nullptr : &log);
     }
-  } catch (const ReferenceError& e) {
-    log << "error: " << e.what() << std::endl;
-    csv.discard();
-    return kExitSolverFailed;
-  } catch (...) {
-    csv.discard();
-    throw;
-  }
+    return kExitOk;
+  }, log);
+  if (computed != kExitOk) return computed;
   for (const auto& r : result.runs)
     if (!r.ok)
       log << "warning: " << r.label() << " "

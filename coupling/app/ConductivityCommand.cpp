@@ -18,20 +18,15 @@ int run_conductivity_command(const Scene& scene, const ConductivityCommandOption
   if (!csv.open(log)) return kExitIo;
 
   std::vector<ConductivityResult> results;
-  try {
+  const int computed = csv.compute_or_discard<thermal::ThermalSolverError>([&] {
     ProgressReporter progress(log, options.quiet, options.terminal);
     if (options.pressures_Pa.empty())
       results.push_back(run_conductivity_study(scene, progress));
     else
       results = run_conductivity_pressure_study(scene, options.pressures_Pa, progress);
-  } catch (const thermal::ThermalSolverError& e) {
-    log << "error: " << e.what() << std::endl;
-    csv.discard();
-    return kExitSolverFailed;
-  } catch (...) {
-    csv.discard();
-    throw;
-  }
+    return kExitOk;
+  }, log);
+  if (computed != kExitOk) return computed;
   out << "conductivity study: " << scene.source << "\n";
   for (const auto& r : results) print_conductivity_report(out, r);
   out.flush();

@@ -7,6 +7,8 @@
 #include <ostream>
 #include <string>
 
+#include "coupling/common/ExitCode.h"
+
 namespace tmdem::coupling {
 
 class StudyCsvFile {
@@ -27,6 +29,24 @@ class StudyCsvFile {
     file_.close();
     std::error_code ec;
     std::filesystem::remove(path_, ec);
+  }
+  // Runs the study: `compute` returns an exit code, kExitOk to go on. Any other code, and any
+  // exception, removes the file. A SolverError (what the study's solver throws when it fails)
+  // is logged as one error line and gives kExitSolverFailed; other exceptions propagate.
+  template <class SolverError, class Compute>
+  int compute_or_discard(Compute&& compute, std::ostream& log) {
+    try {
+      const int code = compute();
+      if (code != kExitOk) discard();
+      return code;
+    } catch (const SolverError& e) {
+      log << "error: " << e.what() << std::endl;
+      discard();
+      return kExitSolverFailed;
+    } catch (...) {
+      discard();
+      throw;
+    }
   }
   // Writes the table through `write`, closes; false (after one error line) when writing failed.
   bool write(const std::function<void(std::ostream&)>& write, std::ostream& log, bool quiet) {

@@ -138,18 +138,20 @@ void SceneBuilder::read_random(const SceneTable& t, std::size_t index, std::vect
       box->fail_here("too small: every extent in the plane of motion must be at least the "
                      "largest diameter " + format_number(2.0 * largest) + " m (min = " +
                      format_vec3(lo) + ", max = " + format_vec3(hi) + ")");
-  // Keep clear of the particles of earlier generators, so that several fill one box.
-  mechanics::RandomPlacement earlier;
+  // Keep clear of every particle already in the scene: the [[particle]] entries (read before
+  // the generators) and those of earlier generators, so that several generators fill one box
+  // around hand-placed particles. [[import]] entries come after and are checked for overlaps.
+  mechanics::RandomPlacement placed;
   for (const auto& p : scene_.particles) {
-    earlier.positions.emplace_back(p.position_m[0], p.position_m[1], p.position_m[2]);
-    earlier.radii.push_back(p.radius_m);
+    placed.positions.emplace_back(p.position_m[0], p.position_m[1], p.position_m[2]);
+    placed.radii.push_back(p.radius_m);
   }
   mechanics::RandomPlacement placement;
   try {
     placement = mechanics::place_random(
         static_cast<std::size_t>(count), Eigen::Vector3d(lo[0], lo[1], lo[2]),
         Eigen::Vector3d(hi[0], hi[1], hi[2]), sizes, fractions,
-        scene_.seed + static_cast<std::uint64_t>(index), scene_.dimension, earlier);
+        scene_.seed + static_cast<std::uint64_t>(index), scene_.dimension, placed);
   } catch (const std::exception& error) {
     std::string_view why = error.what();
     for (const std::string_view prefix : {"place_random: ", "random placement: "})

@@ -156,6 +156,30 @@ TEST(SceneGenerators, RandomGeneratorsDrawDifferentPlacements) {
   EXPECT_LT(same, 50);
 }
 
+// A random fill keeps clear of [[particle]] entries too (read before the generators): a 4 mm
+// disk in the middle of the 20 mm square covers 13% of it, so 50 disks placed without it
+// would overlap it (and the scene would be refused for the overlap).
+TEST(SceneGenerators, RandomFillKeepsClearOfHandPlacedParticles) {
+  const std::string text =
+      header()
+          .add("generate", random_in_square("{ min = [0.0, 0.0, 0.0], max = [0.02, 0.02, 0.0] }"))
+          .add("particle", particle({0.01, 0.01, 0.0}, {{"radius", 0.004}}));
+  const Scene scene = load_scene_text(text, "t");
+  ASSERT_EQ(scene.particles.size(), 51u);
+  const Particle& big = scene.particles[0];
+  ASSERT_EQ(big.radius_m, 0.004);
+  for (std::size_t i = 1; i < 51; ++i) {
+    const double d = distance(scene.particles[i].position_m, big.position_m);
+    EXPECT_GE(d, big.radius_m + scene.particles[i].radius_m) << "particle " << i;
+  }
+  // The same fill without the disk puts some of its particles where the disk is.
+  const Scene alone = load_scene_text(kRandom, "t");
+  int inside = 0;
+  for (const auto& p : alone.particles)
+    if (distance(p.position_m, big.position_m) < big.radius_m + p.radius_m) ++inside;
+  EXPECT_GT(inside, 0);
+}
+
 TEST(SceneGenerators, RandomSingleRadiusThreeD) {
   const std::string text = header().add(
       "generate", random_fill(20, "{ min = [0.0, 0.0, 0.0], max = [0.01, 0.01, 0.01] }",

@@ -311,10 +311,14 @@ StepReport NscdIntegrator::step(double h) {
 
   // Positions: q_{n+1} = q_n + h (theta v_{n+1} + (1 - theta) v_n).
   const double theta = parameters_.theta;
+  double travel_squared = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     if (inverse_mass_[i] == 0.0) continue;
-    particles_.position[i] += h * (theta * particles_.velocity[i] + (1.0 - theta) * old_velocity_[i]);
+    const Eigen::Vector3d dx = h * (theta * particles_.velocity[i] + (1.0 - theta) * old_velocity_[i]);
+    particles_.position[i] += dx;
+    travel_squared = std::max(travel_squared, dx.squaredNorm());
   }
+  report.max_travel_m = std::sqrt(travel_squared);
   for (std::size_t w = 0; w < walls_.size(); ++w) {
     Wall& wall = walls_[w];
     if (!wall.moves()) continue;
@@ -334,7 +338,14 @@ StepReport NscdIntegrator::step(double h) {
     report.stalled = report.stalled || corrected.stalled;
     report.residual = std::max(report.residual, corrected.residual);
   }
-  if (corrected.sweeps > 0) gaps_after_step(gap_after_);
+  if (corrected.sweeps > 0) {
+    gaps_after_step(gap_after_);
+    const auto& pseudo = correction_.pseudo_velocity();
+    for (std::size_t i = 0; i < n; ++i) {
+      if (inverse_mass_[i] > 0.0)
+        report.correction_potential_J -= particles_.mass[i] * gravity_.dot(h * pseudo[i]);
+    }
+  }
   report.correction_s = lap();
 
   // Forces for the warm start and the contact list; penetration after the step.

@@ -51,6 +51,10 @@ class PenetrationCorrection {
                       double slop_m, double recovery_speed_m_per_s, double h_s,
                       std::vector<Eigen::Vector3d>& position);
 
+  // Pseudo-velocities of the last correct() that solved something (m/s per body): body i
+  // moved by h_s * pseudo_velocity()[i] when its inverse mass is > 0.
+  const std::vector<Eigen::Vector3d>& pseudo_velocity() const { return velocity_; }
+
  private:
   std::unique_ptr<ContactSolver> solver_;
   ContactProblem problem_;                      // the velocity problem's geometry, mu = 0

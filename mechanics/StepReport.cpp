@@ -11,6 +11,9 @@ void MechanicsStats::add(const StepReport& report) {
   if (!report.converged) ++unconverged_steps;
   if (report.stalled) ++stalled_steps;
   max_penetration_m = std::max(max_penetration_m, report.max_penetration_m);
+  correction_sweeps += report.correction_sweeps;
+  correction_potential_J += report.correction_potential_J;
+  max_travel_m = std::max(max_travel_m, report.max_travel_m);
   energy_change_J += report.energy_change_J;
   contact_dissipation_J += report.contact_dissipation_J;
   numerical_dissipation_J += report.numerical_dissipation_J;

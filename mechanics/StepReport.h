@@ -13,7 +13,13 @@ struct StepReport {
   bool stalled = false;            // the solver gave up early: no progress (not converged)
   int correction_sweeps = 0;       // penetration correction (PenetrationCorrection.h); 0: none
                                    // needed. Its failure makes the step unconverged too.
+  // Potential-energy change of the penetration correction's displacements dx_i (moving
+  // particles), -sum m_i g . dx_i, J: > 0 when it lifts particles. Outside the energy account
+  // below (that one covers the velocity step), so the correction's work is seen on its own.
+  double correction_potential_J = 0.0;
   double max_penetration_m = 0.0;  // largest overlap after the step, >= 0
+  double max_travel_m = 0.0;       // largest particle displacement of the position update
+                                   // h (theta v+ + (1 - theta) v-), m (correction excluded)
   std::size_t candidates = 0;      // contacts handed to the solver
   std::size_t active_contacts = 0; // contacts with r_n > 0
   bool rebuilt_candidates = false; // the candidate table was rebuilt this step
@@ -37,6 +43,9 @@ struct MechanicsStats {
   std::int64_t unconverged_steps = 0;
   std::int64_t stalled_steps = 0;      // of the unconverged ones, stopped early for no progress
   double max_penetration_m = 0.0;
+  std::int64_t correction_sweeps = 0;  // sum of the steps' correction_sweeps
+  double correction_potential_J = 0.0; // sum of the steps' correction_potential_J
+  double max_travel_m = 0.0;           // largest of the steps' max_travel_m
   double energy_change_J = 0.0;          // sums of the steps' energy accounts (StepReport)
   double contact_dissipation_J = 0.0;
   double numerical_dissipation_J = 0.0;

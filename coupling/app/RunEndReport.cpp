@@ -82,6 +82,11 @@ void print_run_end(const RunSummary& summary, const Scene& scene, const std::str
         << " stalled), largest penetration " << m.max_penetration_m << " m";
     if (r_min_m > 0.0 && r_min_m < std::numeric_limits<double>::infinity())
       out << " (" << 100.0 * m.max_penetration_m / r_min_m << "% of the smallest radius)";
+    if (m.correction_sweeps > 0) {
+      out << ", penetration correction " << m.correction_sweeps << " sweeps";
+      if (summary.energy.mechanical)
+        out << " (potential energy " << summary.energy.mechanical->correction_potential_J << " J)";
+    }
     out << "\n";
   }
   // A run interrupted while settling froze nothing: it stopped before t = 0.

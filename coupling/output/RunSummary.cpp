@@ -37,7 +37,9 @@ nlohmann::json RunSummary::to_json() const {
                       {"max_iterations", mechanics.max_iterations},
                       {"unconverged_steps", mechanics.unconverged_steps},
                       {"max_penetration_m", mechanics.max_penetration_m},
-                      {"stalled_steps", mechanics.stalled_steps}};
+                      {"stalled_steps", mechanics.stalled_steps},
+                      {"correction_sweeps", mechanics.correction_sweeps},
+                      {"max_step_travel_m", mechanics.max_step_travel_m}};
   nlohmann::json t = {{"integrator", thermal.integrator},
                       {"steps", thermal.steps},
                       {"rhs_evals", thermal.rhs_evals},
@@ -58,7 +60,8 @@ nlohmann::json RunSummary::to_json() const {
     nlohmann::json me = {{"energy_change_J", a.energy_change_J},
                          {"contact_dissipation_J", a.contact_dissipation_J},
                          {"numerical_dissipation_J", a.numerical_dissipation_J},
-                         {"balance_error_rel", a.balance_error_rel}};
+                         {"balance_error_rel", a.balance_error_rel},
+                         {"correction_potential_J", a.correction_potential_J}};
     if (a.heat) {
       me["heat_generated_J"] = a.heat_generated_J;
       me["heat_error_rel"] = a.heat_error_rel;
@@ -111,6 +114,8 @@ RunSummary RunSummary::from_json(const nlohmann::json& j) {
   s.mechanics.unconverged_steps = integer(m, "unconverged_steps", 0);
   s.mechanics.max_penetration_m = number(m, "max_penetration_m", 0.0);
   s.mechanics.stalled_steps = integer(m, "stalled_steps", 0);
+  s.mechanics.correction_sweeps = integer(m, "correction_sweeps", 0);
+  s.mechanics.max_step_travel_m = number(m, "max_step_travel_m", 0.0);
 
   if (j.contains("settle")) {
     const nlohmann::json& st = j.at("settle");
@@ -161,6 +166,7 @@ RunSummary RunSummary::from_json(const nlohmann::json& j) {
     a.contact_dissipation_J = number(me, "contact_dissipation_J", 0.0);
     a.numerical_dissipation_J = number(me, "numerical_dissipation_J", 0.0);
     a.balance_error_rel = number(me, "balance_error_rel", 0.0);
+    a.correction_potential_J = number(me, "correction_potential_J", 0.0);
     a.heat = me.contains("heat_generated_J");
     a.heat_generated_J = number(me, "heat_generated_J", 0.0);
     a.heat_error_rel = number(me, "heat_error_rel", 0.0);

@@ -20,6 +20,8 @@ struct MechanicsSummary {
   std::int64_t unconverged_steps = 0;
   double max_penetration_m = 0.0;
   std::int64_t stalled_steps = 0;    // extra: of the unconverged steps, stopped for no progress
+  std::int64_t correction_sweeps = 0;  // extra: penetration-correction sweeps over the run
+  double max_step_travel_m = 0.0;    // extra: largest particle displacement in one step, m
 };
 
 // The "settle" block (mechanics = "settle" only): how the packing was frozen.
@@ -44,7 +46,7 @@ struct ThermalSummary {
   std::string coupling;              // extra: thermal.coupling of a dynamic run; omitted when empty
 };
 
-// extra: energy.mechanical, dynamic runs only. The mechanics' energy account over the run
+// extra: energy.mechanical, runs with mechanics (settle: the settle phase). The mechanics' energy account over the run
 // (mechanics/NscdIntegrator.h): energy_change + contact_dissipation + numerical_dissipation = 0
 // exactly in arithmetic; balance_error_rel measures it. With a mode that turns the contacts'
 // dissipation into heat (effects.friction_heat), heat_generated_J is what the thermal side
@@ -55,6 +57,9 @@ struct MechanicalEnergySummary {
   double contact_dissipation_J = 0.0;    // sum over steps and contacts of -r . u_theta
   double numerical_dissipation_J = 0.0;  // theta scheme's damping, (theta - 1/2) |dv|_M^2
   double balance_error_rel = 0.0;        // |change + contact + numerical| / max(|change|, |contact| + |numerical|)
+  // Potential-energy change made by the penetration correction's position-only moves, J
+  // (> 0: particles lifted); outside the balance above, which covers the velocity steps.
+  double correction_potential_J = 0.0;
   bool heat = false;                     // heat_generated_J and heat_error_rel are meaningful
   double heat_generated_J = 0.0;
   double heat_error_rel = 0.0;           // |heat_generated - contact_dissipation| / |contact_dissipation|
@@ -68,7 +73,7 @@ struct EnergySummary {
   double final_J = 0.0;
   double boundary_heat_J = 0.0;
   double balance_error_rel = 0.0;
-  std::optional<MechanicalEnergySummary> mechanical;  // extra: dynamic runs only
+  std::optional<MechanicalEnergySummary> mechanical;  // extra: runs with mechanics
 };
 
 // The "wall_time_parts" block (extra): where the run's wall time went, s, measured around the

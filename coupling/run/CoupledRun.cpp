@@ -283,14 +283,17 @@ void CoupledRun::fill_summary() {
     summary_.mechanics.unconverged_steps = ms.unconverged_steps;
     summary_.mechanics.max_penetration_m = ms.max_penetration_m;
     summary_.mechanics.stalled_steps = ms.stalled_steps;
-    if (!frozen_) {
-      MechanicalEnergySummary m;
-      m.energy_change_J = ms.energy_change_J;
-      m.contact_dissipation_J = ms.contact_dissipation_J;
-      m.numerical_dissipation_J = ms.numerical_dissipation_J;
-      m.heat_generated_J = contact_heat_J_;
-      summary_.energy.mechanical = m.with_errors(contacts_dissipate_heat(scene_.effects));
-    }
+    summary_.mechanics.correction_sweeps = ms.correction_sweeps;
+    summary_.mechanics.max_step_travel_m = ms.max_travel_m;
+    // Settle runs too (their settle phase); heat is handed over by dynamic runs only.
+    MechanicalEnergySummary m;
+    m.energy_change_J = ms.energy_change_J;
+    m.contact_dissipation_J = ms.contact_dissipation_J;
+    m.numerical_dissipation_J = ms.numerical_dissipation_J;
+    m.correction_potential_J = ms.correction_potential_J;
+    m.heat_generated_J = contact_heat_J_;
+    summary_.energy.mechanical =
+        m.with_errors(!frozen_ && contacts_dissipate_heat(scene_.effects));
   }
   summary_.thermal.integrator = scene_.thermal.integrator;
   const bool explicit_update =

@@ -78,6 +78,9 @@ void store_mechanics_stats(const mechanics::MechanicsStats& s, CheckpointState& 
   cs.extra["mechanics_unconverged_steps"] = double(s.unconverged_steps);
   cs.extra["mechanics_stalled_steps"] = double(s.stalled_steps);
   cs.extra["mechanics_max_penetration_m"] = s.max_penetration_m;
+  cs.extra["mechanics_correction_sweeps"] = double(s.correction_sweeps);
+  cs.extra["mechanics_correction_potential_J"] = s.correction_potential_J;
+  cs.extra["mechanics_max_travel_m"] = s.max_travel_m;
   cs.extra["mechanics_energy_change_J"] = s.energy_change_J;
   cs.extra["mechanics_contact_dissipation_J"] = s.contact_dissipation_J;
   cs.extra["mechanics_numerical_dissipation_J"] = s.numerical_dissipation_J;
@@ -91,6 +94,9 @@ mechanics::MechanicsStats mechanics_stats_of(const CheckpointState& cs) {
   s.unconverged_steps = std::int64_t(extra_or_zero(cs, "mechanics_unconverged_steps"));
   s.stalled_steps = std::int64_t(extra_or_zero(cs, "mechanics_stalled_steps"));
   s.max_penetration_m = extra_or_zero(cs, "mechanics_max_penetration_m");
+  s.correction_sweeps = std::int64_t(extra_or_zero(cs, "mechanics_correction_sweeps"));
+  s.correction_potential_J = extra_or_zero(cs, "mechanics_correction_potential_J");
+  s.max_travel_m = extra_or_zero(cs, "mechanics_max_travel_m");
   s.energy_change_J = extra_or_zero(cs, "mechanics_energy_change_J");
   s.contact_dissipation_J = extra_or_zero(cs, "mechanics_contact_dissipation_J");
   s.numerical_dissipation_J = extra_or_zero(cs, "mechanics_numerical_dissipation_J");

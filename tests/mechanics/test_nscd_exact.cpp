@@ -307,6 +307,57 @@ TEST(NscdExact, PenetrationBeyondTheSlopIsRemovedWithoutSpeed) {
   EXPECT_LT(capped.max_speed(), 1e-15);
 }
 
+// The correction's cost and effect in the account (StepReport, summary mechanics and
+// energy.mechanical): a sphere 5 slops into the floor is lifted by exactly d - slop, so the
+// correction made m g (d - slop) of potential energy, outside the velocity step's account
+// (which stays at zero: the sphere never moves). Its travel is 0 (the lift is not motion); a
+// sphere falling from rest travels h theta g h in its first step.
+TEST(NscdExact, PenetrationCorrectionReportsItsPotentialEnergy) {
+  NscdParameters parameters;
+  const double slop = parameters.penetration_slop_fraction * kRadius;
+  const double h = parameters.time_step;
+  const double d = 5.0 * slop;
+  const double m = sphere_mass(kRadius, kDensity);
+  auto sim = single_sphere(Vector3d(0, kRadius - d, 0), {Wall::through({0, 0, 0}, {0, 1, 0}, 0)},
+                           0.3, parameters);
+  const StepReport first = sim.step();
+  ASSERT_GT(first.correction_sweeps, 0);
+  const double lift = sim.particles().position[0].y() - (kRadius - d);
+  EXPECT_NEAR(lift, d - slop, 1e-15);
+  EXPECT_NEAR(first.correction_potential_J, m * kG * (d - slop), 1e-12 * m * kG * d);
+  EXPECT_NEAR(first.correction_potential_J, m * kG * lift, 1e-12 * m * kG * d);
+  EXPECT_EQ(first.energy_change_J, 0.0);
+  EXPECT_EQ(first.max_travel_m, 0.0);
+  for (int step = 0; step < 10; ++step) EXPECT_EQ(sim.step().correction_sweeps, 0);
+  EXPECT_EQ(sim.stats().correction_sweeps, first.correction_sweeps);
+  EXPECT_EQ(sim.stats().correction_potential_J, first.correction_potential_J);
+
+  auto falling = single_sphere(Vector3d(0, 10 * kRadius, 0), {Wall::through({0, 0, 0}, {0, 1, 0}, 0)},
+                               0.3, parameters);
+  const StepReport fall = falling.step();
+  EXPECT_NEAR(fall.max_travel_m, h * parameters.theta * kG * h, 1e-15 * kG * h * h);
+  EXPECT_EQ(fall.correction_potential_J, 0.0);
+  EXPECT_EQ(falling.stats().max_travel_m, fall.max_travel_m);
+}
+
+// Two spheres side by side overlapping under gravity are pushed apart horizontally: the
+// correction moves them but makes no potential energy (g . dx = 0 for both), to round-off.
+TEST(NscdExact, SidewaysCorrectionMakesNoPotentialEnergy) {
+  NscdParameters parameters;
+  const double slop = parameters.penetration_slop_fraction * kRadius;
+  const double d = 20.0 * slop;
+  ParticleSet set;
+  set.add(Vector3d(0, kRadius, 0), kRadius, sphere_mass(kRadius, kDensity), 0);
+  set.add(Vector3d(2 * kRadius - d, kRadius, 0), kRadius, sphere_mass(kRadius, kDensity), 0);
+  NscdIntegrator sim(std::move(set), {steel(0.0)}, {Wall::through({0, 0, 0}, {0, 1, 0}, 0)},
+                     Vector3d(0, -kG, 0), 3, parameters);
+  const StepReport report = sim.step();
+  ASSERT_GT(report.correction_sweeps, 0);
+  EXPECT_NEAR((sim.particles().position[1] - sim.particles().position[0]).norm(),
+              2 * kRadius - slop, 1e-15);
+  EXPECT_EQ(report.correction_potential_J, 0.0);
+}
+
 // Two free spheres of different masses overlapping by d (no gravity, no walls): the position
 // step moves them apart along the normal in the ratio of their inverse masses, so that the
 // overlap is the slop and the centre of mass stays where it was; both stay at rest.

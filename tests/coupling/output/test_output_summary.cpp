@@ -60,9 +60,12 @@ TEST(RunSummary, JsonHasEveryContractKey) {
   EXPECT_FALSE(j["thermal"].contains("linear_solver"));
   EXPECT_FALSE(j.contains("settle"));  // only for settle runs
   EXPECT_EQ(j.size(), 7u);
-  // The contract's 5 mechanics keys plus the extra stalled_steps.
-  EXPECT_EQ(j["mechanics"].size(), 6u);
+  // The contract's 5 mechanics keys plus the extras stalled_steps, correction_sweeps and
+  // max_step_travel_m.
+  EXPECT_EQ(j["mechanics"].size(), 8u);
   EXPECT_TRUE(j["mechanics"]["stalled_steps"].is_number_integer());
+  EXPECT_TRUE(j["mechanics"]["correction_sweeps"].is_number_integer());
+  EXPECT_TRUE(j["mechanics"]["max_step_travel_m"].is_number());
   // The contract's 8 thermal keys plus the extra wall_time_s (time in the thermal side alone).
   EXPECT_EQ(j["thermal"].size(), 9u);
   EXPECT_TRUE(j["thermal"]["wall_time_s"].is_number());
@@ -108,6 +111,30 @@ TEST(RunSummary, SettleBlockAndStalledStepsRoundTrip) {
   ASSERT_TRUE(r.settle.has_value());
   EXPECT_EQ(r.settle->steps, 5000);
   EXPECT_EQ(r.mechanics.stalled_steps, 3);
+  EXPECT_EQ(r.to_json(), s.to_json());
+}
+
+// The penetration correction's cost (mechanics.correction_sweeps), its potential energy
+// (energy.mechanical.correction_potential_J) and the largest travel per step survive the file.
+TEST(RunSummary, CorrectionAndTravelRoundTrip) {
+  RunSummary s = sample();
+  s.mechanics.correction_sweeps = 50655;
+  s.mechanics.max_step_travel_m = 7.0e-4;
+  tmdem::coupling::MechanicalEnergySummary m;
+  m.energy_change_J = -2.0;
+  m.contact_dissipation_J = 2.0;
+  m.correction_potential_J = 3.25e-8;
+  s.energy.mechanical = m.with_errors(false);
+  const nlohmann::json j = nlohmann::json::parse(s.to_json().dump());
+  EXPECT_EQ(j["mechanics"]["correction_sweeps"].get<std::int64_t>(), 50655);
+  EXPECT_EQ(j["mechanics"]["max_step_travel_m"].get<double>(), 7.0e-4);
+  EXPECT_EQ(j["energy"]["mechanical"]["correction_potential_J"].get<double>(), 3.25e-8);
+  // Outside the velocity steps' balance: that one still closes.
+  EXPECT_EQ(j["energy"]["mechanical"]["balance_error_rel"].get<double>(), 0.0);
+  const RunSummary r = RunSummary::from_json(j);
+  EXPECT_EQ(r.mechanics.correction_sweeps, 50655);
+  ASSERT_TRUE(r.energy.mechanical.has_value());
+  EXPECT_EQ(r.energy.mechanical->correction_potential_J, 3.25e-8);
   EXPECT_EQ(r.to_json(), s.to_json());
 }
 

@@ -16,7 +16,8 @@ machine to machine; every other value (steps, errors, counts) is reproducible fo
   scripts/readme_tables.py --list           # every table of README.md and how it is kept true
 
 Tables: checkpoints (thermal steps added by checkpoint boundaries), coupling (`tmdem study
-coupling examples/poured_bed.toml`). Both run in about half a minute on one core.
+coupling examples/poured_bed.toml`), settle (how the default scene settles: `tmdem run`).
+Together they run in about a minute on one core.
 Needs python3 (standard library only). The ctest test readme_tables (label readme) runs --check.
 
 The other measured tables are marked `<!-- readme_tables: hand-measured (why); command ... -->`
@@ -96,7 +97,25 @@ def coupling_table(binary, work):
     return rows
 
 
-TABLES = {"checkpoints": checkpoints_table, "coupling": coupling_table}
+def settle_table(binary, work):
+    """The default scene's settle phase (its heating is skipped: duration 0.01 s)."""
+    summary = pathlib.Path(work) / "settle.json"
+    tmdem(binary, ["run", "--set", "simulation.duration=0.01", "-o", "settle.h5", "--overwrite",
+                   "--quiet", "--summary", str(summary)], work)
+    s = json.loads(summary.read_text())
+    m, settle = s["mechanics"], s["settle"]
+    r_min = 5e-4  # the default scene's smallest radius, m (examples/paper_bed.toml)
+    e = lambda x: re.sub(r"e-0(\d)", r"e-\1", f"{x:.2e}")
+    return ["| settle steps | at rest | unconverged (stalled) | mean sweeps | max sweeps | "
+            "largest penetration (m) | correction sweeps | largest travel per step / r_min | "
+            "wall time (s) " + TIMING + " |", "|---|---|---|---|---|---|---|---|---|",
+            f"| {settle['steps']:,} | {'yes' if settle['at_rest'] else 'no'} | "
+            f"{m['unconverged_steps']} ({m['stalled_steps']}) | {m['mean_iterations']:.0f} | "
+            f"{m['max_iterations']} | {e(m['max_penetration_m'])} | {m['correction_sweeps']:,} | "
+            f"{m['max_step_travel_m'] / r_min:.2f} | {s['wall_time_s']:.1f} |"]
+
+
+TABLES = {"checkpoints": checkpoints_table, "coupling": coupling_table, "settle": settle_table}
 
 
 def timing_columns(header):

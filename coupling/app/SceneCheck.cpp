@@ -64,14 +64,21 @@ void check_scene(const Scene& scene, std::ostream& out) {
   const StepTravel travel = estimate_step_travel(scene);
   if (travel.speed_m_per_s > 0.0) {
     out << "mechanics: largest speed estimated " << travel.speed_m_per_s
-        << " m/s (gravity; coupling/app/StepTravel.h), " << travel.travel_m << " m per step = "
-        << travel.travel_m / travel.smallest_radius_m << " of the smallest radius\n";
-    if (travel.too_far())
-      out << "warning: a particle can move more than " << kStepTravelFraction
+        << " m/s (gravity and pistons; coupling/app/StepTravel.h), " << travel.travel_m
+        << " m per step = " << travel.travel_m / travel.smallest_radius_m
+        << " of the smallest radius (limit " << travel.fraction << ")\n";
+    if (travel.too_far()) {
+      const bool dynamic = scene.effects.mechanics == MechanicsMode::Dynamic;
+      out << "warning: a particle can move more than " << travel.fraction
           << " of the smallest radius per step (" << travel.travel_m << " m against "
           << travel.smallest_radius_m << " m): contact normals and gaps are frozen over a step, "
-          << "so impacts and overlaps get coarse; lower mechanics.time_step below "
-          << kStepTravelFraction * travel.smallest_radius_m / travel.speed_m_per_s << " s\n";
+          << "so a contact can carry force while its particles are still up to "
+          << travel.travel_m * travel.travel_m / (4.0 * travel.smallest_radius_m) << " m apart"
+          << (dynamic ? ", and conduct heat there"
+                      : ", and a particle can be stopped by a neighbour it would not reach")
+          << "; lower mechanics.time_step below " << travel.limit_m() / travel.speed_m_per_s
+          << " s\n";
+    }
   }
   out << "thermal: integrator " << scene.thermal.integrator << ", linear solver "
       << scene.thermal.linear_solver << ", conductance " << scene.thermal.conductance << "\n";

@@ -1,29 +1,49 @@
 #pragma once
 // `tmdem check`: how far a particle can move in one mechanics step, v h, against the smallest
-// radius. Contacts are still found (the candidate margin grows with the look-ahead v h, so
-// nothing tunnels; tested at 1.5 radii per step), but a step's contact normals and gaps are
-// those of its start. Two spheres passing each other by d sideways within a step keep a true
-// gap larger than the linearised one by up to d^2 / (2 (R_i + R_j)), so a contact can act that
-// much too early: with d = r_min / 2, r_min / 16 at most. Beyond, oblique impacts get coarse and
-// the look-ahead makes candidate tables large.
+// radius r_min, and whether that matters.
 //
-// The speed is estimated from gravity alone (scenes have no initial velocities):
-//   v = |g| t, t = mechanics.settle_time ("settle") or simulation.duration ("dynamic"),
-// capped by free fall onto the floor, v = sqrt(2 |g| H), when the scene has one (a plane wall
-// facing against gravity, n . g < 0): H is the largest height of a particle centre above the
-// nearest floor below it, measured along gravity. A warning when v h > kStepTravelFraction of
-// the smallest radius.
+// What does not depend on it: tunnelling. The candidate margin is never below twice the
+// largest look-ahead 2 h (|v| + h |g|) (mechanics/ContactDetector.h), so every pair that can
+// meet within a step is listed, at any speed, and the linearised gap of a step (normal frozen
+// at its start) is a lower bound of the true gap of two spheres or a sphere and a plane, so a
+// step can stop a particle early, never let it through (tested at 1.5 radii per step).
+//
+// What does: stopping early. A pair whose relative displacement in a step has a sideways part
+// d is held at a true gap of up to d^2 / (2 (R_i + R_j)) <= (v h)^2 / (4 r_min) (a "ghost gap")
+// while its contact carries force. How much that matters depends on what is handed over:
+//  - "dynamic": every step's contacts go to the thermal side (H = 2 k a, a from the force), so
+//    a contact held at a ghost gap conducts as if touching. Warn when the ghost gap can exceed
+//    r_min / 16: v h > kDynamicTravelFraction r_min = r_min / 2.
+//  - "settle": only the packing at rest is handed over; there speeds are below
+//    settle_velocity and ghost gaps vanish, so the travel of the fall changes the path the
+//    particles took, as the seed does. Measured on the default scene (README "Travel per
+//    step"): 1.40 r_min per step gives the same bed height and hot-particle temperatures as
+//    0.36 r_min, within the seed-to-seed scatter. Warn beyond one smallest diameter per step,
+//    v h > kSettleTravelFraction r_min = 2 r_min: the ghost gap can then exceed r_min, so a
+//    particle can be stopped by a neighbour it would not have reached within the step.
+//
+// The speed is estimated from gravity and pistons (scenes have no initial velocities), an
+// upper bound of the largest speed of the run:
+//   particles: v = |g| t, t = mechanics.settle_time ("settle") or simulation.duration
+//   ("dynamic"), capped by free fall onto the floor, v = sqrt(2 |g| H), when the scene has one
+//   (a plane wall facing against gravity, n . g < 0): H is the largest height of a particle's
+//   surface above the nearest floor below it, measured along gravity;
+//   pistons (and the particles they push): v = a t with a = force / mass + g . n, capped by
+//   sqrt(2 a D), D the distance along n to the nearest plane wall it moves towards.
 #include "coupling/scene/Scene.h"
 
 namespace tmdem::coupling {
 
-inline constexpr double kStepTravelFraction = 0.5;
+inline constexpr double kDynamicTravelFraction = 0.5;  // of r_min per step, "dynamic" runs
+inline constexpr double kSettleTravelFraction = 2.0;   // of r_min per step, "settle" runs
 
 struct StepTravel {
   double speed_m_per_s = 0.0;      // estimated largest speed
   double travel_m = 0.0;           // speed x mechanics.time_step
   double smallest_radius_m = 0.0;  // of a moving particle
-  bool too_far() const { return travel_m > kStepTravelFraction * smallest_radius_m; }
+  double fraction = kSettleTravelFraction;  // of smallest_radius_m: the limit of this mode
+  double limit_m() const { return fraction * smallest_radius_m; }
+  bool too_far() const { return travel_m > limit_m(); }
 };
 
 // Zero travel when mechanics is off or nothing moves.

@@ -23,19 +23,7 @@ namespace {
 // eps g h (1e-6 x 9.81e-3 = 1e-8 m/s at the default), which would be the whole allowance of
 // the rest test below; at 1e-8 the pile's largest speed stays about 1e-9 m/s.
 NscdIntegrator settled_pile() {
-  constexpr double width = 0.008, height = 0.03;
-  const auto placed = place_random(40, Vector3d(0, 0, 0), Vector3d(width, height, 0),
-                                   {kRadius, 0.7 * kRadius}, {0.5, 0.5}, 1, 2);
-  ParticleSet set;
-  for (std::size_t i = 0; i < placed.positions.size(); ++i)
-    set.add(placed.positions[i], placed.radii[i], sphere_mass(placed.radii[i], kDensity), 0);
-  auto walls = box_walls(width, width, 2);
-  for (std::size_t w = 1; w < walls.size(); ++w) walls[w].material = 1;
-  NscdParameters parameters;
-  parameters.tolerance = 1e-8;
-  NscdIntegrator sim(std::move(set), {steel(0.5), steel(0.0)}, walls, Vector3d(0, -kG, 0), 2,
-                     parameters);
-  for (int step = 0; step < 5000 && !(step > 10 && sim.max_speed() < 1e-9); ++step) sim.step();
+  NscdIntegrator sim = settled_disk_pile();
   EXPECT_LT(sim.max_speed(), 1e-9) << "the pile did not settle within 5 s";
   return sim;
 }

@@ -15,6 +15,13 @@ SolveReport ColouredGaussSeidelSolver::solve(const ContactProblem& problem,
                                              std::vector<Eigen::Vector3d>& r,
                                              std::vector<Eigen::Vector3d>& velocity,
                                              std::vector<Eigen::Vector3d>& angular_velocity) {
+  return solve_with_rolling(problem, r, no_rolling_, velocity, angular_velocity);
+}
+
+SolveReport ColouredGaussSeidelSolver::solve_with_rolling(
+    const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
+    std::vector<Eigen::Vector3d>& m, std::vector<Eigen::Vector3d>& velocity,
+    std::vector<Eigen::Vector3d>& angular_velocity) {
   colouring_.update(problem);
   const auto count = static_cast<std::ptrdiff_t>(problem.size());
   const auto colours = static_cast<std::ptrdiff_t>(colouring_.colour_count());
@@ -30,8 +37,10 @@ SolveReport ColouredGaussSeidelSolver::solve(const ContactProblem& problem,
   ordered_.free_velocity.assign(problem.free_velocity.begin(), problem.free_velocity.end());
   ordered_.free_angular_velocity.assign(problem.free_angular_velocity.begin(),
                                         problem.free_angular_velocity.end());
+  ordered_.rolling = problem.rolling;
   ordered_.resize_contacts(static_cast<std::size_t>(count));
   ordered_r_.resize(static_cast<std::size_t>(count));
+  if (problem.rolling) ordered_m_.resize(static_cast<std::size_t>(count));
 #pragma omp parallel for schedule(static) if (parallel)
   for (std::ptrdiff_t p = 0; p < count; ++p) {
     const auto c = static_cast<std::size_t>(order[p]);
@@ -47,8 +56,15 @@ SolveReport ColouredGaussSeidelSolver::solve(const ContactProblem& problem,
     ordered_.bias[p] = problem.bias[c];
     ordered_.mu[p] = problem.mu[c];
     ordered_r_[p] = r[c];
+    if (problem.rolling) {
+      ordered_.rolling_limit[p] = problem.rolling_limit[c];
+      ordered_.rolling_radius[p] = problem.rolling_radius[c];
+      ordered_.w_r[p] = problem.w_r[c];
+      ordered_m_[p] = m[c];
+    }
   }
   ordered_.velocities_from_reactions(ordered_r_, velocity, angular_velocity);
+  if (problem.rolling) ordered_.add_rolling_impulses(ordered_m_, angular_velocity);
   change_.assign(static_cast<std::size_t>(count), 0.0);
   total_.assign(static_cast<std::size_t>(count), 0.0);
   block_sums_.resize(static_cast<std::size_t>(2 * blocks));
@@ -66,8 +82,8 @@ SolveReport ColouredGaussSeidelSolver::solve(const ContactProblem& problem,
         for (std::ptrdiff_t p = start[k]; p < start[k + 1]; ++p) {
           const auto c = static_cast<std::size_t>(p);
           if (!ordered_.solvable(c)) continue;
-          const ContactUpdate u = gauss_seidel_update(ordered_, c, relaxation, ordered_r_[c],
-                                                      velocity, angular_velocity);
+          const ContactUpdate u = gauss_seidel_visit(ordered_, c, relaxation, ordered_r_[c],
+                                                     ordered_m_, velocity, angular_velocity);
           change_[c] = u.change;
           total_[c] = u.total;
         }
@@ -87,7 +103,10 @@ SolveReport ColouredGaussSeidelSolver::solve(const ContactProblem& problem,
     if (stop.after_sweep(change, total, report)) break;
   }
 #pragma omp parallel for schedule(static) if (parallel)
-  for (std::ptrdiff_t p = 0; p < count; ++p) r[static_cast<std::size_t>(order[p])] = ordered_r_[p];
+  for (std::ptrdiff_t p = 0; p < count; ++p) {
+    r[static_cast<std::size_t>(order[p])] = ordered_r_[p];
+    if (problem.rolling) m[static_cast<std::size_t>(order[p])] = ordered_m_[p];
+  }
   return report;
 }
 

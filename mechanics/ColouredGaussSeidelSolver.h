@@ -35,14 +35,21 @@ class ColouredGaussSeidelSolver final : public ContactSolver {
   SolveReport solve(const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
                     std::vector<Eigen::Vector3d>& velocity,
                     std::vector<Eigen::Vector3d>& angular_velocity) override;
+  bool supports_rolling_friction() const override { return true; }
+  SolveReport solve_with_rolling(const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
+                                 std::vector<Eigen::Vector3d>& m,
+                                 std::vector<Eigen::Vector3d>& velocity,
+                                 std::vector<Eigen::Vector3d>& angular_velocity) override;
   const ContactColouring& colouring() const { return colouring_; }
 
  private:
   SolverSettings settings_;
+  std::vector<Eigen::Vector3d> no_rolling_;  // m of a problem without rolling (never read)
   std::ptrdiff_t parallel_from_;
   ContactColouring colouring_;
   ContactProblem ordered_;                 // the problem with its contacts in colour order
   std::vector<Eigen::Vector3d> ordered_r_; // reactions in colour order
+  std::vector<Eigen::Vector3d> ordered_m_; // rolling impulses in colour order
   std::vector<double> change_, total_;     // per contact, this sweep
   std::vector<double> block_sums_;         // per block of contacts: change, total
 };

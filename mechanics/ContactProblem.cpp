@@ -14,6 +14,18 @@ void ContactProblem::resize_contacts(std::size_t count) {
   w_t.resize(count);
   bias.resize(count);
   mu.resize(count);
+  if (rolling) {
+    rolling_limit.resize(count);
+    rolling_radius.resize(count);
+    w_r.resize(count);
+  }
+}
+
+void ContactProblem::add_rolling_impulses(const std::vector<Eigen::Vector3d>& m,
+                                          std::vector<Eigen::Vector3d>& angular_velocity) const {
+  for (std::size_t c = 0; c < size(); ++c) {
+    if (m[c][0] != 0.0 || m[c][1] != 0.0 || m[c][2] != 0.0) apply_rolling_impulse(c, m[c], angular_velocity);
+  }
 }
 
 void ContactProblem::velocities_from_reactions(const std::vector<Eigen::Vector3d>& r,

@@ -43,6 +43,21 @@ struct ContactProblem {
   std::vector<double> bias;             // m/s, position term added to the normal velocity
   std::vector<double> mu;               // friction coefficient
 
+  // Rolling resistance (Material::rolling_friction; off when `rolling` is false, and then the
+  // three arrays below are not sized). Each contact also carries a rolling angular impulse m_c
+  // (N m s, global, perpendicular to n), acting as +m_c on i and -m_c on j, against the
+  // relative spin omega_i - omega_j (its part perpendicular to n: rolling; the spin about n,
+  // "twisting", is left free). Law (Coulomb-like rolling cone, "model A / constant directional
+  // torque" of Ai et al. 2011, the NSC rolling friction of Chrono):
+  //   |m_c| <= mu_r R_eff r_n,   and  omega_rel,t = 0 (rolling stick) if |m_c| < mu_r R_eff r_n,
+  //   otherwise m_c = -mu_r R_eff r_n omega_rel,t / |omega_rel,t| (rolling at the limit).
+  // R_eff = R_i R_j / (R_i + R_j) (a wall: R_i). The rolling block of W is w_r I with
+  // w_r = 1/I_i + 1/I_j (walls do not rotate).
+  bool rolling = false;
+  std::vector<double> rolling_limit;    // m, mu_r R_eff: |m_c| <= rolling_limit r_n
+  std::vector<double> rolling_radius;   // m, R_eff (scales m_c to an impulse in stop tests)
+  std::vector<double> w_r;              // 1/(kg m^2)
+
   std::size_t size() const { return body_i.size(); }
   std::size_t body_count() const { return inverse_mass.size(); }
   // The body of the wall named by j (is_wall(j)).
@@ -74,6 +89,23 @@ struct ContactProblem {
   void velocities_from_reactions(const std::vector<Eigen::Vector3d>& r,
                                  std::vector<Eigen::Vector3d>& velocity,
                                  std::vector<Eigen::Vector3d>& angular_velocity) const;
+
+  // Rolling (only when `rolling`): the relative spin omega_i - omega_j of contact c without
+  // its component along n, rad/s; and angular_velocity += W m for a rolling impulse m.
+  Eigen::Vector3d rolling_velocity(std::size_t c,
+                                   const std::vector<Eigen::Vector3d>& angular_velocity) const {
+    Eigen::Vector3d w = angular_velocity[body_i[c]];
+    if (!is_wall(body_j[c])) w -= angular_velocity[body_j[c]];
+    return w - w.dot(normal[c]) * normal[c];
+  }
+  void apply_rolling_impulse(std::size_t c, const Eigen::Vector3d& m,
+                             std::vector<Eigen::Vector3d>& angular_velocity) const {
+    angular_velocity[body_i[c]] += inverse_inertia[body_i[c]] * m;
+    if (!is_wall(body_j[c])) angular_velocity[body_j[c]] -= inverse_inertia[body_j[c]] * m;
+  }
+  // angular_velocity += sum_c W m_c over all contacts (after velocities_from_reactions).
+  void add_rolling_impulses(const std::vector<Eigen::Vector3d>& m,
+                            std::vector<Eigen::Vector3d>& angular_velocity) const;
 
   // Global impulse of a local one, N s.
   Eigen::Vector3d to_global(std::size_t c, const Eigen::Vector3d& r_local) const {

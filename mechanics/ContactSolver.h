@@ -43,6 +43,17 @@ class ContactSolver {
                             std::vector<Eigen::Vector3d>& velocity,
                             std::vector<Eigen::Vector3d>& angular_velocity) = 0;
 
+  // The same with rolling resistance (ContactProblem::rolling): m holds one rolling angular
+  // impulse per contact (N m s, global; ContactProblem.h), the warm start on entry (within its
+  // rolling cone), the rolling reactions on return. A solver without rolling resistance
+  // refuses a problem that has it (supports_rolling_friction).
+  virtual bool supports_rolling_friction() const { return false; }
+  virtual SolveReport solve_with_rolling(const ContactProblem& problem,
+                                         std::vector<Eigen::Vector3d>& r,
+                                         std::vector<Eigen::Vector3d>& m,
+                                         std::vector<Eigen::Vector3d>& velocity,
+                                         std::vector<Eigen::Vector3d>& angular_velocity);
+
   // What the solver carries from one solve to the next (e.g. a step-size estimate), as plain
   // numbers, and putting it back (restart from a checkpoint: MechanicsState.h). Empty for a
   // solver that starts every solve from the warm-start reactions alone.

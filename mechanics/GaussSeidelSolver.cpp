@@ -10,7 +10,16 @@ SolveReport GaussSeidelSolver::solve(const ContactProblem& problem,
                                      std::vector<Eigen::Vector3d>& r,
                                      std::vector<Eigen::Vector3d>& velocity,
                                      std::vector<Eigen::Vector3d>& angular_velocity) {
+  return solve_with_rolling(problem, r, no_rolling_, velocity, angular_velocity);
+}
+
+SolveReport GaussSeidelSolver::solve_with_rolling(const ContactProblem& problem,
+                                                  std::vector<Eigen::Vector3d>& r,
+                                                  std::vector<Eigen::Vector3d>& m,
+                                                  std::vector<Eigen::Vector3d>& velocity,
+                                                  std::vector<Eigen::Vector3d>& angular_velocity) {
   problem.velocities_from_reactions(r, velocity, angular_velocity);
+  if (problem.rolling) problem.add_rolling_impulses(m, angular_velocity);
   const std::size_t count = problem.size();
   SolveReport report;
   GaussSeidelStopTest stop(settings_.tolerance, settings_.stall_sweeps);
@@ -25,7 +34,7 @@ SolveReport GaussSeidelSolver::solve(const ContactProblem& problem,
       const std::size_t c = forward ? visit : count - 1 - visit;
       if (!problem.solvable(c)) continue;
       const ContactUpdate u =
-          gauss_seidel_update(problem, c, settings_.relaxation, r[c], velocity, angular_velocity);
+          gauss_seidel_visit(problem, c, settings_.relaxation, r[c], m, velocity, angular_velocity);
       change += u.change;
       total += u.total;
     }

@@ -14,9 +14,15 @@ class GaussSeidelSolver final : public ContactSolver {
   SolveReport solve(const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
                     std::vector<Eigen::Vector3d>& velocity,
                     std::vector<Eigen::Vector3d>& angular_velocity) override;
+  bool supports_rolling_friction() const override { return true; }
+  SolveReport solve_with_rolling(const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
+                                 std::vector<Eigen::Vector3d>& m,
+                                 std::vector<Eigen::Vector3d>& velocity,
+                                 std::vector<Eigen::Vector3d>& angular_velocity) override;
 
  private:
   SolverSettings settings_;
+  std::vector<Eigen::Vector3d> no_rolling_;  // m of a problem without rolling (never read)
 };
 
 }  // namespace tmdem::mechanics

@@ -6,6 +6,7 @@
 // body can be visited at the same time.
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <limits>
 #include <vector>
 
@@ -41,6 +42,48 @@ inline ContactUpdate gauss_seidel_update(const ContactProblem& problem, std::siz
     rc = next;
   }
   return {dr.norm(), next.norm()};
+}
+
+// The rolling block of contact c (ContactProblem::rolling), visited right after its
+// (n, t) block with r_n frozen: the exact local solve of the rolling cone, with the other
+// reactions frozen, m = proj_{|m| <= mu_r R_eff r_n}(m - omega_rel,t / w_r) (the block is
+// w_r I on the plane perpendicular to n). Change and total are divided by R_eff, so that they
+// add to the impulses' (N s) in the stop test.
+inline ContactUpdate gauss_seidel_rolling_update(const ContactProblem& problem, std::size_t c,
+                                                 double normal_impulse, Eigen::Vector3d& mc,
+                                                 std::vector<Eigen::Vector3d>& angular_velocity) {
+  const double w_r = problem.w_r[c];
+  if (w_r <= 0.0) return {};
+  const Eigen::Vector3d spin = problem.rolling_velocity(c, angular_velocity);
+  Eigen::Vector3d next = mc - spin / w_r;
+  next -= next.dot(problem.normal[c]) * problem.normal[c];  // m_c stays perpendicular to n
+  const double limit = problem.rolling_limit[c] * std::max(normal_impulse, 0.0);
+  const double size = next.norm();
+  if (size > limit) next *= size > 0.0 ? limit / size : 0.0;
+  if (problem.dimension == 2) next.x() = next.y() = 0.0;
+  const Eigen::Vector3d dm = next - mc;
+  if (dm[0] != 0.0 || dm[1] != 0.0 || dm[2] != 0.0) {
+    problem.apply_rolling_impulse(c, dm, angular_velocity);
+    mc = next;
+  }
+  const double scale = 1.0 / problem.rolling_radius[c];
+  return {dm.norm() * scale, next.norm() * scale};
+}
+
+// One visit of contact c in either Gauss-Seidel solver: its (n, t) block, then its rolling
+// block when the problem has rolling resistance (m: the rolling impulses, unused otherwise).
+inline ContactUpdate gauss_seidel_visit(const ContactProblem& problem, std::size_t c,
+                                        double relaxation, Eigen::Vector3d& rc,
+                                        std::vector<Eigen::Vector3d>& m,
+                                        std::vector<Eigen::Vector3d>& velocity,
+                                        std::vector<Eigen::Vector3d>& angular_velocity) {
+  ContactUpdate u = gauss_seidel_update(problem, c, relaxation, rc, velocity, angular_velocity);
+  if (problem.rolling) {
+    const ContactUpdate roll = gauss_seidel_rolling_update(problem, c, rc[0], m[c], angular_velocity);
+    u.change += roll.change;
+    u.total += roll.total;
+  }
+  return u;
 }
 
 // Stop test and stall watch of both Gauss-Seidel solvers, fed once per sweep with the

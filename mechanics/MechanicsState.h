@@ -29,6 +29,9 @@ struct MechanicsState {
   std::vector<Eigen::Vector3d> reference_position_m;  // per particle, at the last rebuild
   std::vector<CandidatePair> candidates;               // sorted as ContactDetector::pairs()
   std::vector<Eigen::Vector3d> candidate_force_N;      // per candidate, global frame, on i
+  // Per candidate, global, on i: the rolling resistance torque (warm start); empty when no
+  // material has rolling_friction (and in states saved before it existed: zeros).
+  std::vector<Eigen::Vector3d> candidate_rolling_torque_Nm;
   std::vector<double> solver_state;                    // ContactSolver::carried_state()
 
   // Walls, one entry each (pistons move; fixed walls keep the scene's values). Empty: the

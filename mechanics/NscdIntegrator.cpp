@@ -66,6 +66,9 @@ NscdIntegrator::NscdIntegrator(ParticleSet particles, std::vector<Material> mate
   for (std::size_t m = 0; m < materials_.size(); ++m) {
     require(materials_[m].friction >= 0.0 && std::isfinite(materials_[m].friction),
             "material " + std::to_string(m) + ": friction must be >= 0");
+    require(materials_[m].rolling_friction >= 0.0 && std::isfinite(materials_[m].rolling_friction),
+            "material " + std::to_string(m) + ": rolling_friction must be >= 0");
+    rolling_ = rolling_ || materials_[m].rolling_friction > 0.0;
   }
   const auto material_count = static_cast<int>(materials_.size());
   for (std::size_t i = 0; i < particles_.size(); ++i) {
@@ -119,6 +122,11 @@ NscdIntegrator::NscdIntegrator(ParticleSet particles, std::vector<Material> mate
   settings.relaxation = parameters_.relaxation;
   settings.stall_sweeps = parameters_.stall_sweeps;
   solver_ = make_contact_solver(parameters_.solver, settings);
+  require(!rolling_ || solver_->supports_rolling_friction(),
+          "solver \"" + parameters_.solver +
+              "\" does not support rolling friction (use \"nlgs\" or \"nlgs_coloured\", or "
+              "set every material's rolling_friction to 0)");
+  problem_.rolling = rolling_;
   correction_ = PenetrationCorrection(settings);
   problem_.dimension = dimension_;
   problem_.particle_count = n;
@@ -188,6 +196,13 @@ void NscdIntegrator::refresh_candidates(double h) {
   for (std::size_t k = 0; k < force_.size(); ++k) {
     force_[k] = previous[k] >= 0 ? old_force_[previous[k]] : Eigen::Vector3d::Zero();
   }
+  if (!rolling_) return;
+  std::swap(torque_, old_torque_);
+  torque_.resize(force_.size());
+  for (std::size_t k = 0; k < torque_.size(); ++k) {
+    const bool kept = previous[k] >= 0 && std::size_t(previous[k]) < old_torque_.size();
+    torque_[k] = kept ? old_torque_[previous[k]] : Eigen::Vector3d::Zero();
+  }
 }
 
 void NscdIntegrator::setup_contacts(double h) {
@@ -196,6 +211,10 @@ void NscdIntegrator::setup_contacts(double h) {
   ContactProblem& p = problem_;
   p.resize_contacts(pairs.size());
   reactions_.resize(pairs.size());
+  if (rolling_) {
+    rolling_impulse_.resize(pairs.size());
+    torque_.resize(pairs.size(), Eigen::Vector3d::Zero());  // a table restored without torques
+  }
   gap_.resize(pairs.size());
   // Every candidate writes only its own entries: the same bits for any thread count.
 #pragma omp parallel for schedule(static) \
@@ -260,6 +279,21 @@ void NscdIntegrator::setup_contacts(double h) {
     const Eigen::Vector3d r(impulse.dot(n), impulse.dot(p.tangent1[k]),
                             dimension_ == 2 ? 0.0 : impulse.dot(p.tangent2[k]));
     reactions_[k] = p.solvable(k) ? project_onto_coulomb_cone(r, mu) : Eigen::Vector3d::Zero();
+    if (rolling_) {
+      // R_eff = R_i R_j / (R_i + R_j), a wall R_i; w_r = 1/I_i + 1/I_j (walls do not turn).
+      const double radius = lever_j > 0.0 ? lever_i * lever_j / (lever_i + lever_j) : lever_i;
+      p.rolling_radius[k] = radius;
+      p.rolling_limit[k] = radius * contact_rolling_friction(materials_[particles_.material[i]],
+                                                             materials_[other_material]);
+      p.w_r[k] = inverse_inertia_[i] + (is_wall(j) ? 0.0 : inverse_inertia_[j]);
+      // Warm start: last step's torque, perpendicular to the new n, within the rolling cone.
+      Eigen::Vector3d m = torque_[k] * h;
+      m -= m.dot(n) * n;
+      if (dimension_ == 2) m.x() = m.y() = 0.0;
+      const double limit = p.rolling_limit[k] * reactions_[k][0];
+      if (m.norm() > limit) m *= m.norm() > 0.0 ? limit / m.norm() : 0.0;
+      rolling_impulse_[k] = p.solvable(k) && p.w_r[k] > 0.0 ? m : Eigen::Vector3d::Zero();
+    }
   }
 }
 
@@ -294,7 +328,9 @@ StepReport NscdIntegrator::step(double h) {
   report.detection_s += lap();
   report.candidates = problem_.size();
   const SolveReport solved =
-      solver_->solve(problem_, reactions_, body_velocity_, body_angular_velocity_);
+      rolling_ ? solver_->solve_with_rolling(problem_, reactions_, rolling_impulse_,
+                                             body_velocity_, body_angular_velocity_)
+               : solver_->solve(problem_, reactions_, body_velocity_, body_angular_velocity_);
   report.solve_s = lap();
   std::copy_n(body_velocity_.begin(), n, particles_.velocity.begin());
   std::copy_n(body_angular_velocity_.begin(), n, particles_.angular_velocity.begin());
@@ -361,7 +397,14 @@ StepReport NscdIntegrator::step(double h) {
         theta * problem_.local_velocity(k, body_velocity_, body_angular_velocity_) +
         (1.0 - theta) * problem_.local_velocity(k, old_velocity_, old_angular_velocity_) -
         Eigen::Vector3d(problem_.bias[k], 0.0, 0.0);
-    const double dissipated_J = -r.dot(u_theta);
+    double dissipated_J = -r.dot(u_theta);
+    if (rolling_) {
+      // Rolling work: -m . (theta w_rel+ + (1 - theta) w_rel-), w_rel = omega_i - omega_j.
+      const Eigen::Vector3d& m = rolling_impulse_[k];
+      torque_[k] = m / h;
+      dissipated_J -= m.dot(theta * problem_.rolling_velocity(k, body_angular_velocity_) +
+                            (1.0 - theta) * problem_.rolling_velocity(k, old_angular_velocity_));
+    }
     report.contact_dissipation_J += dissipated_J;
     if (r[0] > 0.0) {
       ContactForce out;

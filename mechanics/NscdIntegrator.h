@@ -45,7 +45,10 @@
 // A piston counts as a body: its kinetic energy, and its load plus weight as a constant
 // external force whose potential is -F . x.
 //
-// Friction between two materials uses the smaller coefficient (see Material.h).
+// Friction between two materials uses the smaller coefficient (see Material.h), and so does
+// rolling resistance: with rolling_friction > 0 each contact also carries a rolling angular
+// impulse bounded by mu_r R_eff r_n (ContactProblem.h), solved with the (n, t) block in the
+// same Gauss-Seidel visit; its work -m . (theta w_rel+ + (1 - theta) w_rel-) counts in D_c.
 // dimension 2: gravity, reactions and velocities are kept in the xy-plane exactly
 // (z, v_z, omega_x, omega_y stay as they are: 0 for a planar scene); spheres still roll.
 // Fixed particles have infinite mass and inertia: they never move and keep zero velocity.
@@ -154,6 +157,12 @@ class NscdIntegrator {
   PenetrationCorrection correction_{SolverSettings{}};
   std::vector<Eigen::Vector3d> force_;       // global reaction force per candidate, N
   std::vector<Eigen::Vector3d> old_force_;   // same, before a candidate rebuild
+  // Rolling resistance (some material has rolling_friction > 0; empty otherwise): rolling
+  // angular impulse per candidate (N m s, global, on i), and its mean torque (N m) carried to
+  // the next step as the warm start, like force_.
+  bool rolling_ = false;
+  std::vector<Eigen::Vector3d> rolling_impulse_;
+  std::vector<Eigen::Vector3d> torque_, old_torque_;
   std::vector<ContactForce> contacts_;
   MechanicsStats stats_;
 };

@@ -20,6 +20,11 @@ MechanicsState NscdIntegrator::save_state() const {
   s.candidate_force_N.assign(s.candidates.size(), Eigen::Vector3d::Zero());
   for (std::size_t k = 0; k < s.candidates.size() && k < force_.size(); ++k)
     s.candidate_force_N[k] = force_[k];
+  if (rolling_) {
+    s.candidate_rolling_torque_Nm.assign(s.candidates.size(), Eigen::Vector3d::Zero());
+    for (std::size_t k = 0; k < s.candidates.size() && k < torque_.size(); ++k)
+      s.candidate_rolling_torque_Nm[k] = torque_[k];
+  }
   s.solver_state = solver_->carried_state();
   s.stats = stats_;
   for (const auto& w : walls_) {
@@ -41,6 +46,11 @@ void NscdIntegrator::restore_state(const MechanicsState& s) {
     throw std::invalid_argument("mechanics: a saved state needs one force per candidate (" +
                                 std::to_string(s.candidates.size()) + " candidates, " +
                                 std::to_string(s.candidate_force_N.size()) + " forces)");
+  if (!s.candidate_rolling_torque_Nm.empty() &&
+      s.candidate_rolling_torque_Nm.size() != s.candidates.size())
+    throw std::invalid_argument("mechanics: a saved state needs one rolling torque per candidate (" +
+                                std::to_string(s.candidates.size()) + " candidates, " +
+                                std::to_string(s.candidate_rolling_torque_Nm.size()) + " torques)");
   const std::size_t w = walls_.size();
   if ((!s.wall_point_m.empty() && s.wall_point_m.size() != w) ||
       s.wall_velocity_m_per_s.size() != s.wall_point_m.size() ||
@@ -58,6 +68,10 @@ void NscdIntegrator::restore_state(const MechanicsState& s) {
                     s.reference_wall_point_m);
   force_ = s.candidate_force_N;
   old_force_.clear();
+  // A state saved without rolling torques (no rolling resistance then) starts them at 0.
+  torque_ = s.candidate_rolling_torque_Nm;
+  if (rolling_) torque_.resize(s.candidates.size(), Eigen::Vector3d::Zero());
+  old_torque_.clear();
   contacts_.clear();
   solver_->restore_carried_state(s.solver_state);
   stats_ = s.stats;

@@ -36,6 +36,7 @@ SolveReport PenetrationCorrection::correct(const ContactProblem& problem,
   std::fill(problem_.free_angular_velocity.begin(), problem_.free_angular_velocity.end(),
             Eigen::Vector3d::Zero());
   std::fill(problem_.mu.begin(), problem_.mu.end(), 0.0);
+  problem_.rolling = false;  // frictionless, and no rolling resistance: normals only
   // Walls, pistons included, do not move in the position step: the particle takes the whole
   // correction (a piston's share would otherwise be solved for and never applied).
   for (std::size_t c = 0; c < problem_.size(); ++c) {

@@ -21,7 +21,8 @@ mechanics::ParticleSet make_particle_set(const Scene& scene) {
 std::vector<mechanics::Material> make_mechanics_materials(const Scene& scene) {
   std::vector<mechanics::Material> out;
   for (const auto& m : scene.materials)
-    out.push_back({m.density_kg_per_m3, m.young_modulus_Pa, m.poisson_ratio, m.friction});
+    out.push_back({m.density_kg_per_m3, m.young_modulus_Pa, m.poisson_ratio, m.friction,
+                   m.rolling_friction});
   return out;
 }
 

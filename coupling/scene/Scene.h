@@ -25,6 +25,7 @@ struct Material {
   double young_modulus_Pa = 0.0;
   double poisson_ratio = 0.0;
   double friction = 0.0;                 // Coulomb coefficient
+  double rolling_friction = 0.0;         // rolling resistance mu_r (torque <= mu_r R_eff N)
   double conductivity_W_per_mK = 0.0;    // with a table: its first value (the reference)
   double heat_capacity_J_per_kgK = 0.0;  // specific heat c; with a table: its first value
   double emissivity = 0.0;               // 0..1

@@ -39,7 +39,7 @@ double read_property(const SceneTable& t, std::string_view key,
 
 void SceneBuilder::read_materials() {
   // Required: name, density, young_modulus, poisson_ratio, conductivity, heat_capacity.
-  // Optional: friction (default 0.3), emissivity (default 0.0).
+  // Optional: friction (default 0.3), rolling_friction (0), emissivity (default 0.0).
   const auto tables = root_.table_array("material", true);
   for (const SceneTable& t : tables) {
     Material m;
@@ -52,6 +52,7 @@ void SceneBuilder::read_materials() {
     m.young_modulus_Pa = t.required_number("young_modulus");
     m.poisson_ratio = t.required_number("poisson_ratio");
     m.friction = t.number("friction");
+    m.rolling_friction = t.number("rolling_friction");
     m.conductivity_W_per_mK = read_property(t, "conductivity", m.conductivity_table);
     m.heat_capacity_J_per_kgK = read_property(t, "heat_capacity", m.heat_capacity_table);
     m.emissivity = t.number("emissivity");

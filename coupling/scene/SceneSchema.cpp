@@ -186,6 +186,10 @@ std::vector<Section> build_sections() {
         required_number("young_modulus", "Pa", Range::greater(0.0), "Young's modulus"),
         required_number("poisson_ratio", "", Range::open(-1.0, 0.5), "Poisson ratio"),
         number("friction", "", 0.3, Range::at_least(0.0), "Coulomb friction coefficient"),
+        number("rolling_friction", "", 0.0, Range::closed(0.0, 1.0),
+               "rolling resistance mu_r: a contact resists rolling with a torque up to "
+               "mu_r R_eff N (R_eff = R_i R_j / (R_i + R_j), a wall R_i; the smaller mu_r of the "
+               "two materials); 0 rolls freely. Needs mechanics.solver nlgs or nlgs_coloured"),
         value("conductivity", "W/(m K)", "", "> 0, or [[T_K, k], ...] (T increasing, k > 0)",
               "thermal conductivity; a table: piecewise linear in T, clamped outside it (needs "
               "thermal.integrator cvode or ida with linear_solver klu)", true),

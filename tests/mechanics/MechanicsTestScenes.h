@@ -1,6 +1,7 @@
 #pragma once
 // Small scenes shared by the mechanics tests.
 
+#include <algorithm>
 #include <numbers>
 #include <vector>
 
@@ -29,7 +30,8 @@ inline std::vector<Wall> box_walls(double width, double depth, int dimension) {
 
 // `count` spheres dropped at random in a box of walls (two radii), ready to settle.
 inline NscdIntegrator random_pile(std::size_t count, int dimension, double friction,
-                                  std::uint64_t seed, NscdParameters parameters = {}) {
+                                  std::uint64_t seed, NscdParameters parameters = {},
+                                  double rolling_friction = 0.0) {
   // Wide, shallow boxes: a few layers once settled (Gauss-Seidel cost grows with depth).
   const double width = dimension == 3 ? 0.016 : 0.06;
   const double height = dimension == 3 ? 0.012 : 0.02;
@@ -41,7 +43,9 @@ inline NscdIntegrator random_pile(std::size_t count, int dimension, double frict
   for (std::size_t i = 0; i < count; ++i) {
     set.add(placed.positions[i], placed.radii[i], sphere_mass(placed.radii[i], kDensity), 0);
   }
-  return NscdIntegrator(std::move(set), {steel(friction)}, box_walls(width, width, dimension),
+  Material material = steel(friction);
+  material.rolling_friction = rolling_friction;
+  return NscdIntegrator(std::move(set), {material}, box_walls(width, width, dimension),
                         Eigen::Vector3d(0, -kG, 0), dimension, parameters);
 }
 
@@ -64,6 +68,24 @@ inline NscdIntegrator settled_disk_pile(std::uint64_t seed = 1) {
                      parameters);
   for (int step = 0; step < 5000 && !(step > 10 && sim.max_speed() < 1e-9); ++step) sim.step();
   return sim;
+}
+
+// Steps `steps` times; the largest speed seen and the largest distance any particle moved
+// from where it was at the start (the rest tests).
+struct Drift {
+  double fastest_m_per_s = 0.0;
+  double moved_m = 0.0;
+};
+inline Drift drift_over(NscdIntegrator& sim, int steps) {
+  const auto start = sim.particles().position;
+  Drift d;
+  for (int step = 0; step < steps; ++step) {
+    sim.step();
+    d.fastest_m_per_s = std::max(d.fastest_m_per_s, sim.max_speed());
+    for (std::size_t i = 0; i < start.size(); ++i)
+      d.moved_m = std::max(d.moved_m, (sim.particles().position[i] - start[i]).norm());
+  }
+  return d;
 }
 
 }  // namespace tmdem::mechanics::test

@@ -37,14 +37,16 @@ Trajectory run(NscdIntegrator& nscd, int steps) {
 // Steps `before` steps, saves, and compares `after` more steps of the original with those of
 // a fresh integrator of the same pile restored from the save.
 void expect_restored_run_identical(int dimension, double friction, int before, int after,
-                                   NscdParameters parameters = {}) {
-  NscdIntegrator original = random_pile(40, dimension, friction, 7, parameters);
+                                   NscdParameters parameters = {}, double rolling_friction = 0.0) {
+  NscdIntegrator original = random_pile(40, dimension, friction, 7, parameters, rolling_friction);
   for (int s = 0; s < before; ++s) original.step();
   const MechanicsState saved = original.save_state();
   ASSERT_FALSE(saved.candidates.empty());
   ASSERT_EQ(saved.candidate_force_N.size(), saved.candidates.size());
 
-  NscdIntegrator restored = random_pile(40, dimension, friction, 7, parameters);
+  NscdIntegrator restored = random_pile(40, dimension, friction, 7, parameters, rolling_friction);
+  ASSERT_EQ(saved.candidate_rolling_torque_Nm.size(),
+            rolling_friction > 0.0 ? saved.candidates.size() : 0u);
   restored.restore_state(saved);
   EXPECT_EQ(restored.stats().steps, before);
   EXPECT_EQ(restored.detector().rebuild_count(), original.detector().rebuild_count());
@@ -61,7 +63,7 @@ void expect_restored_run_identical(int dimension, double friction, int before, i
 
   // Positions and velocities alone (a cold restart: fresh table, no warm start) give another
   // run: the Gauss-Seidel solve starts elsewhere and stops at another iterate.
-  NscdIntegrator cold = random_pile(40, dimension, friction, 7, parameters);
+  NscdIntegrator cold = random_pile(40, dimension, friction, 7, parameters, rolling_friction);
   cold.particles().position = saved.position_m;
   cold.particles().velocity = saved.velocity_m_per_s;
   cold.particles().angular_velocity = saved.angular_velocity_rad_per_s;
@@ -81,6 +83,11 @@ TEST(NscdState, RestoredApgdIntegratorContinuesBitwise) {
   NscdParameters parameters;
   parameters.solver = "apgd";
   expect_restored_run_identical(2, 0.3, 150, 150, parameters);
+}
+
+// Rolling resistance carries each candidate's rolling torque as the warm start: part of the state.
+TEST(NscdState, RestoredIntegratorWithRollingFrictionContinuesBitwise) {
+  expect_restored_run_identical(3, 0.3, 120, 120, {}, 0.1);
 }
 
 TEST(NscdState, StateOfAnotherPileIsRefused) {

@@ -136,6 +136,7 @@ int CvodeIntegrator::boundary_rhs(sunrealtype t, N_Vector y, N_Vector qdot, void
   double boundary_W = 0.0;
   if (!me->system_.heat_flow(me->T_work_, me->dT_work_, boundary_W)) return 1;
   NV_Ith_S(qdot, 0) = boundary_W;
+  NV_Ith_S(qdot, 1) = me->system_.dissipation_boundary_W();
   return std::isfinite(boundary_W) ? 0 : 1;
 }
 

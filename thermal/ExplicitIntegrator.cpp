@@ -47,6 +47,7 @@ void ExplicitIntegrator::initialize(double t0_s, std::span<const double> T0_K,
   dTdt_.assign(T_.size(), 0.0);
   t_ = t0_s;
   boundary_heat_J_ = boundary_heat0_J;
+  dissipation_heat_J_ = 0.0;
   stats_ = {};
   max_temperature_K_ = settings_.max_temperature_K;
   for (double T : T_) max_temperature_K_ = std::max(max_temperature_K_, T);
@@ -73,6 +74,7 @@ void ExplicitIntegrator::advance_to(double t_s) {
     ++stats_.rhs_evals;
     for (std::size_t i = 0; i < T_.size(); ++i) T_[i] += h * dTdt_[i];
     boundary_heat_J_ += h * boundary_W;
+    dissipation_heat_J_ += h * system_.dissipation_boundary_W();
     t_ = last ? t_s : t_ + h;
     ++stats_.steps;
   }

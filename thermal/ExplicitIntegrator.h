@@ -20,6 +20,7 @@ class ExplicitIntegrator final : public ThermalIntegrator {
   double time_s() const override { return t_; }
   std::span<const double> temperatures_K() const override { return T_; }
   double boundary_heat_J() const override { return boundary_heat_J_; }
+  double dissipation_heat_J() const override { return dissipation_heat_J_; }
   IntegratorStats stats() const override { return stats_; }
   void restore_stats(const IntegratorStats& earlier) override { stats_ = earlier; }
 
@@ -34,6 +35,7 @@ class ExplicitIntegrator final : public ThermalIntegrator {
   std::vector<double> T_, dTdt_;
   double t_ = 0.0;
   double boundary_heat_J_ = 0.0;
+  double dissipation_heat_J_ = 0.0;  // since initialize()
   double max_temperature_K_ = 0.0;
   double bound_s_ = 0.0;
   double step_s_ = 0.0;

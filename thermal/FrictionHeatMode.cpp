@@ -16,6 +16,7 @@ namespace {
 class FrictionHeatMode final : public HeatTransferMode {
  public:
   std::string_view name() const override { return "friction_heat"; }
+  bool heats_from_dissipation() const override { return true; }
 
   bool add_heat_flow(const ThermalNetwork& net, std::span<const double>, std::span<double> q,
                      double& boundary_W) const override {

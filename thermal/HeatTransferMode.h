@@ -47,6 +47,11 @@ class HeatTransferMode {
   // False when add_jacobian writes the one-sided spans: the Jacobian is then not symmetric under
   // sqrt(C) scaling and the conjugate-gradient linear solver cannot be used.
   virtual bool symmetric_jacobian() const { return true; }
+
+  // True for a mode whose boundary power is mechanical energy turned into heat (friction heat):
+  // the integrators integrate that power on its own as well (ThermalIntegrator::
+  // dissipation_heat_J), so the run can check it against what the mechanics dissipated.
+  virtual bool heats_from_dissipation() const { return false; }
 };
 
 }  // namespace tmdem::thermal

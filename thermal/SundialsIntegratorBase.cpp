@@ -56,7 +56,8 @@ bool SundialsIntegratorBase::begin(double t0_s, std::span<const double> T0_K,
   if (!y_) {
     y_ = make_serial_vector(sunindextype(n), ctx_, "state y");
     abstol_ = make_serial_vector(sunindextype(n), ctx_, "absolute tolerances");
-    yQ_ = make_serial_vector(1, ctx_, "boundary-heat quadrature");
+    // [0] boundary heat, [1] its part from the dissipation modes (friction heat).
+    yQ_ = make_serial_vector(2, ctx_, "boundary-heat quadrature");
   }
   auto y = nvector_view(y_.get()), atol = nvector_view(abstol_.get());
   for (std::size_t i = 0; i < n; ++i) {
@@ -66,6 +67,7 @@ bool SundialsIntegratorBase::begin(double t0_s, std::span<const double> T0_K,
     atol[i] = s * settings_.absolute_tolerance_K;
   }
   NV_Ith_S(yQ_.get(), 0) = 0.0;
+  NV_Ith_S(yQ_.get(), 1) = 0.0;
   return true;
 }
 
@@ -158,6 +160,10 @@ void SundialsIntegratorBase::apply_preconditioner(N_Vector r, N_Vector z) const 
 
 double SundialsIntegratorBase::boundary_heat_J() const {
   return boundary_heat0_J_ + (yQ_ ? NV_Ith_S(yQ_.get(), 0) : 0.0);
+}
+
+double SundialsIntegratorBase::dissipation_heat_J() const {
+  return yQ_ ? NV_Ith_S(yQ_.get(), 1) : 0.0;
 }
 
 void SundialsIntegratorBase::record_reinitialization(const IntegratorStats& current) {

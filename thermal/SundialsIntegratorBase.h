@@ -28,6 +28,7 @@ class SundialsIntegratorBase : public ThermalIntegrator {
   double time_s() const override { return t_; }
   std::span<const double> temperatures_K() const override { return T_out_; }
   double boundary_heat_J() const override;
+  double dissipation_heat_J() const override;
   void restore_stats(const IntegratorStats& earlier) override;
 
  protected:

@@ -56,6 +56,10 @@ class ThermalIntegrator {
   // Heat that entered the free particles since t = 0 through walls, fluid, radiation, sources and
   // held particles, J, integrated with the same steps as the temperatures.
   virtual double boundary_heat_J() const = 0;
+  // The part of it that the dissipation modes (friction heat) put in, J, since initialize(),
+  // integrated with the same steps: what the thermal side really received of the mechanical
+  // dissipation (a BDF history carried across the source's jumps receives less).
+  virtual double dissipation_heat_J() const = 0;
   virtual IntegratorStats stats() const = 0;
   // Counters of earlier segments (restart from a checkpoint, or a re-initialisation at a
   // checkpoint time): after initialize(), stats() reports these plus what comes after.

@@ -73,6 +73,16 @@ bool ThermalSystem::heat_flow(std::span<const double> T, std::span<double> q,
   return true;
 }
 
+double ThermalSystem::dissipation_boundary_W() const {
+  double boundary_W = 0.0;
+  for (const auto& mode : modes_) {
+    if (!mode->heats_from_dissipation()) continue;
+    dissipation_scratch_W_.assign(network_.node_count(), 0.0);
+    mode->add_heat_flow(network_, {}, dissipation_scratch_W_, boundary_W);  // T-independent
+  }
+  return boundary_W;
+}
+
 bool ThermalSystem::time_derivative(std::span<const double> T, std::span<double> dTdt,
                                     double& boundary_W) const {
   if (!heat_flow(T, dTdt, boundary_W)) return false;

@@ -43,6 +43,10 @@ class ThermalSystem {
   // Heat flow into every node, W (held nodes included), and the boundary power into the free
   // particles, W. False: T is outside some mode's domain (recoverable).
   bool heat_flow(std::span<const double> T_K, std::span<double> q_W, double& boundary_W) const;
+  // The part of the boundary power that the modes turning mechanical dissipation into heat
+  // (HeatTransferMode::heats_from_dissipation) put into the free particles, W. It does not
+  // depend on T: constant over a mechanical step.
+  double dissipation_boundary_W() const;
   // dT/dt = q / C, zero for held nodes.
   bool time_derivative(std::span<const double> T_K, std::span<double> dTdt_K_per_s,
                        double& boundary_W) const;
@@ -75,6 +79,7 @@ class ThermalSystem {
   bool symmetric_jacobian() const;
 
  private:
+  mutable std::vector<double> dissipation_scratch_W_;  // dissipation_boundary_W's node flows
   // Throws std::logic_error when J was evaluated before the contact graph changed shape.
   void check_evaluation(const JacobianEvaluation& J) const;
   // C_i at J's temperatures (the network's constant C_i when nothing depends on T).

@@ -64,6 +64,7 @@ nlohmann::json RunSummary::to_json() const {
                          {"correction_potential_J", a.correction_potential_J}};
     if (a.heat) {
       me["heat_generated_J"] = a.heat_generated_J;
+      me["heat_received_J"] = a.heat_received_J;
       me["heat_error_rel"] = a.heat_error_rel;
     }
     e["mechanical"] = std::move(me);
@@ -169,6 +170,7 @@ RunSummary RunSummary::from_json(const nlohmann::json& j) {
     a.correction_potential_J = number(me, "correction_potential_J", 0.0);
     a.heat = me.contains("heat_generated_J");
     a.heat_generated_J = number(me, "heat_generated_J", 0.0);
+    a.heat_received_J = number(me, "heat_received_J", 0.0);
     a.heat_error_rel = number(me, "heat_error_rel", 0.0);
     s.energy.mechanical = a;
   }
@@ -192,13 +194,19 @@ MechanicalEnergySummary MechanicalEnergySummary::with_errors(bool heat_on) const
       scale == 0.0 ? 0.0
                    : std::abs(energy_change_J + contact_dissipation_J + numerical_dissipation_J) / scale;
   a.heat = heat_on;
-  if (!heat_on)
-    a.heat_error_rel = 0.0;
-  else if (contact_dissipation_J == 0.0)
+  a.heat_error_rel = 0.0;
+  if (!heat_on) return a;
+  // The run's bookkeeping: what it handed over against what the mechanics dissipated.
+  if (contact_dissipation_J == 0.0)
     a.heat_error_rel = heat_generated_J == 0.0 ? 0.0 : 1.0;  // heat out of nothing: all wrong
   else
     a.heat_error_rel =
         std::abs(heat_generated_J - contact_dissipation_J) / std::abs(contact_dissipation_J);
+  // The integrator's: what it integrated of the particles' share against the exact integral.
+  const double received_scale = std::max(std::abs(heat_share_J), std::abs(heat_received_J));
+  if (received_scale > 0.0)
+    a.heat_error_rel = std::max(a.heat_error_rel,
+                                std::abs(heat_received_J - heat_share_J) / received_scale);
   return a;
 }
 

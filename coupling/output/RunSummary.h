@@ -49,9 +49,12 @@ struct ThermalSummary {
 // extra: energy.mechanical, runs with mechanics (settle: the settle phase). The mechanics' energy account over the run
 // (mechanics/NscdIntegrator.h): energy_change + contact_dissipation + numerical_dissipation = 0
 // exactly in arithmetic; balance_error_rel measures it. With a mode that turns the contacts'
-// dissipation into heat (effects.friction_heat), heat_generated_J is what the thermal side
-// received (each step's contact powers times the time it advanced) and heat_error_rel compares
-// it with contact_dissipation_J; both keys are written only then.
+// dissipation into heat (effects.friction_heat), heat_generated_J is what the run handed to the
+// thermal side (each step's contact powers times the time it advanced), heat_received_J what the
+// integrator really integrated of the free particles' share of it (its own quadrature), and
+// heat_error_rel the worse of |heat_generated - contact_dissipation| / |contact_dissipation| and
+// |heat_received - heat_share| / max(|heat_share|, |heat_received|), heat_share the exact
+// integral of that piecewise-constant share (0 when both are 0); these keys are written only then.
 struct MechanicalEnergySummary {
   double energy_change_J = 0.0;          // kinetic + gravitational potential, end - start
   double contact_dissipation_J = 0.0;    // sum over steps and contacts of -r . u_theta
@@ -62,7 +65,9 @@ struct MechanicalEnergySummary {
   double correction_potential_J = 0.0;
   bool heat = false;                     // heat_generated_J and heat_error_rel are meaningful
   double heat_generated_J = 0.0;
-  double heat_error_rel = 0.0;           // |heat_generated - contact_dissipation| / |contact_dissipation|
+  double heat_received_J = 0.0;          // integrated by the thermal integrator (free particles)
+  double heat_share_J = 0.0;             // exact: sum over steps of the particles' share x step (not written)
+  double heat_error_rel = 0.0;           // see above
 
   // This account with balance_error_rel (and, when `heat_on`, heat_error_rel) filled in.
   MechanicalEnergySummary with_errors(bool heat_on) const;

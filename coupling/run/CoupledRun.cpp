@@ -240,6 +240,7 @@ void CoupledRun::run_dynamic() {
       double power_W = 0.0;
       for (const double P : contacts_.dissipated_power_W) power_W += P;
       contact_heat_J_ += power_W * (t_next - t);
+      dissipation_share_J_ += system_->dissipation_boundary_W() * (t_next - t);
     }
     thermal_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - thermal_start).count();
     t = t_next;
@@ -292,6 +293,9 @@ void CoupledRun::fill_summary() {
     m.numerical_dissipation_J = ms.numerical_dissipation_J;
     m.correction_potential_J = ms.correction_potential_J;
     m.heat_generated_J = contact_heat_J_;
+    m.heat_share_J = dissipation_share_J_;
+    m.heat_received_J =
+        dissipation_received0_J_ + (integrator_ ? integrator_->dissipation_heat_J() : 0.0);
     summary_.energy.mechanical =
         m.with_errors(!frozen_ && contacts_dissipate_heat(scene_.effects));
   }

@@ -33,6 +33,10 @@ void CoupledRun::restore_checkpoint() {
     initial_energy_J_ = it->second;
   if (auto it = restart_->extra.find("contact_heat_J"); it != restart_->extra.end())
     contact_heat_J_ = it->second;
+  if (auto it = restart_->extra.find("dissipation_share_J"); it != restart_->extra.end())
+    dissipation_share_J_ = it->second;
+  if (auto it = restart_->extra.find("dissipation_received_J"); it != restart_->extra.end())
+    dissipation_received0_J_ = it->second;
   // A restarted settle run does not settle again: it reports how the checkpointed run settled.
   const auto& extra = restart_->extra;
   if (extra.contains("settle_at_rest") && extra.contains("settle_time_s") &&
@@ -88,6 +92,10 @@ void CoupledRun::checkpoint(double t_s) {
   store_thermal_stats(integrator_->stats(), cs);
   cs.extra["initial_energy_J"] = initial_energy_J_;
   cs.extra["contact_heat_J"] = contact_heat_J_;
+  // The thermal segment restarts below: its integral of the dissipation share moves to the run.
+  dissipation_received0_J_ += integrator_->dissipation_heat_J();
+  cs.extra["dissipation_share_J"] = dissipation_share_J_;
+  cs.extra["dissipation_received_J"] = dissipation_received0_J_;
   if (summary_.settle) {
     cs.extra["settle_at_rest"] = summary_.settle->at_rest ? 1.0 : 0.0;
     cs.extra["settle_time_s"] = summary_.settle->time_s;

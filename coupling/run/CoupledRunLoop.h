@@ -92,6 +92,8 @@ class CoupledRun {
   double boundary_heat0_J_ = 0.0;
   double initial_energy_J_ = 0.0;
   double contact_heat_J_ = 0.0;          // contacts' dissipation handed to the thermal side
+  double dissipation_share_J_ = 0.0;     // exact integral of the free particles' share of it
+  double dissipation_received0_J_ = 0.0; // what earlier thermal segments integrated of that share
   bool dissipation_heats_ = false;       // a switched-on mode turns it into heat
   double next_checkpoint_s_ = 0.0;
   double last_checkpoint_s_ = -1.0;     // time of the last checkpoint written, -1: none

@@ -106,6 +106,8 @@ TEST(FrictionHeat, ContinuedCouplingReceivesAllTheHeat) {
     EXPECT_NEAR(m.contact_dissipation_J, slip_work, 1e-9 * slip_work);
     // The heat the thermal side integrated (its boundary-heat quadrature) is half the slip work.
     EXPECT_NEAR(e.boundary_heat_J, 0.5 * slip_work, 1e-9 * slip_work);
+    // The summary's own check: the integrator's quadrature of the sphere's share.
+    EXPECT_NEAR(m.heat_received_J, 0.5 * slip_work, 1e-9 * slip_work);
     EXPECT_LT(m.heat_error_rel, 1e-9);
   }
 }

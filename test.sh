@@ -13,11 +13,12 @@ jobs="$(nproc)"
 (cd "$root/build" && ctest --output-on-failure -j "$jobs" --timeout 600 "$@")
 
 [ "${TMDEM_SKIP_SANITIZE:-0}" = 1 ] && exit 0
-# -O1 keeps the sanitizer build quick to compile and run; asserts stay on (no NDEBUG). The
-# test programs' own code (set-up and checks) at -O0 compiles in half the time of -O1 under
-# ASan; the libraries they exercise stay at -O1 (tests/CMakeLists.txt, TMDEM_TEST_CODE_FLAGS).
+# -O1 keeps the sanitizer build quick to compile and run; asserts stay on (no NDEBUG). Test code
+# stays at -O1 too: with -O0 test code the ASan pass had run only 57 of 383 tests after 6 min
+# (RestoredIntegratorContinuesBitwise2D alone 128 s), against 197 s for all 357 at -O1; likely the
+# linker keeps the tests' unoptimised copies of header inline functions for the libraries too.
 CC=clang-14 CXX=clang++-14 cmake -S "$root" -B "$root/build-asan" -DCMAKE_BUILD_TYPE=Debug \
-  "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -g1" "-DCMAKE_C_FLAGS_DEBUG=-O1 -g1" -DTMDEM_TEST_CODE_FLAGS=-O0 \
+  "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -g1" "-DCMAKE_C_FLAGS_DEBUG=-O1 -g1" -DTMDEM_TEST_CODE_FLAGS=-O1 \
   -DTMDEM_SANITIZE=ON -DTMDEM_FUZZ=ON -DTMDEM_FUZZ_SECONDS="${TMDEM_FUZZ_SECONDS:-60}" >&2
 cmake --build "$root/build-asan" -j "$jobs" --target \
   test_mechanics test_thermal test_coupling_scene test_coupling_output fuzz_scene >&2

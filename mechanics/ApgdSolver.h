@@ -26,6 +26,15 @@
 // R_c(r) = r_c is the bipotential law itself, so this is a natural-map residual
 // (NaturalMapResidual.h) with the local step rho_c = D_c^-1. The best iterate is returned.
 //
+// Rolling resistance (ContactProblem::rolling): each contact has three more unknowns, its
+// rolling impulse m_c, with gradient the rolling velocity and metric w_r; (r_c, m_c) is
+// projected onto the Coulomb and rolling cones together (RollingCone.h: they share r_n). The
+// rolling cone is non-associated in the same way (the associated law would lift a contact
+// rolling at its limit by mu_r R_eff |w_roll|), and the same remedy holds: the normal bias
+// shift becomes s_c = mu |u_t| + mu_r R_eff |w_roll|, so a fixed point obeys both laws with
+// u_n = 0 while in contact. The stop test adds each rolling block's local solve
+// (NaturalMapResidual.h, divided by R_eff), as Gauss-Seidel's does.
+//
 // Determinism: every reduction sums fixed blocks of contacts, then the block sums in block
 // order; body velocities are gathered contact by contact in a fixed order. Results are
 // therefore bitwise identical for any thread count (static schedules, no atomics).
@@ -46,6 +55,11 @@ class ApgdSolver final : public ContactSolver {
   SolveReport solve(const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
                     std::vector<Eigen::Vector3d>& velocity,
                     std::vector<Eigen::Vector3d>& angular_velocity) override;
+  bool supports_rolling_friction() const override { return true; }
+  SolveReport solve_with_rolling(const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
+                                 std::vector<Eigen::Vector3d>& m,
+                                 std::vector<Eigen::Vector3d>& velocity,
+                                 std::vector<Eigen::Vector3d>& angular_velocity) override;
   // The Lipschitz estimate kept between solves.
   std::vector<double> carried_state() const override { return {lipschitz_}; }
   void restore_carried_state(const std::vector<double>& state) override {
@@ -54,11 +68,13 @@ class ApgdSolver final : public ContactSolver {
 
  private:
   void build_body_lists(const ContactProblem& problem);
-  // velocity = v_free + M^-1 H x, then u[c] = local velocity of every contact (with bias).
+  // velocity = v_free + M^-1 H x (+ the rolling impulses m when the problem has them), then
+  // u[c] = local velocity of every contact (with bias) and spin[c] its rolling velocity.
   void local_velocities(const ContactProblem& problem, const std::vector<Eigen::Vector3d>& x,
+                        const std::vector<Eigen::Vector3d>& m,
                         std::vector<Eigen::Vector3d>& velocity,
                         std::vector<Eigen::Vector3d>& angular_velocity,
-                        std::vector<Eigen::Vector3d>& u);
+                        std::vector<Eigen::Vector3d>& u, std::vector<Eigen::Vector3d>& spin);
 
   SolverSettings settings_;
   std::ptrdiff_t parallel_from_;
@@ -66,6 +82,9 @@ class ApgdSolver final : public ContactSolver {
 
   // Reused between solves: no allocation once warm.
   std::vector<Eigen::Vector3d> x_, x_old_, y_, ux_, ux_old_, uy_, best_;
+  // Rolling: impulses m (N m s) at x, x_old, y, their rolling velocities (rad/s), the best m.
+  std::vector<Eigen::Vector3d> mx_, mx_old_, my_, sx_, sx_old_, sy_, mbest_;
+  std::vector<Eigen::Vector3d> no_rolling_;  // m of a problem without rolling (never read)
   std::vector<Eigen::Vector3d> impulse_, torque_arm_;  // global p_c and n x p_c, N s
   std::vector<double> slip_bias_;                      // s_c = mu |u_t|, m/s
   std::vector<std::int32_t> body_start_, body_fill_;   // contacts of each body (CSR)

@@ -13,6 +13,7 @@
 #include "mechanics/ContactProblem.h"
 #include "mechanics/ContactSolver.h"
 #include "mechanics/CoulombCone.h"
+#include "mechanics/NaturalMapResidual.h"
 
 namespace tmdem::mechanics {
 
@@ -52,15 +53,9 @@ inline ContactUpdate gauss_seidel_update(const ContactProblem& problem, std::siz
 inline ContactUpdate gauss_seidel_rolling_update(const ContactProblem& problem, std::size_t c,
                                                  double normal_impulse, Eigen::Vector3d& mc,
                                                  std::vector<Eigen::Vector3d>& angular_velocity) {
-  const double w_r = problem.w_r[c];
-  if (w_r <= 0.0) return {};
-  const Eigen::Vector3d spin = problem.rolling_velocity(c, angular_velocity);
-  Eigen::Vector3d next = mc - spin / w_r;
-  next -= next.dot(problem.normal[c]) * problem.normal[c];  // m_c stays perpendicular to n
-  const double limit = problem.rolling_limit[c] * std::max(normal_impulse, 0.0);
-  const double size = next.norm();
-  if (size > limit) next *= size > 0.0 ? limit / size : 0.0;
-  if (problem.dimension == 2) next.x() = next.y() = 0.0;
+  if (problem.w_r[c] <= 0.0) return {};
+  const Eigen::Vector3d next = local_rolling_solution(
+      problem, c, normal_impulse, mc, problem.rolling_velocity(c, angular_velocity));
   const Eigen::Vector3d dm = next - mc;
   if (dm[0] != 0.0 || dm[1] != 0.0 || dm[2] != 0.0) {
     problem.apply_rolling_impulse(c, dm, angular_velocity);

@@ -9,6 +9,7 @@
 // lets any two solvers be compared on the same footing (bench, tests).
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <vector>
 
 #include "mechanics/ContactProblem.h"
@@ -29,6 +30,25 @@ inline Eigen::Vector3d local_law_solution(const ContactProblem& problem, std::si
   return next;
 }
 
+// The rolling part of R_c (ContactProblem::rolling): contact c's rolling impulse solved
+// exactly with everything else frozen, normal_impulse its normal reaction, spin its rolling
+// velocity (ContactProblem::rolling_velocity). The block is w_r I on the plane perpendicular
+// to n, so m = proj_{|m| <= mu_r R_eff r_n}(m_c - spin / w_r), kept perpendicular to n (and
+// along z in 2D). 0 when the contact's bodies cannot turn (w_r = 0).
+inline Eigen::Vector3d local_rolling_solution(const ContactProblem& problem, std::size_t c,
+                                              double normal_impulse, const Eigen::Vector3d& m_c,
+                                              const Eigen::Vector3d& spin) {
+  const double w_r = problem.w_r[c];
+  if (!(w_r > 0.0)) return Eigen::Vector3d::Zero();
+  Eigen::Vector3d next = m_c - spin / w_r;
+  next -= next.dot(problem.normal[c]) * problem.normal[c];
+  const double limit = problem.rolling_limit[c] * std::max(normal_impulse, 0.0);
+  const double size = next.norm();
+  if (size > limit) next *= size > 0.0 ? limit / size : 0.0;
+  if (problem.dimension == 2) next.x() = next.y() = 0.0;
+  return next;
+}
+
 // The ratio above from its two sums.
 inline double natural_map_ratio(double defect, double total) {
   if (total > 0.0) return defect / total;
@@ -37,6 +57,14 @@ inline double natural_map_ratio(double defect, double total) {
 
 // The residual above for reactions r and the body velocities they give (v_free + M^-1 H r).
 double natural_map_residual(const ContactProblem& problem, const std::vector<Eigen::Vector3d>& r,
+                            const std::vector<Eigen::Vector3d>& velocity,
+                            const std::vector<Eigen::Vector3d>& angular_velocity);
+
+// The same with rolling resistance (ContactProblem::rolling): m the rolling impulses, and the
+// velocities include them. Each contact adds |m_c - M_c| and |M_c| divided by R_eff (impulses,
+// N s), M_c = local_rolling_solution with R_c's normal reaction, as Gauss-Seidel's stop test.
+double natural_map_residual(const ContactProblem& problem, const std::vector<Eigen::Vector3d>& r,
+                            const std::vector<Eigen::Vector3d>& m,
                             const std::vector<Eigen::Vector3d>& velocity,
                             const std::vector<Eigen::Vector3d>& angular_velocity);
 

@@ -124,8 +124,8 @@ NscdIntegrator::NscdIntegrator(ParticleSet particles, std::vector<Material> mate
   solver_ = make_contact_solver(parameters_.solver, settings);
   require(!rolling_ || solver_->supports_rolling_friction(),
           "solver \"" + parameters_.solver +
-              "\" does not support rolling friction (use \"nlgs\" or \"nlgs_coloured\", or "
-              "set every material's rolling_friction to 0)");
+              "\" does not support rolling friction (use \"nlgs\", \"nlgs_coloured\" or "
+              "\"apgd\", or set every material's rolling_friction to 0)");
   problem_.rolling = rolling_;
   correction_ = PenetrationCorrection(settings);
   problem_.dimension = dimension_;

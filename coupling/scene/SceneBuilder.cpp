@@ -131,16 +131,6 @@ void SceneBuilder::read_settings() {
     m.settle_velocity_m_per_s = t.number("settle_velocity");
     m.penetration_slop = t.number("penetration_slop");
     m.recovery_speed_m_per_s = t.number("recovery_speed");
-    // Rolling resistance is solved by the Gauss-Seidel solvers only (ContactSolver.h).
-    if (mechanics_on && m.solver == "apgd") {
-      for (const auto& material : scene_.materials) {
-        if (material.rolling_friction > 0.0)
-          t.fail("solver", "\"apgd\" does not support rolling friction (material " +
-                               quote_text(material.name) + " has rolling_friction = " +
-                               format_number(material.rolling_friction) +
-                               "); use \"nlgs\" or \"nlgs_coloured\", or rolling_friction = 0");
-      }
-    }
   }
   {
     const SceneTable t = section("thermal", true);

@@ -189,7 +189,7 @@ std::vector<Section> build_sections() {
         number("rolling_friction", "", 0.0, Range::closed(0.0, 1.0),
                "rolling resistance mu_r: a contact resists rolling with a torque up to "
                "mu_r R_eff N (R_eff = R_i R_j / (R_i + R_j), a wall R_i; the smaller mu_r of the "
-               "two materials); 0 rolls freely. Needs mechanics.solver nlgs or nlgs_coloured"),
+               "two materials); 0 rolls freely. Solved by every mechanics.solver"),
         value("conductivity", "W/(m K)", "", "> 0, or [[T_K, k], ...] (T increasing, k > 0)",
               "thermal conductivity; a table: piecewise linear in T, clamped outside it (needs "
               "thermal.integrator cvode or ida with linear_solver klu)", true),

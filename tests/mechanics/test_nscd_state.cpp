@@ -89,6 +89,12 @@ TEST(NscdState, RestoredApgdIntegratorContinuesBitwise) {
 TEST(NscdState, RestoredIntegratorWithRollingFrictionContinuesBitwise) {
   expect_restored_run_identical(3, 0.3, 120, 120, {}, 0.1);
 }
+// apgd with rolling resistance: the rolling torques and the Lipschitz estimate together.
+TEST(NscdState, RestoredApgdIntegratorWithRollingFrictionContinuesBitwise) {
+  NscdParameters parameters;
+  parameters.solver = "apgd";
+  expect_restored_run_identical(2, 0.3, 100, 100, parameters, 0.1);
+}
 
 TEST(NscdState, StateOfAnotherPileIsRefused) {
   NscdIntegrator small = random_pile(10, 2, 0.3, 1), large = random_pile(40, 2, 0.3, 1);

@@ -6,11 +6,15 @@
 
 #include <cmath>
 #include <cstring>
+#include <memory>
+#include <string>
 #include <stdexcept>
 
 #include "MechanicsTestScenes.h"
+#include "mechanics/ApgdSolver.h"
 #include "mechanics/ColouredGaussSeidelSolver.h"
 #include "mechanics/GaussSeidelSolver.h"
+#include "mechanics/NaturalMapResidual.h"
 
 using namespace tmdem::mechanics;
 using namespace tmdem::mechanics::test;
@@ -111,14 +115,17 @@ TEST_P(RollingSphere, OnAnInclineStaysBelowTheRollingAngleAndRollsAboveIt) {
 
 INSTANTIATE_TEST_SUITE_P(Solvers, RollingSphere,
                          ::testing::Values(std::tuple{3, "nlgs"}, std::tuple{2, "nlgs"},
-                                           std::tuple{3, "nlgs_coloured"}));
+                                           std::tuple{3, "nlgs_coloured"}, std::tuple{3, "apgd"},
+                                           std::tuple{2, "apgd"}));
 
 // Between two spheres the lever of the rolling torque is R_eff = R_i R_j / (R_i + R_j). A
 // sphere resting on a fixed sphere of the same radius straight below, gravity tilted by a:
 // the contact must hold the torque m g R sin a about the upper centre with at most
 // mu_r R_eff m g cos a, R_eff = R / 2, so it holds exactly while tan a <= mu_r / 2 (with R_i
 // as the lever it would hold up to mu_r).
-TEST(RollingFriction, TwoSpheresUseTheEffectiveRadius) {
+class RollingOnSphere : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(RollingOnSphere, TwoSpheresUseTheEffectiveRadius) {
   const double mu_r = 0.2;
   for (const double ratio : {0.9, 1.1}) {
     const double angle = std::atan(ratio * mu_r / 2);
@@ -127,12 +134,15 @@ TEST(RollingFriction, TwoSpheresUseTheEffectiveRadius) {
     set.add(Vector3d(0, 0, 0), kRadius, m, 0, /*is_fixed=*/true);
     set.add(Vector3d(0, 2 * kRadius, 0), kRadius, m, 0);
     NscdIntegrator sim(std::move(set), {rolling_steel(0.9, mu_r)}, {},
-                       Vector3d(kG * std::sin(angle), -kG * std::cos(angle), 0), 3, tight());
+                       Vector3d(kG * std::sin(angle), -kG * std::cos(angle), 0), 3,
+                       tight(GetParam()));
     for (int step = 0; step < 20; ++step) sim.step();
     if (ratio < 1) EXPECT_LT(sim.max_speed(), 1e-13);
     else EXPECT_GT(sim.max_speed(), 1e-5);  // rolls over the lower sphere
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(Solvers, RollingOnSphere, ::testing::Values("nlgs", "apgd"));
 
 // Without rolling friction (the default) nothing changes: a rolling sphere keeps rolling.
 TEST(RollingFriction, ZeroRollsFreely) {
@@ -141,17 +151,6 @@ TEST(RollingFriction, ZeroRollsFreely) {
   sim.particles().angular_velocity[0] = Vector3d(0, 0, -0.01 / kRadius);
   for (int step = 0; step < 100; ++step) sim.step();
   EXPECT_NEAR(sim.particles().velocity[0].x(), 0.01, 1e-15);
-}
-
-// apgd has no rolling block: refused by name rather than silently ignoring mu_r.
-TEST(RollingFriction, ApgdRefusesIt) {
-  try {
-    sphere_on_floor(0.5, 0.1, 0.0, 3, "apgd");
-    FAIL() << "apgd accepted rolling friction";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("rolling friction"), std::string::npos) << e.what();
-  }
-  EXPECT_NO_THROW(sphere_on_floor(0.5, 0.0, 0.0, 3, "apgd"));
 }
 
 namespace {
@@ -202,52 +201,62 @@ bool same_bits(const std::vector<Vector3d>& a, const std::vector<Vector3d>& b) {
 
 }  // namespace
 
-// The settled 3D pile's last contact problem, solved cold with rolling resistance by nlgs and
-// nlgs_coloured (at 1 and 2 threads). A frictional pile is statically indeterminate, so the
-// reactions themselves are not unique; what is: both leave the pile at rest (the velocities
-// the reactions give agree within the tolerance's share of g h) and every reaction obeys its
-// laws: |r_t| <= mu r_n, |m| <= mu_r R_eff r_n with m perpendicular to n. The coloured solver
-// gives the same bits at 1 and 2 threads.
-TEST(RollingFriction, ColouredSolverMatchesGaussSeidelWithSameBitsForAnyThreadCount) {
+// The settled 3D pile's last contact problem, solved cold with rolling resistance by nlgs,
+// nlgs_coloured and apgd (the latter two at 1 and 2 threads). A frictional pile is statically
+// indeterminate, so the reactions themselves are not unique; what is: all leave the pile at
+// rest (the velocities the reactions give agree within the tolerance's share of g h), all
+// reach the natural-map residual of the tolerance with the rolling blocks counted
+// (NaturalMapResidual.h), and every reaction obeys its laws: |r_t| <= mu r_n,
+// |m| <= mu_r R_eff r_n with m perpendicular to n. The parallel solvers give the same bits at
+// 1 and 2 threads.
+TEST(RollingFriction, EverySolverMatchesGaussSeidelWithSameBitsForAnyThreadCount) {
   auto sim = settled_pile_3d(30);
   sim.step();
   const ContactProblem& problem = sim.problem();
   ASSERT_TRUE(problem.rolling);
+  constexpr double tolerance = 1e-7;
   SolverSettings settings;
-  settings.tolerance = 1e-7;
+  settings.tolerance = tolerance;
   settings.max_iterations = 100000;
   settings.stall_sweeps = 100000;
   GaussSeidelSolver nlgs(settings);
   const RollingSolve reference = solve_cold(nlgs, problem);
   ASSERT_TRUE(reference.report.converged);
-  auto coloured = [&](int threads) {
+  auto at_threads = [&](const char* name, int threads) {
     const int before = omp_get_max_threads();
     omp_set_num_threads(threads);
-    ColouredGaussSeidelSolver solver(settings, 0);  // parallel at any size
-    RollingSolve out = solve_cold(solver, problem);
+    // Parallel at any size.
+    std::unique_ptr<ContactSolver> solver;
+    if (std::string(name) == "apgd") solver = std::make_unique<ApgdSolver>(settings, 0);
+    else solver = std::make_unique<ColouredGaussSeidelSolver>(settings, 0);
+    RollingSolve out = solve_cold(*solver, problem);
     omp_set_num_threads(before);
     return out;
   };
-  const RollingSolve two = coloured(2), one = coloured(1);
-  ASSERT_TRUE(two.report.converged);
-  EXPECT_EQ(one.report.sweeps, two.report.sweeps);
-  EXPECT_TRUE(same_bits(one.r, two.r));
-  EXPECT_TRUE(same_bits(one.m, two.m));
-  EXPECT_TRUE(same_bits(one.w, two.w));
   double carried = 0.0;
   for (std::size_t c = 0; c < problem.size(); ++c) carried = std::max(carried, reference.m[c].norm());
   EXPECT_GT(carried, 0.0);  // the pile leans on its rolling torques
   const double gh = kG * sim.parameters().time_step;
-  for (std::size_t i = 0; i < problem.particle_count; ++i) {
-    EXPECT_LT((reference.v[i] - two.v[i]).norm(), 1e-5 * gh) << "particle " << i;
-    EXPECT_LT(reference.v[i].norm(), 1e-5 * gh) << "particle " << i;
-  }
-  for (std::size_t c = 0; c < problem.size(); ++c) {
+  for (const char* name : {"nlgs_coloured", "apgd"}) {
+    SCOPED_TRACE(name);
+    const RollingSolve two = at_threads(name, 2), one = at_threads(name, 1);
+    ASSERT_TRUE(two.report.converged) << two.report.residual << " after " << two.report.sweeps;
+    EXPECT_EQ(one.report.sweeps, two.report.sweeps);
+    EXPECT_TRUE(same_bits(one.r, two.r));
+    EXPECT_TRUE(same_bits(one.m, two.m));
+    EXPECT_TRUE(same_bits(one.w, two.w));
+    for (std::size_t i = 0; i < problem.particle_count; ++i) {
+      EXPECT_LT((reference.v[i] - two.v[i]).norm(), 1e-5 * gh) << "particle " << i;
+      EXPECT_LT(reference.v[i].norm(), 1e-5 * gh) << "particle " << i;
+    }
     for (const RollingSolve* s : {&reference, &two}) {
-      const Vector3d& r = s->r[c];
-      EXPECT_LE(std::hypot(r[1], r[2]), problem.mu[c] * r[0] * (1 + 1e-12) + 1e-300);
-      EXPECT_LE(s->m[c].norm(), problem.rolling_limit[c] * r[0] * (1 + 1e-12) + 1e-300);
-      EXPECT_LE(std::abs(s->m[c].dot(problem.normal[c])), 1e-12 * s->m[c].norm());
+      EXPECT_LE(natural_map_residual(problem, s->r, s->m, s->v, s->w), 2.0 * tolerance);
+      for (std::size_t c = 0; c < problem.size(); ++c) {
+        const Vector3d& r = s->r[c];
+        EXPECT_LE(std::hypot(r[1], r[2]), problem.mu[c] * r[0] * (1 + 1e-12) + 1e-300);
+        EXPECT_LE(s->m[c].norm(), problem.rolling_limit[c] * r[0] * (1 + 1e-12) + 1e-300);
+        EXPECT_LE(std::abs(s->m[c].dot(problem.normal[c])), 1e-12 * s->m[c].norm());
+      }
     }
   }
 }

@@ -188,17 +188,19 @@ TEST(SceneRules, FrictionNonNegative) {
   EXPECT_NO_THROW(load_scene_text(kBaseScene, "t", {"material[1].friction=0"}));
 }
 
-// Rolling resistance: a coefficient in [0, 1], reaches the material, and the solver without a
-// rolling block (apgd) is refused naming the material and the fix.
+// Rolling resistance: a coefficient in [0, 1], reaches the material, with every solver.
 TEST(SceneRules, RollingFriction) {
   expect_scene_error(kBaseScene, {"material[1].rolling_friction=-0.1"},
                      {"material[1].rolling_friction"});
   const Scene scene = load_scene_text(kBaseScene, "t", {"material[1].rolling_friction=0.05"});
   EXPECT_EQ(scene.materials[1].rolling_friction, 0.05);
   EXPECT_EQ(scene.materials[0].rolling_friction, 0.0);
-  expect_scene_error(kBaseScene, {"material[1].rolling_friction=0.05", "mechanics.solver=\"apgd\""},
-                     {"mechanics.solver", "apgd", "rolling friction", "rolling_friction = 0.05"});
-  EXPECT_NO_THROW(load_scene_text(kBaseScene, "t", {"mechanics.solver=\"apgd\""}));
+  for (const char* solver : {"nlgs", "nlgs_coloured", "apgd"}) {
+    EXPECT_NO_THROW(load_scene_text(kBaseScene, "t",
+                                    {"material[1].rolling_friction=0.05",
+                                     std::string("mechanics.solver=\"") + solver + "\""}))
+        << solver;
+  }
 }
 
 TEST(SceneRules, DuplicateMaterialName) {

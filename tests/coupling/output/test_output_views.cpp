@@ -12,6 +12,7 @@
 #include "coupling/output/Hdf5Io.h"
 #include "coupling/output/ResultWriter.h"
 #include "ScratchResultFile.h"
+#include "ThreeParticleHeader.h"
 
 namespace {
 
@@ -23,11 +24,7 @@ struct ViewFile : test::ScratchResultFile {
 };
 
 ResultHeader three_particles() {
-  ResultHeader header;
-  header.radius_m = {1e-3, 1e-3, 2e-3};
-  header.mass_kg = {1e-5, 1e-5, 8e-5};
-  header.heat_capacity_J_per_K = {1e-2, 1e-2, 8e-2};
-  header.material = {0, 0, 1};
+  ResultHeader header = test::three_particle_header();
   WallPlane floor;  // y = 0, facing up, 350 K
   floor.normal = {0.0, 1.0, 0.0};
   floor.temperature_K = 350.0;

@@ -70,8 +70,19 @@ struct SampleFrame {
   std::vector<double> force, conductance, tangential;
 
   FrameView view() const {
-    return FrameView{time_s,        position, velocity, temperature, 10.0 * time_s + 1.0,
-                     -0.5 * time_s, pair,     force,    conductance, tangential};
+    // No heat flows (stored as NaN) and no wall positions (the walls stay where they are).
+    return FrameView{.time_s = time_s,
+                     .position_m = position,
+                     .velocity_m_per_s = velocity,
+                     .temperature_K = temperature,
+                     .thermal_energy_J = 10.0 * time_s + 1.0,
+                     .boundary_heat_J = -0.5 * time_s,
+                     .contact_pair = pair,
+                     .normal_force_N = force,
+                     .conductance_W_per_K = conductance,
+                     .tangential_force_N = tangential,
+                     .heat_flow_W = {},
+                     .wall_point_m = {}};
   }
 };
 

@@ -17,12 +17,14 @@ machine to machine; every other value (steps, errors, counts) is reproducible fo
 
 Tables: checkpoints (thermal steps added by checkpoint boundaries), coupling (`tmdem study
 coupling examples/poured_bed.toml`), settle (how the default scene settles: `tmdem run`).
-Together they run in about a minute on one core.
+Together they run in about a minute on one core. piston (`tmdem study conductivity
+examples/conductivity/piston_bed.toml --pressures ...`, half a minute of CPU) is rebuilt only
+with `--only piston`, never by the default run or --check.
 Needs python3 (standard library only). The ctest test readme_tables (label readme) runs --check.
 
 The other measured tables are marked `<!-- readme_tables: hand-measured (why); command ... -->`
 on the line above: the accuracy summary (its "cheapest run" is chosen by wall time), the
-conductivity of the piston bed (4 min) and its gas-model comparison (2 min), and the
+piston bed's gas-model comparison (2 min), and the
 bench_thermal and bench_mechanics benchmarks (timings). Their timing columns say `[timing]`;
 they are refreshed by rerunning the command the README shows above them. The solver
 comparisons of "Contact solvers" and the bench_pour table are measured by hand too (same
@@ -115,7 +117,38 @@ def settle_table(binary, work):
             f"{m['max_step_travel_m'] / r_min:.2f} | {s['wall_time_s']:.1f} |"]
 
 
+PISTON_PRESSURES = "1e3,3e3,1e4"
+
+
+def piston_table(binary, work):
+    """k_eff of examples/conductivity/piston_bed.toml against the piston's pressure (minutes: run
+    by --only piston, not by the default run or --check)."""
+    csv_path = pathlib.Path(work) / "piston_bed.csv"
+    out = subprocess.run([str(binary), "study", "conductivity",
+                          str(ROOT / "examples" / "conductivity" / "piston_bed.toml"),
+                          "--pressures", PISTON_PRESSURES, "--csv", str(csv_path)],
+                         cwd=work, check=True, capture_output=True, text=True)
+    # One settle line per load, in order: "settle: at rest after T s (N steps, ..." or the
+    # warning "not at rest after mechanics.settle_time = T s ...".
+    settles = re.findall(r"settle: at rest after \S+ s \((\d+) steps|(not at rest after "
+                         r"mechanics\.settle_time = \S+ s)", out.stdout + out.stderr)
+    rows = ["| pressure (Pa) | k_eff (W/(m K)) | porosity | coordination | L (mm) | "
+            "contacts (+ walls) | settle steps |", "|---|---|---|---|---|---|---|"]
+    with open(csv_path) as f:
+        for k, r in enumerate(csv.DictReader(f)):
+            steps, late = settles[k] if k < len(settles) else ("?", "")
+            rest = "not at rest" if late else steps
+            pressure = re.sub(r"e\+0?(\d)", r"e\1", f"{float(r['pressure_Pa']):.0e}")
+            k_eff = re.sub(r"e-0(\d)", r"e-\1", f"{float(r['k_eff_W_per_mK']):.4e}")
+            rows.append(f"| {pressure} | {k_eff} | {float(r['porosity']):.4f} | "
+                        f"{float(r['coordination']):.3f} | {1e3 * float(r['length_m']):.3f} | "
+                        f"{r['contacts']} (+ {r['wall_contacts']}) | {rest} |")
+    return rows
+
+
 TABLES = {"checkpoints": checkpoints_table, "coupling": coupling_table, "settle": settle_table}
+# Too long for the default run and --check (the ctest): only with --only NAME.
+SLOW_TABLES = {"piston": piston_table}
 
 
 def timing_columns(header):
@@ -160,7 +193,7 @@ def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("--readme", default=str(ROOT / "README.md"))
     p.add_argument("--tmdem", default=str(ROOT / "build" / "tmdem"))
-    p.add_argument("--only", choices=sorted(TABLES), action="append")
+    p.add_argument("--only", choices=sorted(TABLES) + sorted(SLOW_TABLES), action="append")
     p.add_argument("--check", action="store_true", help="compare only; exit 1 on drift")
     p.add_argument("--list", action="store_true", help="list every table and how it is kept")
     args = p.parse_args(argv)
@@ -179,7 +212,7 @@ def main(argv=None):
                 sys.exit(f"{args.readme}: no <!-- readme_tables: {name} --> ... <!-- /readme_tables --> block")
             indent = re.match(r" *", found.group(2)).group(0)
             old_rows = [line.strip() for line in found.group(2).splitlines() if line.strip()]
-            new_rows = TABLES[name](args.tmdem, work)
+            new_rows = {**TABLES, **SLOW_TABLES}[name](args.tmdem, work)
             for r, c, old, new in drift(old_rows, new_rows):
                 drifted = True
                 print(f"{name}: row {r}, column {c + 1}: README {old!r}, now {new!r}")

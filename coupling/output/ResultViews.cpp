@@ -98,6 +98,16 @@ std::array<double, 3> foot(const WallPlane& wall, const double* x) {
   return out;
 }
 
+// Quads a cylindrical wall is drawn with (a plane: one).
+constexpr int kStrips = 32;
+
+// The wall of each quad of /xdmf/walls, in the order draw_walls writes them.
+std::vector<std::size_t> quad_walls(const std::vector<WallPlane>& walls) {
+  std::vector<std::size_t> out;
+  for (std::size_t w = 0; w < walls.size(); ++w) out.insert(out.end(), walls[w].radius_m > 0.0 ? kStrips : 1, w);
+  return out;
+}
+
 // /xdmf/vertices, and the empty datasets of a frame without contacts (ParaView's Xdmf3 readers
 // take a line set of 0 lines; an XML DataItem without content makes them abort).
 void create_static_views(hid_t file, std::size_t particles) {
@@ -154,6 +164,8 @@ void ResultViews::open(hid_t file, std::size_t particles) {
   }
   if (!hdf5::exists(file, "xdmf")) create_static_views(file, particles);
   wall_quads_ = 0;
+  wall_corners_.clear();
+  quad_wall_.clear();
   if (hdf5::exists(file, "/xdmf/walls")) {
     Hdf5Handle walls = hdf5::open_group(file, "/xdmf/walls");
     Hdf5Handle quads = hdf5::open_dataset(walls.get(), "quads");
@@ -214,7 +226,6 @@ void ResultViews::draw_walls(hid_t file, std::span<const double> position_m) {
       below = std::min(below, along - 2.0 * r_max);
       above = std::max(above, along + 2.0 * r_max);
     }
-    constexpr int kStrips = 32;
     auto at = [&](int strip, double along) {
       const double angle = 2.0 * std::numbers::pi * strip / kStrips;
       const double cu = wall.radius_m * std::cos(angle), cv = wall.radius_m * std::sin(angle);
@@ -235,6 +246,29 @@ void ResultViews::draw_walls(hid_t file, std::span<const double> position_m) {
   hdf5::write_array(group.get(), "quads", quads, 4, "1");
   hdf5::write_array(group.get(), "temperature", temperature, 0, "K");
   wall_quads_ = temperature.size();
+  wall_corners_ = std::move(points);
+}
+
+bool ResultViews::write_moved_walls(hid_t file, hid_t frame_group, std::span<const double> wall_point_m) {
+  if (wall_quads_ == 0 || wall_point_m.size() != 3 * walls_.size()) return false;
+  bool moved = false;
+  for (std::size_t w = 0; w < walls_.size(); ++w)
+    for (int k = 0; k < 3; ++k) moved = moved || wall_point_m[3 * w + k] != walls_[w].point_m[k];
+  if (!moved) return false;
+  if (quad_wall_.empty()) quad_wall_ = quad_walls(walls_);
+  if (wall_corners_.empty()) {
+    Hdf5Handle group = hdf5::open_group(file, "/xdmf/walls");
+    wall_corners_ = hdf5::read_double_array(group.get(), "points", 3);
+  }
+  if (quad_wall_.size() != wall_quads_ || wall_corners_.size() != 12 * wall_quads_) return false;
+  std::vector<double> corners = wall_corners_;
+  for (std::size_t q = 0; q < wall_quads_; ++q) {
+    const std::size_t w = quad_wall_[q];
+    for (std::size_t c = 4 * q; c < 4 * q + 4; ++c)
+      for (int k = 0; k < 3; ++k) corners[3 * c + k] += wall_point_m[3 * w + k] - walls_[w].point_m[k];
+  }
+  hdf5::write_array(frame_group, "wall_points", corners, 3, "m");
+  return true;
 }
 
 FrameViewCounts ResultViews::add_frame(hid_t file, std::size_t frame, const FrameView& data,
@@ -289,6 +323,7 @@ FrameViewCounts ResultViews::add_frame(hid_t file, std::size_t frame, const Fram
   create_virtual(g, "temperature", {n}, {{0, n, "/frames/temperature", {frames, n}, f, 1}}, "K");
 
   FrameViewCounts counts;
+  counts.moved_walls = write_moved_walls(file, g, data.wall_point_m);
   counts.contacts = pair.size() / 2;
   const hsize_t c = counts.contacts;
   const hsize_t first = hsize_t(first_contact), rows = first + c;
@@ -367,6 +402,7 @@ FrameViewCounts ResultViews::add_frame(hid_t file, std::size_t frame, const Fram
 FrameViewCounts ResultViews::counts(hid_t file, std::size_t frame) const {
   FrameViewCounts counts;
   Hdf5Handle group = hdf5::open_group(file, frame_group(frame).c_str());
+  counts.moved_walls = hdf5::exists(group.get(), "wall_points");
   if (!hdf5::exists(group.get(), "contact_lines")) return counts;
   Hdf5Handle lines = hdf5::open_dataset(group.get(), "contact_lines");
   counts.contacts = hdf5::dataset_rows(lines.get());

@@ -16,6 +16,9 @@
 //     contact of the frame, whose end is wall_feet[k] [W_f,3] (the centre's projection on it)
 //   /xdmf/frame_<f>/contact_points [N+W_f,3]: the positions, then wall_feet        (virtual)
 //   /xdmf/frame_<f>/normal_force, conductance, heat_flow [C_f], tangential_force [C_f,3] (virtual)
+//   /xdmf/frame_<f>/wall_points [4Q,3] m: only in a frame where a wall (a piston) stands away
+//     from /walls/point: /xdmf/walls/points with each wall's quads shifted by how far its point
+//     has moved (/frames/wall_position[f] - /walls/point)
 // In a frozen bed every view but temperature and heat_flow is a hard link to frame 0's.
 #include <hdf5.h>
 
@@ -32,6 +35,7 @@ namespace tmdem::coupling {
 struct FrameViewCounts {
   std::size_t contacts = 0;       // C_f (0: no contact grid in this frame)
   std::size_t wall_contacts = 0;  // W_f
+  bool moved_walls = false;       // the frame has its own wall_points (a wall has moved)
 };
 
 class ResultViews {
@@ -58,10 +62,14 @@ class ResultViews {
 
  private:
   void draw_walls(hid_t file, std::span<const double> position_m);
+  // Writes the frame's wall_points when a wall is away from where it was drawn; false if none.
+  bool write_moved_walls(hid_t file, hid_t frame_group, std::span<const double> wall_point_m);
 
   std::size_t particles_ = 0;
   std::vector<WallPlane> walls_;
   std::size_t wall_quads_ = 0;
+  std::vector<double> wall_corners_;    // /xdmf/walls/points, read when a wall first moves
+  std::vector<std::size_t> quad_wall_;  // the wall each quad belongs to
   // The last frame's data, to tell an unchanged view (valid only after a complete frame).
   struct Previous {
     bool valid = false;

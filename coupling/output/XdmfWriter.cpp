@@ -127,7 +127,8 @@ std::string xdmf_document(const std::string& h5_file_name, std::size_t particles
     }
     out += "    </Grid>\n";
   }
-  // Last block: the walls, static, repeated per frame so that every reader keeps them.
+  // Last block: the walls, repeated per frame so that every reader keeps them; static unless a
+  // wall (a piston) has moved, then the frame's own corners.
   if (walls > 0) {
     out += "    <Grid Name=\"walls\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
     for (std::size_t f = 0; f < frames; ++f) {
@@ -136,7 +137,8 @@ std::string xdmf_document(const std::string& h5_file_name, std::size_t particles
       out.append(w).append("\">");
       append_item(out, file, {"/xdmf/walls/", "quads", w4, "Int"});
       out.append("</Topology>\n        <Geometry GeometryType=\"XYZ\">");
-      append_item(out, file, {"/xdmf/walls/", "points", corners});
+      append_item(out, file, views[f].moved_walls ? Item{view, "wall_points", corners}
+                                                  : Item{"/xdmf/walls/", "points", corners});
       out.append("</Geometry>\n");
       append_attribute(out, file, "temperature", "Scalar", "Cell",
                        {"/xdmf/walls/", "temperature", w});

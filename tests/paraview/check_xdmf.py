@@ -1,12 +1,13 @@
 """Opens a tmdem RESULT.xdmf with ParaView's three XDMF readers and checks what they show.
 
 Run by tests/paraview/test_paraview_readers.cpp through pvbatch:
-  pvbatch check_xdmf.py XDMF PARTICLES FRAMES LAST_TIME PARTICLE_ID TEMPERATURE CONTACTS WALLS [AT]
+  pvbatch check_xdmf.py XDMF PARTICLES FRAMES LAST_TIME PARTICLE_ID TEMPERATURE CONTACTS WALLS [AT [WALL_Y]]
 XDMF must be an absolute path (ParaView's Xdmf3 readers resolve the .h5 next to it wrongly for
 a bare file name). Exit 0 when every reader shows FRAMES time steps ending at LAST_TIME and, at
 time AT (default LAST_TIME): PARTICLES points with the point arrays of the contract, particle
 PARTICLE_ID at TEMPERATURE (K, to 1e-9 relative), CONTACTS contact lines with their cell arrays
-(CONTACTS = 0: no contact grid, or one of 0 lines) and WALLS wall squares.
+(CONTACTS = 0: no contact grid, or one of 0 lines) and WALLS wall squares; with WALL_Y, one of
+the squares lies in the plane y = WALL_Y (m, to 1e-12 m: a piston drawn where it is at AT).
 """
 import sys
 
@@ -17,6 +18,7 @@ particles, frames = int(sys.argv[2]), int(sys.argv[3])
 last_time, particle_id, temperature = float(sys.argv[4]), int(sys.argv[5]), float(sys.argv[6])
 contacts, walls = int(sys.argv[7]), int(sys.argv[8])
 check_time = float(sys.argv[9]) if len(sys.argv) > 9 else last_time
+wall_y = float(sys.argv[10]) if len(sys.argv) > 10 else None
 
 
 def leaves(data):
@@ -80,6 +82,11 @@ def check(name, reader):
             problems.append("contact cell arrays missing")
     if walls > 0 and len(squares) != 1:
         problems.append(f"{len(squares)} wall grids with {4 * walls} points")
+    elif wall_y is not None:
+        corners = [squares[0].GetPoint(k)[1] for k in range(4 * walls)]
+        square_y = [corners[4 * q:4 * q + 4] for q in range(walls)]
+        if not any(all(abs(y - wall_y) <= 1e-12 for y in ys) for ys in square_y):
+            problems.append(f"no wall square at y = {wall_y!r}: {square_y}")
     print(f"{name}: {len(times)} time steps, at t = {check_time}: leaves "
           f"{[(d.GetNumberOfPoints(), d.GetNumberOfCells()) for d in found]}: "
           + ("ok" if not problems else "; ".join(problems)))

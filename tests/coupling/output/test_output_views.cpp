@@ -6,11 +6,14 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
 #include "coupling/output/Hdf5Io.h"
 #include "coupling/output/ResultWriter.h"
+#include "coupling/output/XdmfWriter.h"
 #include "ScratchResultFile.h"
 #include "ThreeParticleHeader.h"
 
@@ -187,6 +190,61 @@ TEST(ResultViews, RestartCutsTheViewsBackWithTheFrames) {
             (std::vector<double>{400.0, 401.0, 402.0}));
   EXPECT_EQ(read_view(file.path, "/xdmf/frame_1/normal_force"), frame(1).force);
   EXPECT_EQ(read_view(file.path, "/xdmf/frame_0/normal_force"), frame(0).force);
+}
+
+// A piston moves: the frames where a wall stands away from /walls/point get their own wall
+// corners, the drawn ones shifted by the wall's displacement, and RESULT.xdmf names them (before,
+// ParaView drew every wall where it started). A reopened file keeps counting them.
+TEST(ResultViews, MovedWallsGetTheirOwnCornersPerFrame) {
+  ViewFile file;
+  // wall_position per frame: frame 0 as drawn, frame 1 the floor 0.5 mm up, frame 2 it and the
+  // side wall 0.25 mm along -x.
+  const std::vector<std::vector<double>> walls_at = {{0.0, 0.0, 0.0, -1e-3, 0.0, 0.0},
+                                                     {0.0, 5e-4, 0.0, -1e-3, 0.0, 0.0},
+                                                     {0.0, 5e-4, 0.0, -1.25e-3, 0.0, 0.0}};
+  {
+    ResultWriter writer(file.path, three_particles(), true);
+    for (int f = 0; f < 2; ++f) {
+      Frame fr = frame(f);
+      FrameView view = fr.view(0.5 * f);
+      view.wall_point_m = walls_at[f];
+      writer.write_frame(view);
+    }
+    writer.finish("interrupted");
+  }
+  {
+    ResultWriter writer = ResultWriter::reopen(file.path, 2);
+    Frame fr = frame(1);
+    FrameView view = fr.view(1.0);
+    view.wall_point_m = walls_at[2];
+    writer.write_frame(view);
+    writer.finish("ok");
+  }
+  EXPECT_FALSE(has(file.path, "/xdmf/frame_0/wall_points"));
+  const auto drawn = read_view(file.path, "/xdmf/walls/points");
+  ASSERT_EQ(drawn.size(), 24u);  // two planes, one quad each
+  for (int f = 1; f < 3; ++f) {
+    const auto moved = read_view(file.path, "/xdmf/frame_" + std::to_string(f) + "/wall_points");
+    ASSERT_EQ(moved.size(), 24u) << f;
+    for (int c = 0; c < 8; ++c) {
+      const int w = c / 4;  // corners 0-3: the floor, 4-7: the side wall
+      for (int k = 0; k < 3; ++k)
+        EXPECT_DOUBLE_EQ(moved[3 * c + k],
+                         drawn[3 * c + k] + walls_at[f][3 * w + k] - walls_at[0][3 * w + k])
+            << "frame " << f << " corner " << c << " axis " << k;
+    }
+  }
+  // The floor's corners lie on y = 0.5 mm in frames 1 and 2.
+  const auto moved = read_view(file.path, "/xdmf/frame_1/wall_points");
+  for (int c = 0; c < 4; ++c) EXPECT_NEAR(moved[3 * c + 1], 5e-4, 1e-18);
+  // RESULT.xdmf: frame 0 names the drawn corners, frames 1 and 2 their own.
+  std::ifstream in(xdmf_path_for(file.path));
+  const std::string xdmf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto walls_block = xdmf.substr(xdmf.find("<Grid Name=\"walls\""));
+  EXPECT_NE(walls_block.find(":/xdmf/walls/points<"), std::string::npos);
+  EXPECT_NE(walls_block.find(":/xdmf/frame_1/wall_points<"), std::string::npos);
+  EXPECT_NE(walls_block.find(":/xdmf/frame_2/wall_points<"), std::string::npos);
+  EXPECT_EQ(walls_block.find(":/xdmf/frame_0/wall_points<"), std::string::npos);
 }
 
 // The HDF5 object a path names (hard links to one object give the same address).

@@ -35,9 +35,9 @@
 // is full), so HDF5's teardown at exit finds nothing open.
 //
 // Frames reach the .h5 and RESULT.xdmf together: each batch of frames is written and flushed,
-// then the XDMF is rewritten (atomically: temporary file then rename). A batch is every frame
-// for the first 1024 frames, then whatever arrived until the frame count has grown by 1/32, a
-// second of wall time has passed, or 64 MiB wait; finish(), flush() and the destructor store
+// then the XDMF is rewritten (atomically: temporary file then rename). A batch is whatever
+// arrived until the frame count has grown by 1/32 (every frame for the first 32), a second of
+// wall time has passed, or 64 MiB wait; finish(), flush() and the destructor store
 // what waits. After a crash both files describe the same frames (the XDMF's declared frame
 // count is the datasets'), missing at most those of the last second.
 #include <array>

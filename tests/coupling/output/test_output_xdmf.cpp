@@ -120,13 +120,21 @@ TEST(XdmfWriter, ResultWriterKeepsXdmfCurrent) {
     header.material = {0, 0};
     ResultWriter writer(path, header, true);
     const std::vector<double> xyz(6, 0.0), temperature(2, 300.0);
-    for (int f = 0; f < 2; ++f) {
-      writer.write_frame(FrameView{0.5 * f, xyz, xyz, temperature, 6.0, 0.0, {}, {}, {}, {}});
-    }
+    // A frame at t_s without contacts (members not set stay empty).
+    auto frame_at = [&](double t_s) {
+      FrameView view;
+      view.time_s = t_s;
+      view.position_m = xyz;
+      view.velocity_m_per_s = xyz;
+      view.temperature_K = temperature;
+      view.thermal_energy_J = 6.0;
+      return view;
+    };
+    for (int f = 0; f < 2; ++f) writer.write_frame(frame_at(0.5 * f));
     EXPECT_EQ(writer.xdmf_path(), (dir / "bed.xdmf").string());
     const std::string during = read_text(writer.xdmf_path());
     EXPECT_EQ(count(during, "<Grid Name=\"particles\" GridType=\"Uniform\""), 2u);
-    writer.write_frame(FrameView{1.0, xyz, xyz, temperature, 6.0, 0.0, {}, {}, {}, {}});
+    writer.write_frame(frame_at(1.0));
     writer.finish("ok");
   }
   const std::string xml = read_text((dir / "bed.xdmf").string());

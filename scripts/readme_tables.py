@@ -19,7 +19,9 @@ Tables: checkpoints (thermal steps added by checkpoint boundaries), coupling (`t
 coupling examples/poured_bed.toml`), settle (how the default scene settles: `tmdem run`).
 Together they run in about a minute on one core. piston (`tmdem study conductivity
 examples/conductivity/piston_bed.toml --pressures ...`, half a minute of CPU) is rebuilt only
-with `--only piston`, never by the default run or --check.
+with `--only piston`, never by the default run or --check. examples (every scene of examples/
+run for its whole duration: steps, converged %, sweeps, rest, penetration; minutes, pour_3d
+most of them) likewise runs only with `--only examples`.
 Needs python3 (standard library only). The ctest test readme_tables (label readme) runs --check.
 
 The other measured tables are marked `<!-- readme_tables: hand-measured (why); command ... -->`
@@ -146,9 +148,64 @@ def piston_table(binary, work):
     return rows
 
 
+def scene_default(section, key):
+    """A scene key's default as docs/scene.md (generated from the schema) states it."""
+    inside = False
+    for line in (ROOT / "docs" / "scene.md").read_text().splitlines():
+        if line.startswith("## "):
+            inside = line == f"## `[{section}]`"
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if inside and len(cells) > 2 and cells[0] == f"`{key}`":
+            return cells[2].strip('"')
+    sys.exit(f"docs/scene.md: no row for [{section}] `{key}`")
+
+
+def smallest_radius(binary, scene, work):
+    """The scene's smallest radius, m, as `tmdem check` prints it."""
+    out = subprocess.run([str(binary), "check", str(scene)], cwd=work, check=True,
+                         capture_output=True, text=True).stdout
+    found = re.search(r"radius ([0-9.eE+-]+) \.\.", out)
+    if not found:
+        sys.exit(f"tmdem check {scene}: no 'radius A .. B' line")
+    return float(found.group(1))
+
+
+def examples_table(binary, work):
+    """Every scene of examples/ run as it is (its whole duration), one row each: how its
+    mechanics converged and settled (issue 10: >= 99% of the steps converged)."""
+    import tomllib
+    rows = ["| example | mechanics | solver | particles | steps | converged % | mean sweeps | "
+            "stalled | at rest | largest penetration / r_min | wall time (s) " + TIMING + " |",
+            "|---|---|---|---|---|---|---|---|---|---|---|"]
+    e = lambda x: re.sub(r"e-0(\d)", r"e-\1", f"{x:.1e}")
+    for scene in sorted((ROOT / "examples").rglob("*.toml")):
+        name = scene.relative_to(ROOT / "examples").as_posix()
+        config = tomllib.loads(scene.read_text())
+        mode = config.get("effects", {}).get("mechanics", scene_default("effects", "mechanics"))
+        solver = config.get("mechanics", {}).get("solver", scene_default("mechanics", "solver"))
+        summary = pathlib.Path(work) / "example.json"
+        tmdem(binary, ["run", str(scene), "-o", "example.h5", "--overwrite", "--quiet", "--summary",
+                       str(summary)], work)
+        s = json.loads(summary.read_text())
+        m = s.get("mechanics")
+        if mode == "off" or not m or not m.get("steps"):
+            rows.append(f"| {name} | off | - | {s['particles']:,} | - | - | - | - | - | - | "
+                        f"{s['wall_time_s']:.1f} |")
+            continue
+        steps = m["steps"]
+        converged = 100.0 * (steps - m["unconverged_steps"]) / steps
+        settle = s.get("settle")
+        at_rest = "-" if not settle else "yes" if settle["at_rest"] else "no"
+        penetration = m["max_penetration_m"] / smallest_radius(binary, scene, work)
+        rows.append(f"| {name} | {mode} | {solver} | {s['particles']:,} | {steps:,} | "
+                    f"{converged:.1f} | {m['mean_iterations']:.1f} | {m['stalled_steps']} | "
+                    f"{at_rest} | {e(penetration)} | {s['wall_time_s']:.1f} |")
+    return rows
+
+
 TABLES = {"checkpoints": checkpoints_table, "coupling": coupling_table, "settle": settle_table}
 # Too long for the default run and --check (the ctest): only with --only NAME.
-SLOW_TABLES = {"piston": piston_table}
+SLOW_TABLES = {"piston": piston_table, "examples": examples_table}
 
 
 def timing_columns(header):

@@ -15,6 +15,9 @@
 //   TMDEM_POUR_MAX_WALL_S  stop after this much wall time, s
 //   TMDEM_POUR_SET         scene overrides as `tmdem run --set`, separated by ';'
 //                          (e.g. "mechanics.solver=nlgs_coloured;mechanics.tolerance=1e-5")
+//   TMDEM_POUR_TRACE       if set, one line per step on stderr: step, sweeps, residual,
+//                          converged, correction sweeps, candidates, active contacts,
+//                          largest speed (m/s), largest travel / r_min, penetration / r_min
 // Counters: particles; contacts (active, at the end) and candidates; settle_steps; sim_time_s;
 // at_rest (1/0); mean_sweeps; converged_pct (steps whose solver converged); pen_rmin (largest
 // penetration during the run / smallest radius) and pen_end_rmin (after the last step);
@@ -27,6 +30,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -105,6 +109,7 @@ void BM_Pour(benchmark::State& state) {
     double t = 0.0, wall = 0.0, contact_sweeps = 0.0, pen_end = 0.0;
     std::int64_t steps = 0, converged = 0;
     bool at_rest = false;
+    const bool trace = std::getenv("TMDEM_POUR_TRACE") != nullptr;
     const auto start = std::chrono::steady_clock::now();
     while (t < scene.mechanics.settle_time_s - 0.5 * h && steps < max_steps && wall < max_wall_s) {
       const mechanics::StepReport report = sim->step(h);
@@ -114,6 +119,13 @@ void BM_Pour(benchmark::State& state) {
       contact_sweeps += static_cast<double>(report.sweeps) * static_cast<double>(report.candidates);
       pen_end = report.max_penetration_m;
       wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      if (trace) {
+        std::fprintf(stderr, "%lld %d %.3e %d %d %zu %zu %.3e %.3f %.5f\n",
+                     static_cast<long long>(steps), report.sweeps, report.residual,
+                     report.converged ? 1 : 0, report.correction_sweeps, report.candidates,
+                     report.active_contacts, sim->max_speed(), report.max_travel_m / r_min,
+                     report.max_penetration_m / r_min);
+      }
       if (sim->max_speed() < scene.mechanics.settle_velocity_m_per_s) {
         at_rest = true;
         break;
@@ -127,8 +139,9 @@ void BM_Pour(benchmark::State& state) {
     auto solver = mechanics::make_contact_solver(scene.mechanics.solver, fixed);
     const mechanics::ContactProblem& problem = sim->problem();
     std::vector<Eigen::Vector3d> r(problem.size(), Eigen::Vector3d::Zero()), v, w;
+    std::vector<Eigen::Vector3d> m(problem.size(), Eigen::Vector3d::Zero());  // rolling
     const auto solve_start = std::chrono::steady_clock::now();
-    const mechanics::SolveReport solved = solver->solve(problem, r, v, w);
+    const mechanics::SolveReport solved = solver->solve_with_rolling(problem, r, m, v, w);
     const double solve_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - solve_start).count();
 

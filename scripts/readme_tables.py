@@ -46,6 +46,11 @@ ROOT = pathlib.Path(__file__).resolve().parent.parent
 TIMING = "[timing]"
 
 
+def sci(value, digits):
+    """value in e-notation without a leading zero in a negative exponent: 1.5e-3, not 1.5e-03."""
+    return re.sub(r"e-0(\d)", r"e-\1", f"{value:.{digits}e}")
+
+
 def tmdem(binary, args, cwd):
     subprocess.run([str(binary)] + args, cwd=cwd, check=True, stdout=subprocess.DEVNULL,
                    stderr=subprocess.DEVNULL)
@@ -92,9 +97,8 @@ def coupling_table(binary, work):
         for r in csv.DictReader(f):
             explicit = r["integrator"] == "explicit"
             strategy = "explicit at the mechanical step" if explicit else r["strategy"]
-            parameter = f"{float(r['parameter']):.0e} s" if explicit else f"{float(r['parameter']):.0e}"
-            parameter = re.sub(r"e-0(\d)", r"e-\1", parameter)
-            error = re.sub(r"e-0(\d)", r"e-\1", f"{float(r['max_error_K']):.1e}")
+            parameter = sci(float(r["parameter"]), 0) + (" s" if explicit else "")
+            error = sci(float(r["max_error_K"]), 1)
             rows.append(f"| {strategy} | {parameter} | {error} | "
                         f"{float(r['thermal_wall_time_s']):.3f} | {r['thermal_steps']} | "
                         f"{r['reinitializations']} |")
@@ -109,13 +113,12 @@ def settle_table(binary, work):
     s = json.loads(summary.read_text())
     m, settle = s["mechanics"], s["settle"]
     r_min = 5e-4  # the default scene's smallest radius, m (examples/paper_bed.toml)
-    e = lambda x: re.sub(r"e-0(\d)", r"e-\1", f"{x:.2e}")
     return ["| settle steps | at rest | unconverged (stalled) | mean sweeps | max sweeps | "
             "largest penetration (m) | correction sweeps | largest travel per step / r_min | "
             "wall time (s) " + TIMING + " |", "|---|---|---|---|---|---|---|---|---|",
             f"| {settle['steps']:,} | {'yes' if settle['at_rest'] else 'no'} | "
             f"{m['unconverged_steps']} ({m['stalled_steps']}) | {m['mean_iterations']:.0f} | "
-            f"{m['max_iterations']} | {e(m['max_penetration_m'])} | {m['correction_sweeps']:,} | "
+            f"{m['max_iterations']} | {sci(m['max_penetration_m'], 2)} | {m['correction_sweeps']:,} | "
             f"{m['max_step_travel_m'] / r_min:.2f} | {s['wall_time_s']:.1f} |"]
 
 
@@ -141,7 +144,7 @@ def piston_table(binary, work):
             steps, late = settles[k] if k < len(settles) else ("?", "")
             rest = "not at rest" if late else steps
             pressure = re.sub(r"e\+0?(\d)", r"e\1", f"{float(r['pressure_Pa']):.0e}")
-            k_eff = re.sub(r"e-0(\d)", r"e-\1", f"{float(r['k_eff_W_per_mK']):.4e}")
+            k_eff = sci(float(r["k_eff_W_per_mK"]), 4)
             rows.append(f"| {pressure} | {k_eff} | {float(r['porosity']):.4f} | "
                         f"{float(r['coordination']):.3f} | {1e3 * float(r['length_m']):.3f} | "
                         f"{r['contacts']} (+ {r['wall_contacts']}) | {rest} |")
@@ -177,7 +180,6 @@ def examples_table(binary, work):
     rows = ["| example | mechanics | solver | particles | steps | converged % | mean sweeps | "
             "stalled | at rest | largest penetration / r_min | wall time (s) " + TIMING + " |",
             "|---|---|---|---|---|---|---|---|---|---|---|"]
-    e = lambda x: re.sub(r"e-0(\d)", r"e-\1", f"{x:.1e}")
     for scene in sorted((ROOT / "examples").rglob("*.toml")):
         name = scene.relative_to(ROOT / "examples").as_posix()
         config = tomllib.loads(scene.read_text())
@@ -199,7 +201,7 @@ def examples_table(binary, work):
         penetration = m["max_penetration_m"] / smallest_radius(binary, scene, work)
         rows.append(f"| {name} | {mode} | {solver} | {s['particles']:,} | {steps:,} | "
                     f"{converged:.1f} | {m['mean_iterations']:.1f} | {m['stalled_steps']} | "
-                    f"{at_rest} | {e(penetration)} | {s['wall_time_s']:.1f} |")
+                    f"{at_rest} | {sci(penetration, 1)} | {s['wall_time_s']:.1f} |")
     return rows
 
 

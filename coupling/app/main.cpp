@@ -1,4 +1,9 @@
-// The tmdem program: contract section 1. Everything is in tmdem_main (coupling/app/TmdemMain.h).
+// The tmdem program: contract section 1. Everything is in tmdem_main (coupling/app/TmdemMain.h),
+// after the OpenMP wait policy is settled (OpenMpWaitPolicy.h).
+#include "coupling/app/OpenMpWaitPolicy.h"
 #include "coupling/app/TmdemMain.h"
 
-int main(int argc, char** argv) { return tmdem::coupling::tmdem_main(argc, argv); }
+int main(int argc, char** argv) {
+  tmdem::coupling::prefer_passive_openmp_wait(argv);
+  return tmdem::coupling::tmdem_main(argc, argv);
+}

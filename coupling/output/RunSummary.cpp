@@ -91,6 +91,7 @@ nlohmann::json RunSummary::to_json() const {
                             {"contact_solve_s", wall_time_parts->contact_solve_s},
                             {"correction_s", wall_time_parts->correction_s}};
   }
+  if (openmp) j["openmp"] = {{"threads", openmp->threads}, {"wait_policy", openmp->wait_policy}};
   for (const auto& i : imports)
     j["imports"].push_back({{"file", i.file},
                             {"particles", i.particles},
@@ -135,6 +136,11 @@ RunSummary RunSummary::from_json(const nlohmann::json& j) {
                                       number(w, "detection_s", 0.0),
                                       number(w, "contact_solve_s", 0.0),
                                       number(w, "correction_s", 0.0)};
+  }
+
+  if (j.contains("openmp")) {
+    const nlohmann::json& o = j.at("openmp");
+    s.openmp = OpenMpSummary{integer(o, "threads", 1), text(o, "wait_policy", "")};
   }
 
   if (j.contains("imports"))

@@ -103,6 +103,15 @@ struct ImportSummary {
   double overlap_tolerance = 0.0;    // what the scene accepted, same measure
 };
 
+// The "openmp" block (extra): the threads the run's parallel loops could use and how idle
+// threads waited (OMP_WAIT_POLICY as the run saw it; the program sets "passive" when it was
+// unset, coupling/app/OpenMpWaitPolicy.h). Figures of one run are comparable only at the same
+// thread count.
+struct OpenMpSummary {
+  std::int64_t threads = 1;   // omp_get_max_threads() during the run
+  std::string wait_policy;    // "passive", "active", or "unset" (libgomp's spin-then-sleep)
+};
+
 struct RunSummary {
   std::string status = "ok";         // "ok", "failed" or "interrupted"
   std::string message;               // extra: what failed; omitted when empty
@@ -115,6 +124,7 @@ struct RunSummary {
   EnergySummary energy;
   std::optional<WallTimeParts> wall_time_parts;  // extra: present for runs that got going
   std::vector<ImportSummary> imports;            // extra: written only when not empty
+  std::optional<OpenMpSummary> openmp;           // extra: present for runs that got going
 
   nlohmann::json to_json() const;
   // Inverse of to_json (missing keys keep their defaults). Throws nlohmann::json::exception on

@@ -4,6 +4,8 @@
 #include <chrono>
 #include <csignal>
 #include <cmath>
+#include <cstdlib>
+#include <omp.h>
 #include <memory>
 #include <numeric>
 #include <optional>
@@ -273,6 +275,8 @@ void CoupledRun::fill_summary() {
     parts.correction_s = nscd_->stats().correction_s;
   }
   summary_.wall_time_parts = parts;
+  const char* wait_policy = std::getenv("OMP_WAIT_POLICY");
+  summary_.openmp = OpenMpSummary{omp_get_max_threads(), wait_policy ? wait_policy : "unset"};
   summary_.imports.clear();
   for (const auto& i : scene_.imports)
     summary_.imports.push_back({i.file, std::int64_t(i.count), i.largest_overlap, i.overlap_tolerance});

@@ -188,3 +188,16 @@ TEST(RunSummary, WallTimePartsAndImportsRoundTrip) {
   EXPECT_EQ(r.imports[0].particles, 80);
   EXPECT_EQ(r.to_json(), s.to_json());
 }
+
+TEST(RunSummary, OpenMpBlockOnlyWhenSetAndRoundTrips) {
+  RunSummary s = sample();
+  EXPECT_FALSE(s.to_json().contains("openmp"));
+  s.openmp = tmdem::coupling::OpenMpSummary{2, "passive"};
+  const nlohmann::json j = nlohmann::json::parse(s.to_json().dump());
+  EXPECT_EQ(j["openmp"]["threads"], 2);
+  EXPECT_EQ(j["openmp"]["wait_policy"], "passive");
+  const RunSummary r = RunSummary::from_json(j);
+  ASSERT_TRUE(r.openmp.has_value());
+  EXPECT_EQ(r.openmp->threads, 2);
+  EXPECT_EQ(r.openmp->wait_policy, "passive");
+}

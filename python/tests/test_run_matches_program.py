@@ -17,6 +17,9 @@ def _without_wall_times(summary):
     summary.pop("wall_time_s")
     summary["thermal"].pop("wall_time_s", None)
     summary.pop("wall_time_parts", None)  # where the wall time went: timing, like the above
+    # How idle OpenMP threads waited: the program sets "passive" for itself, the module runs in
+    # Python's process as the user started it; it changes timings only, never the bits.
+    summary.pop("openmp", None)
     return summary
 
 

@@ -10,6 +10,7 @@
 #include <omp.h>
 
 #include <chrono>
+#include <ctime>
 
 #include "BenchLattice.h"
 #include "mechanics/ContactSolverRegistry.h"
@@ -66,6 +67,54 @@ BENCHMARK(BM_ColdSolve)
     ->ArgsProduct({{0, 1, 2}, {1000, 10000}, {1, 2}})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(3);
+
+// The cost of one Gauss-Seidel visit: a fixed number of sweeps (no stop test can end them)
+// on the pile, with rolling resistance as in examples/pour_3d.toml (friction 0.3, rolling
+// friction 0.05) or without. Every candidate of the pile is a contact, so active-set sweeps
+// (ActiveContactSet.h) visit all of them and the counter is the visit itself, ns per contact
+// per sweep (CPU time). Args: solver (index into contact_solver_names()), spheres, threads, rolling (0/1).
+//   OMP_NUM_THREADS=1 build/bench/bench_solvers --benchmark_filter=BM_Sweeps
+void BM_Sweeps(benchmark::State& state) {
+  const std::string name = contact_solver_names().at(static_cast<std::size_t>(state.range(0)));
+  const int layers = 10, sweeps = 100;
+  const bool rolling = state.range(3) != 0;
+  Material material{7800.0, 2.1e11, 0.3, 0.3};
+  material.rolling_friction = rolling ? 0.05 : 0.0;
+  NscdIntegrator sim(tmdem::bench::lattice(tmdem::bench::width_for(state.range(1), layers), layers),
+                     {material}, {Wall::through({0, 0, 0}, {0, 1, 0}, 0)},
+                     Eigen::Vector3d(0, -9.81, 0), 3, NscdParameters{});
+  sim.step();
+  const ContactProblem& problem = sim.problem();
+  SolverSettings settings;
+  settings.tolerance = 1e-300;
+  settings.max_iterations = sweeps;
+  settings.stall_sweeps = 1 << 30;
+  const int threads_before = omp_get_max_threads();
+  omp_set_num_threads(static_cast<int>(state.range(2)));
+  auto solver = make_contact_solver(name, settings);
+  std::vector<Eigen::Vector3d> r, m, v, w;
+  double seconds = 0.0;
+  std::int64_t visits = 0;
+  for (auto _ : state) {
+    r.assign(problem.size(), Eigen::Vector3d::Zero());
+    m.assign(problem.size(), Eigen::Vector3d::Zero());
+    const std::clock_t start = std::clock();
+    const SolveReport report = solver->solve_with_rolling(problem, r, m, v, w);
+    seconds += static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
+    visits += static_cast<std::int64_t>(report.sweeps) * static_cast<std::int64_t>(problem.size());
+  }
+  omp_set_num_threads(threads_before);
+  state.SetLabel(name + (rolling ? " rolling" : ""));
+  state.counters["contacts"] = static_cast<double>(problem.size());
+  state.counters["threads"] = static_cast<double>(state.range(2));
+  // CPU time of the process (all threads), not wall time: on a shared machine the wall time
+  // of one thread includes the time it waited for a core.
+  state.counters["cpu_ns_sweep"] = seconds * 1e9 / static_cast<double>(visits);
+}
+BENCHMARK(BM_Sweeps)
+    ->ArgsProduct({{0, 2}, {10000}, {1}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(5);
 
 }  // namespace
 

@@ -65,42 +65,59 @@ SolveReport ColouredGaussSeidelSolver::solve_with_rolling(
   }
   ordered_.velocities_from_reactions(ordered_r_, velocity, angular_velocity);
   if (problem.rolling) ordered_.add_rolling_impulses(ordered_m_, angular_velocity);
-  change_.assign(static_cast<std::size_t>(count), 0.0);
-  total_.assign(static_cast<std::size_t>(count), 0.0);
+  // Per visit slot (contact p in a full sweep, active()[q] in a partial one): this sweep's
+  // change and total, summed in fixed blocks of slots.
+  change_.resize(static_cast<std::size_t>(count));
+  total_.resize(static_cast<std::size_t>(count));
   block_sums_.resize(static_cast<std::size_t>(2 * blocks));
   const double relaxation = settings_.relaxation;
   SolveReport report;
   GaussSeidelStopTest stop(settings_.tolerance, settings_.stall_sweeps);
+  active_.start(static_cast<std::size_t>(count), settings_.full_sweep_every, settings_.max_iterations);
   while (report.sweeps < settings_.max_iterations) {
     ++report.sweeps;
     const bool forward = report.sweeps % 2 == 1;
+    // Full sweeps visit every contact of each colour and mark the passive ones; partial
+    // sweeps the colour's active contacts only (ActiveContactSet.h).
+    const bool full = active_.full(report.sweeps);
+    const std::vector<std::int32_t>& active = active_.active();
+    const std::vector<std::int32_t>& slot_start = full ? start : active_.active_start();
+    const std::ptrdiff_t slots = slot_start[static_cast<std::size_t>(colours)];
+    const std::ptrdiff_t slot_blocks = sum_block_count(slots);
 #pragma omp parallel if (parallel)
     {
       for (std::ptrdiff_t visit = 0; visit < colours; ++visit) {
         const std::ptrdiff_t k = forward ? visit : colours - 1 - visit;
 #pragma omp for schedule(static)
-        for (std::ptrdiff_t p = start[k]; p < start[k + 1]; ++p) {
-          const auto c = static_cast<std::size_t>(p);
-          if (!ordered_.solvable(c)) continue;
-          const ContactUpdate u = gauss_seidel_visit(ordered_, c, relaxation, ordered_r_[c],
-                                                     ordered_m_, velocity, angular_velocity);
-          change_[c] = u.change;
-          total_[c] = u.total;
+        for (std::ptrdiff_t q = slot_start[k]; q < slot_start[k + 1]; ++q) {
+          const auto c = static_cast<std::size_t>(full ? q : active[q]);
+          ContactUpdate u;
+          if (ordered_.solvable(c)) {
+            u = gauss_seidel_visit(ordered_, c, relaxation, ordered_r_[c], ordered_m_, velocity,
+                                   angular_velocity);
+            if (full) active_.mark_visited(c, u.total);
+          } else if (full) {
+            active_.mark_unsolvable(c);
+          }
+          change_[q] = u.change;
+          total_[q] = u.total;
         }
       }
 #pragma omp for schedule(static)
-      for (std::ptrdiff_t block = 0; block < blocks; ++block) {
+      for (std::ptrdiff_t block = 0; block < slot_blocks; ++block) {
         double change = 0.0, total = 0.0;
-        for (std::ptrdiff_t c = block * kSumBlock; c < std::min(count, (block + 1) * kSumBlock); ++c) {
-          change += change_[c];
-          total += total_[c];
+        for (std::ptrdiff_t q = block * kSumBlock; q < std::min(slots, (block + 1) * kSumBlock); ++q) {
+          change += change_[q];
+          total += total_[q];
         }
         block_sums_[2 * block] = change;
         block_sums_[2 * block + 1] = total;
       }
     }
-    const auto [change, total] = add_block_sums<2>(block_sums_, blocks);
-    if (stop.after_sweep(change, total, report)) break;
+    const auto [change, total] = add_block_sums<2>(block_sums_, slot_blocks);
+    if (stop.after_sweep(change, total, report, full)) break;
+    if (full) active_.collect(start);
+    active_.after_sweep(full, stop.met());
   }
 #pragma omp parallel for schedule(static) if (parallel)
   for (std::ptrdiff_t p = 0; p < count; ++p) {

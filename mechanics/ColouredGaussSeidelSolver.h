@@ -15,12 +15,17 @@
 // into colour order first (one pass, about the cost of one sweep) and sweeps that copy in
 // streams; the reactions are copied back at the end.
 //
+// Active sets: as "nlgs", most sweeps visit the active contacts of each colour only
+// (ActiveContactSet.h); the active lists are collected in colour order, so they and the sums
+// over them do not depend on the thread count either.
+//
 // Cost: one barrier per colour per sweep (about 10-30 colours for sphere packings), which
 // is why small problems stay on one thread (parallel_from).
 
 #include <cstddef>
 #include <vector>
 
+#include "mechanics/ActiveContactSet.h"
 #include "mechanics/ContactColouring.h"
 #include "mechanics/ContactSolver.h"
 
@@ -50,7 +55,8 @@ class ColouredGaussSeidelSolver final : public ContactSolver {
   ContactProblem ordered_;                 // the problem with its contacts in colour order
   std::vector<Eigen::Vector3d> ordered_r_; // reactions in colour order
   std::vector<Eigen::Vector3d> ordered_m_; // rolling impulses in colour order
-  std::vector<double> change_, total_;     // per contact, this sweep
+  ActiveContactSet active_;                // the contacts partial sweeps visit, per colour
+  std::vector<double> change_, total_;     // per visit slot, this sweep
   std::vector<double> block_sums_;         // per block of contacts: change, total
 };
 

@@ -79,6 +79,14 @@ struct ContactProblem {
   Eigen::Vector3d local_velocity(std::size_t c, const std::vector<Eigen::Vector3d>& velocity,
                                  const std::vector<Eigen::Vector3d>& angular_velocity) const;
 
+  // The normal component of local_velocity, m/s: n . (v_i - v_j) + bias (the spin terms
+  // (R_i w_i + R_j w_j) x n are perpendicular to n and drop out).
+  double normal_velocity(std::size_t c, const std::vector<Eigen::Vector3d>& velocity) const {
+    const std::int32_t j = body_j[c];
+    const Eigen::Vector3d& vj = is_wall(j) ? velocity[wall_body(j)] : velocity[j];
+    return (velocity[body_i[c]] - vj).dot(normal[c]) + bias[c];
+  }
+
   // velocity += M^-1 H_c r_c for one local impulse r_c.
   void apply_impulse(std::size_t c, const Eigen::Vector3d& r_local,
                      std::vector<Eigen::Vector3d>& velocity,

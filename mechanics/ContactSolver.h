@@ -21,6 +21,9 @@ struct SolverSettings {
   int max_iterations = 10000; // sweeps (or iterations) per solve
   double relaxation = 1.0;    // over-relaxation factor, where the solver has one
   int stall_sweeps = 500;     // stop when the residual made no progress over this many sweeps
+  // Gauss-Seidel solvers: a sweep over every contact at least every this many sweeps, the
+  // others visit the active contacts only (ActiveContactSet.h); 1: every sweep is full.
+  int full_sweep_every = 1;
 };
 
 struct SolveReport {

@@ -23,6 +23,7 @@ SolveReport GaussSeidelSolver::solve_with_rolling(const ContactProblem& problem,
   const std::size_t count = problem.size();
   SolveReport report;
   GaussSeidelStopTest stop(settings_.tolerance, settings_.stall_sweeps);
+  active_.start(count, settings_.full_sweep_every, settings_.max_iterations);
   while (report.sweeps < settings_.max_iterations) {
     ++report.sweeps;
     double change = 0.0, total = 0.0;
@@ -30,15 +31,26 @@ SolveReport GaussSeidelSolver::solve_with_rolling(const ContactProblem& problem,
     // so that a load travels the whole length of a chain (a column, a force path) in one
     // pair of sweeps whichever way the contacts happen to be numbered.
     const bool forward = report.sweeps % 2 == 1;
-    for (std::size_t visit = 0; visit < count; ++visit) {
-      const std::size_t c = forward ? visit : count - 1 - visit;
-      if (!problem.solvable(c)) continue;
+    const bool full = active_.full(report.sweeps);
+    // Full sweeps visit every contact and mark the passive ones, partial sweeps the active
+    // ones only, in the same relative order (ActiveContactSet.h).
+    const std::size_t visits = full ? count : active_.active().size();
+    for (std::size_t visit = 0; visit < visits; ++visit) {
+      const std::size_t k = forward ? visit : visits - 1 - visit;
+      const std::size_t c = full ? k : static_cast<std::size_t>(active_.active()[k]);
+      if (!problem.solvable(c)) {
+        active_.mark_unsolvable(c);
+        continue;
+      }
       const ContactUpdate u =
           gauss_seidel_visit(problem, c, settings_.relaxation, r[c], m, velocity, angular_velocity);
       change += u.change;
       total += u.total;
+      if (full) active_.mark_visited(c, u.total);
     }
-    if (stop.after_sweep(change, total, report)) break;
+    if (stop.after_sweep(change, total, report, full)) break;
+    if (full) active_.collect(count);
+    active_.after_sweep(full, stop.met());
   }
   return report;
 }

@@ -1,8 +1,11 @@
 #pragma once
 // Nonlinear Gauss-Seidel ("equilibres successifs", [JEA 99]) over the contacts: each contact
 // solves its own bipotential law with the others frozen (closed form, CoulombCone.h) and
-// updates the two bodies' velocities at once. Registered as "nlgs".
+// updates the two bodies' velocities at once. Registered as "nlgs". Most sweeps visit the
+// active contacts only, a full sweep every SolverSettings::full_sweep_every sweeps and before
+// convergence is declared (ActiveContactSet.h).
 
+#include "mechanics/ActiveContactSet.h"
 #include "mechanics/ContactSolver.h"
 
 namespace tmdem::mechanics {
@@ -23,6 +26,7 @@ class GaussSeidelSolver final : public ContactSolver {
  private:
   SolverSettings settings_;
   std::vector<Eigen::Vector3d> no_rolling_;  // m of a problem without rolling (never read)
+  ActiveContactSet active_;                  // the contacts partial sweeps visit
 };
 
 }  // namespace tmdem::mechanics

@@ -67,11 +67,20 @@ inline ContactUpdate gauss_seidel_rolling_update(const ContactProblem& problem, 
 
 // One visit of contact c in either Gauss-Seidel solver: its (n, t) block, then its rolling
 // block when the problem has rolling resistance (m: the rolling impulses, unused otherwise).
+// An open candidate that stays open is settled first, from its normal velocity alone: with
+// r_c = 0 (and m_c = 0, which r_n = 0 forces) the local solve gives 0 exactly when
+// u0_n = u_n >= 0, and u_n = n . (v_i - v_j) + bias (the spins' lever terms are
+// perpendicular to n). Most candidates of a look-ahead detection are such (ActiveContactSet.h).
 inline ContactUpdate gauss_seidel_visit(const ContactProblem& problem, std::size_t c,
                                         double relaxation, Eigen::Vector3d& rc,
                                         std::vector<Eigen::Vector3d>& m,
                                         std::vector<Eigen::Vector3d>& velocity,
                                         std::vector<Eigen::Vector3d>& angular_velocity) {
+  if (rc[0] == 0.0 && rc[1] == 0.0 && rc[2] == 0.0 &&
+      (!problem.rolling || (m[c][0] == 0.0 && m[c][1] == 0.0 && m[c][2] == 0.0)) &&
+      !(problem.normal_velocity(c, velocity) < 0.0)) {
+    return {};
+  }
   ContactUpdate u = gauss_seidel_update(problem, c, relaxation, rc, velocity, angular_velocity);
   if (problem.rolling) {
     const ContactUpdate roll = gauss_seidel_rolling_update(problem, c, rc[0], m[c], angular_velocity);
@@ -83,15 +92,19 @@ inline ContactUpdate gauss_seidel_visit(const ContactProblem& problem, std::size
 
 // Stop test and stall watch of both Gauss-Seidel solvers, fed once per sweep with the
 // sweep's sums: converged when change <= tolerance * total; stalled when the residual
-// change / total has not fallen below 0.9x its best over stall_sweeps sweeps.
+// change / total has not fallen below 0.9x its best over stall_sweeps sweeps. Both are judged
+// on full sweeps only (every_contact; ActiveContactSet.h): a partial sweep says nothing of
+// the candidates it skipped. report.residual is the last sweep's change / total.
 class GaussSeidelStopTest {
  public:
   GaussSeidelStopTest(double tolerance, int stall_sweeps)
       : tolerance_(tolerance), stall_sweeps_(stall_sweeps) {}
   // Returns true when the solve should end (report.converged or report.stalled set).
-  bool after_sweep(double change, double total, SolveReport& report) {
+  bool after_sweep(double change, double total, SolveReport& report, bool every_contact = true) {
     report.residual = total > 0.0 ? change / total : 0.0;
-    if (change <= tolerance_ * total) {
+    met_ = change <= tolerance_ * total;
+    if (!every_contact) return false;
+    if (met_) {
       report.converged = true;
       return true;
     }
@@ -104,12 +117,15 @@ class GaussSeidelStopTest {
     }
     return false;
   }
+  // Whether the last sweep met the tolerance (a partial sweep: to be confirmed by a full one).
+  bool met() const { return met_; }
 
  private:
   double tolerance_;
   int stall_sweeps_;
   double best_ = std::numeric_limits<double>::infinity();
   int best_sweep_ = 0;
+  bool met_ = false;
 };
 
 }  // namespace tmdem::mechanics

@@ -121,6 +121,7 @@ NscdIntegrator::NscdIntegrator(ParticleSet particles, std::vector<Material> mate
   settings.max_iterations = parameters_.max_iterations;
   settings.relaxation = parameters_.relaxation;
   settings.stall_sweeps = parameters_.stall_sweeps;
+  settings.full_sweep_every = parameters_.full_sweep_every;
   solver_ = make_contact_solver(parameters_.solver, settings);
   require(!rolling_ || solver_->supports_rolling_friction(),
           "solver \"" + parameters_.solver +

@@ -52,8 +52,10 @@ inline NscdIntegrator random_pile(std::size_t count, int dimension, double frict
 // 40 disks (radii 1 and 0.7 mm) dropped at random into a 2D box 8 mm wide (about six
 // layers), mu = 0.5 between disks and on the floor, side walls frictionless (material 1),
 // solver tolerance 1e-8, stepped until every speed is below 1e-9 m/s (at most 5,000 steps; the
-// caller checks max_speed()). See test_nscd_rest.cpp for why 1e-8.
-inline NscdIntegrator settled_disk_pile(std::uint64_t seed = 1) {
+// caller checks max_speed()). See test_nscd_rest.cpp for why 1e-8. full_sweep_every: the
+// solver's active-set sweeps (ActiveContactSet.h; 1: every sweep visits every candidate).
+inline NscdIntegrator settled_disk_pile(std::uint64_t seed = 1,
+                                        int full_sweep_every = NscdParameters{}.full_sweep_every) {
   constexpr double width = 0.008, height = 0.03;
   const auto placed = place_random(40, Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(width, height, 0),
                                    {kRadius, 0.7 * kRadius}, {0.5, 0.5}, seed, 2);
@@ -64,6 +66,7 @@ inline NscdIntegrator settled_disk_pile(std::uint64_t seed = 1) {
   for (std::size_t w = 1; w < walls.size(); ++w) walls[w].material = 1;
   NscdParameters parameters;
   parameters.tolerance = 1e-8;
+  parameters.full_sweep_every = full_sweep_every;
   NscdIntegrator sim(std::move(set), {steel(0.5), steel(0.0)}, walls, Eigen::Vector3d(0, -kG, 0), 2,
                      parameters);
   for (int step = 0; step < 5000 && !(step > 10 && sim.max_speed() < 1e-9); ++step) sim.step();

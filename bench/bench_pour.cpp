@@ -18,6 +18,9 @@
 //   TMDEM_POUR_TRACE       if set, one line per step on stderr: step, sweeps, residual,
 //                          converged, correction sweeps, candidates, active contacts,
 //                          largest speed (m/s), largest travel / r_min, penetration / r_min
+//   TMDEM_POUR_PROBE_STEP  after this step, re-solve its problem from zero with plain
+//                          symmetric Gauss-Seidel and print where it is slow (SlowModeProbe.h;
+//                          TMDEM_POUR_PROBE_SWEEPS sweeps, default 400)
 // Counters: particles; contacts (active, at the end) and candidates; settle_steps; sim_time_s;
 // at_rest (1/0); mean_sweeps; converged_pct (steps whose solver converged); pen_rmin (largest
 // penetration during the run / smallest radius) and pen_end_rmin (after the last step);
@@ -41,6 +44,7 @@
 #include "coupling/scene/SceneLoader.h"
 #include "mechanics/ContactColouring.h"
 #include "mechanics/ContactSolverRegistry.h"
+#include "SlowModeProbe.h"
 
 using namespace tmdem;
 
@@ -110,6 +114,7 @@ void BM_Pour(benchmark::State& state) {
     std::int64_t steps = 0, converged = 0;
     bool at_rest = false;
     const bool trace = std::getenv("TMDEM_POUR_TRACE") != nullptr;
+    const auto probe_step = static_cast<std::int64_t>(env_number("TMDEM_POUR_PROBE_STEP", -1));
     const auto start = std::chrono::steady_clock::now();
     while (t < scene.mechanics.settle_time_s - 0.5 * h && steps < max_steps && wall < max_wall_s) {
       const mechanics::StepReport report = sim->step(h);
@@ -125,6 +130,11 @@ void BM_Pour(benchmark::State& state) {
                      report.converged ? 1 : 0, report.correction_sweeps, report.candidates,
                      report.active_contacts, sim->max_speed(), report.max_travel_m / r_min,
                      report.max_penetration_m / r_min);
+      }
+      if (steps == probe_step) {
+        bench::print_slow_mode(sim->problem(), static_cast<int>(env_number("TMDEM_POUR_PROBE_SWEEPS", 400)), stderr);
+        bench::print_solver_sweeps(sim->problem(), {"nlgs", "nlgs_block"}, stderr);
+        bench::print_block_ratios(sim->problem(), stderr);
       }
       if (sim->max_speed() < scene.mechanics.settle_velocity_m_per_s) {
         at_rest = true;

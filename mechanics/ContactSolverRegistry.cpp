@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "mechanics/ApgdSolver.h"
+#include "mechanics/BlockGaussSeidelSolver.h"
 #include "mechanics/ColouredGaussSeidelSolver.h"
 #include "mechanics/GaussSeidelSolver.h"
 
@@ -24,6 +25,7 @@ const std::vector<Entry>& entries() {
       {"nlgs", &make<GaussSeidelSolver>},
       {"apgd", &make<ApgdSolver>},
       {"nlgs_coloured", &make<ColouredGaussSeidelSolver>},
+      {"nlgs_block", &make<BlockGaussSeidelSolver>},
   };
   return table;
 }

@@ -16,26 +16,6 @@ Eigen::Vector3d project_onto_coulomb_cone(const Eigen::Vector3d& tau, double mu)
   return Eigen::Vector3d(rn, scale * tau[1], scale * tau[2]);
 }
 
-int solve_contact_bipotential(const Eigen::Vector3d& u0, double w_n, double w_t, double mu,
-                              Eigen::Vector3d& r) {
-  if (!(u0[0] < 0.0)) {  // separating or grazing: no contact
-    r.setZero();
-    return 1;
-  }
-  const double rn = -u0[0] / w_n;  // u_n = 0 while in contact
-  const double rt1 = -u0[1] / w_t, rt2 = -u0[2] / w_t;
-  const double rt = std::hypot(rt1, rt2);
-  if (rt <= mu * rn) {  // stick: u = 0
-    r = Eigen::Vector3d(rn, rt1, rt2);
-    return 1;
-  }
-  // Slip: on the cone surface, opposite to the tangential velocity (which keeps the
-  // direction of u0_t since W is a multiple of the identity on the tangent plane).
-  const double scale = mu * rn / rt;
-  r = Eigen::Vector3d(rn, scale * rt1, scale * rt2);
-  return 1;
-}
-
 int solve_contact_bipotential_iterative(const Eigen::Vector3d& u0, double w_n, double w_t,
                                         double mu, Eigen::Vector3d& r,
                                         double relative_tolerance, int max_passes) {

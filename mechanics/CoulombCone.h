@@ -13,6 +13,7 @@
 // This single relation covers unilateral contact and Coulomb friction together.
 
 #include <Eigen/Core>
+#include <cmath>
 
 namespace tmdem::mechanics {
 
@@ -39,8 +40,26 @@ Eigen::Vector3d project_onto_coulomb_cone(const Eigen::Vector3d& tau, double mu)
 // i.e. the predictor-corrector converged (its passes contract slip by mu'^2 / (1 + mu'^2)
 // each, so 10 to 50 of them were needed before). The result is exact to round-off; r's input
 // value (a warm start for the iterative form) is ignored. Returns the number of passes, 1.
-int solve_contact_bipotential(const Eigen::Vector3d& u0, double w_n, double w_t, double mu,
-                              Eigen::Vector3d& r);
+// Inline: every Gauss-Seidel visit calls it (GaussSeidelUpdate.h).
+inline int solve_contact_bipotential(const Eigen::Vector3d& u0, double w_n, double w_t, double mu,
+                                     Eigen::Vector3d& r) {
+  if (!(u0[0] < 0.0)) {  // separating or grazing: no contact
+    r.setZero();
+    return 1;
+  }
+  const double rn = -u0[0] / w_n;  // u_n = 0 while in contact
+  const double rt1 = -u0[1] / w_t, rt2 = -u0[2] / w_t;
+  const double rt = std::hypot(rt1, rt2);
+  if (rt <= mu * rn) {  // stick: u = 0
+    r = Eigen::Vector3d(rn, rt1, rt2);
+    return 1;
+  }
+  // Slip: on the cone surface, opposite to the tangential velocity (which keeps the
+  // direction of u0_t since W is a multiple of the identity on the tangent plane).
+  const double scale = mu * rn / rt;
+  r = Eigen::Vector3d(rn, scale * rt1, scale * rt2);
+  return 1;
+}
 
 // The predictor-corrector itself (rho = 1 in the scaled variables above), from r as a warm
 // start, until the change is below relative_tolerance or after max_passes; returns the

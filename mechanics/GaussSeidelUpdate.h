@@ -22,6 +22,13 @@ struct ContactUpdate {
   double total = 0.0;   // |r_c new|, N s
 };
 
+// {|d|, |x|}, the two norms the stop test adds per block, with one packed square root (same
+// bits as d.norm() and x.norm(): both are sqrt(squaredNorm())).
+inline ContactUpdate change_and_total(const Eigen::Vector3d& d, const Eigen::Vector3d& x) {
+  const Eigen::Array2d norms = Eigen::Array2d(d.squaredNorm(), x.squaredNorm()).sqrt();
+  return {norms[0], norms[1]};
+}
+
 inline ContactUpdate gauss_seidel_update(const ContactProblem& problem, std::size_t c,
                                          double relaxation, Eigen::Vector3d& rc,
                                          std::vector<Eigen::Vector3d>& velocity,
@@ -42,7 +49,7 @@ inline ContactUpdate gauss_seidel_update(const ContactProblem& problem, std::siz
     problem.apply_impulse(c, dr, velocity, angular_velocity);
     rc = next;
   }
-  return {dr.norm(), next.norm()};
+  return change_and_total(dr, next);
 }
 
 // The rolling block of contact c (ContactProblem::rolling), visited right after its
@@ -62,7 +69,8 @@ inline ContactUpdate gauss_seidel_rolling_update(const ContactProblem& problem, 
     mc = next;
   }
   const double scale = 1.0 / problem.rolling_radius[c];
-  return {dm.norm() * scale, next.norm() * scale};
+  const ContactUpdate norms = change_and_total(dm, next);
+  return {norms.change * scale, norms.total * scale};
 }
 
 // One visit of contact c in either Gauss-Seidel solver: its (n, t) block, then its rolling

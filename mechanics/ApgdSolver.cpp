@@ -139,12 +139,6 @@ void ApgdSolver::local_velocities(const ContactProblem& problem,
   }
 }
 
-SolveReport ApgdSolver::solve(const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
-                              std::vector<Eigen::Vector3d>& velocity,
-                              std::vector<Eigen::Vector3d>& angular_velocity) {
-  return solve_with_rolling(problem, r, no_rolling_, velocity, angular_velocity);
-}
-
 SolveReport ApgdSolver::solve_with_rolling(const ContactProblem& problem,
                                            std::vector<Eigen::Vector3d>& r,
                                            std::vector<Eigen::Vector3d>& m,

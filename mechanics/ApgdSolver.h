@@ -52,10 +52,6 @@ class ApgdSolver final : public ContactSolver {
   // costs more than an iteration); 0 parallelises every problem (tests).
   explicit ApgdSolver(const SolverSettings& settings, std::ptrdiff_t parallel_from = 4096);
   std::string_view name() const override { return "apgd"; }
-  SolveReport solve(const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
-                    std::vector<Eigen::Vector3d>& velocity,
-                    std::vector<Eigen::Vector3d>& angular_velocity) override;
-  bool supports_rolling_friction() const override { return true; }
   SolveReport solve_with_rolling(const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
                                  std::vector<Eigen::Vector3d>& m,
                                  std::vector<Eigen::Vector3d>& velocity,
@@ -84,7 +80,6 @@ class ApgdSolver final : public ContactSolver {
   std::vector<Eigen::Vector3d> x_, x_old_, y_, ux_, ux_old_, uy_, best_;
   // Rolling: impulses m (N m s) at x, x_old, y, their rolling velocities (rad/s), the best m.
   std::vector<Eigen::Vector3d> mx_, mx_old_, my_, sx_, sx_old_, sy_, mbest_;
-  std::vector<Eigen::Vector3d> no_rolling_;  // m of a problem without rolling (never read)
   std::vector<Eigen::Vector3d> impulse_, torque_arm_;  // global p_c and n x p_c, N s
   std::vector<double> slip_bias_;                      // s_c = mu |u_t|, m/s
   std::vector<std::int32_t> body_start_, body_fill_;   // contacts of each body (CSR)

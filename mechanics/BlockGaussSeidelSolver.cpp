@@ -10,13 +10,6 @@ namespace tmdem::mechanics {
 BlockGaussSeidelSolver::BlockGaussSeidelSolver(const SolverSettings& settings, double mass_ratio)
     : settings_(settings), mass_ratio_(mass_ratio) {}
 
-SolveReport BlockGaussSeidelSolver::solve(const ContactProblem& problem,
-                                          std::vector<Eigen::Vector3d>& r,
-                                          std::vector<Eigen::Vector3d>& velocity,
-                                          std::vector<Eigen::Vector3d>& angular_velocity) {
-  return solve_with_rolling(problem, r, no_rolling_, velocity, angular_velocity);
-}
-
 void BlockGaussSeidelSolver::build_blocks(const ContactProblem& problem) {
   const std::size_t count = problem.size();
   const std::size_t bodies = problem.body_count();

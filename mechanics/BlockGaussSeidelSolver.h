@@ -22,10 +22,6 @@ class BlockGaussSeidelSolver final : public ContactSolver {
 
   explicit BlockGaussSeidelSolver(const SolverSettings& settings, double mass_ratio = kDefaultMassRatio);
   std::string_view name() const override { return "nlgs_block"; }
-  SolveReport solve(const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
-                    std::vector<Eigen::Vector3d>& velocity,
-                    std::vector<Eigen::Vector3d>& angular_velocity) override;
-  bool supports_rolling_friction() const override { return true; }
   SolveReport solve_with_rolling(const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
                                  std::vector<Eigen::Vector3d>& m,
                                  std::vector<Eigen::Vector3d>& velocity,
@@ -43,7 +39,6 @@ class BlockGaussSeidelSolver final : public ContactSolver {
   SolverSettings settings_;
   double mass_ratio_;
   BodyContactBlock block_;
-  std::vector<Eigen::Vector3d> no_rolling_;  // m of a problem without rolling (never read)
   std::vector<double> heaviest_;             // kg, heaviest mobile neighbour per body
   std::vector<std::int32_t> owner_;          // per contact: its block, -1 for a single visit
   std::vector<std::int32_t> block_body_;     // per block: its body

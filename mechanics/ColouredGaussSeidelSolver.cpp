@@ -11,13 +11,6 @@ ColouredGaussSeidelSolver::ColouredGaussSeidelSolver(const SolverSettings& setti
                                                      std::ptrdiff_t parallel_from)
     : settings_(settings), parallel_from_(parallel_from) {}
 
-SolveReport ColouredGaussSeidelSolver::solve(const ContactProblem& problem,
-                                             std::vector<Eigen::Vector3d>& r,
-                                             std::vector<Eigen::Vector3d>& velocity,
-                                             std::vector<Eigen::Vector3d>& angular_velocity) {
-  return solve_with_rolling(problem, r, no_rolling_, velocity, angular_velocity);
-}
-
 SolveReport ColouredGaussSeidelSolver::solve_with_rolling(
     const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
     std::vector<Eigen::Vector3d>& m, std::vector<Eigen::Vector3d>& velocity,

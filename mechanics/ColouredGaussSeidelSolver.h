@@ -37,10 +37,6 @@ class ColouredGaussSeidelSolver final : public ContactSolver {
   explicit ColouredGaussSeidelSolver(const SolverSettings& settings,
                                      std::ptrdiff_t parallel_from = 4096);
   std::string_view name() const override { return "nlgs_coloured"; }
-  SolveReport solve(const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
-                    std::vector<Eigen::Vector3d>& velocity,
-                    std::vector<Eigen::Vector3d>& angular_velocity) override;
-  bool supports_rolling_friction() const override { return true; }
   SolveReport solve_with_rolling(const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
                                  std::vector<Eigen::Vector3d>& m,
                                  std::vector<Eigen::Vector3d>& velocity,
@@ -49,7 +45,6 @@ class ColouredGaussSeidelSolver final : public ContactSolver {
 
  private:
   SolverSettings settings_;
-  std::vector<Eigen::Vector3d> no_rolling_;  // m of a problem without rolling (never read)
   std::ptrdiff_t parallel_from_;
   ContactColouring colouring_;
   ContactProblem ordered_;                 // the problem with its contacts in colour order

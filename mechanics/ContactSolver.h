@@ -9,6 +9,7 @@
 // cone and the closed-form local solve) and ContactResidual.h for the stop test.
 
 #include <Eigen/Core>
+#include <cassert>
 #include <string_view>
 #include <vector>
 
@@ -40,28 +41,34 @@ class ContactSolver {
 
   // r: one local impulse per contact (N s, frame n, t1, t2): the warm start on entry (already
   // inside its Coulomb cone, zero for unsolvable contacts), the reactions on return.
+  // m: one rolling angular impulse per contact (N m s, global; ContactProblem.h) when the
+  // problem has rolling resistance (ContactProblem::rolling), the warm start on entry (within
+  // its rolling cone), the rolling reactions on return; not read otherwise.
   // velocity, angular_velocity: one per body, overwritten with v_free + M^-1 H r on return.
-  // Must not allocate once warm (the step loop calls it every step).
-  virtual SolveReport solve(const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
-                            std::vector<Eigen::Vector3d>& velocity,
-                            std::vector<Eigen::Vector3d>& angular_velocity) = 0;
-
-  // The same with rolling resistance (ContactProblem::rolling): m holds one rolling angular
-  // impulse per contact (N m s, global; ContactProblem.h), the warm start on entry (within its
-  // rolling cone), the rolling reactions on return. A solver without rolling resistance
-  // refuses a problem that has it (supports_rolling_friction).
-  virtual bool supports_rolling_friction() const { return false; }
+  // Must not allocate once warm (the step loop calls it every step). Every solver handles
+  // rolling resistance.
   virtual SolveReport solve_with_rolling(const ContactProblem& problem,
                                          std::vector<Eigen::Vector3d>& r,
                                          std::vector<Eigen::Vector3d>& m,
                                          std::vector<Eigen::Vector3d>& velocity,
-                                         std::vector<Eigen::Vector3d>& angular_velocity);
+                                         std::vector<Eigen::Vector3d>& angular_velocity) = 0;
+
+  // A problem without rolling resistance (the m above is never read).
+  SolveReport solve(const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
+                    std::vector<Eigen::Vector3d>& velocity,
+                    std::vector<Eigen::Vector3d>& angular_velocity) {
+    assert(!problem.rolling && "a problem with rolling resistance needs solve_with_rolling");
+    return solve_with_rolling(problem, r, no_rolling_, velocity, angular_velocity);
+  }
 
   // What the solver carries from one solve to the next (e.g. a step-size estimate), as plain
   // numbers, and putting it back (restart from a checkpoint: MechanicsState.h). Empty for a
   // solver that starts every solve from the warm-start reactions alone.
   virtual std::vector<double> carried_state() const { return {}; }
   virtual void restore_carried_state(const std::vector<double>& /*state*/) {}
+
+ private:
+  std::vector<Eigen::Vector3d> no_rolling_;  // m of a problem without rolling (never read)
 };
 
 }  // namespace tmdem::mechanics

@@ -6,13 +6,6 @@ namespace tmdem::mechanics {
 
 GaussSeidelSolver::GaussSeidelSolver(const SolverSettings& settings) : settings_(settings) {}
 
-SolveReport GaussSeidelSolver::solve(const ContactProblem& problem,
-                                     std::vector<Eigen::Vector3d>& r,
-                                     std::vector<Eigen::Vector3d>& velocity,
-                                     std::vector<Eigen::Vector3d>& angular_velocity) {
-  return solve_with_rolling(problem, r, no_rolling_, velocity, angular_velocity);
-}
-
 SolveReport GaussSeidelSolver::solve_with_rolling(const ContactProblem& problem,
                                                   std::vector<Eigen::Vector3d>& r,
                                                   std::vector<Eigen::Vector3d>& m,

@@ -14,10 +14,6 @@ class GaussSeidelSolver final : public ContactSolver {
  public:
   explicit GaussSeidelSolver(const SolverSettings& settings);
   std::string_view name() const override { return "nlgs"; }
-  SolveReport solve(const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
-                    std::vector<Eigen::Vector3d>& velocity,
-                    std::vector<Eigen::Vector3d>& angular_velocity) override;
-  bool supports_rolling_friction() const override { return true; }
   SolveReport solve_with_rolling(const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
                                  std::vector<Eigen::Vector3d>& m,
                                  std::vector<Eigen::Vector3d>& velocity,
@@ -25,7 +21,6 @@ class GaussSeidelSolver final : public ContactSolver {
 
  private:
   SolverSettings settings_;
-  std::vector<Eigen::Vector3d> no_rolling_;  // m of a problem without rolling (never read)
   ActiveContactSet active_;                  // the contacts partial sweeps visit
 };
 

@@ -123,10 +123,6 @@ NscdIntegrator::NscdIntegrator(ParticleSet particles, std::vector<Material> mate
   settings.stall_sweeps = parameters_.stall_sweeps;
   settings.full_sweep_every = parameters_.full_sweep_every;
   solver_ = make_contact_solver(parameters_.solver, settings);
-  require(!rolling_ || solver_->supports_rolling_friction(),
-          "solver \"" + parameters_.solver +
-              "\" does not support rolling friction (use \"nlgs\", \"nlgs_coloured\" or "
-              "\"apgd\", or set every material's rolling_friction to 0)");
   problem_.rolling = rolling_;
   correction_ = PenetrationCorrection(settings);
   problem_.dimension = dimension_;

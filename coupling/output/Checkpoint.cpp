@@ -17,7 +17,7 @@
 namespace tmdem::coupling {
 namespace {
 
-constexpr const char* kFormat = "tmdem-checkpoint-1";
+constexpr const char* kCheckpointFormat = "tmdem-checkpoint-1";
 
 // Makes the written bytes durable before the rename (best effort).
 void sync_file(const std::string& path) {
@@ -28,7 +28,7 @@ void sync_file(const std::string& path) {
 }
 
 void write_contents(hid_t file, const CheckpointState& s) {
-  hdf5::write_string_attribute(file, "format", kFormat);
+  hdf5::write_string_attribute(file, "format", kCheckpointFormat);
   hdf5::write_string_attribute(file, "version", TMDEM_VERSION);
   hdf5::write_string_attribute(file, "scene", s.scene_toml);
   hdf5::write_double_attribute(file, "time_s", s.time_s);
@@ -88,8 +88,8 @@ herr_t collect_name(hid_t, const char* name, const H5L_info_t*, void* data) {
 CheckpointState read_contents(hid_t file) {
   CheckpointState s;
   std::string format;
-  if (!hdf5::read_string_attribute(file, "format", format) || format != kFormat) {
-    throw Hdf5Failure(std::string("not a ") + kFormat + " file");
+  if (!hdf5::read_string_attribute(file, "format", format) || format != kCheckpointFormat) {
+    throw Hdf5Failure(std::string("not a ") + kCheckpointFormat + " file");
   }
   auto require = [](bool present, const char* name) {
     if (!present) throw Hdf5Failure(std::string("attribute '") + name + "' is missing");

@@ -10,7 +10,7 @@ namespace tmdem::coupling {
 
 namespace {
 
-constexpr const char* kFormat = "tmdem-result-1";
+constexpr const char* kResultFormat = "tmdem-result-1";
 
 // Row `row` of a dataset [F, N] or [F, N, 3], as `per_row` values.
 std::vector<double> read_frame_row(hid_t group, const char* name, hsize_t row, hsize_t per_row) {
@@ -36,9 +36,9 @@ ResultFrame read_result_frame(const std::string& path, std::int64_t frame) {
     // No file lock: a running result is held open by its writer (ResultWriter.h).
     Hdf5Handle file = hdf5::open_file(path, false, false);
     std::string format;
-    if (!hdf5::read_string_attribute(file.get(), "format", format) || format != kFormat)
+    if (!hdf5::read_string_attribute(file.get(), "format", format) || format != kResultFormat)
       throw OutputError(where + " is not a tmdem result (root attribute format is not \"" +
-                        std::string(kFormat) + "\")");
+                        std::string(kResultFormat) + "\")");
     if (!hdf5::read_string_attribute(file.get(), "scene", out.scene))
       throw OutputError(where + " has no root attribute scene");
     Hdf5Handle particles = hdf5::open_group(file.get(), "particles");

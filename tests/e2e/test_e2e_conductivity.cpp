@@ -16,7 +16,7 @@ using namespace tmdem::e2e;
 
 namespace {
 
-const std::string kLattice =
+const std::string kConductivityBed =
     thermal_scene()
         .add("generate", lattice({3, 4, 3}))
         .add("wall", floor_wall({{"temperature", 320.0}}))
@@ -25,7 +25,7 @@ const std::string kLattice =
 
 TEST(E2eConductivity, WritesCsvWithKEff) {
   const auto dir = scratch_dir("conductivity_csv");
-  write_file(dir + "/bed.toml", kLattice);
+  write_file(dir + "/bed.toml", kConductivityBed);
   const auto r = run_tmdem("study conductivity bed.toml --csv k.csv --quiet", dir);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("k_eff = "), std::string::npos) << r.output;
@@ -48,7 +48,7 @@ TEST(E2eConductivity, WritesCsvWithKEff) {
 
 TEST(E2eConductivity, PressuresNeedAPiston) {
   const auto dir = scratch_dir("conductivity_piston");
-  write_file(dir + "/bed.toml", kLattice);
+  write_file(dir + "/bed.toml", kConductivityBed);
   const auto r = run_tmdem("study conductivity bed.toml --pressures 1e3,1e4 --csv k.csv", dir);
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("needs exactly one wall with piston = true"), std::string::npos) << r.output;

@@ -18,7 +18,7 @@ namespace {
 
 // 3 x 3 x 2 lattice of touching spheres on a heated floor, constant conductance, one hot
 // particle and one held cold one: linear and small, so the reference is the exact exponential.
-const std::string kLattice =
+const std::string kStudyLattice =
     thermal_scene()
         .set("simulation.duration", 1000.0)
         .add("generate", lattice({3, 3, 2}))
@@ -44,7 +44,7 @@ std::vector<std::string> split(const std::string& line) {
 
 TEST(EndToEndStudy, AccuracyStudyCsvAndConvergence) {
   const auto dir = scratch_dir("study");
-  write_file(dir + "/lattice.toml", kLattice);
+  write_file(dir + "/lattice.toml", kStudyLattice);
   // 7 explicit rungs keep the test short (the smallest step is 0.9 bound / 4^6).
   const auto r = run_tmdem("study accuracy lattice.toml --csv out.csv --explicit-rungs 7 "
                            "--set simulation.duration=20.0",
@@ -108,7 +108,7 @@ TEST(EndToEndStudy, AccuracyStudyCsvAndConvergence) {
 
 TEST(EndToEndStudy, ExitCodes) {
   const auto dir = scratch_dir("study_exit");
-  write_file(dir + "/lattice.toml", kLattice);
+  write_file(dir + "/lattice.toml", kStudyLattice);
   // Missing scene: 2, naming it.
   auto r = run_tmdem("study accuracy missing.toml --csv out.csv", dir);
   EXPECT_EQ(r.exit_code, 2) << r.output;

@@ -16,12 +16,12 @@ namespace {
 
 // 3 x 3 x 2 lattice of touching spheres, constant conductance, one hot corner, one held cold
 // particle: small enough for a dense matrix exponential.
-const std::string kLattice = thermal_scene()
-                                   .set("simulation.duration", 20.0)
-                                   .add("generate", lattice({3, 3, 2}))
-                                   .add("assign", assign_ids({0}, {{"temperature", 373.15}}))
-                                   .set(tolerances(1.0e-9))
-                                   .set(output("lattice.h5", 2.0));
+const std::string kThermalLattice = thermal_scene()
+                                        .set("simulation.duration", 20.0)
+                                        .add("generate", lattice({3, 3, 2}))
+                                        .add("assign", assign_ids({0}, {{"temperature", 373.15}}))
+                                        .set(tolerances(1.0e-9))
+                                        .set(output("lattice.h5", 2.0));
 
 struct Lattice {
   Eigen::MatrixXd A;  // dT/dt = A T
@@ -53,7 +53,7 @@ Lattice exact_lattice(double H, double C) {
 
 TEST(EndToEnd, LatticeMatchesMatrixExponentialAndContractLayout) {
   const auto dir = scratch_dir("lattice");
-  write_file(dir + "/lattice.toml", kLattice);
+  write_file(dir + "/lattice.toml", kThermalLattice);
   const auto r = run_tmdem("run lattice.toml --summary summary.json --quiet", dir);
   ASSERT_EQ(r.exit_code, 0) << r.output;
 
@@ -113,7 +113,7 @@ TEST(EndToEnd, LatticeMatchesMatrixExponentialAndContractLayout) {
 
 TEST(EndToEnd, SetOverridesAndExplicitIntegrator) {
   const auto dir = scratch_dir("set");
-  write_file(dir + "/lattice.toml", kLattice);
+  write_file(dir + "/lattice.toml", kThermalLattice);
   const auto r = run_tmdem(
       "run lattice.toml -o other.h5 --quiet --set thermal.integrator=explicit "
       "--set thermal.explicit_step=0.01",
@@ -134,7 +134,7 @@ TEST(EndToEnd, SetOverridesAndExplicitIntegrator) {
 
 TEST(EndToEnd, ExplicitStepAboveBoundIsRefusedAndWritesNothing) {
   const auto dir = scratch_dir("bound");
-  write_file(dir + "/lattice.toml", kLattice);
+  write_file(dir + "/lattice.toml", kThermalLattice);
   const auto r = run_tmdem("run lattice.toml --summary s.json --set thermal.integrator=explicit "
                            "--set thermal.explicit_step=100.0", dir);
   EXPECT_EQ(r.exit_code, 2) << r.output;
@@ -145,7 +145,7 @@ TEST(EndToEnd, ExplicitStepAboveBoundIsRefusedAndWritesNothing) {
 
 TEST(EndToEnd, InvalidSceneExitsTwoNamingTheKeyAndWritesNothing) {
   const auto dir = scratch_dir("invalid");
-  std::string bad = kLattice;
+  std::string bad = kThermalLattice;
   bad.replace(bad.find("young_modulus = 2.1e11"), 22, "young_modulus = -1.0");
   write_file(dir + "/bad.toml", bad);
   auto r = run_tmdem("run bad.toml", dir);
@@ -163,7 +163,7 @@ TEST(EndToEnd, InvalidSceneExitsTwoNamingTheKeyAndWritesNothing) {
 
 TEST(EndToEnd, CheckPrintsStiffness) {
   const auto dir = scratch_dir("check");
-  write_file(dir + "/lattice.toml", kLattice);
+  write_file(dir + "/lattice.toml", kThermalLattice);
   const auto r = run_tmdem("check lattice.toml", dir);
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("particles: 18"), std::string::npos) << r.output;
@@ -173,7 +173,7 @@ TEST(EndToEnd, CheckPrintsStiffness) {
 
 TEST(EndToEnd, OutputFolderMissingGivesExitFour) {
   const auto dir = scratch_dir("io");
-  write_file(dir + "/lattice.toml", kLattice);
+  write_file(dir + "/lattice.toml", kThermalLattice);
   const auto r = run_tmdem("run lattice.toml -o no/such/folder/out.h5 --quiet", dir);
   EXPECT_EQ(r.exit_code, 4) << r.output;
   EXPECT_NE(r.output.find("no/such/folder/out.h5"), std::string::npos) << r.output;

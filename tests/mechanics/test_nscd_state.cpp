@@ -23,7 +23,7 @@ struct Trajectory {
   std::vector<int> sweeps;
 };
 
-Trajectory run(NscdIntegrator& nscd, int steps) {
+Trajectory run_trajectory(NscdIntegrator& nscd, int steps) {
   Trajectory t;
   for (int s = 0; s < steps; ++s) {
     t.sweeps.push_back(nscd.step().sweeps);
@@ -51,7 +51,7 @@ void expect_restored_run_identical(int dimension, double friction, int before, i
   EXPECT_EQ(restored.stats().steps, before);
   EXPECT_EQ(restored.detector().rebuild_count(), original.detector().rebuild_count());
 
-  const Trajectory a = run(original, after), b = run(restored, after);
+  const Trajectory a = run_trajectory(original, after), b = run_trajectory(restored, after);
   for (int s = 0; s < after; ++s) {
     ASSERT_TRUE(bitwise_equal(a.position[s], b.position[s])) << "step " << s;
     ASSERT_TRUE(bitwise_equal(a.velocity[s], b.velocity[s])) << "step " << s;
@@ -68,7 +68,7 @@ void expect_restored_run_identical(int dimension, double friction, int before, i
   cold.particles().velocity = saved.velocity_m_per_s;
   cold.particles().angular_velocity = saved.angular_velocity_rad_per_s;
   cold.invalidate_contacts();
-  const Trajectory c = run(cold, after);
+  const Trajectory c = run_trajectory(cold, after);
   bool differs = false;
   for (int s = 0; s < after && !differs; ++s) differs = !bitwise_equal(a.velocity[s], c.velocity[s]);
   EXPECT_TRUE(differs) << "a cold restart should not reproduce the run; the test would prove nothing";

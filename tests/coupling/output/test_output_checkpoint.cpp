@@ -7,36 +7,16 @@
 #include <string>
 
 #include "coupling/output/Checkpoint.h"
+#include "support/TempDir.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 using tmdem::coupling::CheckpointState;
 using tmdem::coupling::OutputError;
+using tmdem::test::TempDir;
 
-class TempDir {
- public:
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::temp_directory_path() /
-            ("tmdem-output-" + std::string(info->name()) + "-" + std::to_string(getpid()));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-  std::size_t entries() const {
-    return static_cast<std::size_t>(std::distance(fs::directory_iterator(path_), {}));
-  }
-
- private:
-  fs::path path_;
-};
-
-CheckpointState sample() {
+CheckpointState sample_checkpoint() {
   CheckpointState s;
   s.time_s = 12.5;
   s.position_m = {0, 1e-3, 0, 2e-3, 1e-3, 0, 1e-3, 2.7e-3, 0};
@@ -78,9 +58,9 @@ void expect_equal(const CheckpointState& a, const CheckpointState& b) {
   EXPECT_EQ(a.thermal_pattern_pair, b.thermal_pattern_pair);
 }
 
-// sample() plus what a bitwise restart of a moving packing needs.
+// sample_checkpoint() plus what a bitwise restart of a moving packing needs.
 CheckpointState sample_with_mechanics() {
-  CheckpointState s = sample();
+  CheckpointState s = sample_checkpoint();
   s.contact_normal_force_N = {0.1 / 3.0, 2e-3, 1e300};
   s.has_mechanics = true;
   s.detector_margin_m = 1.0 / 3.0 * 1e-4;
@@ -97,8 +77,8 @@ CheckpointState sample_with_mechanics() {
 TEST(Checkpoint, RoundTrip) {
   TempDir dir;
   const std::string path = dir.file("run.ckpt.h5");
-  write_checkpoint(path, sample());
-  expect_equal(tmdem::coupling::read_checkpoint(path), sample());
+  write_checkpoint(path, sample_checkpoint());
+  expect_equal(tmdem::coupling::read_checkpoint(path), sample_checkpoint());
   EXPECT_FALSE(fs::exists(path + ".tmp"));
   EXPECT_EQ(dir.entries(), 1u);
 
@@ -111,7 +91,7 @@ TEST(Checkpoint, RoundTrip) {
 
 TEST(Checkpoint, RoundTripWithoutContacts) {
   TempDir dir;
-  CheckpointState s = sample();
+  CheckpointState s = sample_checkpoint();
   s.contact_pair.clear();
   s.contact_impulse_N_s.clear();
   s.contact_tangential_force_N.clear();
@@ -126,7 +106,7 @@ TEST(Checkpoint, RoundTripWithMechanicsStateAndPattern) {
   TempDir dir;
   write_checkpoint(dir.file("m.h5"), sample_with_mechanics());
   expect_equal(tmdem::coupling::read_checkpoint(dir.file("m.h5")), sample_with_mechanics());
-  write_checkpoint(dir.file("o.h5"), sample());
+  write_checkpoint(dir.file("o.h5"), sample_checkpoint());
   const CheckpointState older = tmdem::coupling::read_checkpoint(dir.file("o.h5"));
   EXPECT_FALSE(older.has_mechanics);
   EXPECT_TRUE(older.contact_normal_force_N.empty());
@@ -150,8 +130,8 @@ TEST(Checkpoint, RejectsMechanicsStateOfOtherSizes) {
 TEST(Checkpoint, OverwriteReplacesWhole) {
   TempDir dir;
   const std::string path = dir.file("c.h5");
-  write_checkpoint(path, sample());
-  CheckpointState later = sample();
+  write_checkpoint(path, sample_checkpoint());
+  CheckpointState later = sample_checkpoint();
   later.time_s = 20.0;
   later.temperature_K = {1.0, 2.0, 3.0};
   write_checkpoint(path, later);
@@ -163,7 +143,7 @@ TEST(Checkpoint, MissingFolderLeavesNoFileAndNamesThePath) {
   TempDir dir;
   const std::string path = dir.file("missing/c.h5");
   try {
-    write_checkpoint(path, sample());
+    write_checkpoint(path, sample_checkpoint());
     FAIL() << "no exception";
   } catch (const OutputError& e) {
     EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
@@ -174,21 +154,21 @@ TEST(Checkpoint, MissingFolderLeavesNoFileAndNamesThePath) {
 TEST(Checkpoint, FailedWriteKeepsThePreviousCheckpoint) {
   TempDir dir;
   const std::string path = dir.file("c.h5");
-  write_checkpoint(path, sample());
+  write_checkpoint(path, sample_checkpoint());
   fs::create_directory(path + ".tmp");  // the temporary file cannot be created
-  CheckpointState later = sample();
+  CheckpointState later = sample_checkpoint();
   later.time_s = 99.0;
   EXPECT_THROW(write_checkpoint(path, later), OutputError);
-  expect_equal(tmdem::coupling::read_checkpoint(path), sample());
+  expect_equal(tmdem::coupling::read_checkpoint(path), sample_checkpoint());
   EXPECT_TRUE(fs::is_directory(path + ".tmp"));  // not ours: left alone
 }
 
 TEST(Checkpoint, RejectsInconsistentState) {
   TempDir dir;
-  CheckpointState s = sample();
+  CheckpointState s = sample_checkpoint();
   s.velocity_m_per_s.pop_back();
   EXPECT_THROW(write_checkpoint(dir.file("c.h5"), s), std::invalid_argument);
-  s = sample();
+  s = sample_checkpoint();
   s.contact_impulse_N_s.pop_back();
   EXPECT_THROW(write_checkpoint(dir.file("c.h5"), s), std::invalid_argument);
   EXPECT_EQ(dir.entries(), 0u);

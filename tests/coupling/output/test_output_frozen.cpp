@@ -40,12 +40,12 @@ ResultHeader frozen_header() {
 // Frame f of a frozen bed: the same positions, zero velocities, the same two contacts (0, 1)
 // and (0, floor) and forces; temperatures and heat flows change every frame, the conductance
 // from frame 4 on (as with a temperature-dependent conductivity).
-struct Frame {
+struct FrozenFrame {
   std::vector<double> x{0.0, 1e-3, 0.0, 2e-3, 1e-3, 0.0, 5e-3, 2e-3, 0.0};
   std::vector<double> v = std::vector<double>(3 * kN, 0.0);
   std::vector<double> T, force{2.5, 7.0}, H, tangential{0.1, 0.0, -0.2, 0.0, 0.3, 0.0}, Q;
   std::vector<std::int64_t> pair{0, 1, 0, -1};
-  explicit Frame(std::size_t f) {
+  explicit FrozenFrame(std::size_t f) {
     T = {300.0 + 10.0 * double(f), 301.0, 302.0 - double(f)};
     H = f >= 4 ? std::vector<double>{0.02, 0.05} : std::vector<double>{0.01, 0.04};
     Q = {-0.5 - double(f), 1.0 + double(f)};
@@ -55,7 +55,7 @@ struct Frame {
 
 void write_frames(ResultWriter& writer, std::size_t from, std::size_t to) {
   for (std::size_t f = from; f < to; ++f) {
-    const Frame frame(f);
+    const FrozenFrame frame(f);
     writer.write_frame(frame.view(double(f)));
   }
 }
@@ -98,7 +98,7 @@ void expect_every_frame(hid_t file, std::size_t frames) {
   const auto Q = read_all<double>(file, "/contacts/heat_flow", H5T_NATIVE_DOUBLE, dims);
   const auto offset = read_all<std::int64_t>(file, "/frames/contact_offset", H5T_NATIVE_INT64, dims);
   for (std::size_t f = 0; f < frames; ++f) {
-    const Frame want(f);
+    const FrozenFrame want(f);
     EXPECT_EQ(offset[f], std::int64_t(f * kC));
     for (std::size_t k = 0; k < 3 * kN; ++k) {
       EXPECT_EQ(x[3 * kN * f + k], want.x[k]) << "frame " << f;
@@ -151,7 +151,7 @@ TEST(FrozenBed, GeometryAndContactsAreWrittenOnceAndReadInEveryFrame) {
   std::vector<hsize_t> dims;
   const auto points = read_all<double>(h, "/xdmf/frame_2/contact_points", H5T_NATIVE_DOUBLE, dims);
   ASSERT_EQ(dims, (std::vector<hsize_t>{kN + 1, 3}));  // + the foot of the floor contact
-  for (std::size_t k = 0; k < 3 * kN; ++k) EXPECT_EQ(points[k], Frame(2).x[k]);
+  for (std::size_t k = 0; k < 3 * kN; ++k) EXPECT_EQ(points[k], FrozenFrame(2).x[k]);
   EXPECT_EQ(points[3 * kN + 1], 0.0);  // on the floor y = 0
 }
 
@@ -179,7 +179,7 @@ TEST(FrozenBed, RestartCutsTheBlocksBackAndLinksTheNextFrameAgain) {
 TEST(FrozenBed, AFrameWithAnotherContactCountIsRefused) {
   FrozenFile dir;
   ResultWriter writer(dir.path, frozen_header(), true);
-  Frame frame(0);
+  FrozenFrame frame(0);
   frame.pair = {0, 1};
   frame.force = {1.0};
   frame.H = {0.01};

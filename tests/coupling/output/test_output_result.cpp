@@ -1,7 +1,7 @@
 // ResultWriter: the HDF5 layout of contract section 3, read back with the HDF5 C++ API.
 #include <H5Cpp.h>
-#include <gtest/gtest.h>
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -17,6 +17,7 @@
 
 #include "coupling/output/ResultWriter.h"
 #include "coupling/output/XdmfWriter.h"
+#include "support/TempDir.h"
 
 extern char** environ;
 
@@ -27,28 +28,9 @@ using tmdem::coupling::FrameView;
 using tmdem::coupling::OutputError;
 using tmdem::coupling::ResultHeader;
 using tmdem::coupling::ResultWriter;
+using tmdem::test::TempDir;
 
-// A fresh folder per test, removed afterwards.
-class TempDir {
- public:
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::temp_directory_path() / ("tmdem-output-" + std::string(info->test_suite_name()) +
-                                         "-" + info->name() + "-" + std::to_string(getpid()));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-
- private:
-  fs::path path_;
-};
-
-constexpr std::size_t kN = 3;
+constexpr std::size_t kParticles = 3;
 
 ResultHeader sample_header() {
   ResultHeader h;
@@ -89,7 +71,7 @@ struct SampleFrame {
 SampleFrame sample_frame(std::size_t f) {
   SampleFrame s;
   s.time_s = 0.25 * static_cast<double>(f);
-  for (std::size_t i = 0; i < kN; ++i) {
+  for (std::size_t i = 0; i < kParticles; ++i) {
     for (std::size_t k = 0; k < 3; ++k) {
       s.position.push_back(static_cast<double>(f) + 0.1 * static_cast<double>(i) +
                            0.01 * static_cast<double>(k));
@@ -179,7 +161,7 @@ TEST(ResultWriter, WritesContractLayoutUnitsAndValues) {
     ResultWriter writer(path, header, true);
     write_sample(writer, 3);
     EXPECT_EQ(writer.frames(), 3u);
-    EXPECT_EQ(writer.particles(), kN);
+    EXPECT_EQ(writer.particles(), kParticles);
     writer.finish("ok");
     EXPECT_TRUE(writer.finished());
   }
@@ -328,10 +310,11 @@ int reader_process_main(const std::string& file, hsize_t frames) {
     std::string problem;
     if (string_attribute(h5, "status") != "running") problem += "status is not running; ";
     if (dims_of(h5.openDataSet("/frames/time")) != Dims{frames}) problem += "time shape; ";
-    if (dims_of(h5.openDataSet("/frames/position")) != Dims{frames, kN, 3}) problem += "position; ";
+    if (dims_of(h5.openDataSet("/frames/position")) != Dims{frames, kParticles, 3})
+      problem += "position; ";
     if (dims_of(h5.openDataSet("/frames/contact_offset")) != Dims{frames + 1}) problem += "offset; ";
     const std::vector<double> temperature = read_doubles(h5, "/frames/temperature");
-    if (temperature.size() != frames * kN ||
+    if (temperature.size() != frames * kParticles ||
         temperature.back() != sample_frame(frames - 1).temperature.back()) {
       problem += "temperature values; ";
     }
@@ -480,7 +463,7 @@ TEST(ResultWriter, ReopenKeepsFramesAndAppends) {
   {
     ResultWriter writer = ResultWriter::reopen(path, 2);
     EXPECT_EQ(writer.frames(), 2u);
-    EXPECT_EQ(writer.particles(), kN);
+    EXPECT_EQ(writer.particles(), kParticles);
     EXPECT_EQ(root_attribute(path, "status"), "running");
     SampleFrame s = sample_frame(1);
     s.time_s = 0.75;
@@ -492,7 +475,7 @@ TEST(ResultWriter, ReopenKeepsFramesAndAppends) {
   EXPECT_EQ(read_doubles(file, "/frames/time"), (std::vector<double>{0.0, 0.25, 0.75}));
   EXPECT_EQ(read_int64(file, "/frames/contact_offset"), (std::vector<std::int64_t>{0, 2, 5, 8}));
   EXPECT_EQ(dims_of(file.openDataSet("/contacts/pair")), (Dims{8, 2}));
-  EXPECT_EQ(dims_of(file.openDataSet("/frames/velocity")), (Dims{3, kN, 3}));
+  EXPECT_EQ(dims_of(file.openDataSet("/frames/velocity")), (Dims{3, kParticles, 3}));
 }
 
 TEST(ResultWriter, ReopenRejectsMissingFramesAndOtherFiles) {
@@ -591,11 +574,11 @@ TEST(ResultWriter, ReopenOfAnotherScenesFileLeavesItByteForByte) {
   }
   const std::string before = file_bytes(path);
   tmdem::coupling::RestartMatch match;
-  match.particles = kN + 1;
+  match.particles = kParticles + 1;
   match.scene_toml = header.scene_toml;
   match.checkpoint_time_s = 10.0;
   EXPECT_THROW(ResultWriter::reopen(path, 2, &match), tmdem::coupling::ResultMismatch);
-  match.particles = kN;
+  match.particles = kParticles;
   match.scene_toml = "format = \"tmdem-scene-1\"\n# another scene\n";
   EXPECT_THROW(ResultWriter::reopen(path, 2, &match), tmdem::coupling::ResultMismatch);
   match.scene_toml = header.scene_toml;

@@ -15,7 +15,7 @@ namespace fs = std::filesystem;
 using tmdem::coupling::OutputError;
 using tmdem::coupling::RunSummary;
 
-RunSummary sample() {
+RunSummary sample_summary() {
   RunSummary s;
   s.status = "ok";
   s.wall_time_s = 1.25;
@@ -36,7 +36,7 @@ RunSummary sample() {
 }
 
 TEST(RunSummary, JsonHasEveryContractKey) {
-  const nlohmann::json j = sample().to_json();
+  const nlohmann::json j = sample_summary().to_json();
   for (const char* key : {"status", "wall_time_s", "simulated_time_s", "particles", "mechanics",
                           "thermal", "energy"}) {
     EXPECT_TRUE(j.contains(key)) << key;
@@ -76,7 +76,7 @@ TEST(RunSummary, JsonHasEveryContractKey) {
 TEST(RunSummary, FileRoundTrip) {
   const fs::path path =
       fs::temp_directory_path() / ("tmdem-output-summary-" + std::to_string(getpid()) + ".json");
-  RunSummary s = sample();
+  RunSummary s = sample_summary();
   s.status = "failed";
   s.message = "CVODE failed at t = 3.2 s";
   s.thermal.linear_solver = "pcg";
@@ -95,7 +95,7 @@ TEST(RunSummary, FileRoundTrip) {
 }
 
 TEST(RunSummary, SettleBlockAndStalledStepsRoundTrip) {
-  RunSummary s = sample();
+  RunSummary s = sample_summary();
   s.mechanics.stalled_steps = 3;
   s.settle = tmdem::coupling::SettleSummary{false, 5.0, 5000, 1.15e-3};
   const nlohmann::json j = nlohmann::json::parse(s.to_json().dump());
@@ -117,7 +117,7 @@ TEST(RunSummary, SettleBlockAndStalledStepsRoundTrip) {
 // The penetration correction's cost (mechanics.correction_sweeps), its potential energy
 // (energy.mechanical.correction_potential_J) and the largest travel per step survive the file.
 TEST(RunSummary, CorrectionAndTravelRoundTrip) {
-  RunSummary s = sample();
+  RunSummary s = sample_summary();
   s.mechanics.correction_sweeps = 50655;
   s.mechanics.max_step_travel_m = 7.0e-4;
   tmdem::coupling::MechanicalEnergySummary m;
@@ -141,7 +141,7 @@ TEST(RunSummary, CorrectionAndTravelRoundTrip) {
 TEST(RunSummary, WriteToMissingFolderThrowsOutputErrorNamingThePath) {
   const std::string path = "/nonexistent-tmdem-folder/summary.json";
   try {
-    sample().write(path);
+    sample_summary().write(path);
     FAIL() << "no exception";
   } catch (const OutputError& e) {
     EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
@@ -159,7 +159,7 @@ TEST(RunSummary, BalanceErrorFormula) {
 }
 
 TEST(RunSummary, NonFiniteNumbersSurviveAsNull) {
-  RunSummary s = sample();
+  RunSummary s = sample_summary();
   s.energy.balance_error_rel = std::nan("");
   const nlohmann::json j = nlohmann::json::parse(s.to_json().dump());
   EXPECT_TRUE(j["energy"]["balance_error_rel"].is_null());
@@ -169,7 +169,7 @@ TEST(RunSummary, NonFiniteNumbersSurviveAsNull) {
 }  // namespace
 
 TEST(RunSummary, WallTimePartsAndImportsRoundTrip) {
-  RunSummary s = sample();
+  RunSummary s = sample_summary();
   EXPECT_FALSE(s.to_json().contains("imports"));  // only for scenes with [[import]]
   s.wall_time_parts = tmdem::coupling::WallTimeParts{0.75, 0.25, 0.125, 0.125, 0.5, 0.125, 0.0625};
   s.imports.push_back({"bed.csv", 80, 9.942771135237893e-05, 0.01});
@@ -190,7 +190,7 @@ TEST(RunSummary, WallTimePartsAndImportsRoundTrip) {
 }
 
 TEST(RunSummary, OpenMpBlockOnlyWhenSetAndRoundTrips) {
-  RunSummary s = sample();
+  RunSummary s = sample_summary();
   EXPECT_FALSE(s.to_json().contains("openmp"));
   s.openmp = tmdem::coupling::OpenMpSummary{2, "passive"};
   const nlohmann::json j = nlohmann::json::parse(s.to_json().dump());

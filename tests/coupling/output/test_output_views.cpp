@@ -40,7 +40,7 @@ ResultHeader three_particles() {
 
 // Frame f: positions shifted by f mm in z, temperatures 300 + 10 f + i; contacts (0, 1) and
 // (0, floor) in frame 0, (1, 2), (2, side) and (0, floor) in frame 1.
-struct Frame {
+struct ViewFrame {
   std::vector<double> x, v, T, force, H, tangential, Q;
   std::vector<std::int64_t> pair;
   FrameView view(double t) const {
@@ -48,8 +48,8 @@ struct Frame {
   }
 };
 
-Frame frame(int f) {
-  Frame fr;
+ViewFrame frame(int f) {
+  ViewFrame fr;
   fr.x = {0.0, 1e-3, 1e-3 * f, 2e-3, 1e-3, 1e-3 * f, 5e-3, 2e-3, 1e-3 * f};
   fr.v = {0.0, 0.0, 0.1 * f, 0.0, 0.0, 0.2 * f, 0.0, 0.0, 0.3 * f};
   fr.T = {300.0 + 10 * f, 301.0 + 10 * f, 302.0 + 10 * f};
@@ -102,7 +102,7 @@ TEST(ResultViews, FrameViewsReadTheFrameRowsExactly) {
     writer.finish("ok");
   }
   for (int f = 0; f < 2; ++f) {
-    const Frame expected = frame(f);
+    const ViewFrame expected = frame(f);
     const std::string view = "/xdmf/frame_" + std::to_string(f) + "/";
     EXPECT_EQ(read_view(file.path, view + "position"), expected.x) << f;
     EXPECT_EQ(read_view(file.path, view + "velocity"), expected.v) << f;
@@ -144,7 +144,7 @@ TEST(ResultViews, CylinderWallContactsEndOnTheMantleAndItIsDrawnAsStrips) {
   tube.radius_m = 4e-3;
   tube.temperature_K = 320.0;
   header.walls = {tube};
-  Frame f = frame(0);
+  ViewFrame f = frame(0);
   f.pair = {2, -1};  // particle 2 at (5, 2, 0) mm: 3 mm out along +x, foot at (6, 2, 0) mm
   f.force = {1.0};
   f.H = {0.01};
@@ -181,7 +181,7 @@ TEST(ResultViews, RestartCutsTheViewsBackWithTheFrames) {
     ResultWriter writer = ResultWriter::reopen(file.path, 1);
     EXPECT_FALSE(has(file.path, "/xdmf/frame_1"));
     // Frame 1 again, with other data: its view shows the new rows.
-    Frame again = frame(1);
+    ViewFrame again = frame(1);
     again.T = {400.0, 401.0, 402.0};
     writer.write_frame(again.view(0.5));
     writer.finish("ok");
@@ -205,7 +205,7 @@ TEST(ResultViews, MovedWallsGetTheirOwnCornersPerFrame) {
   {
     ResultWriter writer(file.path, three_particles(), true);
     for (int f = 0; f < 2; ++f) {
-      Frame fr = frame(f);
+      ViewFrame fr = frame(f);
       FrameView view = fr.view(0.5 * f);
       view.wall_point_m = walls_at[f];
       writer.write_frame(view);
@@ -214,7 +214,7 @@ TEST(ResultViews, MovedWallsGetTheirOwnCornersPerFrame) {
   }
   {
     ResultWriter writer = ResultWriter::reopen(file.path, 2);
-    Frame fr = frame(1);
+    ViewFrame fr = frame(1);
     FrameView view = fr.view(1.0);
     view.wall_point_m = walls_at[2];
     writer.write_frame(view);
@@ -261,16 +261,16 @@ bool same_object(const std::string& path, const std::string& a, const std::strin
 
 TEST(ResultViews, FrozenFramesLinkTheirGeometryAndContactViewsToTheFirst) {
   ViewFile file;
-  Frame frozen = frame(1);
+  ViewFrame frozen = frame(1);
   {
     ResultWriter writer(file.path, three_particles(), true);
     for (int f = 0; f < 3; ++f) {
-      Frame now = frozen;  // same geometry and contacts, other temperatures and heat flows
+      ViewFrame now = frozen;  // same geometry and contacts, other temperatures and heat flows
       for (double& T : now.T) T += f;
       for (double& Q : now.Q) Q *= f + 1;
       writer.write_frame(now.view(0.5 * f));
     }
-    Frame moved = frozen;  // frame 3: a particle moved
+    ViewFrame moved = frozen;  // frame 3: a particle moved
     moved.x[0] += 1e-6;
     writer.write_frame(moved.view(1.5));
     writer.finish("ok");

@@ -18,10 +18,6 @@ namespace {
 
 using namespace tmdem::test;
 
-RunOutcome run(const std::string& text, const std::string& name) {
-  return run_scene_text(text, name);
-}
-
 // A settled column of five steel spheres on a floor at 450 K (Hertz conductances), 20 s.
 SceneBuilder column_scene(const TomlKeys& material) {
   return SceneBuilder()
@@ -36,11 +32,12 @@ SceneBuilder column_scene(const TomlKeys& material) {
 }
 
 TEST(TemperatureDependentRun, ConstantTablesReproduceConstantProperties) {
-  const auto constant = run(column_scene({}).str(), "constant");
-  const auto tables = run(column_scene({{"conductivity", raw("[[250.0, 50.0], [500.0, 50.0]]")},
-                                        {"heat_capacity", raw("[[250.0, 460.0], [500.0, 460.0]]")}})
-                              .str(),
-                          "tables");
+  const auto constant = run_scene_text(column_scene({}).str(), "constant");
+  const auto tables =
+      run_scene_text(column_scene({{"conductivity", raw("[[250.0, 50.0], [500.0, 50.0]]")},
+                                   {"heat_capacity", raw("[[250.0, 460.0], [500.0, 460.0]]")}})
+                         .str(),
+                     "tables");
   ASSERT_EQ(constant.exit_code, 0) << constant.summary.message;
   ASSERT_EQ(tables.exit_code, 0) << tables.summary.message;
   for (std::size_t i = 0; i < constant.final_temperature_K.size(); ++i)
@@ -51,10 +48,11 @@ TEST(TemperatureDependentRun, ConstantTablesReproduceConstantProperties) {
 }
 
 TEST(TemperatureDependentRun, TablesCloseTheEnergyBalance) {
-  const auto outcome = run(column_scene({{"conductivity", raw("[[250.0, 60.0], [500.0, 40.0]]")},
-                                         {"heat_capacity", raw("[[250.0, 420.0], [500.0, 540.0]]")}})
-                               .str(),
-                           "real");
+  const auto outcome =
+      run_scene_text(column_scene({{"conductivity", raw("[[250.0, 60.0], [500.0, 40.0]]")},
+                                   {"heat_capacity", raw("[[250.0, 420.0], [500.0, 540.0]]")}})
+                         .str(),
+                     "real");
   ASSERT_EQ(outcome.exit_code, 0) << outcome.summary.message;
   const auto& e = outcome.summary.energy;
   EXPECT_GT(e.boundary_heat_J, 0.1);
@@ -62,10 +60,11 @@ TEST(TemperatureDependentRun, TablesCloseTheEnergyBalance) {
 }
 
 TEST(TemperatureDependentRun, ExplicitIsRefusedAtStart) {
-  const auto outcome = run(column_scene({{"conductivity", raw("[[250.0, 60.0], [500.0, 40.0]]")}})
-                               .set("thermal.integrator", "explicit")
-                               .str(),
-                           "explicit");
+  const auto outcome =
+      run_scene_text(column_scene({{"conductivity", raw("[[250.0, 60.0], [500.0, 40.0]]")}})
+                         .set("thermal.integrator", "explicit")
+                         .str(),
+                     "explicit");
   EXPECT_EQ(outcome.exit_code, 2);
   EXPECT_NE(outcome.summary.message.find("\"cvode\" or \"ida\""), std::string::npos)
       << outcome.summary.message;

@@ -7,6 +7,10 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 jobs="$(nproc)"
+# The test programs run OpenMP loops at 1 and 2 threads in-process, two programs at a time:
+# threads that spin at a barrier take the core their partner needs (README "Threads"), so
+# idle threads sleep instead, unless the caller chose otherwise.
+export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-passive}"
 "$root/scripts/setup.sh"
 # Layering: mechanics and thermal never include each other; coupling rooms include downwards only.
 "$root/scripts/check_layers.sh"

@@ -70,8 +70,7 @@ SolveReport BlockGaussSeidelSolver::solve_with_rolling(const ContactProblem& pro
                                                        std::vector<Eigen::Vector3d>& m,
                                                        std::vector<Eigen::Vector3d>& velocity,
                                                        std::vector<Eigen::Vector3d>& angular_velocity) {
-  problem.velocities_from_reactions(r, velocity, angular_velocity);
-  if (problem.rolling) problem.add_rolling_impulses(m, angular_velocity);
+  problem.velocities_from_reactions(r, m, velocity, angular_velocity);
   build_blocks(problem);
   block_visits_ = 0;
   block_fallbacks_ = 0;

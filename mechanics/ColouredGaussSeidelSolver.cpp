@@ -56,8 +56,7 @@ SolveReport ColouredGaussSeidelSolver::solve_with_rolling(
       ordered_m_[p] = m[c];
     }
   }
-  ordered_.velocities_from_reactions(ordered_r_, velocity, angular_velocity);
-  if (problem.rolling) ordered_.add_rolling_impulses(ordered_m_, angular_velocity);
+  ordered_.velocities_from_reactions(ordered_r_, ordered_m_, velocity, angular_velocity);
   // Per visit slot (contact p in a full sweep, active()[q] in a partial one): this sweep's
   // change and total, summed in fixed blocks of slots.
   change_.resize(static_cast<std::size_t>(count));

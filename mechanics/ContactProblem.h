@@ -114,6 +114,15 @@ struct ContactProblem {
   // angular_velocity += sum_c W m_c over all contacts (after velocities_from_reactions).
   void add_rolling_impulses(const std::vector<Eigen::Vector3d>& m,
                             std::vector<Eigen::Vector3d>& angular_velocity) const;
+  // The start of every Gauss-Seidel solve: velocities_from_reactions, plus the rolling
+  // impulses m when the problem has rolling resistance (m is not read otherwise).
+  void velocities_from_reactions(const std::vector<Eigen::Vector3d>& r,
+                                 const std::vector<Eigen::Vector3d>& m,
+                                 std::vector<Eigen::Vector3d>& velocity,
+                                 std::vector<Eigen::Vector3d>& angular_velocity) const {
+    velocities_from_reactions(r, velocity, angular_velocity);
+    if (rolling) add_rolling_impulses(m, angular_velocity);
+  }
 
   // Global impulse of a local one, N s.
   Eigen::Vector3d to_global(std::size_t c, const Eigen::Vector3d& r_local) const {

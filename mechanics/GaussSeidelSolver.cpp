@@ -11,8 +11,7 @@ SolveReport GaussSeidelSolver::solve_with_rolling(const ContactProblem& problem,
                                                   std::vector<Eigen::Vector3d>& m,
                                                   std::vector<Eigen::Vector3d>& velocity,
                                                   std::vector<Eigen::Vector3d>& angular_velocity) {
-  problem.velocities_from_reactions(r, velocity, angular_velocity);
-  if (problem.rolling) problem.add_rolling_impulses(m, angular_velocity);
+  problem.velocities_from_reactions(r, m, velocity, angular_velocity);
   const std::size_t count = problem.size();
   SolveReport report;
   GaussSeidelStopTest stop(settings_.tolerance, settings_.stall_sweeps);

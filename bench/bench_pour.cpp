@@ -19,7 +19,9 @@
 //                          (NscdParameters::full_sweep_every, ActiveContactSet.h)
 //   TMDEM_POUR_TRACE       if set, one line per step on stderr: step, sweeps, residual,
 //                          converged, correction sweeps, candidates, active contacts,
-//                          largest speed (m/s), largest travel / r_min, penetration / r_min
+//                          largest speed (m/s), largest travel / r_min, penetration / r_min,
+//                          then the fastest sphere: index, radius (m), centre x y z (m),
+//                          velocity x y z (m/s), contacts carrying a force on it
 //   TMDEM_POUR_PROBE_STEP  after this step, re-solve its problem from zero with plain
 //                          symmetric Gauss-Seidel and print where it is slow (SlowModeProbe.h;
 //                          TMDEM_POUR_PROBE_SWEEPS sweeps, default 400)
@@ -138,11 +140,23 @@ void BM_Pour(benchmark::State& state) {
       pen_end = report.max_penetration_m;
       wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       if (trace) {
-        std::fprintf(stderr, "%lld %d %.3e %d %d %zu %zu %.3e %.3f %.5f\n",
+        // The fastest sphere: which one, where, how it moves, how many contacts hold it.
+        const auto& p = sim->particles();
+        std::size_t fastest = 0;
+        for (std::size_t k = 1; k < p.size(); ++k)
+          if (p.velocity[k].squaredNorm() > p.velocity[fastest].squaredNorm()) fastest = k;
+        int touching = 0;
+        for (const auto& c : sim->contacts())
+          if (c.normal_force_N > 0.0 && (c.i == static_cast<std::int64_t>(fastest) || c.j == static_cast<std::int64_t>(fastest)))
+            ++touching;
+        const Eigen::Vector3d& x = p.position[fastest];
+        const Eigen::Vector3d& u = p.velocity[fastest];
+        std::fprintf(stderr, "%lld %d %.3e %d %d %zu %zu %.3e %.3f %.5f %zu %.1e %.5f %.5f %.5f %.3e %.3e %.3e %d\n",
                      static_cast<long long>(steps), report.sweeps, report.residual,
                      report.converged ? 1 : 0, report.correction_sweeps, report.candidates,
                      report.active_contacts, sim->max_speed(), report.max_travel_m / r_min,
-                     report.max_penetration_m / r_min);
+                     report.max_penetration_m / r_min, fastest, p.radius[fastest], x.x(), x.y(),
+                     x.z(), u.x(), u.y(), u.z(), touching);
       }
       if (steps == probe_step) {
         bench::print_slow_mode(sim->problem(), static_cast<int>(env_number("TMDEM_POUR_PROBE_SWEEPS", 400)), stderr);

@@ -17,6 +17,8 @@
 //                          (e.g. "mechanics.solver=nlgs_coloured;mechanics.tolerance=1e-5")
 //   TMDEM_POUR_FULL_SWEEP_EVERY  the Gauss-Seidel solvers' full sweep period
 //                          (NscdParameters::full_sweep_every, ActiveContactSet.h)
+//   TMDEM_POUR_SPATIAL_ORDER_FROM  NscdParameters::spatial_order_from (SpatialContactOrder.h;
+//                          0: always, 1e18: never)
 //   TMDEM_POUR_TRACE       if set, one line per step on stderr: step, sweeps, residual,
 //                          converged, correction sweeps, candidates, active contacts,
 //                          largest speed (m/s), largest travel / r_min, penetration / r_min,
@@ -31,7 +33,7 @@
 // wall_s (wall time of the steps: to rest when at_rest = 1); s_per_step; ns_step (wall time
 // of the steps per candidate per sweep: detection and set-up included); ns_sweep (the
 // solver alone: 40 sweeps of a fresh solver of the same kind on the last step's problem,
-// per candidate per sweep); cpu_s and cpu_ns_sweep (the same in CPU time); colours (of the last problem, ContactColouring.h); threads.
+// per candidate per sweep, in the integrator's order); cpu_s and cpu_ns_sweep (the same in CPU time); colours (of the last problem, ContactColouring.h); threads.
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
@@ -49,6 +51,7 @@
 #include "coupling/scene/SceneLoader.h"
 #include "mechanics/ContactColouring.h"
 #include "mechanics/ContactSolverRegistry.h"
+#include "mechanics/SpatialContactOrder.h"
 #include "SlowModeProbe.h"
 
 using namespace tmdem;
@@ -117,6 +120,8 @@ void BM_Pour(benchmark::State& state) {
     mechanics::NscdParameters parameters = coupling::make_nscd_parameters(scene);
     parameters.full_sweep_every =
         static_cast<int>(env_number("TMDEM_POUR_FULL_SWEEP_EVERY", parameters.full_sweep_every));
+    parameters.spatial_order_from = static_cast<std::size_t>(
+        env_number("TMDEM_POUR_SPATIAL_ORDER_FROM", static_cast<double>(parameters.spatial_order_from)));
     const auto& g = scene.gravity_m_per_s2;
     auto sim = std::make_unique<mechanics::NscdIntegrator>(
         coupling::make_particle_set(scene), coupling::make_mechanics_materials(scene),
@@ -180,7 +185,12 @@ void BM_Pour(benchmark::State& state) {
     std::vector<Eigen::Vector3d> m(problem.size(), Eigen::Vector3d::Zero());  // rolling
     const auto solve_start = std::chrono::steady_clock::now();
     const std::clock_t solve_cpu_start = std::clock();
-    const mechanics::SolveReport solved = solver->solve_with_rolling(problem, r, m, v, w);
+    // In the order the integrator hands its solver (SpatialContactOrder.h), copies included.
+    mechanics::SpatialContactOrder order;
+    const bool ordered = sim->particles().size() >= parameters.spatial_order_from;
+    if (ordered) order.update(problem, sim->particles().position, 2.0 * sim->particles().max_radius());
+    const mechanics::SolveReport solved = ordered ? order.solve(*solver, problem, r, m, v, w)
+                                                  : solver->solve_with_rolling(problem, r, m, v, w);
     const double solve_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - solve_start).count();
     const double solve_cpu_s = static_cast<double>(std::clock() - solve_cpu_start) / CLOCKS_PER_SEC;

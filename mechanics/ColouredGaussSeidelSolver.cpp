@@ -37,24 +37,9 @@ SolveReport ColouredGaussSeidelSolver::solve_with_rolling(
 #pragma omp parallel for schedule(static) if (parallel)
   for (std::ptrdiff_t p = 0; p < count; ++p) {
     const auto c = static_cast<std::size_t>(order[p]);
-    ordered_.body_i[p] = problem.body_i[c];
-    ordered_.body_j[p] = problem.body_j[c];
-    ordered_.normal[p] = problem.normal[c];
-    ordered_.tangent1[p] = problem.tangent1[c];
-    ordered_.tangent2[p] = problem.tangent2[c];
-    ordered_.lever_i[p] = problem.lever_i[c];
-    ordered_.lever_j[p] = problem.lever_j[c];
-    ordered_.w_n[p] = problem.w_n[c];
-    ordered_.w_t[p] = problem.w_t[c];
-    ordered_.bias[p] = problem.bias[c];
-    ordered_.mu[p] = problem.mu[c];
+    ordered_.copy_contact(static_cast<std::size_t>(p), problem, c);
     ordered_r_[p] = r[c];
-    if (problem.rolling) {
-      ordered_.rolling_limit[p] = problem.rolling_limit[c];
-      ordered_.rolling_radius[p] = problem.rolling_radius[c];
-      ordered_.w_r[p] = problem.w_r[c];
-      ordered_m_[p] = m[c];
-    }
+    if (problem.rolling) ordered_m_[p] = m[c];
   }
   ordered_.velocities_from_reactions(ordered_r_, ordered_m_, velocity, angular_velocity);
   // Per visit slot (contact p in a full sweep, active()[q] in a partial one): this sweep's

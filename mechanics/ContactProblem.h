@@ -71,6 +71,9 @@ struct ContactProblem {
     free_angular_velocity.resize(particle_count + walls, Eigen::Vector3d::Zero());
   }
   void resize_contacts(std::size_t count);
+  // Copies every per-contact value of contact c of `from` into slot k (sized already), its
+  // bodies named as in `from`: a solver's reordered copy of a problem.
+  void copy_contact(std::size_t k, const ContactProblem& from, std::size_t c);
 
   // A contact between two immobile bodies carries no reaction (W_cc = 0).
   bool solvable(std::size_t c) const { return w_n[c] > 0.0; }
@@ -147,6 +150,25 @@ inline Eigen::Vector3d ContactProblem::local_velocity(
   }
   return Eigen::Vector3d(u.dot(n) + bias[c], u.dot(tangent1[c]),
                          dimension == 2 ? 0.0 : u.dot(tangent2[c]));
+}
+
+inline void ContactProblem::copy_contact(std::size_t k, const ContactProblem& from, std::size_t c) {
+  body_i[k] = from.body_i[c];
+  body_j[k] = from.body_j[c];
+  normal[k] = from.normal[c];
+  tangent1[k] = from.tangent1[c];
+  tangent2[k] = from.tangent2[c];
+  lever_i[k] = from.lever_i[c];
+  lever_j[k] = from.lever_j[c];
+  w_n[k] = from.w_n[c];
+  w_t[k] = from.w_t[c];
+  bias[k] = from.bias[c];
+  mu[k] = from.mu[c];
+  if (from.rolling) {
+    rolling_limit[k] = from.rolling_limit[c];
+    rolling_radius[k] = from.rolling_radius[c];
+    w_r[k] = from.w_r[c];
+  }
 }
 
 inline void ContactProblem::apply_impulse(std::size_t c, const Eigen::Vector3d& r_local,

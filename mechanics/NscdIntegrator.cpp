@@ -123,6 +123,7 @@ NscdIntegrator::NscdIntegrator(ParticleSet particles, std::vector<Material> mate
   settings.stall_sweeps = parameters_.stall_sweeps;
   settings.full_sweep_every = parameters_.full_sweep_every;
   solver_ = make_contact_solver(parameters_.solver, settings);
+  order_ = SpatialContactOrder(parameters_.parallel_from);
   problem_.rolling = rolling_;
   correction_ = PenetrationCorrection(settings);
   problem_.dimension = dimension_;
@@ -186,6 +187,7 @@ void NscdIntegrator::refresh_candidates(double h) {
     lookahead_[i] = 2.0 * h * (particles_.velocity[i].norm() + h * g);
   }
   if (!detector_.update(particles_, walls_, lookahead_, wall_lookahead_)) return;
+  order_.invalidate();
   // Carry the forces of pairs that stay candidates over to the new table (warm start).
   std::swap(force_, old_force_);
   const auto& previous = detector_.previous_index();
@@ -324,10 +326,7 @@ StepReport NscdIntegrator::step(double h) {
   setup_contacts(h);
   report.detection_s += lap();
   report.candidates = problem_.size();
-  const SolveReport solved =
-      rolling_ ? solver_->solve_with_rolling(problem_, reactions_, rolling_impulse_,
-                                             body_velocity_, body_angular_velocity_)
-               : solver_->solve(problem_, reactions_, body_velocity_, body_angular_velocity_);
+  const SolveReport solved = solve_contacts();
   report.solve_s = lap();
   std::copy_n(body_velocity_.begin(), n, particles_.velocity.begin());
   std::copy_n(body_angular_velocity_.begin(), n, particles_.angular_velocity.begin());
@@ -420,6 +419,20 @@ StepReport NscdIntegrator::step(double h) {
   report.active_contacts = contacts_.size();
   stats_.add(report);
   return report;
+}
+
+SolveReport NscdIntegrator::solve_contacts() {
+  if (particles_.size() >= parameters_.spatial_order_from) {
+    // The order of the table's reference positions (MechanicsState.h saves them): a restored
+    // integrator computes the same order as the one it was saved from.
+    if (!order_.valid())
+      order_.update(problem_, detector_.reference_positions(), 2.0 * particles_.max_radius());
+    return order_.solve(*solver_, problem_, reactions_, rolling_impulse_, body_velocity_,
+                        body_angular_velocity_);
+  }
+  return rolling_ ? solver_->solve_with_rolling(problem_, reactions_, rolling_impulse_,
+                                                body_velocity_, body_angular_velocity_)
+                  : solver_->solve(problem_, reactions_, body_velocity_, body_angular_velocity_);
 }
 
 void NscdIntegrator::account_energy(double h, StepReport& report) const {

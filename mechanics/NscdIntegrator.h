@@ -67,6 +67,7 @@
 #include "mechanics/NscdParameters.h"
 #include "mechanics/ParticleSet.h"
 #include "mechanics/PenetrationCorrection.h"
+#include "mechanics/SpatialContactOrder.h"
 #include "mechanics/StepReport.h"
 #include "mechanics/Wall.h"
 
@@ -131,6 +132,8 @@ class NscdIntegrator {
   // The step's energy change and numerical damping (see above), from v- and v+.
   void account_energy(double h, StepReport& report) const;
   void gaps_after_step(std::vector<double>& gap) const;  // per candidate, current positions, m
+  // The contact solver on problem_ (in a spatial order from parameters_.spatial_order_from).
+  SolveReport solve_contacts();
 
   ParticleSet particles_;
   std::vector<Material> materials_;
@@ -151,6 +154,7 @@ class NscdIntegrator {
   double slop_m_ = 0.0;  // penetration slop (NscdParameters), m
   ContactProblem problem_;
   std::unique_ptr<ContactSolver> solver_;
+  SpatialContactOrder order_;  // of the candidate table (invalidated when it changes)
   std::vector<Eigen::Vector3d> reactions_;   // local impulse per candidate (n, t1, t2), N s
   std::vector<double> gap_;                  // per candidate at the start of the step, m
   std::vector<double> gap_after_;            // per candidate after the step, m

@@ -66,6 +66,7 @@ void NscdIntegrator::restore_state(const MechanicsState& s) {
   particles_.angular_velocity = s.angular_velocity_rad_per_s;
   detector_.restore(s.margin_m, std::size_t(s.rebuilds), s.reference_position_m, s.candidates,
                     s.reference_wall_point_m);
+  order_.invalidate();
   force_ = s.candidate_force_N;
   old_force_.clear();
   // A state saved without rolling torques (no rolling resistance then) starts them at 0.

@@ -49,6 +49,11 @@ struct NscdParameters {
   // threads; below it waking the threads costs more than the loop. 0: always (tests). The
   // results are the same bits for any thread count.
   std::ptrdiff_t parallel_from = 4096;
+  // Particles from which the contact solver is handed the problem in a spatial order
+  // (SpatialContactOrder.h: bodies along a Morton curve, contacts sorted by them; ids and
+  // results keep the scene's order). Below it the per-body arrays fit the cache and the
+  // order only adds a copy per step. 0: always (tests).
+  std::size_t spatial_order_from = 10000;
 };
 
 }  // namespace tmdem::mechanics

@@ -96,6 +96,14 @@ TEST(NscdState, RestoredApgdIntegratorWithRollingFrictionContinuesBitwise) {
   expect_restored_run_identical(2, 0.3, 100, 100, parameters, 0.1);
 }
 
+// The solver given the problem in a spatial order (SpatialContactOrder.h): the order comes
+// from the candidate table's reference positions, which the state carries.
+TEST(NscdState, RestoredIntegratorInSpatialOrderContinuesBitwise) {
+  NscdParameters parameters;
+  parameters.spatial_order_from = 0;
+  expect_restored_run_identical(3, 0.3, 120, 120, parameters, 0.1);
+}
+
 TEST(NscdState, StateOfAnotherPileIsRefused) {
   NscdIntegrator small = random_pile(10, 2, 0.3, 1), large = random_pile(40, 2, 0.3, 1);
   large.step();

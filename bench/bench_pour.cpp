@@ -16,7 +16,8 @@
 //   TMDEM_POUR_SET         scene overrides as `tmdem run --set`, separated by ';'
 //                          (e.g. "mechanics.solver=nlgs_coloured;mechanics.tolerance=1e-5")
 //   TMDEM_POUR_FULL_SWEEP_EVERY  the Gauss-Seidel solvers' full sweep period
-//                          (NscdParameters::full_sweep_every, ActiveContactSet.h)
+//                          (NscdParameters::full_sweep_every, ActiveContactSet.h), as
+//                          TMDEM_POUR_SET="mechanics.full_sweep_every=K"
 //   TMDEM_POUR_SPATIAL_ORDER_FROM  NscdParameters::spatial_order_from (SpatialContactOrder.h;
 //                          0: always, 1e18: never)
 //   TMDEM_POUR_TRACE       if set, one line per step on stderr: step, sweeps, residual,
@@ -115,8 +116,8 @@ void BM_Pour(benchmark::State& state) {
   omp_set_num_threads(threads);
   for (auto _ : state) {
     const coupling::Scene scene = pour_scene(count, width);
-    // The scene's integrator (coupling::make_nscd_integrator) with the solver's active-set
-    // period from the environment (not a scene key).
+    // The scene's integrator (coupling::make_nscd_integrator), TMDEM_POUR_FULL_SWEEP_EVERY
+    // overriding the scene's mechanics.full_sweep_every.
     mechanics::NscdParameters parameters = coupling::make_nscd_parameters(scene);
     parameters.full_sweep_every =
         static_cast<int>(env_number("TMDEM_POUR_FULL_SWEEP_EVERY", parameters.full_sweep_every));

@@ -118,6 +118,7 @@ struct MechanicsSettings {
   std::string solver = "nlgs";  // mechanics::contact_solver_names()
   double tolerance = 1.0e-6;
   int max_iterations = 10000;
+  int full_sweep_every = 1;  // Gauss-Seidel active-set sweeps (mechanics::NscdParameters)
   double settle_time_s = 5.0;
   double settle_velocity_m_per_s = 1.0e-4;
   double penetration_slop = 1.0e-4;  // fraction of the smallest radius

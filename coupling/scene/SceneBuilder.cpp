@@ -123,10 +123,14 @@ void SceneBuilder::read_settings() {
     m.theta = t.number("theta");
     m.solver = t.choice("solver");
     m.tolerance = t.number("tolerance");
-    const auto iterations = t.integer("max_iterations", m.max_iterations,
-                                      mechanics_on ? 1 : std::numeric_limits<int>::min(),
-                                      std::numeric_limits<int>::max());
-    m.max_iterations = static_cast<int>(iterations);
+    // Sweep counts: integers >= 1 (checked only when mechanics is on).
+    auto sweeps = [&](std::string_view key, int fallback) {
+      return static_cast<int>(t.integer(key, fallback,
+                                        mechanics_on ? 1 : std::numeric_limits<int>::min(),
+                                        std::numeric_limits<int>::max()));
+    };
+    m.max_iterations = sweeps("max_iterations", m.max_iterations);
+    m.full_sweep_every = sweeps("full_sweep_every", m.full_sweep_every);
     m.settle_time_s = t.number("settle_time");
     m.settle_velocity_m_per_s = t.number("settle_velocity");
     m.penetration_slop = t.number("penetration_slop");

@@ -306,6 +306,10 @@ std::vector<Section> build_sections() {
         number("tolerance", "", 1.0e-6, Range::greater(0.0),
                "relative contact-law residual of a Gauss-Seidel sweep that counts as converged"),
         value("max_iterations", "", "10000", "integer >= 1", "Gauss-Seidel sweeps per step, at most"),
+        value("full_sweep_every", "", "1", "integer >= 1",
+              "\"nlgs\", \"nlgs_coloured\": a sweep over every candidate at least every this "
+              "many sweeps, the others visit the contacts the last full sweep left closed; "
+              "convergence is judged on full sweeps (1: every sweep is full)"),
         number("settle_time", "s", 5.0, Range::greater(0.0), "longest \"settle\" phase"),
         number("settle_velocity", "m/s", 1.0e-4, Range::greater(0.0),
                "every particle slower than this counts as at rest"),

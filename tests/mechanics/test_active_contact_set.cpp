@@ -140,4 +140,39 @@ TEST_P(ActiveSetSweeps, SameAnswerAsFullSweepsOnACollapsingPile) {
   }
 }
 
+namespace {
+
+// An integrator that continues `sim` (its state: positions, velocities, candidates, warm
+// start) with another full-sweep period for the solver `solver`.
+NscdIntegrator continued_with(const NscdIntegrator& sim, const std::string& solver,
+                              int full_sweep_every) {
+  NscdParameters parameters = sim.parameters();
+  parameters.solver = solver;
+  parameters.full_sweep_every = full_sweep_every;
+  NscdIntegrator next(sim.particles(), sim.materials(), sim.walls(), sim.gravity(),
+                      sim.dimension(), parameters);
+  next.restore_state(sim.save_state());
+  return next;
+}
+
+}  // namespace
+
+// The pile of test_nscd_rest.cpp, settled with full sweeps only (every speed below 1e-9 m/s,
+// solver tolerance 1e-8), then stepped on with active-set sweeps: a state at rest is a fixed
+// point of the active-set solve as it is of the plain one, so the pile stays put, with the
+// rest test's bounds (no speed above 1e-8 m/s, no particle moving by 1e-9 m in 2 s).
+TEST_P(ActiveSetSweeps, ARestingPileStaysAtRest) {
+  const NscdIntegrator settled = settled_disk_pile(1, 1);
+  ASSERT_LT(settled.max_speed(), 1e-9) << "the pile did not settle";
+  for (const int every : {8, 32}) {
+    SCOPED_TRACE(every);
+    NscdIntegrator sim = continued_with(settled, GetParam(), every);
+    const std::int64_t unconverged_before = sim.stats().unconverged_steps;  // while settling
+    const Drift drift = drift_over(sim, 2000);
+    EXPECT_LT(drift.fastest_m_per_s, 1e-8);
+    EXPECT_LT(drift.moved_m, 1e-9);
+    EXPECT_EQ(sim.stats().unconverged_steps, unconverged_before);
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(GaussSeidel, ActiveSetSweeps, ::testing::Values("nlgs", "nlgs_coloured"));

@@ -23,10 +23,11 @@ namespace {
 // The pile of test_nscd_rest.cpp (MechanicsTestScenes.h: 40 disks in a 2D box, mu = 0.5,
 // frictionless side walls), settled with "nlgs" (about a second), then one more step: its
 // contact problem is the one the solvers are given. Settled with every sweep over every
-// candidate (full_sweep_every 1): active-set sweeps (8) settle another pile, equally at rest,
-// whose problem "nlgs" does not solve cold to 1e-8 whatever its sweeps (measured: stalled at
-// residual 1.5e-6 after 2,987 sweeps with full sweeps only, 3.8e-5 after 1,809 with active
-// sets), while on this one active-set sweeps converge as full ones do (2,894 and 2,819).
+// candidate (full_sweep_every 1): active-set sweeps (8) settle another pile, equally at rest
+// (7.5e-10 m/s), whose problem "nlgs" solved cold stalls before 1e-8 with either period
+// (stall_sweeps 500: residual 3.4e-5 after 1,822 sweeps with full sweeps only, 3.8e-5 after
+// 1,809 with active sets; without the stall test both converge, in 7,591 and 5,174 sweeps),
+// while on this one both converge (2,819 and 2,894 sweeps).
 const NscdIntegrator& settled_random_pile() {
   static const NscdIntegrator sim = [] {
     NscdIntegrator s = settled_disk_pile(1, 1);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "coupling/bridge/SceneToMechanics.h"
 #include "tests/coupling/SceneTestUtil.h"
 
 namespace tmdem::coupling::test {
@@ -308,6 +309,18 @@ TEST(SceneRules, SolverByNameListsTheValidNames) {
 TEST(SceneRules, MaxIterationsAtLeastOne) {
   expect_scene_error(kBaseScene, {"mechanics.max_iterations=0"},
                      {"mechanics.max_iterations", ">= 1"});
+}
+
+// The Gauss-Seidel active-set period (mechanics::NscdParameters::full_sweep_every): an integer
+// >= 1, 1 (every sweep over every candidate) unless set.
+TEST(SceneRules, FullSweepEveryAtLeastOne) {
+  expect_scene_error(kBaseScene, {"mechanics.full_sweep_every=0"},
+                     {"mechanics.full_sweep_every", ">= 1"});
+  expect_scene_error(kBaseScene, {"mechanics.full_sweep_every=2.5"}, {"mechanics.full_sweep_every"});
+  EXPECT_EQ(load_scene_text(kBaseScene, "t").mechanics.full_sweep_every, 1);
+  const Scene scene = load_scene_text(kBaseScene, "t", {"mechanics.full_sweep_every=8"});
+  EXPECT_EQ(scene.mechanics.full_sweep_every, 8);
+  EXPECT_EQ(make_nscd_parameters(scene).full_sweep_every, 8);  // what the solvers are given
 }
 
 TEST(SceneRules, WallNormalNonZeroAndNormalized) {

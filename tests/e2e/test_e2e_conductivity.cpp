@@ -130,6 +130,14 @@ TEST(E2eConductivity, PistonLoadedLatticeFollowsHertzOneThirdPowerLaw) {
 // 48, 47; L 10.27 to 10.16 mm), which moves the pairwise exponents both ways. At 3e4 Pa and
 // above the bed compacts under unconverged contact solves (a similar bed: L 10.16 -> 9.29 mm at
 // 3e4 Pa, porosity 0.22 at 1e5 Pa, i.e. deep overlaps), so the loads stop at 1e4 Pa.
+// Why the band is [0.28, 0.50] and not 1/3 +- 0.03: rigid spheres leave the forces of a
+// hyperstatic bed undetermined, and the load closes contacts that carried nothing, so the
+// exponent is a property of the bed the pour happened to make. Measured over 30 such beds
+// (seeds 5-9, six solver settings; README "Active-set sweeps and where a bed comes to rest"):
+// 0.299-0.452, 27 of 30 above 1/3; seeds 5-10 at the defaults: 0.320, 0.374, 0.373, 0.354,
+// 0.356, 0.432. The band keeps what the test is for: a stress effect of Hertz's order (a
+// conductance that ignored the force gives 0, one linear in it about 1), without failing on
+// the bed-to-bed spread. The exact 1/3 at a fixed network is the lattice test above.
 TEST(E2eConductivity, SettledRandomBedFollowsHertzOneThirdPowerLaw) {
   const auto dir = scratch_dir("conductivity_random_bed");
   auto box_walls = [](SceneBuilder scene) {  // adiabatic glass sides of the 6 x 6 mm box
@@ -190,7 +198,8 @@ TEST(E2eConductivity, SettledRandomBedFollowsHertzOneThirdPowerLaw) {
                 rows[k - 1][6], rows[k][6]);
   const double exponent = std::log(rows[2][1] / rows[0][1]) / std::log(10.0);
   std::printf("[ hertz    ] random bed 1e3 -> 1e4 Pa: exponent %.4f\n", exponent);
-  EXPECT_NEAR(exponent, 1.0 / 3.0, 0.03);
+  EXPECT_GE(exponent, 0.28);
+  EXPECT_LE(exponent, 0.50);
 }
 
 TEST(E2eConductivity, PressuresNeedMechanicsAndOnePiston) {

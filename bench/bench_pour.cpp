@@ -34,10 +34,11 @@
 // wall_s (wall time of the steps: to rest when at_rest = 1); s_per_step; ns_step (wall time
 // of the steps per candidate per sweep: detection and set-up included); ns_sweep (the
 // solver alone: 40 sweeps of a fresh solver of the same kind on the last step's problem,
-// per candidate per sweep, in the integrator's order); cpu_s and cpu_ns_sweep (the same in CPU time); colours (of the last problem, ContactColouring.h); threads.
+// per candidate per sweep, in the integrator's order); cpu_s and cpu_ns_sweep (the same in CPU time); cpu_ns_sweep_ids (that solve again on the problem in the particles' own numbering, without SpatialContactOrder); colours (of the last problem, ContactColouring.h); threads.
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -219,6 +220,17 @@ void BM_Pour(benchmark::State& state) {
     state.counters["cpu_s"] = cpu_s;
     state.counters["cpu_ns_sweep"] =
         solve_cpu_s * 1e9 / (static_cast<double>(std::max(solved.sweeps, 1)) * static_cast<double>(problem.size()));
+    // The same solve in the particles' own numbering (the scene's ids): what the order saves.
+    {
+      auto plain = mechanics::make_contact_solver(scene.mechanics.solver, fixed);
+      std::fill(r.begin(), r.end(), Eigen::Vector3d::Zero());
+      std::fill(m.begin(), m.end(), Eigen::Vector3d::Zero());
+      const std::clock_t plain_start = std::clock();
+      const mechanics::SolveReport report = plain->solve_with_rolling(problem, r, m, v, w);
+      state.counters["cpu_ns_sweep_ids"] =
+          static_cast<double>(std::clock() - plain_start) / CLOCKS_PER_SEC * 1e9 /
+          (static_cast<double>(std::max(report.sweeps, 1)) * static_cast<double>(problem.size()));
+    }
     mechanics::ContactColouring colouring;  // what "nlgs_coloured" would use on that problem
     colouring.update(problem);
     state.counters["colours"] = static_cast<double>(colouring.colour_count());

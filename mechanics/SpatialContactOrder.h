@@ -13,9 +13,10 @@
 // the lattice pile costs 32-34 ns per contact per sweep as built (neighbours have near
 // numbers) at 2,000 to 100,000 spheres; numbered at random, 36-37 ns at 2,000, 40-44 at
 // 10,000, 43-50 at 20,000, 58-74 at 100,000; numbered at random and solved through this
-// class, 35, 36-37, 36-39 and 39-42. On the 2,000-sphere pour bed at rest the order changes
-// nothing (95 ns per candidate per sweep with or without: its per-body arrays fit the 1 MiB L2
-// cache). So NscdIntegrator uses it from NscdParameters::spatial_order_from particles on.
+// class, 35, 36-37, 36-39 and 39-42. A poured bed is less sensitive (its open candidates only
+// read two velocities): the settled 2,000 bed tiled into larger beds with ids at random gains
+// nothing at 18,000 spheres and 13% at 98,000 (figures at NscdParameters::spatial_order_from,
+// from which NscdIntegrator uses this class).
 //
 // Cost: one copy of the problem per solve (O(contacts + bodies), parallel like the contact
 // set-up) and its memory (about 200 bytes per candidate); the order itself is computed again

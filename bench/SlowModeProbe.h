@@ -21,6 +21,7 @@
 #include "mechanics/ContactProblem.h"
 #include "mechanics/ContactSolverRegistry.h"
 #include "mechanics/GaussSeidelUpdate.h"
+#include "mechanics/NncgSolver.h"
 #include "mechanics/PairIndex.h"
 
 namespace tmdem::bench {
@@ -118,9 +119,12 @@ inline void print_solver_sweeps(const mechanics::ContactProblem& problem,
       std::vector<Eigen::Vector3d> r(problem.size(), Eigen::Vector3d::Zero()), m = r, v, w;
       const std::clock_t start = std::clock();
       const mechanics::SolveReport report = solver->solve_with_rolling(problem, r, m, v, w);
-      std::fprintf(out, "probe: %-12s tolerance %.0e: %5d sweeps, residual %.2e, converged %d, %.3f s CPU\n",
+      std::fprintf(out, "probe: %-12s tolerance %.0e: %5d sweeps, residual %.2e, converged %d, %.3f s CPU",
                    name, tolerance, report.sweeps, report.residual, report.converged ? 1 : 0,
                    static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC);
+      if (const auto* nncg = dynamic_cast<const mechanics::NncgSolver*>(solver.get()))
+        std::fprintf(out, ", %d conjugate steps, %d damped (beta > 1)", nncg->steps(), nncg->damped());
+      std::fprintf(out, "\n");
     }
   }
 }

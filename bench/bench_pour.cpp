@@ -167,7 +167,7 @@ void BM_Pour(benchmark::State& state) {
       }
       if (steps == probe_step) {
         bench::print_slow_mode(sim->problem(), static_cast<int>(env_number("TMDEM_POUR_PROBE_SWEEPS", 400)), stderr);
-        bench::print_solver_sweeps(sim->problem(), {"nlgs", "nlgs_block"}, stderr);
+        bench::print_solver_sweeps(sim->problem(), {"nlgs", "nlgs_block", "nncg"}, stderr);
         bench::print_block_ratios(sim->problem(), stderr);
       }
       if (sim->max_speed() < scene.mechanics.settle_velocity_m_per_s) {

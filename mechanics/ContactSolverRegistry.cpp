@@ -6,6 +6,7 @@
 #include "mechanics/BlockGaussSeidelSolver.h"
 #include "mechanics/ColouredGaussSeidelSolver.h"
 #include "mechanics/GaussSeidelSolver.h"
+#include "mechanics/NncgSolver.h"
 
 namespace tmdem::mechanics {
 namespace {
@@ -26,6 +27,7 @@ const std::vector<Entry>& entries() {
       {"apgd", &make<ApgdSolver>},
       {"nlgs_coloured", &make<ColouredGaussSeidelSolver>},
       {"nlgs_block", &make<BlockGaussSeidelSolver>},
+      {"nncg", &make<NncgSolver>},
   };
   return table;
 }

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -111,6 +112,53 @@ inline void expect_close_reactions(const std::vector<Eigen::Vector3d>& a,
   for (const Eigen::Vector3d& r : a) largest = std::max(largest, r.norm());
   ASSERT_GT(largest, 0.0);
   EXPECT_LE(largest_difference(a, b), relative * largest);
+}
+
+// The disk pile of NscdRest.RestingPileStaysAtRestFor10000Steps (settled with "nlgs"), carried
+// on with solver `name` (a new integrator: its first steps start cold, so 200 steps first),
+// then stepped 10,000 times: how far it moved and how fast. `sim` receives the integrator.
+inline Drift drift_at_rest_with(const std::string& name, std::unique_ptr<NscdIntegrator>& sim) {
+  const NscdIntegrator settled = settled_disk_pile();
+  EXPECT_LT(settled.max_speed(), 1e-9) << "the pile did not settle within 5 s";
+  NscdParameters parameters = settled.parameters();
+  parameters.solver = name;
+  sim = std::make_unique<NscdIntegrator>(settled.particles(), settled.materials(), settled.walls(),
+                                         Eigen::Vector3d(0, -kG, 0), 2, parameters);
+  for (int step = 0; step < 200; ++step) sim->step();
+  return drift_over(*sim, 10000);
+}
+
+// A 3D pile with rolling resistance (30 spheres, radii 1 and 0.7 mm, mu = 0.5, mu_r = 0.1)
+// settled with "nlgs" at tolerance 1e-8, then one more step: its problem is the one solved.
+inline NscdIntegrator settled_rolling_pile() {
+  NscdParameters parameters;
+  parameters.tolerance = 1e-8;
+  NscdIntegrator sim = random_pile(30, 3, 0.5, 5, parameters, 0.1);
+  for (int step = 0; step < 5000 && !(step > 10 && sim.max_speed() < 1e-9); ++step) sim.step();
+  EXPECT_LT(sim.max_speed(), 1e-9);
+  sim.step();
+  return sim;
+}
+
+// The rolling pile's problem solved cold by `solver` at `tolerance`: converged, the natural-map
+// residual of the tolerance with the rolling blocks counted, every reaction within both cones,
+// the rolling torques taking part, and the pile left at rest as "nlgs" leaves it.
+inline void expect_rolling_pile_solved(const NscdIntegrator& sim, ContactSolver& solver, double tolerance) {
+  const ContactProblem& problem = sim.problem();
+  ASSERT_TRUE(problem.rolling);
+  std::vector<Eigen::Vector3d> r(problem.size(), Eigen::Vector3d::Zero()), m = r, v, w;
+  const SolveReport report = solver.solve_with_rolling(problem, r, m, v, w);
+  ASSERT_TRUE(report.converged) << report.residual << " after " << report.sweeps;
+  EXPECT_LE(natural_map_residual(problem, r, m, v, w), 2.0 * tolerance);
+  const double gh = kG * sim.parameters().time_step;
+  for (std::size_t i = 0; i < problem.particle_count; ++i) EXPECT_LT(v[i].norm(), 1e-5 * gh) << "particle " << i;
+  double carried = 0.0;
+  for (std::size_t c = 0; c < problem.size(); ++c) {
+    EXPECT_LE(std::hypot(r[c][1], r[c][2]), problem.mu[c] * r[c][0] * (1 + 1e-12) + 1e-300);
+    EXPECT_LE(m[c].norm(), problem.rolling_limit[c] * r[c][0] * (1 + 1e-12) + 1e-300);
+    carried = std::max(carried, m[c].norm());
+  }
+  EXPECT_GT(carried, 0.0);  // the rolling torques take part
 }
 
 }  // namespace tmdem::mechanics::test

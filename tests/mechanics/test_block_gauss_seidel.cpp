@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "ColumnStatics.h"
 #include "MechanicsTestScenes.h"
 #include "SolverTestPile.h"
 #include "mechanics/BlockGaussSeidelSolver.h"
@@ -21,48 +22,6 @@ using namespace tmdem::mechanics::test;
 using Eigen::Vector3d;
 
 namespace {
-
-// A column of touching spheres of radius kRadius on the floor (mu = 0.3), masses bottom up,
-// after one step from rest: its problem's reactions are the weights carried.
-NscdIntegrator column(const std::vector<double>& masses_kg) {
-  ParticleSet set;
-  for (std::size_t k = 0; k < masses_kg.size(); ++k) {
-    set.add(Vector3d(0.0, (2.0 * k + 1.0) * kRadius, 0.0), kRadius, masses_kg[k], 0);
-  }
-  NscdIntegrator sim(std::move(set), {steel(0.3)}, {Wall::through({0, 0, 0}, {0, 1, 0}, 0)},
-                     Vector3d(0, -kG, 0), 3, NscdParameters{});
-  sim.step();
-  return sim;
-}
-
-// Each contact of the column carries the weight of the spheres above its contact point, N s.
-void expect_column_statics(const NscdIntegrator& sim, const std::vector<Vector3d>& r, double relative) {
-  const ContactProblem& p = sim.problem();
-  const double h = sim.parameters().time_step;
-  std::size_t loaded = 0;
-  for (std::size_t c = 0; c < p.size(); ++c) {
-    const double y_contact = sim.particles().position[p.body_i[c]].y() - p.normal[c].y() * kRadius;
-    double carried = 0.0;
-    for (std::size_t k = 0; k < sim.particles().size(); ++k) {
-      if (sim.particles().position[k].y() > y_contact) carried += sim.particles().mass[k] * kG * h;
-    }
-    if (std::abs(p.normal[c].y()) < 0.5) carried = 0.0;  // not a contact of the column
-    loaded += carried > 0.0 ? 1 : 0;
-    EXPECT_NEAR(r[c][0], carried, relative * carried + 1e-18) << "contact " << c;
-    EXPECT_LE(r[c].tail<2>().norm(), relative * carried + 1e-18) << "contact " << c;
-  }
-  EXPECT_EQ(loaded, sim.particles().size());  // one loaded contact under each sphere
-}
-
-// Symmetric Gauss-Seidel on a light sphere (b = 1/m_L) between a heavy one (a = 1/m_H) and the
-// floor: the forward sweep contracts the error by rho^2 = b / (a + b), a forward-backward pair
-// by the same (its backward half starts with the contact just visited), so about rho per
-// sweep; from a cold start it needs ln(tolerance) / ln(rho) sweeps, and stops with an error
-// of about tolerance / (1 - rho) of the reactions.
-double plain_contraction(double light_kg, double heavy_kg) {
-  const double a = 1.0 / heavy_kg, b = 1.0 / light_kg;
-  return std::sqrt(b / (a + b));
-}
 
 struct Counts {
   int plain = 0, block = 0;
@@ -194,17 +153,11 @@ TEST(BlockGaussSeidel, SettledFrictionalPileLikeGaussSeidel) {
 // steps: "nlgs" 6.4e-8 m/s, moved 1.1e-7 m; "nlgs_block" 4.8e-8 m/s, 7.3e-8 m) and settles at
 // tolerance 1e-11 (1.2e-10 m/s, moved 3e-11 m over 1,000 steps).
 TEST(BlockGaussSeidel, RestingPileStaysAtRestFor10000Steps) {
-  const NscdIntegrator settled = settled_disk_pile();
-  ASSERT_LT(settled.max_speed(), 1e-9) << "the pile did not settle within 5 s";
-  NscdParameters parameters = settled.parameters();
-  parameters.solver = "nlgs_block";
-  NscdIntegrator sim(settled.particles(), settled.materials(), settled.walls(), Vector3d(0, -kG, 0), 2,
-                     parameters);
-  for (int step = 0; step < 200; ++step) sim.step();
-  const Drift drift = drift_over(sim, 10000);
+  std::unique_ptr<NscdIntegrator> sim;
+  const Drift drift = drift_at_rest_with("nlgs_block", sim);
   EXPECT_LT(drift.fastest_m_per_s, 1e-8);
   EXPECT_LT(drift.moved_m, 1e-9);
-  const auto& solver = dynamic_cast<const BlockGaussSeidelSolver&>(sim.solver());
+  const auto& solver = dynamic_cast<const BlockGaussSeidelSolver&>(sim->solver());
   EXPECT_GT(solver.block_count(), 3u);  // the blocks are there at rest too
 }
 
@@ -214,28 +167,8 @@ TEST(BlockGaussSeidel, RestingPileStaysAtRestFor10000Steps) {
 // rolling blocks counted, every reaction within both cones, and the pile left at rest, as
 // "nlgs" leaves it (RollingFriction.EverySolverMatchesGaussSeidelWithSameBitsForAnyThreadCount).
 TEST(BlockGaussSeidel, RollingPileLikeGaussSeidel) {
-  NscdParameters parameters;
-  parameters.tolerance = 1e-8;
-  NscdIntegrator sim = random_pile(30, 3, 0.5, 5, parameters, 0.1);
-  for (int step = 0; step < 5000 && !(step > 10 && sim.max_speed() < 1e-9); ++step) sim.step();
-  ASSERT_LT(sim.max_speed(), 1e-9);
-  sim.step();
-  const ContactProblem& problem = sim.problem();
-  ASSERT_TRUE(problem.rolling);
-  constexpr double tolerance = 1e-7;
-  BlockGaussSeidelSolver block(tight(tolerance));
-  std::vector<Vector3d> r(problem.size(), Vector3d::Zero()), m = r, v, w;
-  const SolveReport report = block.solve_with_rolling(problem, r, m, v, w);
-  ASSERT_TRUE(report.converged) << report.residual << " after " << report.sweeps;
+  const NscdIntegrator sim = settled_rolling_pile();
+  BlockGaussSeidelSolver block(tight(1e-7));
+  expect_rolling_pile_solved(sim, block, 1e-7);
   EXPECT_GT(block.block_count(), 0u);
-  EXPECT_LE(natural_map_residual(problem, r, m, v, w), 2.0 * tolerance);
-  const double gh = kG * sim.parameters().time_step;
-  for (std::size_t i = 0; i < problem.particle_count; ++i) EXPECT_LT(v[i].norm(), 1e-5 * gh) << "particle " << i;
-  double carried = 0.0;
-  for (std::size_t c = 0; c < problem.size(); ++c) {
-    EXPECT_LE(std::hypot(r[c][1], r[c][2]), problem.mu[c] * r[c][0] * (1 + 1e-12) + 1e-300);
-    EXPECT_LE(m[c].norm(), problem.rolling_limit[c] * r[c][0] * (1 + 1e-12) + 1e-300);
-    carried = std::max(carried, m[c].norm());
-  }
-  EXPECT_GT(carried, 0.0);  // the rolling torques take part
 }

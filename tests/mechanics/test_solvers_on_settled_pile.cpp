@@ -1,6 +1,6 @@
 // The contact solvers on the problem of a random pile at rest (issue 10): a frictional problem
 // need not have one solution (a pile can be held by many sets of reactions), so "nlgs",
-// "apgd", "nlgs_coloured" and "nlgs_block" are compared by what any solution must satisfy, not bit by bit:
+// "apgd", "nlgs_coloured", "nlgs_block" and "nncg" are compared by what any solution must satisfy, not bit by bit:
 // the same natural-map residual (NaturalMapResidual.h), the floor carrying the whole weight
 // (side walls frictionless), and every reaction in its Coulomb cone.
 #include <gtest/gtest.h>
@@ -63,7 +63,7 @@ TEST(SolversOnSettledPile, SameResidualAndStaticsAsGaussSeidel) {
 
   constexpr double tolerance = 1e-8;
   double reference_residual = 0.0;
-  for (const std::string name : {"nlgs", "apgd", "nlgs_coloured", "nlgs_block"}) {
+  for (const std::string name : {"nlgs", "apgd", "nlgs_coloured", "nlgs_block", "nncg"}) {
     SCOPED_TRACE(name);
     const Solved s = solve_cold(problem, name, tolerance);
     ASSERT_TRUE(s.report.converged) << s.report.residual << " after " << s.report.sweeps;

@@ -1,0 +1,75 @@
+#pragma once
+// Nonsmooth nonlinear conjugate gradient ("nncg"; Silcowitz, Niebe and Erleben, "A nonsmooth
+// nonlinear conjugate gradient method for interactive contact force problems", The Visual
+// Computer 26 (2010) 893-901): the symmetric Gauss-Seidel sweeps of "nlgs"
+// (GaussSeidelUpdate.h), each pair of sweeps (forward, backward) followed by a
+// Fletcher-Reeves step along the conjugate direction of the last pairs' changes:
+//   r_{k+1} = SGS(r_k),  d_{k+1} = r_{k+1} - r_k,  beta = |d_{k+1}|^2 / |d_k|^2,
+//   beta > 1: beta = 0.7 (the paper restarts, beta = 0: see below);
+//   r_{k+1} += beta p_k,  p_{k+1} = d_{k+1} + beta p_k.
+// Gauss-Seidel's slow mode (a residual falling by 0.98-0.995 per sweep, spread over a deep
+// pile) is a smooth direction that the sweeps keep repeating; the conjugate step follows it.
+// The extrapolated reactions may leave their cones and may make energy, so the solve only ever
+// stops right after a sweep (the stop test is the sweep's, as in "nlgs"): the reactions
+// returned are the exact local solutions of that sweep's visits, each inside its cone.
+// The paper's restart at beta > 1 happens after about every other pair in the collapse of a
+// poured bed (contacts closing and slipping change the map from pair to pair), and leaves
+// 1,091 sweeps to 1e-4 on the problem of step 60 of bench_pour 2000 (nlgs: 1,809); going on
+// along the direction with beta = 0.7 takes 369 (0.9: 374 but stalls before 1e-6; 0.95 and
+// 0.99 diverge; 0.5: 447; 0.3: 547). Measured with TMDEM_POUR_PROBE_STEP=60 (README).
+// Rolling impulses (ContactProblem::rolling) are extrapolated with the reactions, divided by
+// R_eff in the norms as in the stop test. Every sweep visits every candidate
+// (SolverSettings::full_sweep_every is not used: a partial sweep's change is not a map of all
+// the reactions). Serial and deterministic; no allocation once warm.
+
+#include <cstdint>
+#include <vector>
+
+#include "mechanics/ContactSolver.h"
+
+namespace tmdem::mechanics {
+
+class NncgSolver final : public ContactSolver {
+ public:
+  explicit NncgSolver(const SolverSettings& settings);
+  std::string_view name() const override { return "nncg"; }
+  SolveReport solve_with_rolling(const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
+                                 std::vector<Eigen::Vector3d>& m,
+                                 std::vector<Eigen::Vector3d>& velocity,
+                                 std::vector<Eigen::Vector3d>& angular_velocity) override;
+
+  // beta where |d_{k+1}| > |d_k| (the paper's restart point).
+  static constexpr double kBetaAfterGrowth = 0.7;
+
+  // Of the last solve: conjugate steps taken (beta > 0), and of them those damped after the
+  // change grew (beta > 1 set to kBetaAfterGrowth).
+  int steps() const { return steps_; }
+  int damped() const { return damped_; }
+
+ private:
+  // Puts contact c into the support when its reaction (or rolling impulse) is not zero.
+  void enter(const ContactProblem& problem, std::size_t c, const std::vector<Eigen::Vector3d>& r,
+             const std::vector<Eigen::Vector3d>& m);
+  // The change d = r - start (and m - start_m) of the last sweep pair into d_, its squared
+  // norm returned.
+  double take_change(const ContactProblem& problem, const std::vector<Eigen::Vector3d>& r,
+                     const std::vector<Eigen::Vector3d>& m);
+  // r += beta p (and m), velocities with it; then p = d + beta p and start = r.
+  void conjugate_step(const ContactProblem& problem, double beta, std::vector<Eigen::Vector3d>& r,
+                      std::vector<Eigen::Vector3d>& m, std::vector<Eigen::Vector3d>& velocity,
+                      std::vector<Eigen::Vector3d>& angular_velocity);
+
+  SolverSettings settings_;
+  // Per contact: the reactions at the start of the sweep pair, their change over it, the
+  // conjugate direction; the same for the rolling impulses (sized only with rolling).
+  std::vector<Eigen::Vector3d> start_, d_, p_;
+  std::vector<Eigen::Vector3d> start_m_, d_m_, p_m_;
+  // The contacts whose reaction or rolling impulse has not been zero during the solve: the only
+  // ones with d or p not zero (most candidates of a look-ahead detection stay open), so the
+  // conjugate steps cost a pass over these, not over every candidate.
+  std::vector<std::int32_t> support_;
+  std::vector<char> in_support_;
+  int steps_ = 0, damped_ = 0;
+};
+
+}  // namespace tmdem::mechanics

@@ -49,7 +49,10 @@ inline int solve_contact_bipotential(const Eigen::Vector3d& u0, double w_n, doub
   }
   const double rn = -u0[0] / w_n;  // u_n = 0 while in contact
   const double rt1 = -u0[1] / w_t, rt2 = -u0[2] / w_t;
-  const double rt = std::hypot(rt1, rt2);
+  // Not std::hypot: its overflow-safe scaling cost 15% of a visit on the pour bed (79 against
+  // 94 ns per candidate per sweep, README "Pour and settle"), and impulses are nowhere near
+  // overflow.
+  const double rt = std::sqrt(rt1 * rt1 + rt2 * rt2);
   if (rt <= mu * rn) {  // stick: u = 0
     r = Eigen::Vector3d(rn, rt1, rt2);
     return 1;

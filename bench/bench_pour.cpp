@@ -24,7 +24,9 @@
 //                          converged, correction sweeps, candidates, active contacts,
 //                          largest speed (m/s), largest travel / r_min, penetration / r_min,
 //                          then the fastest sphere: index, radius (m), centre x y z (m),
-//                          velocity x y z (m/s), contacts carrying a force on it
+//                          velocity x y z (m/s), contacts carrying a force on it; the
+//                          largest speed of a sphere with a loaded contact (m/s) and the
+//                          number of spheres at or above settle_velocity
 //   TMDEM_POUR_PROBE_STEP  after this step, re-solve its problem from zero with plain
 //                          symmetric Gauss-Seidel and print where it is slow (SlowModeProbe.h;
 //                          TMDEM_POUR_PROBE_SWEEPS sweeps, default 400)
@@ -156,14 +158,30 @@ void BM_Pour(benchmark::State& state) {
         for (const auto& c : sim->contacts())
           if (c.normal_force_N > 0.0 && (c.i == static_cast<std::int64_t>(fastest) || c.j == static_cast<std::int64_t>(fastest)))
             ++touching;
+        // What a settle criterion that discounts rattlers would see: the largest speed of a
+        // sphere held by at least one loaded contact, and how many spheres move faster than
+        // settle_velocity.
+        std::vector<int> loaded(p.size(), 0);
+        for (const auto& c : sim->contacts()) {
+          if (!(c.normal_force_N > 0.0)) continue;
+          ++loaded[static_cast<std::size_t>(c.i)];
+          if (c.j >= 0 && c.j < static_cast<std::int64_t>(p.size())) ++loaded[static_cast<std::size_t>(c.j)];
+        }
+        double held_speed = 0.0;
+        int moving = 0;
+        for (std::size_t k = 0; k < p.size(); ++k) {
+          const double speed = p.velocity[k].norm();
+          if (loaded[k] > 0) held_speed = std::max(held_speed, speed);
+          if (speed >= scene.mechanics.settle_velocity_m_per_s) ++moving;
+        }
         const Eigen::Vector3d& x = p.position[fastest];
         const Eigen::Vector3d& u = p.velocity[fastest];
-        std::fprintf(stderr, "%lld %d %.3e %d %d %zu %zu %.3e %.3f %.5f %zu %.1e %.5f %.5f %.5f %.3e %.3e %.3e %d\n",
+        std::fprintf(stderr, "%lld %d %.3e %d %d %zu %zu %.3e %.3f %.5f %zu %.1e %.5f %.5f %.5f %.3e %.3e %.3e %d %.3e %d\n",
                      static_cast<long long>(steps), report.sweeps, report.residual,
                      report.converged ? 1 : 0, report.correction_sweeps, report.candidates,
                      report.active_contacts, sim->max_speed(), report.max_travel_m / r_min,
                      report.max_penetration_m / r_min, fastest, p.radius[fastest], x.x(), x.y(),
-                     x.z(), u.x(), u.y(), u.z(), touching);
+                     x.z(), u.x(), u.y(), u.z(), touching, held_speed, moving);
       }
       if (steps == probe_step) {
         bench::print_slow_mode(sim->problem(), static_cast<int>(env_number("TMDEM_POUR_PROBE_SWEEPS", 400)), stderr);

@@ -26,7 +26,8 @@
 //                          then the fastest sphere: index, radius (m), centre x y z (m),
 //                          velocity x y z (m/s), contacts carrying a force on it; the
 //                          largest speed of a sphere with a loaded contact (m/s) and the
-//                          number of spheres at or above settle_velocity
+//                          number of spheres at or above settle_velocity; the step's
+//                          kinetic + gravitational energy change and contact dissipation, J
 //   TMDEM_POUR_PROBE_STEP  after this step, re-solve its problem from zero with plain
 //                          symmetric Gauss-Seidel and print where it is slow (SlowModeProbe.h;
 //                          TMDEM_POUR_PROBE_SWEEPS sweeps, default 400)
@@ -176,12 +177,13 @@ void BM_Pour(benchmark::State& state) {
         }
         const Eigen::Vector3d& x = p.position[fastest];
         const Eigen::Vector3d& u = p.velocity[fastest];
-        std::fprintf(stderr, "%lld %d %.3e %d %d %zu %zu %.3e %.3f %.5f %zu %.1e %.5f %.5f %.5f %.3e %.3e %.3e %d %.3e %d\n",
+        std::fprintf(stderr, "%lld %d %.3e %d %d %zu %zu %.3e %.3f %.5f %zu %.1e %.5f %.5f %.5f %.3e %.3e %.3e %d %.3e %d %.4e %.4e\n",
                      static_cast<long long>(steps), report.sweeps, report.residual,
                      report.converged ? 1 : 0, report.correction_sweeps, report.candidates,
                      report.active_contacts, sim->max_speed(), report.max_travel_m / r_min,
                      report.max_penetration_m / r_min, fastest, p.radius[fastest], x.x(), x.y(),
-                     x.z(), u.x(), u.y(), u.z(), touching, held_speed, moving);
+                     x.z(), u.x(), u.y(), u.z(), touching, held_speed, moving,
+                     report.energy_change_J, report.contact_dissipation_J);
       }
       if (steps == probe_step) {
         bench::print_slow_mode(sim->problem(), static_cast<int>(env_number("TMDEM_POUR_PROBE_SWEEPS", 400)), stderr);

@@ -430,9 +430,10 @@ SolveReport NscdIntegrator::solve_contacts() {
     return order_.solve(*solver_, problem_, reactions_, rolling_impulse_, body_velocity_,
                         body_angular_velocity_);
   }
-  return rolling_ ? solver_->solve_with_rolling(problem_, reactions_, rolling_impulse_,
-                                                body_velocity_, body_angular_velocity_)
-                  : solver_->solve(problem_, reactions_, body_velocity_, body_angular_velocity_);
+  // Without rolling resistance rolling_impulse_ stays empty and is not read (ContactSolver.h),
+  // as in the ordered call above.
+  return solver_->solve_with_rolling(problem_, reactions_, rolling_impulse_, body_velocity_,
+                                     body_angular_velocity_);
 }
 
 void NscdIntegrator::account_energy(double h, StepReport& report) const {

@@ -27,13 +27,16 @@
 //                          velocity x y z (m/s), contacts carrying a force on it; the
 //                          largest speed of a sphere with a loaded contact (m/s) and the
 //                          number of spheres at or above settle_velocity; the step's
-//                          kinetic + gravitational energy change and contact dissipation, J
+//                          kinetic + gravitational energy change and contact dissipation, J;
+//                          the solver tolerance in force (mechanics.fall_tolerance schedule)
 //   TMDEM_POUR_PROBE_STEP  after this step, re-solve its problem from zero with plain
 //                          symmetric Gauss-Seidel and print where it is slow (SlowModeProbe.h;
 //                          TMDEM_POUR_PROBE_SWEEPS sweeps, default 400)
 // Counters: particles; contacts (active, at the end) and candidates; settle_steps; sim_time_s;
 // at_rest (1/0); mean_sweeps; converged_pct (steps whose solver converged); pen_rmin (largest
 // penetration during the run / smallest radius) and pen_end_rmin (after the last step);
+// fall_steps, fall_unconv, tight_step (the tolerance schedule: steps at fall_tolerance, of
+// those unconverged, first step at the tight tolerance after the fall, 0: none);
 // wall_s (wall time of the steps: to rest when at_rest = 1); s_per_step; ns_step (wall time
 // of the steps per candidate per sweep: detection and set-up included); ns_sweep (the
 // solver alone: 40 sweeps of a fresh solver of the same kind on the last step's problem,
@@ -177,13 +180,13 @@ void BM_Pour(benchmark::State& state) {
         }
         const Eigen::Vector3d& x = p.position[fastest];
         const Eigen::Vector3d& u = p.velocity[fastest];
-        std::fprintf(stderr, "%lld %d %.3e %d %d %zu %zu %.3e %.3f %.5f %zu %.1e %.5f %.5f %.5f %.3e %.3e %.3e %d %.3e %d %.4e %.4e\n",
+        std::fprintf(stderr, "%lld %d %.3e %d %d %zu %zu %.3e %.3f %.5f %zu %.1e %.5f %.5f %.5f %.3e %.3e %.3e %d %.3e %d %.4e %.4e %.1e\n",
                      static_cast<long long>(steps), report.sweeps, report.residual,
                      report.converged ? 1 : 0, report.correction_sweeps, report.candidates,
                      report.active_contacts, sim->max_speed(), report.max_travel_m / r_min,
                      report.max_penetration_m / r_min, fastest, p.radius[fastest], x.x(), x.y(),
                      x.z(), u.x(), u.y(), u.z(), touching, held_speed, moving,
-                     report.energy_change_J, report.contact_dissipation_J);
+                     report.energy_change_J, report.contact_dissipation_J, report.tolerance);
       }
       if (steps == probe_step) {
         bench::print_slow_mode(sim->problem(), static_cast<int>(env_number("TMDEM_POUR_PROBE_SWEEPS", 400)), stderr);
@@ -228,6 +231,11 @@ void BM_Pour(benchmark::State& state) {
     state.counters["max_speed"] = sim->max_speed();
     state.counters["mean_sweeps"] = sim->stats().mean_sweeps();
     state.counters["converged_pct"] = 100.0 * static_cast<double>(converged) / static_cast<double>(steps);
+    // The tolerance schedule (mechanics.fall_tolerance): steps solved at fall_tolerance, of
+    // those unconverged, and the first step at the tight tolerance after the fall (0: none).
+    state.counters["fall_steps"] = static_cast<double>(sim->stats().fall_steps);
+    state.counters["fall_unconv"] = static_cast<double>(sim->stats().fall_unconverged_steps);
+    state.counters["tight_step"] = static_cast<double>(sim->tolerance_schedule().landed_step());
     state.counters["pen_rmin"] = sim->stats().max_penetration_m / r_min;
     state.counters["pen_end_rmin"] = pen_end / r_min;
     state.counters["wall_s"] = wall;

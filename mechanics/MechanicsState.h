@@ -15,6 +15,7 @@
 
 #include "mechanics/ContactDetector.h"
 #include "mechanics/StepReport.h"
+#include "mechanics/ToleranceSchedule.h"
 
 namespace tmdem::mechanics {
 
@@ -39,6 +40,9 @@ struct MechanicsState {
   std::vector<Eigen::Vector3d> wall_point_m;
   std::vector<double> wall_velocity_m_per_s;           // along the wall normal
   std::vector<Eigen::Vector3d> reference_wall_point_m; // at the last rebuild (ContactDetector)
+
+  // The tolerance schedule's phase (ToleranceSchedule.h; Before when the scene has none).
+  ToleranceSchedule::State tolerance_schedule;
 
   MechanicsStats stats;
 };

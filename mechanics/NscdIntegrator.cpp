@@ -116,7 +116,11 @@ NscdIntegrator::NscdIntegrator(ParticleSet particles, std::vector<Material> mate
   }
   keep_in_plane();
   slop_m_ = parameters_.penetration_slop_fraction * particles_.min_radius();
-  SolverSettings settings;
+  require(parameters_.fall_tolerance >= 0.0 && std::isfinite(parameters_.fall_tolerance),
+          "fall_tolerance must be >= 0 (0: no tolerance schedule)");
+  schedule_ = ToleranceSchedule(parameters_.tolerance, parameters_.fall_tolerance,
+                                parameters_.fall_speed);
+  SolverSettings& settings = solver_settings_;
   settings.tolerance = parameters_.tolerance;
   settings.max_iterations = parameters_.max_iterations;
   settings.relaxation = parameters_.relaxation;
@@ -125,6 +129,7 @@ NscdIntegrator::NscdIntegrator(ParticleSet particles, std::vector<Material> mate
   solver_ = make_contact_solver(parameters_.solver, settings);
   order_ = SpatialContactOrder(parameters_.parallel_from);
   problem_.rolling = rolling_;
+  // Built once with `tolerance`: the position solve stops at max(tolerance, 1e-2) anyway.
   correction_ = PenetrationCorrection(settings);
   problem_.dimension = dimension_;
   problem_.particle_count = n;
@@ -300,6 +305,10 @@ StepReport NscdIntegrator::step(double h) {
   if (!(h > 0.0) || !std::isfinite(h)) throw std::invalid_argument("mechanics: step must be > 0");
   StepReport report;
   const std::size_t n = particles_.size();
+  report.tolerance =
+      schedule_.enabled() ? schedule_.tolerance_for_step(max_speed(), stats_.steps + 1) : parameters_.tolerance;
+  report.fall = schedule_.falling();
+  use_tolerance(report.tolerance);
   const std::size_t rebuilds_before = detector_.rebuild_count();
   auto clock = std::chrono::steady_clock::now();
   // Seconds since the last lap, and a new lap (no allocation: a clock read).
@@ -419,6 +428,16 @@ StepReport NscdIntegrator::step(double h) {
   report.active_contacts = contacts_.size();
   stats_.add(report);
   return report;
+}
+
+void NscdIntegrator::use_tolerance(double tolerance) {
+  if (tolerance == solver_settings_.tolerance) return;
+  // A new solver of the same kind with the other tolerance, carrying what the solver carries
+  // between solves: what a restart does (restore_state), so the switch keeps restarts bitwise.
+  const std::vector<double> carried = solver_->carried_state();
+  solver_settings_.tolerance = tolerance;
+  solver_ = make_contact_solver(parameters_.solver, solver_settings_);
+  solver_->restore_carried_state(carried);
 }
 
 SolveReport NscdIntegrator::solve_contacts() {

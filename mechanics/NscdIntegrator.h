@@ -69,6 +69,7 @@
 #include "mechanics/PenetrationCorrection.h"
 #include "mechanics/SpatialContactOrder.h"
 #include "mechanics/StepReport.h"
+#include "mechanics/ToleranceSchedule.h"
 #include "mechanics/Wall.h"
 
 namespace tmdem::mechanics {
@@ -123,6 +124,11 @@ class NscdIntegrator {
   // The last step's contact problem and its solver (mechanics.solver).
   const ContactProblem& problem() const { return problem_; }
   const ContactSolver& solver() const { return *solver_; }
+  // The tolerance schedule (mechanics.fall_tolerance, fall_speed; ToleranceSchedule.h): its
+  // phase, and the step that first used the tight tolerance after the fall.
+  const ToleranceSchedule& tolerance_schedule() const { return schedule_; }
+  // The solver tolerance the last step used (the scene's tolerance before the first step).
+  double tolerance_in_force() const { return solver_settings_.tolerance; }
 
  private:
   void refresh_candidates(double h);
@@ -134,6 +140,8 @@ class NscdIntegrator {
   void gaps_after_step(std::vector<double>& gap) const;  // per candidate, current positions, m
   // The contact solver on problem_ (in a spatial order from parameters_.spatial_order_from).
   SolveReport solve_contacts();
+  // The solver at this tolerance from now on (a no-op when it already is).
+  void use_tolerance(double tolerance);
 
   ParticleSet particles_;
   std::vector<Material> materials_;
@@ -154,6 +162,8 @@ class NscdIntegrator {
   double slop_m_ = 0.0;  // penetration slop (NscdParameters), m
   ContactProblem problem_;
   std::unique_ptr<ContactSolver> solver_;
+  SolverSettings solver_settings_;  // solver_'s, tolerance as in force
+  ToleranceSchedule schedule_;
   SpatialContactOrder order_;  // of the candidate table (invalidated when it changes)
   std::vector<Eigen::Vector3d> reactions_;   // local impulse per candidate (n, t1, t2), N s
   std::vector<double> gap_;                  // per candidate at the start of the step, m

@@ -27,6 +27,7 @@ MechanicsState NscdIntegrator::save_state() const {
   }
   s.solver_state = solver_->carried_state();
   s.stats = stats_;
+  s.tolerance_schedule = schedule_.state();
   for (const auto& w : walls_) {
     s.wall_point_m.push_back(w.point);
     s.wall_velocity_m_per_s.push_back(w.velocity_m_per_s);
@@ -74,6 +75,7 @@ void NscdIntegrator::restore_state(const MechanicsState& s) {
   if (rolling_) torque_.resize(s.candidates.size(), Eigen::Vector3d::Zero());
   old_torque_.clear();
   contacts_.clear();
+  schedule_.restore(s.tolerance_schedule);
   solver_->restore_carried_state(s.solver_state);
   stats_ = s.stats;
 }

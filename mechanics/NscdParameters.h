@@ -17,6 +17,11 @@ struct NscdParameters {
   // same residual re-evaluated for every contact after the sweep is within 0.85-1.2x of it
   // (measured on stalled steps of the default scene and a 3D pile).
   double tolerance = 1.0e-6;
+  // Tolerance schedule (ToleranceSchedule.h): while the largest particle speed is at or above
+  // fall_speed (m/s), the solves stop at fall_tolerance instead; after the speed first drops
+  // back below fall_speed, `tolerance` holds for the rest of the run. fall_tolerance 0: off.
+  double fall_tolerance = 0.0;
+  double fall_speed = 0.0;  // m/s
   int max_iterations = 10000; // Gauss-Seidel sweeps per step
   // Over-relaxation of the Gauss-Seidel update, r <- proj_K(r + w (r_local - r)); 1 = plain
   // Gauss-Seidel. On frictional piles over-relaxation does not pay (default 256-particle 2D

@@ -10,6 +10,10 @@ void MechanicsStats::add(const StepReport& report) {
   max_sweeps = std::max(max_sweeps, report.sweeps);
   if (!report.converged) ++unconverged_steps;
   if (report.stalled) ++stalled_steps;
+  if (report.fall) {
+    ++fall_steps;
+    if (!report.converged) ++fall_unconverged_steps;
+  }
   max_penetration_m = std::max(max_penetration_m, report.max_penetration_m);
   correction_sweeps += report.correction_sweeps;
   correction_potential_J += report.correction_potential_J;

@@ -10,6 +10,8 @@ struct StepReport {
   int sweeps = 0;                  // Gauss-Seidel sweeps used
   double residual = 0.0;           // sum |dr| / sum |r| of the last sweep (see NscdParameters)
   bool converged = true;           // residual <= tolerance within max_iterations
+  double tolerance = 0.0;          // the tolerance in force for this step (ToleranceSchedule.h)
+  bool fall = false;               // solved at mechanics.fall_tolerance (the particles falling)
   bool stalled = false;            // the solver gave up early: no progress (not converged)
   int correction_sweeps = 0;       // penetration correction (PenetrationCorrection.h); 0: none
                                    // needed. Its failure makes the step unconverged too.
@@ -42,6 +44,11 @@ struct MechanicsStats {
   int max_sweeps = 0;                  // "max_iterations" in the run summary
   std::int64_t unconverged_steps = 0;
   std::int64_t stalled_steps = 0;      // of the unconverged ones, stopped early for no progress
+  // Steps solved at the tolerance schedule's fall_tolerance (ToleranceSchedule.h), and of
+  // those the unconverged ones (also counted in unconverged_steps: a step is converged when it
+  // met the tolerance in force at that step).
+  std::int64_t fall_steps = 0;
+  std::int64_t fall_unconverged_steps = 0;
   double max_penetration_m = 0.0;
   std::int64_t correction_sweeps = 0;  // sum of the steps' correction_sweeps
   double correction_potential_J = 0.0; // sum of the steps' correction_potential_J

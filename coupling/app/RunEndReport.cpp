@@ -88,6 +88,17 @@ void print_run_end(const RunSummary& summary, const Scene& scene, const std::str
         out << " (potential energy " << summary.energy.mechanical->correction_potential_J << " J)";
     }
     out << "\n";
+    if (const auto& ts = m.tolerance_schedule) {
+      out << "mechanics: tolerance " << ts->fall_tolerance << " while falling (" << ts->fall_steps
+          << " steps, " << ts->fall_unconverged_steps << " unconverged), " << ts->tolerance;
+      if (ts->tightened)
+        out << " from step " << ts->tightened_step << " (t = " << ts->tightened_time_s
+            << " s of mechanics, largest speed below mechanics.fall_speed = " << ts->fall_speed_m_s
+            << " m/s)\n";
+      else
+        out << " before the fall; the largest speed never dropped back below mechanics.fall_speed = "
+            << ts->fall_speed_m_s << " m/s\n";
+    }
   }
   // A run interrupted while settling froze nothing: it stopped before t = 0.
   const bool stopped_settling = summary.status == "interrupted" && summary.simulated_time_s == 0.0;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <utility>
 
 namespace tmdem::coupling {
 namespace {
@@ -29,6 +30,15 @@ const nlohmann::json& section(const nlohmann::json& object, const char* key) {
   return object.contains(key) ? object.at(key) : empty;
 }
 
+// mechanics.tolerance_schedule's numbers and counts, by key (tightened_* are null until set).
+constexpr std::pair<const char*, double ToleranceScheduleSummary::*> kScheduleNumbers[] = {
+    {"tolerance", &ToleranceScheduleSummary::tolerance},
+    {"fall_tolerance", &ToleranceScheduleSummary::fall_tolerance},
+    {"fall_speed_m_s", &ToleranceScheduleSummary::fall_speed_m_s}};
+constexpr std::pair<const char*, std::int64_t ToleranceScheduleSummary::*> kScheduleCounts[] = {
+    {"fall_steps", &ToleranceScheduleSummary::fall_steps},
+    {"fall_unconverged_steps", &ToleranceScheduleSummary::fall_unconverged_steps}};
+
 }  // namespace
 
 nlohmann::json RunSummary::to_json() const {
@@ -40,6 +50,14 @@ nlohmann::json RunSummary::to_json() const {
                       {"stalled_steps", mechanics.stalled_steps},
                       {"correction_sweeps", mechanics.correction_sweeps},
                       {"max_step_travel_m", mechanics.max_step_travel_m}};
+  if (const auto& ts = mechanics.tolerance_schedule) {
+    nlohmann::json& block = m["tolerance_schedule"];
+    for (const auto& [key, member] : kScheduleNumbers) block[key] = (*ts).*member;
+    for (const auto& [key, member] : kScheduleCounts) block[key] = (*ts).*member;
+    block["tightened"] = ts->tightened;
+    block["tightened_step"] = ts->tightened ? nlohmann::json(ts->tightened_step) : nlohmann::json();
+    block["tightened_time_s"] = ts->tightened ? nlohmann::json(ts->tightened_time_s) : nlohmann::json();
+  }
   nlohmann::json t = {{"integrator", thermal.integrator},
                       {"steps", thermal.steps},
                       {"rhs_evals", thermal.rhs_evals},
@@ -118,6 +136,18 @@ RunSummary RunSummary::from_json(const nlohmann::json& j) {
   s.mechanics.stalled_steps = integer(m, "stalled_steps", 0);
   s.mechanics.correction_sweeps = integer(m, "correction_sweeps", 0);
   s.mechanics.max_step_travel_m = number(m, "max_step_travel_m", 0.0);
+  if (m.contains("tolerance_schedule")) {
+    const nlohmann::json& block = m.at("tolerance_schedule");
+    ToleranceScheduleSummary ts;
+    for (const auto& [key, member] : kScheduleNumbers) ts.*member = number(block, key, 0.0);
+    for (const auto& [key, member] : kScheduleCounts) ts.*member = integer(block, key, 0);
+    ts.tightened = block.contains("tightened") && block.at("tightened").get<bool>();
+    if (ts.tightened) {  // null (not tightened) stays 0
+      ts.tightened_step = integer(block, "tightened_step", 0);
+      ts.tightened_time_s = number(block, "tightened_time_s", 0.0);
+    }
+    s.mechanics.tolerance_schedule = ts;
+  }
 
   if (j.contains("settle")) {
     const nlohmann::json& st = j.at("settle");

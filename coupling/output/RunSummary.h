@@ -13,6 +13,23 @@
 
 namespace tmdem::coupling {
 
+// "mechanics.tolerance_schedule" (extra; only for scenes with mechanics.fall_tolerance): the
+// tolerances, how many steps were solved at fall_tolerance (and of those unconverged: every
+// step is judged against the tolerance in force at that step, so unconverged_steps counts
+// both kinds), and when the tight tolerance took over.
+struct ToleranceScheduleSummary {
+  double tolerance = 0.0;             // mechanics.tolerance
+  double fall_tolerance = 0.0;        // mechanics.fall_tolerance
+  double fall_speed_m_s = 0.0;        // mechanics.fall_speed
+  std::int64_t fall_steps = 0;        // steps solved at fall_tolerance
+  std::int64_t fall_unconverged_steps = 0;
+  bool tightened = false;             // the fall ended: tolerance from tightened_step on
+  std::int64_t tightened_step = 0;    // first step at `tolerance` after the fall (1-based, of
+                                      // mechanics.steps); written as null when not tightened
+  double tightened_time_s = 0.0;      // s since the mechanics started (settle: of the settle
+                                      // time; dynamic: of the run) when that step began; null too
+};
+
 struct MechanicsSummary {
   std::int64_t steps = 0;
   double mean_iterations = 0.0;      // Gauss-Seidel sweeps per step
@@ -22,6 +39,7 @@ struct MechanicsSummary {
   std::int64_t stalled_steps = 0;    // extra: of the unconverged steps, stopped for no progress
   std::int64_t correction_sweeps = 0;  // extra: penetration-correction sweeps over the run
   double max_step_travel_m = 0.0;    // extra: largest particle displacement in one step, m
+  std::optional<ToleranceScheduleSummary> tolerance_schedule{};  // extra: with a fall_tolerance
 };
 
 // The "settle" block (mechanics = "settle" only): how the packing was frozen.

@@ -229,7 +229,7 @@ void CoupledRun::run_dynamic() {
     mechanics_seconds_ += seconds_since(mechanics_start);
     if (!report.converged && !options_.quiet && nscd_->stats().unconverged_steps <= 10) {
       std::string msg = unconverged_step_warning("mechanics step", t_next, *nscd_, report,
-                                                 scene_.mechanics.tolerance);
+                                                 report.tolerance);
       if (nscd_->stats().unconverged_steps == 10) msg += "; further such warnings are not shown";
       progress_.message(msg);
     }
@@ -290,6 +290,20 @@ void CoupledRun::fill_summary() {
     summary_.mechanics.stalled_steps = ms.stalled_steps;
     summary_.mechanics.correction_sweeps = ms.correction_sweeps;
     summary_.mechanics.max_step_travel_m = ms.max_travel_m;
+    if (nscd_->tolerance_schedule().enabled()) {
+      ToleranceScheduleSummary ts;
+      ts.tolerance = scene_.mechanics.tolerance;
+      ts.fall_tolerance = scene_.mechanics.fall_tolerance;
+      ts.fall_speed_m_s = scene_.mechanics.fall_speed_m_per_s;
+      ts.fall_steps = ms.fall_steps;
+      ts.fall_unconverged_steps = ms.fall_unconverged_steps;
+      const std::int64_t landed = nscd_->tolerance_schedule().landed_step();
+      ts.tightened = landed > 0;
+      ts.tightened_step = landed;
+      // Every step but a dynamic run's last is time_step long.
+      ts.tightened_time_s = landed > 0 ? double(landed - 1) * scene_.mechanics.time_step_s : 0.0;
+      summary_.mechanics.tolerance_schedule = ts;
+    }
     // Settle runs too (their settle phase); heat is handed over by dynamic runs only.
     MechanicalEnergySummary m;
     m.energy_change_J = ms.energy_change_J;

@@ -77,6 +77,8 @@ void store_mechanics_stats(const mechanics::MechanicsStats& s, CheckpointState& 
   cs.extra["mechanics_max_sweeps"] = double(s.max_sweeps);
   cs.extra["mechanics_unconverged_steps"] = double(s.unconverged_steps);
   cs.extra["mechanics_stalled_steps"] = double(s.stalled_steps);
+  cs.extra["mechanics_fall_steps"] = double(s.fall_steps);
+  cs.extra["mechanics_fall_unconverged_steps"] = double(s.fall_unconverged_steps);
   cs.extra["mechanics_max_penetration_m"] = s.max_penetration_m;
   cs.extra["mechanics_correction_sweeps"] = double(s.correction_sweeps);
   cs.extra["mechanics_correction_potential_J"] = s.correction_potential_J;
@@ -93,6 +95,8 @@ mechanics::MechanicsStats mechanics_stats_of(const CheckpointState& cs) {
   s.max_sweeps = int(extra_or_zero(cs, "mechanics_max_sweeps"));
   s.unconverged_steps = std::int64_t(extra_or_zero(cs, "mechanics_unconverged_steps"));
   s.stalled_steps = std::int64_t(extra_or_zero(cs, "mechanics_stalled_steps"));
+  s.fall_steps = std::int64_t(extra_or_zero(cs, "mechanics_fall_steps"));
+  s.fall_unconverged_steps = std::int64_t(extra_or_zero(cs, "mechanics_fall_unconverged_steps"));
   s.max_penetration_m = extra_or_zero(cs, "mechanics_max_penetration_m");
   s.correction_sweeps = std::int64_t(extra_or_zero(cs, "mechanics_correction_sweeps"));
   s.correction_potential_J = extra_or_zero(cs, "mechanics_correction_potential_J");
@@ -120,6 +124,9 @@ void store_mechanics_state(const mechanics::MechanicsState& m, CheckpointState& 
   cs.wall_velocity_m_per_s = m.wall_velocity_m_per_s;
   cs.detector_reference_wall_point_m = flat_of(m.reference_wall_point_m);
   store_mechanics_stats(m.stats, cs);
+  // The tolerance schedule's phase (0 before the fall, also in checkpoints older than it).
+  cs.extra["mechanics_tolerance_phase"] = double(int(m.tolerance_schedule.phase));
+  cs.extra["mechanics_tolerance_landed_step"] = double(m.tolerance_schedule.landed_step);
 }
 
 mechanics::MechanicsState mechanics_state_of(const CheckpointState& cs) {
@@ -139,6 +146,10 @@ mechanics::MechanicsState mechanics_state_of(const CheckpointState& cs) {
   m.wall_velocity_m_per_s = cs.wall_velocity_m_per_s;
   m.reference_wall_point_m = vectors_of(cs.detector_reference_wall_point_m);
   m.stats = mechanics_stats_of(cs);
+  m.tolerance_schedule.phase =
+      mechanics::ToleranceSchedule::Phase(int(extra_or_zero(cs, "mechanics_tolerance_phase")));
+  m.tolerance_schedule.landed_step =
+      std::int64_t(extra_or_zero(cs, "mechanics_tolerance_landed_step"));
   return m;
 }
 

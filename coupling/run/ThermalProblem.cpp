@@ -33,8 +33,7 @@ SettleSummary settle_packing(mechanics::NscdIntegrator& nscd, const Scene& scene
     const auto report = nscd.step(h);
     t += h;
     if (!report.converged && nscd.stats().unconverged_steps <= 10) {
-      std::string msg = unconverged_step_warning("settle step", t, nscd, report,
-                                                 scene.mechanics.tolerance);
+      std::string msg = unconverged_step_warning("settle step", t, nscd, report, report.tolerance);
       if (nscd.stats().unconverged_steps == 10) msg += "; further such warnings are not shown";
       progress.message(msg);
     }

@@ -117,6 +117,10 @@ struct MechanicsSettings {
   double theta = 0.5;
   std::string solver = "nlgs";  // mechanics::contact_solver_names()
   double tolerance = 1.0e-6;
+  // Tolerance schedule (mechanics::ToleranceSchedule): fall_tolerance while the largest
+  // particle speed is at or above fall_speed, until it first drops below; 0 = off (absent).
+  double fall_tolerance = 0.0;
+  double fall_speed_m_per_s = 0.0;
   int max_iterations = 10000;
   int full_sweep_every = 1;  // Gauss-Seidel active-set sweeps (mechanics::NscdParameters)
   double settle_time_s = 5.0;

@@ -305,6 +305,15 @@ std::vector<Section> build_sections() {
                "contact solver by name (mechanics::ContactSolverRegistry)"),
         number("tolerance", "", 1.0e-6, Range::greater(0.0),
                "relative contact-law residual of a Gauss-Seidel sweep that counts as converged"),
+        number("fall_tolerance", "", std::nullopt, Range::greater(0.0),
+               "tolerance schedule: the solves stop at this tolerance instead of `tolerance` "
+               "while the largest particle speed is at or above fall_speed; once it first drops "
+               "back below fall_speed, `tolerance` holds for the rest of the run (one-way; "
+               "settle and dynamic runs alike). Needs fall_speed; absent: `tolerance` for "
+               "every step. A step counts as converged when it met the tolerance in force"),
+        number("fall_speed", "m/s", std::nullopt, Range::greater(0.0),
+               "tolerance schedule: the largest particle speed at or above which the particles "
+               "count as falling (fall_tolerance applies); needs fall_tolerance"),
         value("max_iterations", "", "10000", "integer >= 1", "Gauss-Seidel sweeps per step, at most"),
         value("full_sweep_every", "", "1", "integer >= 1",
               "\"nlgs\", \"nlgs_coloured\": a sweep over every candidate at least every this "

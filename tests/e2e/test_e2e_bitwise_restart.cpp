@@ -25,11 +25,14 @@ std::string number(double value) {
 
 // `example` run to `end_s` in one go, and in segments ending at each of `stops_s` (each
 // restarted from the previous one's checkpoint), all with checkpoints every `interval_s`.
+// `part_dir`, when given, receives the folder of the segmented run (its summary: s.json).
 void expect_segments_equal_uninterrupted(const std::string& name, const std::string& example,
                                          double interval_s, const std::vector<double>& stops_s,
-                                         double end_s, const std::string& settings = "") {
+                                         double end_s, const std::string& settings = "",
+                                         std::string* part_dir = nullptr) {
   const auto full = scratch_dir("bitwise_" + name + "_full");
   const auto part = scratch_dir("bitwise_" + name + "_part");
+  if (part_dir) *part_dir = part;
   for (const auto& dir : {full, part})
     fs::copy_file(fs::path(TMDEM_SOURCE_DIR) / "examples" / example, dir + "/s.toml");
   const std::string common = "run s.toml --quiet -o out.h5 --set output.checkpoint_interval=" +
@@ -99,4 +102,27 @@ TEST(EndToEndBitwiseRestart, PouredBedDynamic) {
 TEST(EndToEndBitwiseRestart, PouredBedDynamicApgd) {
   expect_segments_equal_uninterrupted("poured_bed_apgd", "poured_bed.toml", 0.2, {0.2}, 0.5,
                                       "--set mechanics.solver=apgd");
+}
+
+// The tolerance schedule (mechanics.fall_tolerance, fall_speed): poured_bed's largest speed
+// passes 0.05 m/s in its first steps and drops back below it at about 0.08 s, so the first
+// segment ends while the particles fall (solved at fall_tolerance) and the second after the
+// tolerance tightened; the checkpoint carries the schedule's phase and its counters.
+TEST(EndToEndBitwiseRestart, PouredBedDynamicAcrossTheToleranceSwitch) {
+  const std::string schedule = "--set mechanics.fall_tolerance=1e-4 --set mechanics.fall_speed=0.05";
+  std::string part;
+  expect_segments_equal_uninterrupted("poured_bed_schedule", "poured_bed.toml", 0.05, {0.05, 0.1},
+                                      0.15, schedule, &part);
+  const auto summary = read_summary(part + "/s.json");
+  const auto& ts = summary.at("mechanics").at("tolerance_schedule");
+  EXPECT_EQ(ts.at("fall_tolerance").get<double>(), 1e-4);
+  EXPECT_EQ(ts.at("tolerance").get<double>(), 1e-6);
+  ASSERT_TRUE(ts.at("tightened").get<bool>());
+  const auto step = ts.at("tightened_step").get<std::int64_t>();
+  EXPECT_GT(step, 50) << "the switch should come after the first restart";
+  EXPECT_LE(step, 100) << "and before the second";
+  EXPECT_DOUBLE_EQ(ts.at("tightened_time_s").get<double>(), double(step - 1) * 1e-3);
+  EXPECT_GT(ts.at("fall_steps").get<std::int64_t>(), 0);
+  EXPECT_LE(ts.at("fall_unconverged_steps").get<std::int64_t>(),
+            summary.at("mechanics").at("unconverged_steps").get<std::int64_t>());
 }

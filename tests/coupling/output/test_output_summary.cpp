@@ -114,6 +114,40 @@ TEST(RunSummary, SettleBlockAndStalledStepsRoundTrip) {
   EXPECT_EQ(r.to_json(), s.to_json());
 }
 
+// The tolerance schedule's block (mechanics.tolerance_schedule): only for scenes with one,
+// null step and time while the tolerance has not tightened.
+TEST(RunSummary, ToleranceScheduleBlockRoundTrips) {
+  RunSummary s = sample_summary();
+  EXPECT_FALSE(s.to_json()["mechanics"].contains("tolerance_schedule"));
+  tmdem::coupling::ToleranceScheduleSummary ts;
+  ts.tolerance = 1e-5;
+  ts.fall_tolerance = 1e-4;
+  ts.fall_speed_m_s = 0.05;
+  ts.fall_steps = 200;
+  ts.fall_unconverged_steps = 1;
+  s.mechanics.tolerance_schedule = ts;
+  nlohmann::json j = nlohmann::json::parse(s.to_json().dump());
+  const auto& block = j["mechanics"]["tolerance_schedule"];
+  EXPECT_EQ(block.size(), 8u);
+  EXPECT_FALSE(block["tightened"].get<bool>());
+  EXPECT_TRUE(block["tightened_step"].is_null());
+  EXPECT_TRUE(block["tightened_time_s"].is_null());
+  EXPECT_EQ(RunSummary::from_json(j).to_json(), s.to_json());
+
+  s.mechanics.tolerance_schedule->tightened = true;
+  s.mechanics.tolerance_schedule->tightened_step = 207;
+  s.mechanics.tolerance_schedule->tightened_time_s = 0.206;
+  j = nlohmann::json::parse(s.to_json().dump());
+  EXPECT_EQ(j["mechanics"]["tolerance_schedule"]["tightened_step"].get<std::int64_t>(), 207);
+  EXPECT_EQ(j["mechanics"]["tolerance_schedule"]["tightened_time_s"].get<double>(), 0.206);
+  EXPECT_EQ(j["mechanics"]["tolerance_schedule"]["fall_speed_m_s"].get<double>(), 0.05);
+  const RunSummary r = RunSummary::from_json(j);
+  ASSERT_TRUE(r.mechanics.tolerance_schedule.has_value());
+  EXPECT_EQ(r.mechanics.tolerance_schedule->tightened_step, 207);
+  EXPECT_EQ(r.mechanics.tolerance_schedule->fall_unconverged_steps, 1);
+  EXPECT_EQ(r.to_json(), s.to_json());
+}
+
 // The penetration correction's cost (mechanics.correction_sweeps), its potential energy
 // (energy.mechanical.correction_potential_J) and the largest travel per step survive the file.
 TEST(RunSummary, CorrectionAndTravelRoundTrip) {

@@ -274,6 +274,33 @@ TEST(SceneRules, TolerancesPositive) {
   }
 }
 
+// The tolerance schedule (mechanics::ToleranceSchedule): both keys or neither, each > 0.
+TEST(SceneRules, ToleranceSchedule) {
+  for (const char* key : {"mechanics.fall_tolerance", "mechanics.fall_speed"}) {
+    SCOPED_TRACE(key);
+    const std::string other =
+        std::string(key) == "mechanics.fall_speed" ? "mechanics.fall_tolerance=1e-4" : "mechanics.fall_speed=0.1";
+    expect_scene_error(kBaseScene, {std::string(key) + "=0", other}, {key, "must be > 0"});
+    expect_scene_error(kBaseScene, {std::string(key) + "=-1", other}, {key, "must be > 0"});
+    expect_scene_error(kBaseScene, {std::string(key) + "=nan", other}, {key});
+    expect_scene_error(kBaseScene, {std::string(key) + "=\"fast\"", other}, {key});
+  }
+  expect_scene_error(kBaseScene, {"mechanics.fall_tolerance=1e-4"},
+                     {"mechanics.fall_tolerance", "needs mechanics.fall_speed"});
+  expect_scene_error(kBaseScene, {"mechanics.fall_speed=0.1"},
+                     {"mechanics.fall_speed", "needs mechanics.fall_tolerance"});
+  const Scene off = load_scene_text(kBaseScene, "t");
+  EXPECT_EQ(off.mechanics.fall_tolerance, 0.0);
+  EXPECT_EQ(make_nscd_parameters(off).fall_tolerance, 0.0);
+  const Scene on = load_scene_text(kBaseScene, "t", {"mechanics.fall_tolerance=1e-4", "mechanics.fall_speed=0.1"});
+  EXPECT_EQ(make_nscd_parameters(on).fall_tolerance, 1e-4);
+  EXPECT_EQ(make_nscd_parameters(on).fall_speed, 0.1);
+  // Ignored, as every [mechanics] key, when mechanics is off.
+  EXPECT_NO_THROW(load_scene_text(kBaseScene, "t",
+                                  {"effects.mechanics=\"off\"", "thermal.conductance=\"constant\"",
+                                   "mechanics.fall_speed=0.1"}));
+}
+
 TEST(SceneRules, ExplicitStepNonNegative) {
   expect_scene_error(kBaseScene, {"thermal.explicit_step=-1e-3"},
                      {"thermal.explicit_step", "must be >= 0"});

@@ -1,0 +1,35 @@
+#include "mechanics/ToleranceSchedule.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace tmdem::mechanics {
+
+ToleranceSchedule::ToleranceSchedule(double tolerance, double fall_tolerance,
+                                     double fall_speed_m_per_s)
+    : tolerance_(tolerance), fall_tolerance_(fall_tolerance), fall_speed_m_per_s_(fall_speed_m_per_s) {
+  if (!std::isfinite(fall_tolerance))
+    throw std::invalid_argument("mechanics: fall_tolerance must be finite");
+  if (enabled() && !(fall_speed_m_per_s > 0.0 && std::isfinite(fall_speed_m_per_s)))
+    throw std::invalid_argument("mechanics: fall_speed must be > 0 (m/s) with a fall_tolerance");
+}
+
+double ToleranceSchedule::tolerance_for_step(double max_speed_m_per_s, std::int64_t step) {
+  if (!enabled()) return tolerance_;
+  switch (state_.phase) {
+    case Phase::Before:
+      if (max_speed_m_per_s >= fall_speed_m_per_s_) state_.phase = Phase::Falling;
+      break;
+    case Phase::Falling:
+      if (max_speed_m_per_s < fall_speed_m_per_s_) {
+        state_.phase = Phase::Landed;
+        state_.landed_step = step;
+      }
+      break;
+    case Phase::Landed:
+      break;
+  }
+  return state_.phase == Phase::Falling ? fall_tolerance_ : tolerance_;
+}
+
+}  // namespace tmdem::mechanics

@@ -1,0 +1,55 @@
+#pragma once
+// A contact-solver tolerance that is loose while the particles fall and tight once they have
+// landed (scene keys mechanics.fall_tolerance, mechanics.fall_speed; NscdParameters).
+//
+// Why: when a poured fill lands (the "collapse" of bench_pour's 2,000 spheres, steps 49-122)
+// every step brings new impacts, and a tight tolerance there costs max_iterations sweeps per
+// step without converging; once the bed has landed, a loose tolerance leaves reactions that do
+// not hold it (nncg at 1e-4: the bed creeps for the whole 5 s settle). README "A tolerance
+// schedule".
+//
+// The rule, one-way so that it cannot chatter, judged on the largest particle speed v of the
+// state a step starts from (NscdIntegrator::max_speed(), the settle criterion's speed):
+//   before:  v has not reached fall_speed yet   -> tolerance (tight)
+//   falling: v >= fall_speed                     -> fall_tolerance
+//   landed:  v < fall_speed after falling        -> tolerance, for the rest of the run
+// A scene whose particles never reach fall_speed is solved at `tolerance` throughout.
+#include <cstdint>
+
+namespace tmdem::mechanics {
+
+class ToleranceSchedule {
+ public:
+  enum class Phase : int { Before = 0, Falling = 1, Landed = 2 };
+
+  // What a restart needs (MechanicsState.h): the phase and the step that first used the tight
+  // tolerance after the fall (0: none yet).
+  struct State {
+    Phase phase = Phase::Before;
+    std::int64_t landed_step = 0;
+  };
+
+  ToleranceSchedule() = default;  // off: `tolerance` for every step
+  // fall_tolerance <= 0: off. Throws std::invalid_argument for a non-finite value or, when on,
+  // a fall_speed that is not > 0.
+  ToleranceSchedule(double tolerance, double fall_tolerance, double fall_speed_m_per_s);
+
+  bool enabled() const { return fall_tolerance_ > 0.0; }
+  // The tolerance for step number `step` (1-based over the run), which starts from a state whose
+  // largest particle speed is `max_speed_m_per_s`; advances the phase.
+  double tolerance_for_step(double max_speed_m_per_s, std::int64_t step);
+  Phase phase() const { return state_.phase; }
+  bool falling() const { return state_.phase == Phase::Falling; }
+  std::int64_t landed_step() const { return state_.landed_step; }  // 0: not landed (yet)
+
+  const State& state() const { return state_; }
+  void restore(const State& state) { state_ = state; }
+
+ private:
+  double tolerance_ = 0.0;
+  double fall_tolerance_ = 0.0;
+  double fall_speed_m_per_s_ = 0.0;
+  State state_;
+};
+
+}  // namespace tmdem::mechanics

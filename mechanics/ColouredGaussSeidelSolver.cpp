@@ -57,6 +57,7 @@ SolveReport ColouredGaussSeidelSolver::solve_with_rolling(
     // Full sweeps visit every contact of each colour and mark the passive ones; partial
     // sweeps the colour's active contacts only (ActiveContactSet.h).
     const bool full = active_.full(report.sweeps);
+    const bool mark = full && active_.partial_sweeps();  // else nothing reads the marks
     const std::vector<std::int32_t>& active = active_.active();
     const std::vector<std::int32_t>& slot_start = full ? start : active_.active_start();
     const std::ptrdiff_t slots = slot_start[static_cast<std::size_t>(colours)];
@@ -72,8 +73,8 @@ SolveReport ColouredGaussSeidelSolver::solve_with_rolling(
           if (ordered_.solvable(c)) {
             u = gauss_seidel_visit(ordered_, c, relaxation, ordered_r_[c], ordered_m_, velocity,
                                    angular_velocity);
-            if (full) active_.mark_visited(c, u.total);
-          } else if (full) {
+            if (mark) active_.mark_visited(c, u.total);
+          } else if (mark) {
             active_.mark_unsolvable(c);
           }
           change_[q] = u.change;
@@ -93,7 +94,7 @@ SolveReport ColouredGaussSeidelSolver::solve_with_rolling(
     }
     const auto [change, total] = add_block_sums<2>(block_sums_, slot_blocks);
     if (stop.after_sweep(change, total, report, full)) break;
-    if (full) active_.collect(start);
+    if (mark) active_.collect(start);
     active_.after_sweep(full, stop.met());
   }
 #pragma omp parallel for schedule(static) if (parallel)

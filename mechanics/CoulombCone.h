@@ -15,6 +15,8 @@
 #include <Eigen/Core>
 #include <cmath>
 
+#include "mechanics/BranchFreeMin.h"
+
 namespace tmdem::mechanics {
 
 // Euclidean projection of tau (local coordinates) onto K_mu:
@@ -53,13 +55,14 @@ inline int solve_contact_bipotential(const Eigen::Vector3d& u0, double w_n, doub
   // 94 ns per candidate per sweep, README "Pour and settle"), and impulses are nowhere near
   // overflow.
   const double rt = std::sqrt(rt1 * rt1 + rt2 * rt2);
-  if (rt <= mu * rn) {  // stick: u = 0
-    r = Eigen::Vector3d(rn, rt1, rt2);
-    return 1;
-  }
-  // Slip: on the cone surface, opposite to the tangential velocity (which keeps the
-  // direction of u0_t since W is a multiple of the identity on the tangent plane).
-  const double scale = mu * rn / rt;
+  // Stick (|r_t| <= mu r_n: u = 0) keeps r_t; slip puts r on the cone surface, opposite to
+  // the tangential velocity (which keeps the direction of u0_t since W is a multiple of the
+  // identity on the tangent plane): r_t scaled by mu r_n / |r_t|. One formula without a
+  // branch (BranchFreeMin.h: stick and slip alternate unpredictably on a poured bed), r_t
+  // scaled by min(1, mu r_n / |r_t|): a correctly rounded quotient a / b is below 1 exactly
+  // when a < b, so slip gets the scale it always had and stick 1 (the same bits); rt = 0
+  // gives inf or NaN, and min(1, NaN) is 1.
+  const double scale = branch_free_min(1.0, mu * rn / rt);
   r = Eigen::Vector3d(rn, scale * rt1, scale * rt2);
   return 1;
 }

@@ -24,6 +24,7 @@ SolveReport GaussSeidelSolver::solve_with_rolling(const ContactProblem& problem,
     // pair of sweeps whichever way the contacts happen to be numbered.
     const bool forward = report.sweeps % 2 == 1;
     const bool full = active_.full(report.sweeps);
+    const bool mark = full && active_.partial_sweeps();  // else nothing reads the marks
     // Full sweeps visit every contact and mark the passive ones, partial sweeps the active
     // ones only, in the same relative order (ActiveContactSet.h).
     const std::size_t visits = full ? count : active_.active().size();
@@ -31,17 +32,17 @@ SolveReport GaussSeidelSolver::solve_with_rolling(const ContactProblem& problem,
       const std::size_t k = forward ? visit : visits - 1 - visit;
       const std::size_t c = full ? k : static_cast<std::size_t>(active_.active()[k]);
       if (!problem.solvable(c)) {
-        active_.mark_unsolvable(c);
+        if (mark) active_.mark_unsolvable(c);
         continue;
       }
       const ContactUpdate u =
           gauss_seidel_visit(problem, c, settings_.relaxation, r[c], m, velocity, angular_velocity);
       change += u.change;
       total += u.total;
-      if (full) active_.mark_visited(c, u.total);
+      if (mark) active_.mark_visited(c, u.total);
     }
     if (stop.after_sweep(change, total, report, full)) break;
-    if (full) active_.collect(count);
+    if (mark) active_.collect(count);
     active_.after_sweep(full, stop.met());
   }
   return report;

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "mechanics/BranchFreeMin.h"
 #include "mechanics/ContactProblem.h"
 #include "mechanics/CoulombCone.h"
 
@@ -44,7 +45,11 @@ inline Eigen::Vector3d local_rolling_solution(const ContactProblem& problem, std
   next -= next.dot(problem.normal[c]) * problem.normal[c];
   const double limit = problem.rolling_limit[c] * std::max(normal_impulse, 0.0);
   const double size = next.norm();
-  if (size > limit) next *= size > 0.0 ? limit / size : 0.0;
+  // Cut to the limit without a branch (BranchFreeMin.h: rolling stick and rolling at the
+  // limit alternate unpredictably on a poured bed): min(1, limit / size) is below 1 exactly
+  // when size > limit (a correctly rounded quotient), and 1 (the same bits) otherwise, also
+  // for size = 0 (inf, or NaN when limit = 0: min(1, NaN) is 1).
+  next *= branch_free_min(1.0, limit / size);
   if (problem.dimension == 2) next.x() = next.y() = 0.0;
   return next;
 }

@@ -1,5 +1,8 @@
 #include "mechanics/NncgSolver.h"
 
+#include <algorithm>
+#include <limits>
+
 #include "mechanics/GaussSeidelUpdate.h"
 
 namespace tmdem::mechanics {
@@ -9,7 +12,13 @@ bool is_zero(const Eigen::Vector3d& x) { return x[0] == 0.0 && x[1] == 0.0 && x[
 
 }  // namespace
 
-NncgSolver::NncgSolver(const SolverSettings& settings) : settings_(settings) {}
+NncgSolver::NncgSolver(const SolverSettings& settings, const Options& options)
+    : settings_(settings), options_(options) {}
+
+int NncgSolver::stall_window() const {
+  const long long window = static_cast<long long>(options_.stall_patience) * settings_.stall_sweeps;
+  return static_cast<int>(std::min<long long>(window, std::numeric_limits<int>::max()));
+}
 
 void NncgSolver::enter(const ContactProblem& problem, std::size_t c,
                        const std::vector<Eigen::Vector3d>& r, const std::vector<Eigen::Vector3d>& m) {
@@ -76,10 +85,10 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& problem,
   in_support_.assign(count, 0);
   support_.clear();
   for (std::size_t c = 0; c < count; ++c) enter(problem, c, r, m);
-  steps_ = damped_ = 0;
+  steps_ = damped_ = drifted_ = 0;
   double previous = 0.0;  // |d|^2 of the last sweep pair; 0: no direction yet
   SolveReport report;
-  GaussSeidelStopTest stop(settings_.tolerance, settings_.stall_sweeps);
+  GaussSeidelStopTest stop(settings_.tolerance, stall_window());
   while (report.sweeps < settings_.max_iterations) {
     ++report.sweeps;
     double change = 0.0, total = 0.0;
@@ -100,7 +109,10 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& problem,
     if (forward || report.sweeps >= settings_.max_iterations) continue;
     const double current = take_change(problem, r, m);
     double beta = previous > 0.0 ? current / previous : 0.0;
-    if (beta > 1.0) {
+    if (beta > 1.0 && beta <= options_.drift_ratio) {
+      beta = 1.0;  // a drift (NncgSolver.h): followed with the whole step
+      ++drifted_;
+    } else if (beta > 1.0) {
       // The pair's change grew. The paper restarts (beta = 0); in the collapse of a poured bed
       // that happens after every other pair and keeps only a 1.7x gain over "nlgs", while
       // keeping the direction with a damped beta converges in 4.9x fewer sweeps (README).

@@ -1,7 +1,9 @@
 // Nonsmooth nonlinear conjugate gradient ("nncg", NncgSolver.h): the closed-form statics of
 // heavy-on-light columns and of a frictional lattice pile in fewer sweeps than "nlgs", the same
 // fixed points as "nlgs" on a settled frictional pile, only a sweep's reactions ever returned
-// (never an extrapolated point), and a pile at rest stays at rest.
+// (never an extrapolated point), a pile at rest stays at rest; its own stall patience and the
+// whole steps of a drift on steps of the examples written out (tests/mechanics/data), and a
+// problem without a solution never reported converged.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,6 +12,7 @@
 #include <vector>
 
 #include "ColumnStatics.h"
+#include "ContactProblemFile.h"
 #include "MechanicsTestScenes.h"
 #include "SolverTestPile.h"
 #include "mechanics/ContactSolverRegistry.h"
@@ -48,6 +51,34 @@ double cone_excess(const ContactProblem& p, const std::vector<Vector3d>& r) {
   for (std::size_t c = 0; c < p.size(); ++c)
     excess = std::max({excess, -r[c][0], r[c].tail<2>().norm() - p.mu[c] * r[c][0]});
   return excess;
+}
+
+// A contact problem of an example run (tests/mechanics/data; ContactProblemFile.h).
+ContactProblemFile example_problem(const std::string& name) {
+  return read_contact_problem(std::string(TMDEM_SOURCE_DIR) + "/tests/mechanics/data/" + name);
+}
+
+// Solves f from its warm start as the run did (its tolerance, stall_sweeps 500).
+Solved solve_warm(const ContactProblemFile& f, int max_iterations, const NncgSolver::Options& options) {
+  SolverSettings settings;
+  settings.tolerance = f.tolerance;
+  settings.max_iterations = max_iterations;
+  NncgSolver solver(settings, options);
+  Solved out;
+  out.r = f.r;
+  out.report = solver.solve(f.problem, out.r, out.v, out.w);
+  return out;
+}
+
+// An answer of the run's tolerance: the natural-map residual (scale-free, an independent
+// measure: the Jacobi form of the sweeps' change over total) at most twice the tolerance, every
+// reaction inside its cone to round-off.
+void expect_solved(const ContactProblemFile& f, const Solved& s) {
+  double largest = 0.0;
+  for (const Vector3d& r : s.r) largest = std::max(largest, r.norm());
+  ASSERT_GT(largest, 0.0);
+  EXPECT_LE(natural_map_residual(f.problem, s.r, s.v, s.w), 2.0 * f.tolerance);
+  EXPECT_LE(cone_excess(f.problem, s.r), 1e-12 * largest);
 }
 
 }  // namespace
@@ -171,4 +202,94 @@ TEST(Nncg, RestingPileStaysAtRestFor10000Steps) {
   const Drift drift = drift_at_rest_with("nncg", sim);
   EXPECT_LT(drift.fastest_m_per_s, 1e-8);
   EXPECT_LT(drift.moved_m, 1e-9);
+}
+
+// A settle step of column_in_air (144 contacts, tolerance 1e-6) on which the residual of "nncg"
+// stays within 10% of its best for more than 500 sweeps and then falls: the shared stall rule
+// of "nlgs" (patience 1) gives up in the plateau, unconverged; "nncg"'s own patience (10% over
+// 8 x 500 sweeps) carries it to the tolerance (measured: stalled after 667 sweeps at 3.3e-6;
+// converged after 2,548).
+TEST(Nncg, ColumnInAirPlateauConvergesWithItsOwnPatience) {
+  const ContactProblemFile f = example_problem("nncg_plateau_column_in_air.txt");
+  NncgSolver::Options shared;
+  shared.stall_patience = 1;
+  const Solved stopped = solve_warm(f, 10000, shared);
+  EXPECT_TRUE(stopped.report.stalled);
+  EXPECT_FALSE(stopped.report.converged);
+  EXPECT_GT(stopped.report.residual, 2.0 * f.tolerance);
+  const Solved solved = solve_warm(f, 10000, NncgSolver::Options{});
+  ASSERT_TRUE(solved.report.converged) << solved.report.residual << " after " << solved.report.sweeps;
+  EXPECT_GT(solved.report.sweeps, stopped.report.sweeps + 500);  // through the plateau
+  expect_solved(f, solved);
+}
+
+// A settle step of the 2D bed_in_air (99 contacts, tolerance 1e-6, max_iterations 2,000): the
+// pairs' change stays the same for hundreds of sweeps (|d_k+1|^2 / |d_k|^2 = 1.0000-1.006); with
+// those steps damped to 0.7 (drift_ratio 1) 2,000 sweeps leave it at 16x the tolerance, with
+// the whole step (beta = 1) it converges in 1,678 (measured).
+TEST(Nncg, BedInAirDriftConvergesWithWholeSteps) {
+  const ContactProblemFile f = example_problem("nncg_drift_bed_in_air.txt");
+  ASSERT_EQ(f.problem.dimension, 2);
+  NncgSolver::Options damped;
+  damped.drift_ratio = 1.0;
+  const Solved slow = solve_warm(f, 2000, damped);
+  EXPECT_FALSE(slow.report.converged);
+  EXPECT_GT(slow.report.residual, 10.0 * f.tolerance);
+  SolverSettings settings;
+  settings.tolerance = f.tolerance;
+  settings.max_iterations = 2000;
+  NncgSolver solver(settings);
+  Solved solved;
+  solved.r = f.r;
+  solved.report = solver.solve(f.problem, solved.r, solved.v, solved.w);
+  ASSERT_TRUE(solved.report.converged) << solved.report.residual;
+  EXPECT_GT(solver.drifted(), 0);
+  expect_solved(f, solved);
+}
+
+// Without a solution: a sphere between two fixed parallel walls, each contact asking it to
+// leave its wall at 1 m/s (bias -1 m/s). Gauss-Seidel raises both reactions every sweep and the
+// conjugate steps follow (a drift); the residual change / total falls only as 1 / sweeps. Never
+// reported converged, whatever the budget: stopped by max_iterations, unconverged, with finite
+// reactions. Below the round-off of a real problem (tolerance 1e-17 on the column_in_air step)
+// the residual stops falling and the solve is reported stalled, before max_iterations.
+TEST(Nncg, ProblemWithoutSolutionIsNeverReportedConverged) {
+  ContactProblem p;
+  p.inverse_mass = {1.0 / sphere_mass(kRadius, kDensity)};
+  p.inverse_inertia = {1.0};
+  p.free_velocity = {Vector3d::Zero()};
+  p.free_angular_velocity = {Vector3d::Zero()};
+  p.add_fixed_wall_bodies(2);
+  p.resize_contacts(2);
+  for (int k = 0; k < 2; ++k) {
+    const double side = k == 0 ? 1.0 : -1.0;
+    p.body_i[k] = 0;
+    p.body_j[k] = wall_code<std::int32_t>(k);
+    p.normal[k] = Vector3d(0, side, 0);
+    p.tangent1[k] = Vector3d(side, 0, 0);
+    p.tangent2[k] = Vector3d(0, 0, 1);
+    p.lever_i[k] = kRadius;
+    p.lever_j[k] = 0.0;
+    p.w_n[k] = p.inverse_mass[0];
+    p.w_t[k] = p.inverse_mass[0] + kRadius * kRadius * p.inverse_inertia[0];
+    p.bias[k] = -1.0;
+    p.mu[k] = 0.3;
+  }
+  for (const int budget : {100, 2000}) {
+    SCOPED_TRACE(budget);
+    SolverSettings settings = tight(1e-6);
+    settings.max_iterations = budget;
+    NncgSolver solver(settings);
+    const Solved s = solve_cold(p, solver);
+    EXPECT_FALSE(s.report.converged);
+    EXPECT_EQ(s.report.sweeps, budget);
+    EXPECT_GT(s.report.residual, 1e-6);
+    EXPECT_TRUE(std::isfinite(s.r[0][0]) && std::isfinite(s.r[1][0]));
+  }
+  ContactProblemFile f = example_problem("nncg_plateau_column_in_air.txt");
+  f.tolerance = 1e-17;
+  const Solved floor = solve_warm(f, 200000, NncgSolver::Options{});
+  EXPECT_TRUE(floor.report.stalled);
+  EXPECT_FALSE(floor.report.converged);
+  EXPECT_LT(floor.report.sweeps, 200000);
 }

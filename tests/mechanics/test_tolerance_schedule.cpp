@@ -200,6 +200,28 @@ TEST(ToleranceSchedule, RestoredIntegratorContinuesBitwiseAcrossTheSwitch) {
   }
 }
 
+// A fall_tolerance equal to tolerance gives the bits of no schedule at all (the README's way
+// to measure an example's earlier settings again), while a looser one does not.
+TEST(ToleranceSchedule, EqualTolerancesGiveTheBitsOfNoSchedule) {
+  NscdParameters none;
+  none.tolerance = 1e-4;
+  NscdIntegrator plain = random_pile(40, 3, 0.3, 7, none);
+  NscdIntegrator same = random_pile(40, 3, 0.3, 7, schedule(1e-4, 1e-4, 0.05));
+  NscdIntegrator looser = random_pile(40, 3, 0.3, 7, schedule(1e-4, 1e-2, 0.05));
+  bool looser_differs = false;
+  for (int k = 0; k < 200; ++k) {
+    plain.step();
+    const StepReport report = same.step();
+    looser.step();
+    ASSERT_TRUE(bitwise_equal(plain.particles().position, same.particles().position)) << k;
+    ASSERT_TRUE(bitwise_equal(plain.particles().velocity, same.particles().velocity)) << k;
+    EXPECT_EQ(report.tolerance, 1e-4);
+    looser_differs = looser_differs || !bitwise_equal(plain.particles().velocity, looser.particles().velocity);
+  }
+  EXPECT_GT(same.stats().fall_steps, 0);  // it did fall: the schedule ran, at one tolerance
+  EXPECT_TRUE(looser_differs);
+}
+
 TEST(ToleranceSchedule, BadValuesAreRefused) {
   EXPECT_THROW(ToleranceSchedule(1e-6, 1e-4, 0.0), std::invalid_argument);
   EXPECT_THROW(ToleranceSchedule(1e-6, 1e-4, -1.0), std::invalid_argument);

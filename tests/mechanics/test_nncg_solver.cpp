@@ -207,8 +207,8 @@ TEST(Nncg, RestingPileStaysAtRestFor10000Steps) {
 // A settle step of column_in_air (144 contacts, tolerance 1e-6) on which the residual of "nncg"
 // stays within 10% of its best for more than 500 sweeps and then falls: the shared stall rule
 // of "nlgs" (patience 1) gives up in the plateau, unconverged; "nncg"'s own patience (10% over
-// 8 x 500 sweeps) carries it to the tolerance (measured: stalled after 667 sweeps at 3.3e-6;
-// converged after 2,548).
+// 8 x 500 sweeps) carries it to the tolerance (measured: stalled after 624 sweeps at 1.6e-6;
+// converged after 2,582).
 TEST(Nncg, ColumnInAirPlateauConvergesWithItsOwnPatience) {
   const ContactProblemFile f = example_problem("nncg_plateau_column_in_air.txt");
   NncgSolver::Options shared;
@@ -216,28 +216,22 @@ TEST(Nncg, ColumnInAirPlateauConvergesWithItsOwnPatience) {
   const Solved stopped = solve_warm(f, 10000, shared);
   EXPECT_TRUE(stopped.report.stalled);
   EXPECT_FALSE(stopped.report.converged);
-  EXPECT_GT(stopped.report.residual, 2.0 * f.tolerance);
+  EXPECT_GT(stopped.report.residual, f.tolerance);
   const Solved solved = solve_warm(f, 10000, NncgSolver::Options{});
   ASSERT_TRUE(solved.report.converged) << solved.report.residual << " after " << solved.report.sweeps;
   EXPECT_GT(solved.report.sweeps, stopped.report.sweeps + 500);  // through the plateau
   expect_solved(f, solved);
 }
 
-// A settle step of the 2D bed_in_air (99 contacts, tolerance 1e-6, max_iterations 2,000): the
-// pairs' change stays the same for hundreds of sweeps (|d_k+1|^2 / |d_k|^2 = 1.0000-1.006); with
-// those steps damped to 0.7 (drift_ratio 1) 2,000 sweeps leave it at 16x the tolerance, with
-// the whole step (beta = 1) it converges in 1,678 (measured).
+// A settle step of the 2D bed_in_air (99 contacts, tolerance 1e-6): the pairs' change stays the
+// same for hundreds of sweeps (|d_k+1|^2 / |d_k|^2 = 1.0000-1.006). With beta = 1 there (a
+// drift) it converges; with those pairs damped to 0.7 (drift_ratio 1) the same number of sweeps
+// leaves it at 16x the tolerance, and it needs twice as many (measured: 1,998 and 4,200).
 TEST(Nncg, BedInAirDriftConvergesWithWholeSteps) {
   const ContactProblemFile f = example_problem("nncg_drift_bed_in_air.txt");
   ASSERT_EQ(f.problem.dimension, 2);
-  NncgSolver::Options damped;
-  damped.drift_ratio = 1.0;
-  const Solved slow = solve_warm(f, 2000, damped);
-  EXPECT_FALSE(slow.report.converged);
-  EXPECT_GT(slow.report.residual, 10.0 * f.tolerance);
   SolverSettings settings;
   settings.tolerance = f.tolerance;
-  settings.max_iterations = 2000;
   NncgSolver solver(settings);
   Solved solved;
   solved.r = f.r;
@@ -245,6 +239,14 @@ TEST(Nncg, BedInAirDriftConvergesWithWholeSteps) {
   ASSERT_TRUE(solved.report.converged) << solved.report.residual;
   EXPECT_GT(solver.drifted(), 0);
   expect_solved(f, solved);
+  NncgSolver::Options damped;
+  damped.drift_ratio = 1.0;
+  const Solved same_sweeps = solve_warm(f, solved.report.sweeps, damped);
+  EXPECT_FALSE(same_sweeps.report.converged);
+  EXPECT_GT(same_sweeps.report.residual, 10.0 * f.tolerance);
+  const Solved slow = solve_warm(f, 10000, damped);
+  ASSERT_TRUE(slow.report.converged) << slow.report.residual;
+  EXPECT_GT(slow.report.sweeps, 3 * solved.report.sweeps / 2);
 }
 
 // Without a solution: a sphere between two fixed parallel walls, each contact asking it to

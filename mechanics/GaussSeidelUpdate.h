@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "mechanics/ContactSolver.h"
 #include "mechanics/CoulombCone.h"
 #include "mechanics/NaturalMapResidual.h"
+#include "mechanics/ScalarVec3.h"
 
 namespace tmdem::mechanics {
 
@@ -22,51 +24,83 @@ struct ContactUpdate {
   double total = 0.0;   // |r_c new|, N s
 };
 
-// {|d|, |x|}, the two norms the stop test adds per block, with one packed square root (same
-// bits as d.norm() and x.norm(): both are sqrt(squaredNorm())).
-inline ContactUpdate change_and_total(const Eigen::Vector3d& d, const Eigen::Vector3d& x) {
-  const Eigen::Array2d norms = Eigen::Array2d(d.squaredNorm(), x.squaredNorm()).sqrt();
-  return {norms[0], norms[1]};
+// {|d|, |x|}, the two norms the stop test adds per block (the same bits as d.norm() and
+// x.norm(): both are sqrt(squaredNorm())).
+inline ContactUpdate change_and_total(const ScalarVec3& d, const ScalarVec3& x) {
+  return {std::sqrt(d.squared_norm()), std::sqrt(x.squared_norm())};
 }
 
+// The (n, t) block of contact c: the contact solves its bipotential law with every other
+// reaction frozen (closed form, CoulombCone.h) and both bodies' velocities take the change at
+// once. Written on ScalarVec3 (why: ScalarVec3.h) in the operations of
+// ContactProblem::local_velocity and ContactProblem::apply_impulse, which it inlines.
 inline ContactUpdate gauss_seidel_update(const ContactProblem& problem, std::size_t c,
                                          double relaxation, Eigen::Vector3d& rc,
                                          std::vector<Eigen::Vector3d>& velocity,
                                          std::vector<Eigen::Vector3d>& angular_velocity) {
   const bool planar = problem.dimension == 2;
   const double w_n = problem.w_n[c], w_t = problem.w_t[c], mu = problem.mu[c];
-  // Local velocity without this contact's own reaction: u0 = U - W_cc r_c.
-  const Eigen::Vector3d u = problem.local_velocity(c, velocity, angular_velocity);
-  const Eigen::Vector3d u0(u[0] - w_n * rc[0], u[1] - w_t * rc[1],
-                           planar ? 0.0 : u[2] - w_t * rc[2]);
+  const ScalarVec3 n(problem.normal[c]), t1(problem.tangent1[c]), t2(problem.tangent2[c]);
+  const std::int32_t i = problem.body_i[c], j = problem.body_j[c];
+  const double lever_i = problem.lever_i[c], lever_j = problem.lever_j[c];
+  // Local velocity U_c: the velocity of i's material point at the contact minus j's (contact
+  // points at x_i - R_i n and x_j + R_j n), in (n, t1, t2); then u0 = U_c - W_cc r_c.
+  const ScalarVec3 vi(velocity[i]), wi(angular_velocity[i]);
+  ScalarVec3 u;
+  if (!is_wall(j)) {
+    u = vi - ScalarVec3(velocity[j]) - (lever_i * wi + lever_j * ScalarVec3(angular_velocity[j])).cross(n);
+  } else {
+    u = vi - ScalarVec3(velocity[problem.wall_body(j)]) - (lever_i * wi).cross(n);
+  }
+  const Eigen::Vector3d u0(u.dot(n) + problem.bias[c] - w_n * rc[0], u.dot(t1) - w_t * rc[1],
+                           planar ? 0.0 : u.dot(t2) - w_t * rc[2]);
   // Exact local solve (closed form of the bipotential fixed point, CoulombCone.h).
   Eigen::Vector3d next;
   solve_contact_bipotential(u0, w_n, w_t, mu, next);
   if (relaxation != 1.0) next = project_onto_coulomb_cone(rc + relaxation * (next - rc), mu);
   if (planar) next[2] = 0.0;
-  const Eigen::Vector3d dr = next - rc;
-  if (dr[0] != 0.0 || dr[1] != 0.0 || dr[2] != 0.0) {
-    problem.apply_impulse(c, dr, velocity, angular_velocity);
+  const ScalarVec3 after(next), dr = after - ScalarVec3(rc);
+  if (!dr.is_zero()) {
+    // velocity += M^-1 H_c dr: p acts on i at x_i - R_i n (torque -R_i n x p) and -p on j at
+    // x_j + R_j n (same sign).
+    const ScalarVec3 p = dr.x * n + dr.y * t1 + dr.z * t2;
+    const ScalarVec3 nxp = n.cross(p);
+    add_to(velocity[i], problem.inverse_mass[i] * p);
+    subtract_from(angular_velocity[i], (problem.inverse_inertia[i] * lever_i) * nxp);
+    if (!is_wall(j)) {
+      subtract_from(velocity[j], problem.inverse_mass[j] * p);
+      subtract_from(angular_velocity[j], (problem.inverse_inertia[j] * lever_j) * nxp);
+    } else if (const std::size_t b = problem.wall_body(j); problem.inverse_mass[b] > 0.0) {
+      subtract_from(velocity[b], (problem.inverse_mass[b] * dr.x) * n);  // a piston: along n only
+    }
     rc = next;
   }
-  return change_and_total(dr, next);
+  return change_and_total(dr, after);
 }
 
 // The rolling block of contact c (ContactProblem::rolling), visited right after its
 // (n, t) block with r_n frozen: the exact local solve of the rolling cone, with the other
 // reactions frozen, m = proj_{|m| <= mu_r R_eff r_n}(m - omega_rel,t / w_r) (the block is
 // w_r I on the plane perpendicular to n). Change and total are divided by R_eff, so that they
-// add to the impulses' (N s) in the stop test.
+// add to the impulses' (N s) in the stop test. On ScalarVec3, in the operations of
+// ContactProblem::rolling_velocity and apply_rolling_impulse.
 inline ContactUpdate gauss_seidel_rolling_update(const ContactProblem& problem, std::size_t c,
                                                  double normal_impulse, Eigen::Vector3d& mc,
                                                  std::vector<Eigen::Vector3d>& angular_velocity) {
   if (problem.w_r[c] <= 0.0) return {};
-  const Eigen::Vector3d next = local_rolling_solution(
-      problem, c, normal_impulse, mc, problem.rolling_velocity(c, angular_velocity));
-  const Eigen::Vector3d dm = next - mc;
-  if (dm[0] != 0.0 || dm[1] != 0.0 || dm[2] != 0.0) {
-    problem.apply_rolling_impulse(c, dm, angular_velocity);
-    mc = next;
+  const ScalarVec3 n(problem.normal[c]);
+  const std::int32_t i = problem.body_i[c], j = problem.body_j[c];
+  // The relative spin omega_i - omega_j without its part along n (a wall does not turn).
+  ScalarVec3 relative(angular_velocity[i]);
+  if (!is_wall(j)) relative = relative - ScalarVec3(angular_velocity[j]);
+  const ScalarVec3 spin = relative - relative.dot(n) * n;
+  const ScalarVec3 before(mc);
+  const ScalarVec3 next = local_rolling_solution(problem, c, normal_impulse, before, spin);
+  const ScalarVec3 dm = next - before;
+  if (!dm.is_zero()) {
+    add_to(angular_velocity[i], problem.inverse_inertia[i] * dm);
+    if (!is_wall(j)) subtract_from(angular_velocity[j], problem.inverse_inertia[j] * dm);
+    next.store(mc);
   }
   const double scale = 1.0 / problem.rolling_radius[c];
   const ContactUpdate norms = change_and_total(dm, next);

@@ -10,11 +10,13 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "mechanics/BranchFreeMin.h"
 #include "mechanics/ContactProblem.h"
 #include "mechanics/CoulombCone.h"
+#include "mechanics/ScalarVec3.h"
 
 namespace tmdem::mechanics {
 
@@ -36,22 +38,30 @@ inline Eigen::Vector3d local_law_solution(const ContactProblem& problem, std::si
 // velocity (ContactProblem::rolling_velocity). The block is w_r I on the plane perpendicular
 // to n, so m = proj_{|m| <= mu_r R_eff r_n}(m_c - spin / w_r), kept perpendicular to n (and
 // along z in 2D). 0 when the contact's bodies cannot turn (w_r = 0).
-inline Eigen::Vector3d local_rolling_solution(const ContactProblem& problem, std::size_t c,
-                                              double normal_impulse, const Eigen::Vector3d& m_c,
-                                              const Eigen::Vector3d& spin) {
+inline ScalarVec3 local_rolling_solution(const ContactProblem& problem, std::size_t c,
+                                         double normal_impulse, const ScalarVec3& m_c,
+                                         const ScalarVec3& spin) {
   const double w_r = problem.w_r[c];
-  if (!(w_r > 0.0)) return Eigen::Vector3d::Zero();
-  Eigen::Vector3d next = m_c - spin / w_r;
-  next -= next.dot(problem.normal[c]) * problem.normal[c];
+  if (!(w_r > 0.0)) return {};
+  const ScalarVec3 n(problem.normal[c]);
+  ScalarVec3 next = m_c - spin / w_r;
+  next = next - next.dot(n) * n;
   const double limit = problem.rolling_limit[c] * std::max(normal_impulse, 0.0);
-  const double size = next.norm();
+  const double size = std::sqrt(next.squared_norm());
   // Cut to the limit without a branch (BranchFreeMin.h: rolling stick and rolling at the
   // limit alternate unpredictably on a poured bed): min(1, limit / size) is below 1 exactly
   // when size > limit (a correctly rounded quotient), and 1 (the same bits) otherwise, also
   // for size = 0 (inf, or NaN when limit = 0: min(1, NaN) is 1).
-  next *= branch_free_min(1.0, limit / size);
-  if (problem.dimension == 2) next.x() = next.y() = 0.0;
+  next = branch_free_min(1.0, limit / size) * next;
+  if (problem.dimension == 2) next.x = next.y = 0.0;
   return next;
+}
+inline Eigen::Vector3d local_rolling_solution(const ContactProblem& problem, std::size_t c,
+                                              double normal_impulse, const Eigen::Vector3d& m_c,
+                                              const Eigen::Vector3d& spin) {
+  const ScalarVec3 next =
+      local_rolling_solution(problem, c, normal_impulse, ScalarVec3(m_c), ScalarVec3(spin));
+  return {next.x, next.y, next.z};
 }
 
 // The ratio above from its two sums.

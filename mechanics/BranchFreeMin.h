@@ -1,9 +1,11 @@
 #pragma once
 // min(a, b) as a select the compiler keeps branch-free. GCC -O3 turns `x * std::min(1.0, q)`
 // back into a branch ("q < 1 ? q x : x", the multiplication by 1 skipped), and in the local
-// solves (CoulombCone.h, NaturalMapResidual.h) that branch is stick against slip, a coin toss
-// on a poured bed: 45% of it mispredicted on the 2,000 pour at rest, and the branch-free
-// select saved 5% of a Gauss-Seidel sweep there (README "Pour and settle"). An empty asm
+// solve (CoulombCone.h) that branch is stick against slip, a coin toss on a poured bed: 45% of
+// it mispredicted on the 2,000 pour at rest (callgrind), and the branch-free select saved 5% of
+// a Gauss-Seidel sweep there (README "Pour and settle"). Only where the branch is that
+// unpredictable: a select waits for its operands where a predicted branch does not (the
+// rolling limit, NaturalMapResidual.h, keeps its branch). An empty asm
 // statement that claims to change the result hides its value from the optimiser; it emits no
 // instruction. Same value as std::min(a, b): b < a ? b : a (a when either is NaN).
 

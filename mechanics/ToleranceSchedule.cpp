@@ -6,8 +6,12 @@
 namespace tmdem::mechanics {
 
 ToleranceSchedule::ToleranceSchedule(double tolerance, double fall_tolerance,
-                                     double fall_speed_m_per_s)
-    : tolerance_(tolerance), fall_tolerance_(fall_tolerance), fall_speed_m_per_s_(fall_speed_m_per_s) {
+                                     double fall_speed_m_per_s, int tighten_steps)
+    : tolerance_(tolerance),
+      fall_tolerance_(fall_tolerance),
+      fall_speed_m_per_s_(fall_speed_m_per_s),
+      tighten_steps_(tighten_steps) {
+  if (tighten_steps < 1) throw std::invalid_argument("mechanics: tighten_steps must be >= 1");
   if (!std::isfinite(fall_tolerance))
     throw std::invalid_argument("mechanics: fall_tolerance must be finite");
   if (enabled() && !(fall_speed_m_per_s > 0.0 && std::isfinite(fall_speed_m_per_s)))
@@ -29,7 +33,10 @@ double ToleranceSchedule::tolerance_for_step(double max_speed_m_per_s, std::int6
     case Phase::Landed:
       break;
   }
-  return state_.phase == Phase::Falling ? fall_tolerance_ : tolerance_;
+  if (state_.phase == Phase::Falling) return fall_tolerance_;
+  const std::int64_t j = state_.phase == Phase::Landed ? step - state_.landed_step + 1 : tighten_steps_;
+  if (j >= tighten_steps_) return tolerance_;
+  return fall_tolerance_ * std::pow(tolerance_ / fall_tolerance_, double(j) / double(tighten_steps_));
 }
 
 }  // namespace tmdem::mechanics

@@ -91,10 +91,14 @@ void print_run_end(const RunSummary& summary, const Scene& scene, const std::str
     if (const auto& ts = m.tolerance_schedule) {
       out << "mechanics: tolerance " << ts->fall_tolerance << " while falling (" << ts->fall_steps
           << " steps, " << ts->fall_unconverged_steps << " unconverged), " << ts->tolerance;
-      if (ts->tightened)
-        out << " from step " << ts->tightened_step << " (t = " << ts->tightened_time_s
-            << " s of mechanics, largest speed below mechanics.fall_speed = " << ts->fall_speed_m_s
+      if (ts->tightened) {
+        out << " from step " << ts->tightened_step + ts->tighten_steps - 1;
+        if (ts->tighten_steps > 1)
+          out << " (tightening over " << ts->tighten_steps << " steps from step " << ts->tightened_step << ")";
+        out << "; the fall ended at t = " << ts->tightened_time_s
+            << " s of mechanics (largest speed below mechanics.fall_speed = " << ts->fall_speed_m_s
             << " m/s)\n";
+      }
       else
         out << " before the fall; the largest speed never dropped back below mechanics.fall_speed = "
             << ts->fall_speed_m_s << " m/s\n";

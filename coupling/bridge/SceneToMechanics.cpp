@@ -51,6 +51,7 @@ mechanics::NscdParameters make_nscd_parameters(const Scene& scene) {
   p.tolerance = scene.mechanics.tolerance;
   p.fall_tolerance = scene.mechanics.fall_tolerance;
   p.fall_speed = scene.mechanics.fall_speed_m_per_s;
+  p.tighten_steps = scene.mechanics.tighten_steps;
   p.max_iterations = scene.mechanics.max_iterations;
   p.full_sweep_every = scene.mechanics.full_sweep_every;
   p.penetration_slop_fraction = scene.mechanics.penetration_slop;

@@ -37,7 +37,8 @@ constexpr std::pair<const char*, double ToleranceScheduleSummary::*> kScheduleNu
     {"fall_speed_m_s", &ToleranceScheduleSummary::fall_speed_m_s}};
 constexpr std::pair<const char*, std::int64_t ToleranceScheduleSummary::*> kScheduleCounts[] = {
     {"fall_steps", &ToleranceScheduleSummary::fall_steps},
-    {"fall_unconverged_steps", &ToleranceScheduleSummary::fall_unconverged_steps}};
+    {"fall_unconverged_steps", &ToleranceScheduleSummary::fall_unconverged_steps},
+    {"tighten_steps", &ToleranceScheduleSummary::tighten_steps}};
 
 }  // namespace
 

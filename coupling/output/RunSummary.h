@@ -23,8 +23,10 @@ struct ToleranceScheduleSummary {
   double fall_speed_m_s = 0.0;        // mechanics.fall_speed
   std::int64_t fall_steps = 0;        // steps solved at fall_tolerance
   std::int64_t fall_unconverged_steps = 0;
-  bool tightened = false;             // the fall ended: tolerance from tightened_step on
-  std::int64_t tightened_step = 0;    // first step at `tolerance` after the fall (1-based, of
+  std::int64_t tighten_steps = 1;     // mechanics.tighten_steps: `tolerance` from
+                                      // tightened_step + tighten_steps - 1 on
+  bool tightened = false;             // the fall ended at tightened_step
+  std::int64_t tightened_step = 0;    // first step after the fall (1-based, of
                                       // mechanics.steps); written as null when not tightened
   double tightened_time_s = 0.0;      // s since the mechanics started (settle: of the settle
                                       // time; dynamic: of the run) when that step began; null too

@@ -121,6 +121,7 @@ struct MechanicsSettings {
   // particle speed is at or above fall_speed, until it first drops below; 0 = off (absent).
   double fall_tolerance = 0.0;
   double fall_speed_m_per_s = 0.0;
+  int tighten_steps = 1;  // fall_tolerance -> tolerance over this many steps
   int max_iterations = 10000;
   int full_sweep_every = 1;  // Gauss-Seidel active-set sweeps (mechanics::NscdParameters)
   double settle_time_s = 5.0;

@@ -132,6 +132,9 @@ void SceneBuilder::read_settings() {
     if (mechanics_on && fall_speed && !fall_tolerance)
       t.fail("fall_speed", "needs mechanics.fall_tolerance: the tolerance used while the "
                            "particles are at least this fast");
+    if (mechanics_on && t.has("tighten_steps") && !fall_tolerance)
+      t.fail("tighten_steps", "needs mechanics.fall_tolerance and mechanics.fall_speed (it sets "
+                              "how the tolerance schedule tightens after the fall)");
     m.fall_tolerance = fall_tolerance.value_or(0.0);
     m.fall_speed_m_per_s = fall_speed.value_or(0.0);
     // Sweep counts: integers >= 1 (checked only when mechanics is on).
@@ -142,6 +145,7 @@ void SceneBuilder::read_settings() {
     };
     m.max_iterations = sweeps("max_iterations", m.max_iterations);
     m.full_sweep_every = sweeps("full_sweep_every", m.full_sweep_every);
+    m.tighten_steps = sweeps("tighten_steps", m.tighten_steps);
     m.settle_time_s = t.number("settle_time");
     m.settle_velocity_m_per_s = t.number("settle_velocity");
     m.penetration_slop = t.number("penetration_slop");

@@ -314,6 +314,9 @@ std::vector<Section> build_sections() {
         number("fall_speed", "m/s", std::nullopt, Range::greater(0.0),
                "tolerance schedule: the largest particle speed at or above which the particles "
                "count as falling (fall_tolerance applies); needs fall_tolerance"),
+        value("tighten_steps", "", "1", "integer >= 1",
+              "tolerance schedule: once the fall has ended, the tolerance goes from "
+              "fall_tolerance to tolerance geometrically over this many steps (1: at once)"),
         value("max_iterations", "", "10000", "integer >= 1", "Gauss-Seidel sweeps per step, at most"),
         value("full_sweep_every", "", "1", "integer >= 1",
               "\"nlgs\", \"nlgs_coloured\": a sweep over every candidate at least every this "

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
+#include <string>
 
 #include "MechanicsTestScenes.h"
 #include "mechanics/ToleranceSchedule.h"
@@ -96,6 +97,25 @@ TEST(ToleranceSchedule, SwitchesWhereTheClosedFormSpeedsCrossFallSpeed) {
   }
 }
 
+// tighten_steps = 3 from 1e-3 to 1e-6: the landed steps take 1e-4, 1e-5 and then 1e-6 (a
+// factor 10 per step), starting at the closed-form landing step.
+TEST(ToleranceSchedule, TightensGeometricallyOverTightenSteps) {
+  constexpr int n = 10;
+  NscdParameters parameters = schedule(1e-6, 1e-3, 2.5 * kStep * kG);
+  parameters.tighten_steps = 3;
+  NscdIntegrator sim = dropped_sphere(n, parameters);
+  const double expected[] = {1e-6, 1e-6, 1e-6, 1e-3, 1e-3, 1e-3, 1e-3, 1e-3, 1e-3, 1e-3,
+                             1e-3, 1e-4, 1e-5, 1e-6, 1e-6, 1e-6};  // steps 1-16, landing at 12
+  for (int k = 1; k <= 16; ++k) {
+    const StepReport report = sim.step();
+    EXPECT_NEAR(report.tolerance, expected[k - 1], 1e-12 * expected[k - 1]) << "step " << k;
+    EXPECT_EQ(report.fall, k >= 4 && k < 12) << "step " << k;
+  }
+  EXPECT_EQ(sim.tolerance_schedule().landed_step(), n + 2);
+  EXPECT_EQ(sim.stats().fall_steps, 8);
+  EXPECT_THROW(ToleranceSchedule(1e-6, 1e-3, 0.1, 0), std::invalid_argument);
+}
+
 // One-way: after landing, speeds above fall_speed again (the sphere kicked upwards) keep the
 // tight tolerance.
 TEST(ToleranceSchedule, LandedStaysLanded) {
@@ -151,11 +171,12 @@ TEST(ToleranceSchedule, TheSolverStopsAtTheToleranceInForce) {
 }
 
 // A restored integrator continues bit for bit across the switch: saved while falling, both
-// tighten at the same step and take the same steps after it.
+// tighten at the same step and take the same steps after it (and through a 4-step ramp).
 TEST(ToleranceSchedule, RestoredIntegratorContinuesBitwiseAcrossTheSwitch) {
-  for (const char* solver : {"nlgs", "nncg", "apgd"}) {
+  for (const char* solver : {"nlgs", "nncg", "apgd", "nncg ramp"}) {
     NscdParameters parameters = schedule(1e-7, 1e-3, 0.05);
-    parameters.solver = solver;
+    parameters.solver = std::string(solver) == "nncg ramp" ? "nncg" : solver;
+    if (std::string(solver) == "nncg ramp") parameters.tighten_steps = 4;  // saved before it
     NscdIntegrator probe = random_pile(40, 3, 0.3, 7, parameters);
     for (int k = 0; k < 400 && probe.tolerance_schedule().landed_step() == 0; ++k) probe.step();
     const std::int64_t landed = probe.tolerance_schedule().landed_step();

@@ -128,7 +128,7 @@ TEST(RunSummary, ToleranceScheduleBlockRoundTrips) {
   s.mechanics.tolerance_schedule = ts;
   nlohmann::json j = nlohmann::json::parse(s.to_json().dump());
   const auto& block = j["mechanics"]["tolerance_schedule"];
-  EXPECT_EQ(block.size(), 8u);
+  EXPECT_EQ(block.size(), 9u);
   EXPECT_FALSE(block["tightened"].get<bool>());
   EXPECT_TRUE(block["tightened_step"].is_null());
   EXPECT_TRUE(block["tightened_time_s"].is_null());
@@ -137,6 +137,7 @@ TEST(RunSummary, ToleranceScheduleBlockRoundTrips) {
   s.mechanics.tolerance_schedule->tightened = true;
   s.mechanics.tolerance_schedule->tightened_step = 207;
   s.mechanics.tolerance_schedule->tightened_time_s = 0.206;
+  s.mechanics.tolerance_schedule->tighten_steps = 4;
   j = nlohmann::json::parse(s.to_json().dump());
   EXPECT_EQ(j["mechanics"]["tolerance_schedule"]["tightened_step"].get<std::int64_t>(), 207);
   EXPECT_EQ(j["mechanics"]["tolerance_schedule"]["tightened_time_s"].get<double>(), 0.206);
@@ -145,6 +146,7 @@ TEST(RunSummary, ToleranceScheduleBlockRoundTrips) {
   ASSERT_TRUE(r.mechanics.tolerance_schedule.has_value());
   EXPECT_EQ(r.mechanics.tolerance_schedule->tightened_step, 207);
   EXPECT_EQ(r.mechanics.tolerance_schedule->fall_unconverged_steps, 1);
+  EXPECT_EQ(r.mechanics.tolerance_schedule->tighten_steps, 4);
   EXPECT_EQ(r.to_json(), s.to_json());
 }
 

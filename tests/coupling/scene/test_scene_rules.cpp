@@ -289,6 +289,19 @@ TEST(SceneRules, ToleranceSchedule) {
                      {"mechanics.fall_tolerance", "needs mechanics.fall_speed"});
   expect_scene_error(kBaseScene, {"mechanics.fall_speed=0.1"},
                      {"mechanics.fall_speed", "needs mechanics.fall_tolerance"});
+  expect_scene_error(kBaseScene, {"mechanics.tighten_steps=4"},
+                     {"mechanics.tighten_steps", "needs mechanics.fall_tolerance"});
+  expect_scene_error(kBaseScene,
+                     {"mechanics.fall_tolerance=1e-4", "mechanics.fall_speed=0.1", "mechanics.tighten_steps=0"},
+                     {"mechanics.tighten_steps", ">= 1"});
+  expect_scene_error(kBaseScene,
+                     {"mechanics.fall_tolerance=1e-4", "mechanics.fall_speed=0.1", "mechanics.tighten_steps=2.5"},
+                     {"mechanics.tighten_steps"});
+  EXPECT_EQ(make_nscd_parameters(load_scene_text(kBaseScene, "t",
+                                                 {"mechanics.fall_tolerance=1e-4", "mechanics.fall_speed=0.1",
+                                                  "mechanics.tighten_steps=4"}))
+                .tighten_steps,
+            4);
   const Scene off = load_scene_text(kBaseScene, "t");
   EXPECT_EQ(off.mechanics.fall_tolerance, 0.0);
   EXPECT_EQ(make_nscd_parameters(off).fall_tolerance, 0.0);

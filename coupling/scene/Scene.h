@@ -115,7 +115,7 @@ struct Effects {
 struct MechanicsSettings {
   double time_step_s = 1.0e-3;
   double theta = 0.5;
-  std::string solver = "nlgs";  // mechanics::contact_solver_names()
+  std::string solver = "nncg";  // mechanics::contact_solver_names()
   double tolerance = 1.0e-6;
   // Tolerance schedule (mechanics::ToleranceSchedule): fall_tolerance while the largest
   // particle speed is at or above fall_speed, until it first drops below; 0 = off (absent).

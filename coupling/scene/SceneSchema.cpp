@@ -301,7 +301,7 @@ std::vector<Section> build_sections() {
       {"mechanics", "NSCD (Moreau-Jean, Gauss-Seidel); range checks apply when mechanics is on",
        {number("time_step", "s", 1.0e-3, Range::greater(0.0), "mechanical time step"),
         number("theta", "", 0.5, Range::open_closed(0.0, 1.0), "Moreau-Jean theta"),
-        choice("solver", "nlgs", mechanics::contact_solver_names(),
+        choice("solver", "nncg", mechanics::contact_solver_names(),
                "contact solver by name (mechanics::ContactSolverRegistry)"),
         number("tolerance", "", 1.0e-6, Range::greater(0.0),
                "relative contact-law residual of a Gauss-Seidel sweep that counts as converged"),

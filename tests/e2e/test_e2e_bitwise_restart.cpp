@@ -93,9 +93,15 @@ TEST(EndToEndBitwiseRestart, PaperTriangleSettle) {
 
 // examples/poured_bed.toml: 80 particles poured, contacts changing every step; stopped at 0.2 s
 // of 0.5 s (the restart needs the candidate table, the warm-start forces and the thermal
-// network's pattern of that step).
+// network's pattern of that step), with the default contact solver, "nncg".
 TEST(EndToEndBitwiseRestart, PouredBedDynamic) {
   expect_segments_equal_uninterrupted("poured_bed", "poured_bed.toml", 0.2, {0.2}, 0.5);
+}
+
+// The same with "nlgs", the default contact solver before "nncg" (which the test above runs).
+TEST(EndToEndBitwiseRestart, PouredBedDynamicNlgs) {
+  expect_segments_equal_uninterrupted("poured_bed_nlgs", "poured_bed.toml", 0.2, {0.2}, 0.5,
+                                      "--set mechanics.solver=nlgs");
 }
 
 // The same with the accelerated contact solver, which carries its step-size estimate along.

@@ -116,9 +116,7 @@ NscdIntegrator::NscdIntegrator(ParticleSet particles, std::vector<Material> mate
   }
   keep_in_plane();
   slop_m_ = parameters_.penetration_slop_fraction * particles_.min_radius();
-  require(parameters_.fall_tolerance >= 0.0 && std::isfinite(parameters_.fall_tolerance),
-          "fall_tolerance must be >= 0 (0: no tolerance schedule)");
-  require(parameters_.tighten_steps >= 1, "tighten_steps must be >= 1");
+  // Validates fall_tolerance, fall_speed and tighten_steps (std::invalid_argument).
   schedule_ = ToleranceSchedule(parameters_.tolerance, parameters_.fall_tolerance,
                                 parameters_.fall_speed, parameters_.tighten_steps);
   SolverSettings& settings = solver_settings_;

@@ -12,8 +12,8 @@ ToleranceSchedule::ToleranceSchedule(double tolerance, double fall_tolerance,
       fall_speed_m_per_s_(fall_speed_m_per_s),
       tighten_steps_(tighten_steps) {
   if (tighten_steps < 1) throw std::invalid_argument("mechanics: tighten_steps must be >= 1");
-  if (!std::isfinite(fall_tolerance))
-    throw std::invalid_argument("mechanics: fall_tolerance must be finite");
+  if (!(fall_tolerance >= 0.0 && std::isfinite(fall_tolerance)))
+    throw std::invalid_argument("mechanics: fall_tolerance must be >= 0 (0: no tolerance schedule)");
   if (enabled() && !(fall_speed_m_per_s > 0.0 && std::isfinite(fall_speed_m_per_s)))
     throw std::invalid_argument("mechanics: fall_speed must be > 0 (m/s) with a fall_tolerance");
 }

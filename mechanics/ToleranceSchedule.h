@@ -34,8 +34,8 @@ class ToleranceSchedule {
   };
 
   ToleranceSchedule() = default;  // off: `tolerance` for every step
-  // fall_tolerance <= 0: off. Throws std::invalid_argument for a non-finite value or, when on,
-  // a fall_speed that is not > 0.
+  // fall_tolerance 0: off. Throws std::invalid_argument for a negative or non-finite
+  // fall_tolerance, tighten_steps < 1 or, when on, a fall_speed that is not > 0.
   ToleranceSchedule(double tolerance, double fall_tolerance, double fall_speed_m_per_s,
                     int tighten_steps = 1);
 

@@ -248,6 +248,7 @@ TEST(ToleranceSchedule, BadValuesAreRefused) {
   EXPECT_THROW(ToleranceSchedule(1e-6, 1e-4, -1.0), std::invalid_argument);
   EXPECT_THROW(ToleranceSchedule(1e-6, 1e-4, std::nan("")), std::invalid_argument);
   EXPECT_THROW(ToleranceSchedule(1e-6, std::nan(""), 0.1), std::invalid_argument);
+  EXPECT_THROW(ToleranceSchedule(1e-6, -1e-4, 0.1), std::invalid_argument);
   EXPECT_NO_THROW(ToleranceSchedule(1e-6, 0.0, 0.0));  // off
   EXPECT_THROW(dropped_sphere(10, schedule(1e-6, -1e-4, 0.1)), std::invalid_argument);
   EXPECT_THROW(dropped_sphere(10, schedule(1e-6, 1e-4, 0.0)), std::invalid_argument);

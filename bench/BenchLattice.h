@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "mechanics/ParticleSet.h"
+#include "mechanics/model/ParticleSet.h"
 
 namespace tmdem::bench {
 

@@ -17,12 +17,12 @@
 #include <numeric>
 #include <vector>
 
-#include "mechanics/BlockGaussSeidelSolver.h"
-#include "mechanics/ContactProblem.h"
-#include "mechanics/ContactSolverRegistry.h"
-#include "mechanics/GaussSeidelUpdate.h"
-#include "mechanics/NncgSolver.h"
-#include "mechanics/PairIndex.h"
+#include "mechanics/solvers/BlockGaussSeidelSolver.h"
+#include "mechanics/contact/ContactProblem.h"
+#include "mechanics/solvers/ContactSolverRegistry.h"
+#include "mechanics/solvers/GaussSeidelUpdate.h"
+#include "mechanics/solvers/NncgSolver.h"
+#include "mechanics/model/PairIndex.h"
 
 namespace tmdem::bench {
 

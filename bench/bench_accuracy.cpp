@@ -25,7 +25,7 @@
 #include "coupling/scene/SceneLoader.h"
 #include "coupling/bridge/ThermalNetworkBuilder.h"
 #include "coupling/run/ThermalProblem.h"
-#include "thermal/IntegratorRegistry.h"
+#include "thermal/integrators/IntegratorRegistry.h"
 
 using namespace tmdem;
 using namespace tmdem::coupling;

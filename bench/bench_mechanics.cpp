@@ -11,9 +11,9 @@
 #include <cmath>
 
 #include "BenchLattice.h"
-#include "mechanics/ContactDetector.h"
-#include "mechanics/NscdIntegrator.h"
-#include "mechanics/TouchingPairs.h"
+#include "mechanics/detection/ContactDetector.h"
+#include "mechanics/integrator/NscdIntegrator.h"
+#include "mechanics/detection/TouchingPairs.h"
 
 using namespace tmdem::mechanics;
 using Eigen::Vector3d;

@@ -57,9 +57,9 @@
 
 #include "coupling/bridge/SceneToMechanics.h"
 #include "coupling/scene/SceneLoader.h"
-#include "mechanics/ContactColouring.h"
-#include "mechanics/ContactSolverRegistry.h"
-#include "mechanics/SpatialContactOrder.h"
+#include "mechanics/solvers/ContactColouring.h"
+#include "mechanics/solvers/ContactSolverRegistry.h"
+#include "mechanics/solvers/SpatialContactOrder.h"
 #include "SlowModeProbe.h"
 
 using namespace tmdem;

@@ -15,10 +15,10 @@
 #include <random>
 
 #include "BenchLattice.h"
-#include "mechanics/ContactSolverRegistry.h"
-#include "mechanics/NaturalMapResidual.h"
-#include "mechanics/NscdIntegrator.h"
-#include "mechanics/SpatialContactOrder.h"
+#include "mechanics/solvers/ContactSolverRegistry.h"
+#include "mechanics/contact/NaturalMapResidual.h"
+#include "mechanics/integrator/NscdIntegrator.h"
+#include "mechanics/solvers/SpatialContactOrder.h"
 
 using namespace tmdem::mechanics;
 

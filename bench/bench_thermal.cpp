@@ -28,9 +28,9 @@
 #include <string>
 #include <vector>
 
-#include "thermal/IntegratorRegistry.h"
-#include "thermal/ModeRegistry.h"
-#include "thermal/ThermalSystem.h"
+#include "thermal/integrators/IntegratorRegistry.h"
+#include "thermal/modes/ModeRegistry.h"
+#include "thermal/system/ThermalSystem.h"
 
 namespace {
 

@@ -1,43 +1,56 @@
 #!/usr/bin/env bash
-# Fails when a source file includes a layer it may not see. The layers, lowest first:
-#   mechanics, thermal        never include each other (nor anything of coupling/)
-#   coupling/common           small helpers every room may use (number formatting)
-#   coupling/output           result files, summary, checkpoints, progress: stands alone
-#   coupling/scene            scene input: may use mechanics, thermal for the heat-transfer
-#                             modes' declarations (ModeRegistry: sections, keys, ranges), and
-#                             output to read particles from a result file ([[import]])
-#   coupling/bridge           contacts -> thermal network: scene, mechanics, thermal
-#   coupling/run              the time loop: bridge, scene, output
-#   coupling/studies          studies: run and below
-#   coupling/app              the program and its commands: everything
+# Fails when a source file includes a room it may not see. Every library is a house of rooms,
+# lowest first; a room may include its own files and the rooms below it, never above:
+#   mechanics/   model -> detection -> contact -> solvers -> integrator
+#   thermal/     network -> modes -> system -> integrators -> steady
+#                (mechanics and thermal never include each other, nor anything of coupling/)
+#   coupling/    common -> output -> scene -> bridge -> run -> studies -> app
+#     common      small helpers every room may use (number formatting)
+#     output      result files, summary, checkpoints, progress: stands alone
+#     scene       scene input: may use mechanics, thermal for the heat-transfer modes'
+#                 declarations (ModeRegistry: sections, keys, ranges), and output to read
+#                 particles from a result file ([[import]])
+#     bridge      contacts -> thermal network: scene, mechanics, thermal
+#     run         the time loop: bridge, scene, output
+#     studies     studies: run and below
+#     app         the program and its commands: everything
 # Usage: scripts/check_layers.sh [SOURCE_ROOT]
 set -uo pipefail
 root="${1:-$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)}"
 cd "$root" || exit 2
 
+mechanics="mechanics/model mechanics/detection mechanics/contact mechanics/solvers mechanics/integrator"
+thermal="thermal/network thermal/modes thermal/system thermal/integrators thermal/steady"
 declare -A allowed=(
-  [mechanics]="mechanics"
-  [thermal]="thermal"
+  [mechanics/model]="mechanics/model"
+  [mechanics/detection]="mechanics/model mechanics/detection"
+  [mechanics/contact]="mechanics/model mechanics/detection mechanics/contact"
+  [mechanics/solvers]="mechanics/model mechanics/detection mechanics/contact mechanics/solvers"
+  [mechanics/integrator]="mechanics/model mechanics/detection mechanics/contact mechanics/solvers mechanics/integrator"
+  [thermal/network]="thermal/network"
+  [thermal/modes]="thermal/network thermal/modes"
+  [thermal/system]="thermal/network thermal/modes thermal/system"
+  [thermal/integrators]="thermal/network thermal/modes thermal/system thermal/integrators"
+  [thermal/steady]="thermal/network thermal/modes thermal/system thermal/integrators thermal/steady"
   [coupling/common]="coupling/common"
-  [coupling/scene]="mechanics thermal coupling/common coupling/output coupling/scene"
+  [coupling/scene]="$mechanics $thermal coupling/common coupling/output coupling/scene"
   [coupling/output]="coupling/common coupling/output"
-  [coupling/bridge]="mechanics thermal coupling/common coupling/scene coupling/bridge"
-  [coupling/run]="mechanics thermal coupling/common coupling/scene coupling/output coupling/bridge coupling/run"
-  [coupling/studies]="mechanics thermal coupling/common coupling/scene coupling/output coupling/bridge coupling/run coupling/studies"
-  [coupling/app]="mechanics thermal coupling/common coupling/scene coupling/output coupling/bridge coupling/run coupling/studies coupling/app"
+  [coupling/bridge]="$mechanics $thermal coupling/common coupling/scene coupling/bridge"
+  [coupling/run]="$mechanics $thermal coupling/common coupling/scene coupling/output coupling/bridge coupling/run"
+  [coupling/studies]="$mechanics $thermal coupling/common coupling/scene coupling/output coupling/bridge coupling/run coupling/studies"
+  [coupling/app]="$mechanics $thermal coupling/common coupling/scene coupling/output coupling/bridge coupling/run coupling/studies coupling/app"
 )
 
 bad=0
 for layer in "${!allowed[@]}"; do
   [ -d "$layer" ] || { echo "check_layers: missing folder $layer" >&2; bad=1; continue; }
-  # Only the files directly in the layer's folder (coupling/ rooms are folders of their own).
+  # Only the files directly in the room's folder (every room is a folder of its own).
   while IFS= read -r -d '' file; do
     while IFS= read -r line; do
       target=$(sed -E 's/^[0-9]+:[[:space:]]*#[[:space:]]*include[[:space:]]*"([^"]+)".*/\1/' <<<"$line")
       case "$target" in
-        mechanics/*) room=mechanics ;;
-        thermal/*) room=thermal ;;
-        coupling/*/*) room=$(cut -d/ -f1-2 <<<"$target") ;;
+        mechanics/*/* | thermal/*/* | coupling/*/*) room=$(cut -d/ -f1-2 <<<"$target") ;;
+        mechanics/* | thermal/* | coupling/*) room="${target%/*} (no room)" ;;
         *) continue ;;
       esac
       ok=0
@@ -49,9 +62,14 @@ for layer in "${!allowed[@]}"; do
     done < <(grep -nE '^[[:space:]]*#[[:space:]]*include[[:space:]]*"' "$file" || true)
   done < <(find "$layer" -maxdepth 1 -type f \( -name '*.h' -o -name '*.cpp' \) -print0)
 done
-# Flat files left in coupling/ would belong to no room.
-stray=$(find coupling -maxdepth 1 -type f \( -name '*.h' -o -name '*.cpp' \))
-[ -n "$stray" ] && { echo "check_layers: files outside a coupling room: $stray" >&2; bad=1; }
+# Flat files left in a library's folder would belong to no room; so would an unknown folder.
+stray=$(find mechanics thermal coupling -maxdepth 1 -type f \( -name '*.h' -o -name '*.cpp' \))
+[ -n "$stray" ] && { echo "check_layers: files outside a room: $stray" >&2; bad=1; }
+while IFS= read -r -d '' dir; do
+  [ -n "${allowed[$dir]+x}" ] || { echo "check_layers: $dir is no known room (add it to allowed)" >&2; bad=1; }
+done < <(find mechanics thermal coupling -mindepth 1 -maxdepth 1 -type d -print0)
+unknown_deeper=$(find mechanics thermal coupling -mindepth 2 -type f \( -name '*.h' -o -name '*.cpp' \) | awk -F/ 'NF > 3')
+[ -n "$unknown_deeper" ] && { echo "check_layers: files nested below a room: $unknown_deeper" >&2; bad=1; }
 # One header extension across the project.
 hpp=$(find mechanics thermal coupling tests bench -name '*.hpp')
 [ -n "$hpp" ] && { echo "check_layers: use .h headers: $hpp" >&2; bad=1; }

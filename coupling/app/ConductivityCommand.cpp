@@ -8,7 +8,7 @@
 #include "coupling/common/ShortestNumber.h"
 #include "coupling/output/ProgressReporter.h"
 #include "coupling/studies/ConductivityReport.h"
-#include "thermal/ThermalSolverError.h"
+#include "thermal/integrators/ThermalSolverError.h"
 
 namespace tmdem::coupling {
 

@@ -10,8 +10,8 @@
 #include "coupling/run/ThermalProblem.h"
 #include "coupling/scene/ParticleImport.h"
 #include "coupling/scene/SceneLimits.h"
-#include "mechanics/TouchingPairs.h"
-#include "thermal/ModeRegistry.h"
+#include "mechanics/detection/TouchingPairs.h"
+#include "thermal/modes/ModeRegistry.h"
 
 namespace tmdem::coupling {
 

@@ -3,7 +3,7 @@
 // radius r_min, and whether that matters.
 //
 // What does not depend on it: tunnelling. The candidate margin is never below twice the
-// largest look-ahead 2 h (|v| + h |g|) (mechanics/ContactDetector.h), so every pair that can
+// largest look-ahead 2 h (|v| + h |g|) (mechanics/detection/ContactDetector.h), so every pair that can
 // meet within a step is listed, at any speed, and the linearised gap of a step (normal frozen
 // at its start) is a lower bound of the true gap of two spheres or a sphere and a plane, so a
 // step can stop a particle early, never let it through (tested at 1.5 radii per step).

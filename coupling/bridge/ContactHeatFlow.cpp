@@ -1,6 +1,6 @@
 #include "coupling/bridge/ContactHeatFlow.h"
 
-#include "thermal/PiecewiseLinearTable.h"
+#include "thermal/network/PiecewiseLinearTable.h"
 
 namespace tmdem::coupling {
 namespace {

@@ -8,7 +8,7 @@
 namespace tmdem::coupling {
 
 struct ContactList {
-  std::vector<std::int64_t> pair;                 // 2 per contact: i, j (j may be a wall: mechanics/PairIndex.h)
+  std::vector<std::int64_t> pair;                 // 2 per contact: i, j (j may be a wall: mechanics/model/PairIndex.h)
   std::vector<double> normal_force_N;             // per contact
   std::vector<double> conductance_W_per_K;        // per contact, filled by the network builder
   std::vector<double> tangential_force_N;         // 3 per contact: xyz, the tangential part of

@@ -13,8 +13,8 @@
 #include "coupling/bridge/CouplingStrategy.h"
 #include "coupling/scene/Scene.h"
 #include "coupling/bridge/ThermalNetworkBuilder.h"
-#include "thermal/ThermalIntegrator.h"
-#include "thermal/ThermalSystem.h"
+#include "thermal/integrators/ThermalIntegrator.h"
+#include "thermal/system/ThermalSystem.h"
 
 namespace tmdem::coupling {
 

@@ -4,11 +4,11 @@
 #include <vector>
 
 #include "coupling/scene/Scene.h"
-#include "mechanics/Material.h"
-#include "mechanics/NscdIntegrator.h"
-#include "mechanics/NscdParameters.h"
-#include "mechanics/ParticleSet.h"
-#include "mechanics/Wall.h"
+#include "mechanics/model/Material.h"
+#include "mechanics/integrator/NscdIntegrator.h"
+#include "mechanics/integrator/NscdParameters.h"
+#include "mechanics/model/ParticleSet.h"
+#include "mechanics/model/Wall.h"
 
 namespace tmdem::coupling {
 

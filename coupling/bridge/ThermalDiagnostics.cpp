@@ -5,7 +5,7 @@
 #include <numbers>
 #include <vector>
 
-#include "mechanics/PairIndex.h"
+#include "mechanics/model/PairIndex.h"
 
 namespace tmdem::coupling {
 

@@ -7,7 +7,7 @@
 
 #include "coupling/bridge/ContactList.h"
 #include "coupling/scene/Scene.h"
-#include "thermal/ThermalSystem.h"
+#include "thermal/system/ThermalSystem.h"
 
 namespace tmdem::coupling {
 

@@ -9,9 +9,9 @@
 
 #include "coupling/bridge/SceneToMechanics.h"
 #include "coupling/scene/HeatModes.h"
-#include "mechanics/PairIndex.h"
-#include "mechanics/TouchingPairs.h"
-#include "thermal/ModeRegistry.h"
+#include "mechanics/model/PairIndex.h"
+#include "mechanics/detection/TouchingPairs.h"
+#include "thermal/modes/ModeRegistry.h"
 
 namespace tmdem::coupling {
 

@@ -7,11 +7,11 @@
 
 #include "coupling/bridge/ContactList.h"
 #include "coupling/scene/Scene.h"
-#include "mechanics/ParticleSet.h"
-#include "mechanics/Wall.h"
-#include "thermal/ConductanceLaw.h"
-#include "thermal/ModeSettings.h"
-#include "thermal/ThermalNetwork.h"
+#include "mechanics/model/ParticleSet.h"
+#include "mechanics/model/Wall.h"
+#include "thermal/modes/ConductanceLaw.h"
+#include "thermal/modes/ModeSettings.h"
+#include "thermal/network/ThermalNetwork.h"
 
 namespace tmdem::coupling {
 
@@ -58,7 +58,7 @@ class ThermalNetworkBuilder {
   const thermal::ModeSettings& mode_settings() const;
 
  private:
-  thermal::ContactBody body(std::int64_t id) const;  // id: particle, or a wall (mechanics/PairIndex.h)
+  thermal::ContactBody body(std::int64_t id) const;  // id: particle, or a wall (mechanics/model/PairIndex.h)
 
   const Scene& scene_;
   // Per scene wall: index of its temperature table / of its flux power in the network's node

@@ -45,7 +45,7 @@ struct CheckpointState {
   std::vector<double> contact_tangential_force_N;    // C*3, xyz on i, as in the result file
   std::vector<double> contact_normal_force_N;        // C, as in the result file (a file
                                                      // without it: impulse / time step)
-  // The moving mechanics' state (mechanics/MechanicsState.h), flat.
+  // The moving mechanics' state (mechanics/integrator/MechanicsState.h), flat.
   bool has_mechanics = false;
   double detector_margin_m = 0.0;
   std::int64_t detector_rebuilds = 0;

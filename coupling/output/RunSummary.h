@@ -67,7 +67,7 @@ struct ThermalSummary {
 };
 
 // extra: energy.mechanical, runs with mechanics (settle: the settle phase). The mechanics' energy account over the run
-// (mechanics/NscdIntegrator.h): energy_change + contact_dissipation + numerical_dissipation = 0
+// (mechanics/integrator/NscdIntegrator.h): energy_change + contact_dissipation + numerical_dissipation = 0
 // exactly in arithmetic; balance_error_rel measures it. With a mode that turns the contacts'
 // dissipation into heat (effects.friction_heat), heat_generated_J is what the run handed to the
 // thermal side (each step's contact powers times the time it advanced), heat_received_J what the

@@ -29,11 +29,11 @@
 #include "coupling/run/RestartState.h"
 #include "coupling/run/ThermalProblem.h"
 #include "coupling/scene/HeatModes.h"
-#include "mechanics/NscdIntegrator.h"
-#include "mechanics/TouchingPairs.h"
-#include "thermal/IntegratorRegistry.h"
-#include "thermal/ModeRegistry.h"
-#include "thermal/ThermalSolverError.h"
+#include "mechanics/integrator/NscdIntegrator.h"
+#include "mechanics/detection/TouchingPairs.h"
+#include "thermal/integrators/IntegratorRegistry.h"
+#include "thermal/modes/ModeRegistry.h"
+#include "thermal/integrators/ThermalSolverError.h"
 
 namespace tmdem::coupling {
 

@@ -18,9 +18,9 @@
 #include "coupling/output/ResultWriter.h"
 #include "coupling/output/RunSummary.h"
 #include "coupling/run/CoupledRun.h"
-#include "mechanics/NscdIntegrator.h"
-#include "thermal/ThermalIntegrator.h"
-#include "thermal/ThermalSystem.h"
+#include "mechanics/integrator/NscdIntegrator.h"
+#include "thermal/integrators/ThermalIntegrator.h"
+#include "thermal/system/ThermalSystem.h"
 
 namespace tmdem::coupling::run_detail {
 

@@ -1,14 +1,14 @@
 #pragma once
 // What a checkpoint carries beyond positions and temperatures so that a restart continues bit
 // for bit (README "Restart, interruption and files"): the mechanics' own state
-// (mechanics/MechanicsState.h), its counters, the thermal integrator's counters and the contact
+// (mechanics/integrator/MechanicsState.h), its counters, the thermal integrator's counters and the contact
 // list with its exact forces. Converts between the run's objects and the flat CheckpointState
 // of the output room, which knows neither mechanics nor thermal.
 #include "coupling/bridge/ContactList.h"
 #include "coupling/output/Checkpoint.h"
-#include "mechanics/MechanicsState.h"
-#include "mechanics/StepReport.h"
-#include "thermal/ThermalIntegrator.h"
+#include "mechanics/integrator/MechanicsState.h"
+#include "mechanics/integrator/StepReport.h"
+#include "thermal/integrators/ThermalIntegrator.h"
 
 namespace tmdem::coupling {
 

@@ -13,10 +13,10 @@
 #include "coupling/output/RunSummary.h"
 #include "coupling/scene/Scene.h"
 #include "coupling/bridge/ThermalNetworkBuilder.h"
-#include "mechanics/ContactForce.h"
-#include "mechanics/NscdIntegrator.h"
-#include "thermal/ThermalIntegrator.h"
-#include "thermal/ThermalSystem.h"
+#include "mechanics/contact/ContactForce.h"
+#include "mechanics/integrator/NscdIntegrator.h"
+#include "thermal/integrators/ThermalIntegrator.h"
+#include "thermal/system/ThermalSystem.h"
 
 namespace tmdem::coupling {
 

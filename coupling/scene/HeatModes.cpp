@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "thermal/ModeRegistry.h"
+#include "thermal/modes/ModeRegistry.h"
 
 namespace tmdem::coupling {
 

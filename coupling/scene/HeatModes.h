@@ -1,9 +1,9 @@
 #pragma once
-// The scene's view of the registered heat-transfer modes (thermal/ModeRegistry.h): which ones
+// The scene's view of the registered heat-transfer modes (thermal/modes/ModeRegistry.h): which ones
 // its effects switch on, whether contacts carry heat, the reservoir temperatures they bring.
 // Generic on purpose: nothing here (or anywhere in coupling/) names a mode.
 #include "coupling/scene/Scene.h"
-#include "thermal/ModeDescription.h"
+#include "thermal/modes/ModeDescription.h"
 
 namespace tmdem::coupling {
 

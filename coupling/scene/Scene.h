@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-#include "thermal/ModeSettings.h"
+#include "thermal/modes/ModeSettings.h"
 
 namespace tmdem::coupling {
 
@@ -62,7 +62,7 @@ struct Wall {
   std::optional<double> heat_flux_W_per_m2;
   double heat_flux_area_m2 = 0.0;
   // piston = true (planes): the wall moves along its normal, pushed into the domain by
-  // piston_force_N plus its weight (mechanics/Wall.h). The force is `force`, or `pressure` x
+  // piston_force_N plus its weight (mechanics/model/Wall.h). The force is `force`, or `pressure` x
   // `pressure_area` (then both are kept, so a study can impose other pressures).
   bool piston = false;
   double piston_mass_kg = 0.0;
@@ -104,7 +104,7 @@ struct ImportReport {
 struct Effects {
   MechanicsMode mechanics = MechanicsMode::Settle;
   // effects.<key> of the heat-transfer modes ("conduction", "convection", ...), every key the
-  // registered modes declare (thermal/ModeDescription.h), defaults filled in by the loader.
+  // registered modes declare (thermal/modes/ModeDescription.h), defaults filled in by the loader.
   std::map<std::string, bool, std::less<>> heat;
   bool on(std::string_view key) const {
     const auto it = heat.find(key);

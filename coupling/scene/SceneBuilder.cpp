@@ -3,7 +3,7 @@
 #include "coupling/scene/HeatModes.h"
 #include "coupling/scene/SceneLimits.h"
 #include "coupling/scene/SceneValidation.h"
-#include "thermal/ModeRegistry.h"
+#include "thermal/modes/ModeRegistry.h"
 
 namespace tmdem::coupling {
 

@@ -1,7 +1,7 @@
 #include <cmath>
 
 #include "coupling/scene/SceneBuilder.h"
-#include "thermal/PiecewiseLinearTable.h"
+#include "thermal/network/PiecewiseLinearTable.h"
 
 namespace tmdem::coupling {
 

@@ -4,7 +4,7 @@
 
 #include "coupling/scene/SceneBuilder.h"
 #include "coupling/scene/SceneGenerators.h"
-#include "mechanics/RandomPlacement.h"
+#include "coupling/scene/RandomPlacement.h"
 
 namespace tmdem::coupling {
 
@@ -97,7 +97,7 @@ void SceneBuilder::check_total(const SceneTable& t, std::string_view key, std::i
 
 // kind = "random": count, box, and radius or radii + fractions. Particles lie entirely
 // inside the box (in 2D only x and y must fit; centres are at z = the middle of the box's z
-// range). Radii are given to ids by class in the order of radii (mechanics::place_random).
+// range). Radii are given to ids by class in the order of radii (place_random).
 // The placement is reproducible: generator number `index` among the [[generate]] entries
 // draws with seed simulation.seed + index, so two random generators differ.
 void SceneBuilder::read_random(const SceneTable& t, std::size_t index, std::vector<Vec3>& positions,
@@ -141,14 +141,14 @@ void SceneBuilder::read_random(const SceneTable& t, std::size_t index, std::vect
   // Keep clear of every particle already in the scene: the [[particle]] entries (read before
   // the generators) and those of earlier generators, so that several generators fill one box
   // around hand-placed particles. [[import]] entries come after and are checked for overlaps.
-  mechanics::RandomPlacement placed;
+  RandomPlacement placed;
   for (const auto& p : scene_.particles) {
     placed.positions.emplace_back(p.position_m[0], p.position_m[1], p.position_m[2]);
     placed.radii.push_back(p.radius_m);
   }
-  mechanics::RandomPlacement placement;
+  RandomPlacement placement;
   try {
-    placement = mechanics::place_random(
+    placement = place_random(
         static_cast<std::size_t>(count), Eigen::Vector3d(lo[0], lo[1], lo[2]),
         Eigen::Vector3d(hi[0], hi[1], hi[2]), sizes, fractions,
         scene_.seed + static_cast<std::uint64_t>(index), scene_.dimension, placed);

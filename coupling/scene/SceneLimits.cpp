@@ -4,7 +4,7 @@
 
 #include "coupling/common/ShortestNumber.h"
 #include "coupling/scene/SceneError.h"
-#include "mechanics/ParticleSet.h"
+#include "mechanics/model/ParticleSet.h"
 
 namespace tmdem::coupling {
 namespace {

@@ -24,7 +24,7 @@
 // - [[generate]]: material required; temperature (default 293.15 K), fixed_temperature,
 //   heat_source, fixed accepted for every kind; a key that belongs to another kind (rows with
 //   kind = "column") is an error. Geometry: coupling/SceneGenerators.h. "random" uses
-//   mechanics::place_random with seed simulation.seed + (index of the [[generate]] entry);
+//   place_random with seed simulation.seed + (index of the [[generate]] entry);
 //   particles lie entirely inside the box (2D: z = middle of the box's z range).
 // - [[assign]]: exactly one of ids, box (centre inside, inclusive), nearest (centre distance,
 //   ties by id); at least one of temperature, fixed_temperature, heat_source, fixed,

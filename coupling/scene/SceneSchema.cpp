@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <map>
 
-#include "mechanics/ContactSolverRegistry.h"
-#include "thermal/ModeRegistry.h"
+#include "mechanics/solvers/ContactSolverRegistry.h"
+#include "thermal/modes/ModeRegistry.h"
 
 namespace tmdem::coupling {
 

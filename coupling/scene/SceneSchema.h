@@ -4,14 +4,14 @@
 // `tmdem docs scene`) its unit, default, allowed values and a one-line description. The loader
 // validates with it: unknown keys, --set paths, and the range, default and choices of the keys
 // that state them (SceneTable reads them from here). The sections and effects switches of the
-// heat-transfer modes come from each mode's own declaration (thermal/ModeRegistry.h), so a new
+// heat-transfer modes come from each mode's own declaration (thermal/modes/ModeRegistry.h), so a new
 // mode appears here, in validation and in the docs without touching this file.
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include "thermal/ModeDescription.h"
+#include "thermal/modes/ModeDescription.h"
 
 namespace tmdem::coupling {
 

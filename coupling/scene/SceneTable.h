@@ -13,7 +13,7 @@
 #include <toml++/toml.h>
 
 #include "coupling/scene/Scene.h"
-#include "thermal/ModeDescription.h"
+#include "thermal/modes/ModeDescription.h"
 
 namespace tmdem::coupling {
 

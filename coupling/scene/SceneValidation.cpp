@@ -4,8 +4,8 @@
 
 #include "coupling/scene/SceneBuilder.h"
 #include "coupling/scene/SceneError.h"
-#include "mechanics/ParticleSet.h"
-#include "mechanics/TouchingPairs.h"
+#include "mechanics/model/ParticleSet.h"
+#include "mechanics/detection/TouchingPairs.h"
 
 namespace tmdem::coupling {
 

@@ -17,7 +17,7 @@
 #include "coupling/bridge/ThermalNetworkBuilder.h"
 #include "coupling/run/ThermalProblem.h"
 #include "coupling/studies/ThermalReplay.h"
-#include "thermal/IntegratorRegistry.h"
+#include "thermal/integrators/IntegratorRegistry.h"
 
 namespace tmdem::coupling {
 

@@ -29,9 +29,9 @@
 
 #include "coupling/bridge/CouplingStrategy.h"
 #include "coupling/scene/Scene.h"
-#include "thermal/HeatTransferMode.h"
-#include "thermal/ThermalIntegrator.h"
-#include "thermal/ThermalSystem.h"
+#include "thermal/modes/HeatTransferMode.h"
+#include "thermal/integrators/ThermalIntegrator.h"
+#include "thermal/system/ThermalSystem.h"
 
 namespace tmdem::coupling {
 

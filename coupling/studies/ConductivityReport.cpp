@@ -3,7 +3,7 @@
 #include <iomanip>
 
 #include "coupling/common/ShortestNumber.h"
-#include "thermal/ModeRegistry.h"
+#include "thermal/modes/ModeRegistry.h"
 
 namespace tmdem::coupling {
 

@@ -10,9 +10,9 @@
 #include "coupling/bridge/SceneToMechanics.h"
 #include "coupling/run/ThermalProblem.h"
 #include "coupling/scene/SceneError.h"
-#include "mechanics/PairIndex.h"
-#include "thermal/SteadyStateSolver.h"
-#include "thermal/ThermalSolverError.h"
+#include "mechanics/model/PairIndex.h"
+#include "thermal/steady/SteadyStateSolver.h"
+#include "thermal/integrators/ThermalSolverError.h"
 
 namespace tmdem::coupling {
 namespace {

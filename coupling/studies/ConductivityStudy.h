@@ -5,7 +5,7 @@
 // face each other (opposite normals) and their temperatures differ; every other wall is
 // adiabatic. The packing is taken as the scene gives it (mechanics "off": contacts from
 // geometry), or settled first ("settle"; a "dynamic" scene is settled the same way). Then the
-// steady state q(T) = 0 is solved directly (thermal/SteadyStateSolver.h: Newton + KLU on the
+// steady state q(T) = 0 is solved directly (thermal/steady/SteadyStateSolver.h: Newton + KLU on the
 // conductance Laplacian with the scene's modes, no time stepping) and
 //   k_eff = Q L / (A dT)
 // with Q the heat through the hot wall, W; L the distance between the two wall planes, m;

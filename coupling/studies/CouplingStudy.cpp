@@ -13,7 +13,7 @@
 #include "coupling/run/ThermalProblem.h"
 #include "coupling/scene/HeatModes.h"
 #include "coupling/studies/ThermalReplay.h"
-#include "thermal/IntegratorRegistry.h"
+#include "thermal/integrators/IntegratorRegistry.h"
 
 namespace tmdem::coupling {
 

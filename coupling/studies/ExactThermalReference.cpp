@@ -6,7 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "thermal/ModeRegistry.h"
+#include "thermal/modes/ModeRegistry.h"
 
 namespace tmdem::coupling {
 

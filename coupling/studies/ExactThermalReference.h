@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
-#include "thermal/ModeSettings.h"
-#include "thermal/ThermalNetwork.h"
-#include "thermal/ThermalSystem.h"
+#include "thermal/modes/ModeSettings.h"
+#include "thermal/network/ThermalNetwork.h"
+#include "thermal/system/ThermalSystem.h"
 
 namespace tmdem::coupling {
 
@@ -31,7 +31,7 @@ struct AffineThermalSystem {
 };
 
 // A and b for the network with the named modes switched on (registry names, see
-// thermal/ModeList.h). Empty when a mode is not linear ("radiation") or not known here: such a
+// thermal/modes/ModeList.h). Empty when a mode is not linear ("radiation") or not known here: such a
 // network has no exact reference. The one place in coupling/ that names modes, on purpose: an
 // independent re-derivation of their physics is what makes it a reference; parameters come
 // from the modes' own declarations (defaults included).

@@ -6,8 +6,8 @@
 
 #include "coupling/studies/ContactRecording.h"
 #include "coupling/bridge/DynamicNetwork.h"
-#include "thermal/ThermalIntegrator.h"
-#include "thermal/ThermalSystem.h"
+#include "thermal/integrators/ThermalIntegrator.h"
+#include "thermal/system/ThermalSystem.h"
 
 namespace tmdem::coupling {
 

@@ -11,7 +11,7 @@
 #include <numbers>
 
 #include "E2eSupport.h"
-#include "thermal/GasGapConductance.h"
+#include "thermal/modes/GasGapConductance.h"
 
 using namespace tmdem::e2e;
 

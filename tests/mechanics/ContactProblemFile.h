@@ -26,8 +26,8 @@
 #include <string>
 #include <vector>
 
-#include "mechanics/ContactProblem.h"
-#include "mechanics/PairIndex.h"
+#include "mechanics/contact/ContactProblem.h"
+#include "mechanics/model/PairIndex.h"
 
 namespace tmdem::mechanics::test {
 

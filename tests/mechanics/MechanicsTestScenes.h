@@ -5,8 +5,8 @@
 #include <numbers>
 #include <vector>
 
-#include "mechanics/NscdIntegrator.h"
-#include "mechanics/RandomPlacement.h"
+#include "mechanics/integrator/NscdIntegrator.h"
+#include "coupling/scene/RandomPlacement.h"
 
 namespace tmdem::mechanics::test {
 

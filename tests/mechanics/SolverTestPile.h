@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "MechanicsTestScenes.h"
-#include "mechanics/ContactSolverRegistry.h"
-#include "mechanics/NaturalMapResidual.h"
+#include "mechanics/solvers/ContactSolverRegistry.h"
+#include "mechanics/contact/NaturalMapResidual.h"
 
 namespace tmdem::mechanics::test {
 

@@ -1,6 +1,6 @@
 #pragma once
 // The test-only fault_injection heat-transfer mode (see FaultInjectionMode.cpp).
-#include "thermal/ModeDescription.h"
+#include "thermal/modes/ModeDescription.h"
 
 namespace tmdem::testing {
 

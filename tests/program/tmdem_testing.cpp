@@ -2,7 +2,7 @@
 // binary never registers them, so it neither contains nor honours them.
 #include "FaultInjectionMode.h"
 #include "coupling/app/TmdemMain.h"
-#include "thermal/ModeRegistry.h"
+#include "thermal/modes/ModeRegistry.h"
 
 int main(int argc, char** argv) {
   tmdem::thermal::register_heat_transfer_mode(tmdem::testing::fault_injection_mode());

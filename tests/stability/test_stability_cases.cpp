@@ -3,7 +3,7 @@
 #include <set>
 
 #include "StabilitySupport.h"
-#include "thermal/ExplicitIntegrator.h"
+#include "thermal/integrators/ExplicitIntegrator.h"
 
 using namespace tmdem::stability;
 

@@ -15,10 +15,10 @@
 #include <tuple>
 #include <vector>
 
-#include "thermal/IntegratorRegistry.h"
-#include "thermal/ModeRegistry.h"
-#include "thermal/ThermalNetwork.h"
-#include "thermal/ThermalSystem.h"
+#include "thermal/integrators/IntegratorRegistry.h"
+#include "thermal/modes/ModeRegistry.h"
+#include "thermal/network/ThermalNetwork.h"
+#include "thermal/system/ThermalSystem.h"
 
 namespace tmdem::thermal::testing {
 

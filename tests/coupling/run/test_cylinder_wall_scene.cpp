@@ -10,7 +10,7 @@
 #include "coupling/scene/SceneError.h"
 #include "coupling/scene/SceneLoader.h"
 #include "support/SceneBuilder.h"
-#include "thermal/IntegratorRegistry.h"
+#include "thermal/integrators/IntegratorRegistry.h"
 
 namespace tmdem::coupling {
 namespace {

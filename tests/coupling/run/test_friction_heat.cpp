@@ -14,7 +14,7 @@
 #include "coupling/scene/SceneLoader.h"
 #include "support/RunSceneText.h"
 #include "support/SceneBuilder.h"
-#include "thermal/ModeRegistry.h"
+#include "thermal/modes/ModeRegistry.h"
 
 namespace tmdem::coupling {
 namespace {

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "coupling/run/ThermalProblem.h"
-#include "mechanics/PairIndex.h"
+#include "mechanics/model/PairIndex.h"
 
 using namespace tmdem;
 using namespace tmdem::coupling;

@@ -13,8 +13,8 @@
 #include "coupling/scene/SceneError.h"
 #include "coupling/scene/SceneLoader.h"
 #include "support/SceneBuilder.h"
-#include "thermal/IntegratorRegistry.h"
-#include "thermal/ModeRegistry.h"
+#include "thermal/integrators/IntegratorRegistry.h"
+#include "thermal/modes/ModeRegistry.h"
 
 namespace tmdem::coupling {
 namespace {

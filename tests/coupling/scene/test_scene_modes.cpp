@@ -9,7 +9,7 @@
 
 #include "coupling/scene/SceneSchema.h"
 #include "tests/coupling/SceneTestUtil.h"
-#include "thermal/ModeRegistry.h"
+#include "thermal/modes/ModeRegistry.h"
 
 namespace tmdem::coupling::test {
 namespace {

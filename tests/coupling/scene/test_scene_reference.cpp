@@ -7,7 +7,7 @@
 #include <string>
 
 #include "coupling/scene/SceneReference.h"
-#include "thermal/ModeRegistry.h"
+#include "thermal/modes/ModeRegistry.h"
 
 namespace tmdem::coupling::test {
 namespace {

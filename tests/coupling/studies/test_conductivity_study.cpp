@@ -13,8 +13,8 @@
 #include "coupling/scene/SceneLoader.h"
 #include "coupling/studies/ConductivityStudy.h"
 #include "support/SceneBuilder.h"
-#include "thermal/IntegratorRegistry.h"
-#include "thermal/JacobianEvaluation.h"
+#include "thermal/integrators/IntegratorRegistry.h"
+#include "thermal/system/JacobianEvaluation.h"
 
 namespace tmdem::coupling {
 namespace {

@@ -1,0 +1,152 @@
+#include "mechanics/detection/ContactDetector.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace tmdem::mechanics {
+namespace {
+
+bool pair_less(const CandidatePair& a, const CandidatePair& b) {
+  return a.i != b.i ? a.i < b.i : a.j < b.j;
+}
+
+}  // namespace
+
+ContactDetector::ContactDetector(double min_margin_m, double max_margin_m,
+                                 std::ptrdiff_t parallel_from)
+    : min_margin_(min_margin_m), max_margin_(max_margin_m), parallel_from_(parallel_from) {
+  grid_.set_parallel_from(parallel_from);
+  if (!(min_margin_m > 0.0) || !(max_margin_m >= min_margin_m) || !std::isfinite(max_margin_m)) {
+    throw std::invalid_argument("ContactDetector: need 0 < min_margin <= max_margin");
+  }
+}
+
+void ContactDetector::restore(double margin_m, std::size_t rebuilds,
+                              std::vector<Eigen::Vector3d> reference_m,
+                              std::vector<CandidatePair> pairs,
+                              std::vector<Eigen::Vector3d> reference_wall_points_m) {
+  for (std::size_t p = 1; p < pairs.size(); ++p)
+    if (!pair_less(pairs[p - 1], pairs[p]))
+      throw std::invalid_argument("ContactDetector::restore: pairs not in strictly increasing (i, j) order");
+  margin_ = margin_m;
+  rebuilds_ = rebuilds;
+  valid_ = !reference_m.empty();
+  reference_position_ = std::move(reference_m);
+  pairs_ = std::move(pairs);
+  reference_wall_point_ = std::move(reference_wall_points_m);
+  previous_pairs_.clear();
+  previous_index_.clear();
+}
+
+bool ContactDetector::update(const ParticleSet& particles, const std::vector<Wall>& walls,
+                             const std::vector<double>& lookahead_m,
+                             const std::vector<double>& wall_lookahead_m) {
+  const std::size_t n = particles.size();
+  double lookahead_max = 0.0;
+  bool need = !valid_ || reference_position_.size() != n;
+  // Serial on purpose: about 3 ns per particle, less than waking threads costs on a loaded
+  // machine (measured: 100,000 particles, 0.3 ms serial, 1 to 20 ms with 2 threads at load 11).
+  for (std::size_t i = 0; i < n; ++i) {
+    const double ahead = lookahead_m.empty() ? 0.0 : lookahead_m[i];
+    lookahead_max = std::max(lookahead_max, ahead);
+    if (!need && (particles.position[i] - reference_position_[i]).norm() + ahead > 0.5 * margin_) {
+      need = true;
+    }
+  }
+  // A restored table without wall points takes today's (fixed walls never move).
+  if (reference_wall_point_.size() != walls.size()) {
+    reference_wall_point_.clear();
+    for (const auto& w : walls) reference_wall_point_.push_back(w.point);
+  }
+  for (std::size_t w = 0; w < wall_lookahead_m.size() && w < walls.size(); ++w) {
+    lookahead_max = std::max(lookahead_max, wall_lookahead_m[w]);
+    if ((walls[w].point - reference_wall_point_[w]).norm() + wall_lookahead_m[w] > 0.5 * margin_)
+      need = true;
+  }
+  if (!need) return false;
+  rebuild(particles, walls, lookahead_max);
+  return true;
+}
+
+void ContactDetector::rebuild(const ParticleSet& particles, const std::vector<Wall>& walls,
+                              double lookahead_max) {
+  const std::size_t n = particles.size();
+  // Two particles can close by at most the sum of their look-aheads before the next check,
+  // so the margin is never below twice the largest one, whatever max_margin says: a fast
+  // particle widens the table rather than tunnel through an unlisted neighbour or wall.
+  margin_ = std::max(std::clamp(4.0 * lookahead_max, min_margin_, max_margin_),
+                     2.0 * lookahead_max);
+  std::swap(pairs_, previous_pairs_);
+  const auto& x = particles.position;
+  const auto& r = particles.radius;
+  const auto& fixed = particles.fixed;
+  const auto count = static_cast<std::ptrdiff_t>(n);
+  if (n >= 2) grid_.build(x, 2.0 * particles.max_radius() + margin_);
+  const bool parallel = count >= parallel_from_;
+  const auto threads = static_cast<std::size_t>(parallel ? omp_get_max_threads() : 1);
+  if (thread_pairs_.size() < threads) {
+    thread_pairs_.resize(threads);
+    thread_neighbours_.resize(threads);
+  }
+#pragma omp parallel if (parallel)
+  {
+    const auto team = static_cast<std::ptrdiff_t>(omp_get_num_threads());
+    const auto t = static_cast<std::ptrdiff_t>(omp_get_thread_num());
+    auto& local = thread_pairs_[t];
+    auto& neighbours = thread_neighbours_[t];
+    local.clear();
+    // Table order: for each i, walls first (j = -1 - w ascending, i.e. w descending), then
+    // particles j > i ascending.
+    for (std::ptrdiff_t i = count * t / team; i < count * (t + 1) / team; ++i) {
+      const auto a = static_cast<std::uint32_t>(i);
+      const auto ii = static_cast<std::int32_t>(i);
+      if (!fixed[a]) {
+        for (std::size_t w = walls.size(); w-- > 0;) {
+          if (walls[w].signed_distance(x[a]) - r[a] <= margin_) {
+            local.push_back({ii, wall_code<std::int32_t>(w)});
+          }
+        }
+      }
+      if (n < 2) continue;
+      neighbours.clear();
+      grid_.for_each_neighbour(a, [&](std::uint32_t b) {
+        if (b < a || (fixed[a] && fixed[b])) return;  // fixed bodies never exchange impulses
+        const double reach = r[a] + r[b] + margin_;
+        if ((x[a] - x[b]).squaredNorm() <= reach * reach) neighbours.push_back(b);
+      });
+      std::sort(neighbours.begin(), neighbours.end());
+      for (const std::uint32_t b : neighbours) local.push_back({ii, static_cast<std::int32_t>(b)});
+    }
+#pragma omp barrier
+#pragma omp single
+    {
+      std::size_t total = 0;
+      for (std::ptrdiff_t k = 0; k < team; ++k) total += thread_pairs_[k].size();
+      pairs_.resize(total);
+    }
+    std::size_t offset = 0;
+    for (std::ptrdiff_t k = 0; k < t; ++k) offset += thread_pairs_[k].size();
+    std::copy(local.begin(), local.end(), pairs_.begin() + static_cast<std::ptrdiff_t>(offset));
+  }
+
+  // Match against the previous table (both sorted) so reactions can be warm-started.
+  previous_index_.resize(pairs_.size());
+  const auto listed = static_cast<std::ptrdiff_t>(pairs_.size());
+#pragma omp parallel for schedule(static) if (parallel)
+  for (std::ptrdiff_t p = 0; p < listed; ++p) {
+    const auto k = std::lower_bound(previous_pairs_.begin(), previous_pairs_.end(), pairs_[p], pair_less);
+    const bool same = k != previous_pairs_.end() && k->i == pairs_[p].i && k->j == pairs_[p].j;
+    previous_index_[p] = same ? static_cast<std::int32_t>(k - previous_pairs_.begin()) : -1;
+  }
+
+  reference_position_.assign(x.begin(), x.end());
+  reference_wall_point_.clear();
+  for (const auto& w : walls) reference_wall_point_.push_back(w.point);
+  valid_ = true;
+  ++rebuilds_;
+}
+
+}  // namespace tmdem::mechanics

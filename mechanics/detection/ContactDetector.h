@@ -1,0 +1,95 @@
+#pragma once
+// Persistent table of candidate contacts (particle-particle and particle-wall), rebuilt from
+// a cell grid only when some particle may have come close to a pair that is not listed.
+//
+// A pair is listed when its gap is at most `margin` at the rebuild. Between rebuilds each
+// particle's displacement d_i since the rebuild is tracked; as long as
+// d_i + s_i <= margin / 2 for every particle (s_i = look-ahead: how far it can move during
+// the coming step), no unlisted pair can touch before the next check. This is the
+// "half the margin" Verlet criterion, with a look-ahead so that fast particles trigger the
+// rebuild one step early rather than one step late. A moving wall (a piston) is held to the
+// same test with its own displacement and look-ahead: a particle-wall gap then closes by at
+// most margin / 2 + margin / 2.
+//
+// Everything lives in reused vectors: no allocation once warm.
+//
+// Parallel (OpenMP, from parallel_from particles on): each thread lists the pairs (i, j > i)
+// and walls of one contiguous range of particles i, already in table order, and the ranges
+// are concatenated in order; the previous-table map is one binary search per pair. Every
+// pair is decided by the same arithmetic whichever thread does it, so the table is the same
+// bits for any thread count.
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "mechanics/detection/CellGrid.h"
+#include "mechanics/model/PairIndex.h"
+#include "mechanics/model/ParticleSet.h"
+#include "mechanics/model/Wall.h"
+
+namespace tmdem::mechanics {
+
+struct CandidatePair {
+  std::int32_t i = 0;  // particle
+  std::int32_t j = 0;  // particle (> i), or wall_code(wall) (PairIndex.h)
+};
+
+class ContactDetector {
+ public:
+  // margin bounds, m: the margin used at a rebuild is 4 * (largest look-ahead) clamped to
+  // (never below 2 * the largest look-ahead, so fast particles cannot tunnel)
+  // [min_margin_m, max_margin_m] (wider when particles are fast, so rebuilds stay rare).
+  // parallel_from: particles from which rebuilds and checks use OpenMP threads (0: always).
+  ContactDetector(double min_margin_m, double max_margin_m, std::ptrdiff_t parallel_from = 4096);
+
+  // Rebuilds the table if needed (or if forced). lookahead_m[i] is how far particle i may
+  // move before the next call (may be empty: 0), wall_lookahead_m[w] the same for wall w (may
+  // be empty: walls are fixed). Returns true if the table was rebuilt.
+  bool update(const ParticleSet& particles, const std::vector<Wall>& walls,
+              const std::vector<double>& lookahead_m,
+              const std::vector<double>& wall_lookahead_m = {});
+
+  // Forces a rebuild at the next update (after particles were moved by hand).
+  void invalidate() { valid_ = false; }
+
+  // Candidates sorted by (i, j) with j as a signed number (walls first for each i).
+  const std::vector<CandidatePair>& pairs() const { return pairs_; }
+  // After a rebuild: index in the previous table of each new pair, or -1 if it is new.
+  const std::vector<std::int32_t>& previous_index() const { return previous_index_; }
+
+  std::size_t rebuild_count() const { return rebuilds_; }
+  double margin() const { return margin_; }
+  // Positions at the last rebuild (empty before the first one or after invalidate()).
+  const std::vector<Eigen::Vector3d>& reference_positions() const { return reference_position_; }
+  // Wall points at the last rebuild (empty before the first one).
+  const std::vector<Eigen::Vector3d>& reference_wall_points() const { return reference_wall_point_; }
+
+  // Puts back a table saved from pairs(), reference_positions(), reference_wall_points(),
+  // margin() and rebuild_count() (restart from a checkpoint): the next update() decides exactly
+  // as the saved detector would. Empty reference positions leave the table invalid (rebuilt at
+  // the next update); empty wall points: the walls' points at the next update.
+  void restore(double margin_m, std::size_t rebuilds, std::vector<Eigen::Vector3d> reference_m,
+               std::vector<CandidatePair> pairs,
+               std::vector<Eigen::Vector3d> reference_wall_points_m = {});
+
+ private:
+  void rebuild(const ParticleSet& particles, const std::vector<Wall>& walls, double lookahead_max);
+
+  double min_margin_;
+  double max_margin_;
+  double margin_ = 0.0;
+  bool valid_ = false;
+  std::size_t rebuilds_ = 0;
+  std::vector<Eigen::Vector3d> reference_position_;  // positions at the last rebuild
+  std::vector<Eigen::Vector3d> reference_wall_point_;  // wall points at the last rebuild
+  std::vector<CandidatePair> pairs_, previous_pairs_;
+  std::vector<std::int32_t> previous_index_;
+  CellGrid grid_;
+  std::ptrdiff_t parallel_from_;
+  // Per thread: its range's pairs, and the neighbours of one particle being sorted.
+  std::vector<std::vector<CandidatePair>> thread_pairs_;
+  std::vector<std::vector<std::uint32_t>> thread_neighbours_;
+};
+
+}  // namespace tmdem::mechanics

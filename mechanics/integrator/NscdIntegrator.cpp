@@ -1,0 +1,533 @@
+#include "mechanics/integrator/NscdIntegrator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <chrono>
+#include <stdexcept>
+#include <string>
+
+#include <Eigen/Geometry>
+
+#include "mechanics/solvers/ContactSolverRegistry.h"
+#include "mechanics/contact/CoulombCone.h"
+#include "mechanics/model/PairIndex.h"
+
+namespace tmdem::mechanics {
+namespace {
+
+// Two unit tangents completing n. In 2D, t1 stays in the plane and t2 = z, so that the
+// out-of-plane tangential reaction is exactly zero.
+void tangent_frame(const Eigen::Vector3d& n, int dimension, Eigen::Vector3d& t1,
+                   Eigen::Vector3d& t2) {
+  if (dimension == 2) {
+    t1 = Eigen::Vector3d(-n.y(), n.x(), 0.0);
+    t2 = Eigen::Vector3d::UnitZ();
+    return;
+  }
+  const Eigen::Vector3d a =
+      std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  t1 = (a - a.dot(n) * n).normalized();
+  t2 = n.cross(t1);
+}
+
+void require(bool ok, const std::string& message) {
+  if (!ok) throw std::invalid_argument("mechanics: " + message);
+}
+
+}  // namespace
+
+NscdIntegrator::NscdIntegrator(ParticleSet particles, std::vector<Material> materials,
+                               std::vector<Wall> walls, const Eigen::Vector3d& gravity_m_per_s2,
+                               int dimension, NscdParameters parameters)
+    : particles_(std::move(particles)),
+      materials_(std::move(materials)),
+      walls_(std::move(walls)),
+      gravity_(gravity_m_per_s2),
+      dimension_(dimension),
+      parameters_(parameters),
+      detector_(parameters.min_margin_fraction * std::max(particles_.max_radius(), 1e-300),
+                parameters.max_margin_fraction * std::max(particles_.max_radius(), 1e-300),
+                parameters.parallel_from) {
+  particles_.validate();
+  require(dimension == 2 || dimension == 3, "dimension must be 2 or 3");
+  require(gravity_.allFinite(), "gravity must be finite");
+  require(parameters_.time_step > 0.0 && std::isfinite(parameters_.time_step),
+          "time_step must be positive");
+  require(parameters_.theta > 0.0 && parameters_.theta <= 1.0, "theta must be in (0, 1]");
+  require(parameters_.tolerance > 0.0, "tolerance must be positive");
+  require(parameters_.max_iterations >= 1, "max_iterations must be at least 1");
+  require(parameters_.penetration_slop_fraction >= 0.0 &&
+              parameters_.penetration_slop_fraction < 1.0,
+          "penetration_slop_fraction must be in [0, 1)");
+  require(parameters_.recovery_speed >= 0.0 && std::isfinite(parameters_.recovery_speed),
+          "recovery_speed must be >= 0");
+  require(parameters_.relaxation > 0.0 && parameters_.relaxation < 2.0,
+          "relaxation must be in (0, 2)");
+  for (std::size_t m = 0; m < materials_.size(); ++m) {
+    require(materials_[m].friction >= 0.0 && std::isfinite(materials_[m].friction),
+            "material " + std::to_string(m) + ": friction must be >= 0");
+    require(materials_[m].rolling_friction >= 0.0 && std::isfinite(materials_[m].rolling_friction),
+            "material " + std::to_string(m) + ": rolling_friction must be >= 0");
+    rolling_ = rolling_ || materials_[m].rolling_friction > 0.0;
+  }
+  const auto material_count = static_cast<int>(materials_.size());
+  for (std::size_t i = 0; i < particles_.size(); ++i) {
+    require(particles_.material[i] < material_count,
+            "particle " + std::to_string(i) + ": material index out of range");
+  }
+  for (std::size_t w = 0; w < walls_.size(); ++w) {
+    require(walls_[w].material >= 0 && walls_[w].material < material_count,
+            "wall " + std::to_string(w) + ": material index out of range");
+    require(walls_[w].point.allFinite() && walls_[w].normal.allFinite() &&
+                std::abs(walls_[w].normal.norm() - 1.0) < 1e-12,
+            "wall " + std::to_string(w) + ": normal must be a unit vector");
+    if (walls_[w].moves()) {
+      require(walls_[w].shape == WallShape::Plane, "wall " + std::to_string(w) + ": a piston must be a plane");
+      require(std::isfinite(walls_[w].mass_kg) && std::isfinite(walls_[w].load_N) &&
+                  std::isfinite(walls_[w].velocity_m_per_s),
+              "wall " + std::to_string(w) + ": piston mass, load and velocity must be finite");
+      has_piston_ = true;
+    } else {
+      walls_[w].velocity_m_per_s = 0.0;
+    }
+  }
+  if (dimension_ == 2) {
+    gravity_.z() = 0.0;
+    // A wall normal with a z component would push particles out of the plane.
+    for (auto& wall : walls_) {
+      require(wall.shape == WallShape::Plane, "a cylinder wall needs 3D");
+      wall.normal.z() = 0.0;
+      require(wall.normal.norm() > 0.0, "a wall normal along z makes no sense in 2D");
+      wall.normal.normalize();
+    }
+  }
+
+  const std::size_t n = particles_.size();
+  inverse_mass_.resize(n);
+  inverse_inertia_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool fixed = particles_.fixed[i] != 0;
+    inverse_mass_[i] = fixed ? 0.0 : 1.0 / particles_.mass[i];
+    inverse_inertia_[i] = fixed ? 0.0 : 1.0 / particles_.inertia[i];
+    if (fixed) {
+      particles_.velocity[i].setZero();
+      particles_.angular_velocity[i].setZero();
+    }
+  }
+  keep_in_plane();
+  slop_m_ = parameters_.penetration_slop_fraction * particles_.min_radius();
+  // Validates fall_tolerance, fall_speed and tighten_steps (std::invalid_argument).
+  schedule_ = ToleranceSchedule(parameters_.tolerance, parameters_.fall_tolerance,
+                                parameters_.fall_speed, parameters_.tighten_steps);
+  SolverSettings& settings = solver_settings_;
+  settings.tolerance = parameters_.tolerance;
+  settings.max_iterations = parameters_.max_iterations;
+  settings.relaxation = parameters_.relaxation;
+  settings.stall_sweeps = parameters_.stall_sweeps;
+  settings.full_sweep_every = parameters_.full_sweep_every;
+  solver_ = make_contact_solver(parameters_.solver, settings);
+  order_ = SpatialContactOrder(parameters_.parallel_from);
+  problem_.rolling = rolling_;
+  // Built once with `tolerance`: the position solve stops at max(tolerance, 1e-2) anyway.
+  correction_ = PenetrationCorrection(settings);
+  problem_.dimension = dimension_;
+  problem_.particle_count = n;
+  problem_.inverse_mass = inverse_mass_;
+  problem_.inverse_inertia = inverse_inertia_;
+  for (const auto& wall : walls_) {
+    problem_.inverse_mass.push_back(wall.moves() ? 1.0 / wall.mass_kg : 0.0);
+    problem_.inverse_inertia.push_back(0.0);
+  }
+  const std::size_t bodies = problem_.body_count();
+  problem_.free_velocity.assign(bodies, Eigen::Vector3d::Zero());
+  problem_.free_angular_velocity.assign(bodies, Eigen::Vector3d::Zero());
+  old_velocity_.assign(bodies, Eigen::Vector3d::Zero());
+  old_angular_velocity_.assign(bodies, Eigen::Vector3d::Zero());
+  body_velocity_.assign(bodies, Eigen::Vector3d::Zero());
+  body_angular_velocity_.assign(bodies, Eigen::Vector3d::Zero());
+  lookahead_.resize(n);
+  if (has_piston_) wall_lookahead_.assign(walls_.size(), 0.0);
+}
+
+void NscdIntegrator::set_piston_load(std::size_t wall, double load_N) {
+  require(wall < walls_.size() && walls_[wall].moves(),
+          "wall " + std::to_string(wall) + " is not a piston");
+  require(std::isfinite(load_N), "wall " + std::to_string(wall) + ": piston load must be finite");
+  walls_[wall].load_N = load_N;
+}
+
+void NscdIntegrator::refresh_wall_bodies(double h) {
+  // Wall bodies: start-of-step and free velocities along the normal (fixed walls stay at 0),
+  // and how far a piston may move in the coming step (as for particles in refresh_candidates).
+  const std::size_t n = particles_.size();
+  for (std::size_t w = 0; w < walls_.size(); ++w) {
+    const Wall& wall = walls_[w];
+    if (!wall.moves()) continue;
+    const double acceleration = wall.load_N / wall.mass_kg + gravity_.dot(wall.normal);
+    old_velocity_[n + w] = wall.velocity_m_per_s * wall.normal;
+    problem_.free_velocity[n + w] = (wall.velocity_m_per_s + h * acceleration) * wall.normal;
+    wall_lookahead_[w] = 2.0 * h * (std::abs(wall.velocity_m_per_s) + h * std::abs(acceleration));
+  }
+}
+
+void NscdIntegrator::invalidate_contacts() { detector_.invalidate(); }
+
+void NscdIntegrator::keep_in_plane() {
+  if (dimension_ != 2) return;
+  for (std::size_t i = 0; i < particles_.size(); ++i) {
+    particles_.velocity[i].z() = 0.0;
+    particles_.angular_velocity[i].x() = 0.0;
+    particles_.angular_velocity[i].y() = 0.0;
+  }
+}
+
+StepReport NscdIntegrator::step() { return step(parameters_.time_step); }
+
+void NscdIntegrator::refresh_candidates(double h) {
+  // Look-ahead: a bound on the displacement during the coming step, doubled for the
+  // contact impulses and the (1 - theta) part of the next position term.
+  const double g = gravity_.norm();
+  for (std::size_t i = 0; i < particles_.size(); ++i) {
+    lookahead_[i] = 2.0 * h * (particles_.velocity[i].norm() + h * g);
+  }
+  if (!detector_.update(particles_, walls_, lookahead_, wall_lookahead_)) return;
+  order_.invalidate();
+  // Carry the forces of pairs that stay candidates over to the new table (warm start).
+  std::swap(force_, old_force_);
+  const auto& previous = detector_.previous_index();
+  force_.resize(detector_.pairs().size());
+  for (std::size_t k = 0; k < force_.size(); ++k) {
+    force_[k] = previous[k] >= 0 ? old_force_[previous[k]] : Eigen::Vector3d::Zero();
+  }
+  if (!rolling_) return;
+  std::swap(torque_, old_torque_);
+  torque_.resize(force_.size());
+  for (std::size_t k = 0; k < torque_.size(); ++k) {
+    const bool kept = previous[k] >= 0 && std::size_t(previous[k]) < old_torque_.size();
+    torque_[k] = kept ? old_torque_[previous[k]] : Eigen::Vector3d::Zero();
+  }
+}
+
+void NscdIntegrator::setup_contacts(double h) {
+  const auto& pairs = detector_.pairs();
+  const double theta = parameters_.theta;
+  ContactProblem& p = problem_;
+  p.resize_contacts(pairs.size());
+  reactions_.resize(pairs.size());
+  if (rolling_) {
+    rolling_impulse_.resize(pairs.size());
+    torque_.resize(pairs.size(), Eigen::Vector3d::Zero());  // a table restored without torques
+  }
+  gap_.resize(pairs.size());
+  // Every candidate writes only its own entries: the same bits for any thread count.
+#pragma omp parallel for schedule(static) \
+    if (static_cast<std::ptrdiff_t>(pairs.size()) >= parameters_.parallel_from)
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    const std::int32_t i = pairs[k].i, j = pairs[k].j;
+    p.body_i[k] = i;
+    p.body_j[k] = j;
+    const Eigen::Vector3d& xi = particles_.position[i];
+    const double lever_i = particles_.radius[i];
+    double lever_j = 0.0;
+    double inverse_mass = inverse_mass_[i];
+    double inverse_rotation = lever_i * lever_i * inverse_inertia_[i];
+    int other_material;
+    Eigen::Vector3d n;
+    double gap;
+    if (!is_wall(j)) {
+      const Eigen::Vector3d d = xi - particles_.position[j];
+      const double distance = d.norm();
+      // Coincident centres have no defined normal; any unit vector in the plane will do.
+      n = distance > 0.0 ? Eigen::Vector3d(d / distance) : Eigen::Vector3d::UnitY();
+      // 2D: centres share z, so n_z is 0 already; enforce it if a scene breaks that.
+      if (dimension_ == 2 && n.z() != 0.0) {
+        n.z() = 0.0;
+        n = n.norm() > 0.0 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::UnitY();
+      }
+      lever_j = particles_.radius[j];
+      gap = distance - lever_i - lever_j;
+      inverse_mass += inverse_mass_[j];
+      inverse_rotation += lever_j * lever_j * inverse_inertia_[j];
+      other_material = particles_.material[j];
+    } else {
+      const Wall& wall = walls_[wall_index(j)];
+      n = wall.normal_at(xi);
+      gap = wall.signed_distance(xi) - lever_i;
+      other_material = wall.material;
+      inverse_mass += p.inverse_mass[p.wall_body(j)];  // 0 unless a piston
+    }
+    p.normal[k] = n;
+    p.lever_i[k] = lever_i;
+    p.lever_j[k] = lever_j;
+    gap_[k] = gap;
+    tangent_frame(n, dimension_, p.tangent1[k], p.tangent2[k]);
+    // W = H^T M^-1 H: (1/m_i + 1/m_j) I + (R_i^2/I_i + R_j^2/I_j) (I - n n^T), i.e.
+    // diag(w_n, w_t, w_t) in the local frame.
+    p.w_n[k] = inverse_mass;
+    p.w_t[k] = inverse_mass + inverse_rotation;
+    const double mu = contact_friction(materials_[particles_.material[i]], materials_[other_material]);
+    p.mu[k] = mu;
+
+    // Position term P / h, with the normal velocity at the start of the step.
+    Eigen::Vector3d u_old = old_velocity_[i] - (lever_i * old_angular_velocity_[i]).cross(n);
+    if (!is_wall(j)) u_old -= old_velocity_[j] + (lever_j * old_angular_velocity_[j]).cross(n);
+    else if (has_piston_) u_old -= old_velocity_[p.wall_body(j)];
+    // Activation by predicted gap only: an overlap is never turned into a push-out speed
+    // (U_n = u_n there); the position step removes it (PenetrationCorrection.h).
+    const double predicted = gap + h * (1.0 - theta) * u_old.dot(n);
+    p.bias[k] = std::max(predicted, 0.0) / h;
+
+    // Warm start: last step's force of this pair, in the new frame, as an impulse.
+    const Eigen::Vector3d impulse = force_[k] * h;
+    const Eigen::Vector3d r(impulse.dot(n), impulse.dot(p.tangent1[k]),
+                            dimension_ == 2 ? 0.0 : impulse.dot(p.tangent2[k]));
+    reactions_[k] = p.solvable(k) ? project_onto_coulomb_cone(r, mu) : Eigen::Vector3d::Zero();
+    if (rolling_) {
+      // R_eff = R_i R_j / (R_i + R_j), a wall R_i; w_r = 1/I_i + 1/I_j (walls do not turn).
+      const double radius = lever_j > 0.0 ? lever_i * lever_j / (lever_i + lever_j) : lever_i;
+      p.rolling_radius[k] = radius;
+      p.rolling_limit[k] = radius * contact_rolling_friction(materials_[particles_.material[i]],
+                                                             materials_[other_material]);
+      p.w_r[k] = inverse_inertia_[i] + (is_wall(j) ? 0.0 : inverse_inertia_[j]);
+      // Warm start: last step's torque, perpendicular to the new n, within the rolling cone.
+      Eigen::Vector3d m = torque_[k] * h;
+      m -= m.dot(n) * n;
+      if (dimension_ == 2) m.x() = m.y() = 0.0;
+      const double limit = p.rolling_limit[k] * reactions_[k][0];
+      if (m.norm() > limit) m *= m.norm() > 0.0 ? limit / m.norm() : 0.0;
+      rolling_impulse_[k] = p.solvable(k) && p.w_r[k] > 0.0 ? m : Eigen::Vector3d::Zero();
+    }
+  }
+}
+
+StepReport NscdIntegrator::step(double h) {
+  if (!(h > 0.0) || !std::isfinite(h)) throw std::invalid_argument("mechanics: step must be > 0");
+  StepReport report;
+  const std::size_t n = particles_.size();
+  report.tolerance =
+      schedule_.enabled() ? schedule_.tolerance_for_step(max_speed(), stats_.steps + 1) : parameters_.tolerance;
+  report.fall = schedule_.falling();
+  use_tolerance(report.tolerance);
+  const std::size_t rebuilds_before = detector_.rebuild_count();
+  auto clock = std::chrono::steady_clock::now();
+  // Seconds since the last lap, and a new lap (no allocation: a clock read).
+  auto lap = [&clock] {
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - clock).count();
+    clock = now;
+    return seconds;
+  };
+  if (has_piston_) refresh_wall_bodies(h);
+  refresh_candidates(h);
+  report.rebuilt_candidates = detector_.rebuild_count() != rebuilds_before;
+  report.detection_s = lap();
+
+  // Free velocities (gravity only; no external torque).
+  for (std::size_t i = 0; i < n; ++i) {
+    old_velocity_[i] = particles_.velocity[i];
+    old_angular_velocity_[i] = particles_.angular_velocity[i];
+    problem_.free_velocity[i] = particles_.velocity[i];
+    if (inverse_mass_[i] > 0.0) problem_.free_velocity[i] += h * gravity_;
+    problem_.free_angular_velocity[i] = particles_.angular_velocity[i];
+  }
+  lap();
+  setup_contacts(h);
+  report.detection_s += lap();
+  report.candidates = problem_.size();
+  const SolveReport solved = solve_contacts();
+  report.solve_s = lap();
+  std::copy_n(body_velocity_.begin(), n, particles_.velocity.begin());
+  std::copy_n(body_angular_velocity_.begin(), n, particles_.angular_velocity.begin());
+  report.sweeps = solved.sweeps;
+  report.residual = solved.residual;
+  report.converged = solved.converged;
+  report.stalled = solved.stalled;
+  keep_in_plane();
+  // The bodies' view again (keep_in_plane may have trimmed the particles'), for the energy
+  // account and the contacts' dissipation below.
+  std::copy_n(particles_.velocity.begin(), n, body_velocity_.begin());
+  std::copy_n(particles_.angular_velocity.begin(), n, body_angular_velocity_.begin());
+  account_energy(h, report);
+
+  // Positions: q_{n+1} = q_n + h (theta v_{n+1} + (1 - theta) v_n).
+  const double theta = parameters_.theta;
+  double travel_squared = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (inverse_mass_[i] == 0.0) continue;
+    const Eigen::Vector3d dx = h * (theta * particles_.velocity[i] + (1.0 - theta) * old_velocity_[i]);
+    particles_.position[i] += dx;
+    travel_squared = std::max(travel_squared, dx.squaredNorm());
+  }
+  report.max_travel_m = std::sqrt(travel_squared);
+  for (std::size_t w = 0; w < walls_.size(); ++w) {
+    Wall& wall = walls_[w];
+    if (!wall.moves()) continue;
+    const double before = wall.velocity_m_per_s;
+    wall.velocity_m_per_s = body_velocity_[n + w].dot(wall.normal);
+    wall.point += h * (theta * wall.velocity_m_per_s + (1.0 - theta) * before) * wall.normal;
+  }
+  // Then overlaps deeper than the slop are removed by moving positions only.
+  lap();
+  gaps_after_step(gap_after_);
+  const SolveReport corrected = correction_.correct(problem_, gap_after_, slop_m_,
+                                                    parameters_.recovery_speed, h,
+                                                    particles_.position);
+  report.correction_sweeps = corrected.sweeps;
+  if (!corrected.converged) {
+    report.converged = false;
+    report.stalled = report.stalled || corrected.stalled;
+    report.residual = std::max(report.residual, corrected.residual);
+  }
+  if (corrected.sweeps > 0) {
+    gaps_after_step(gap_after_);
+    const auto& pseudo = correction_.pseudo_velocity();
+    for (std::size_t i = 0; i < n; ++i) {
+      if (inverse_mass_[i] > 0.0)
+        report.correction_potential_J -= particles_.mass[i] * gravity_.dot(h * pseudo[i]);
+    }
+  }
+  report.correction_s = lap();
+
+  // Forces for the warm start and the contact list; penetration after the step.
+  contacts_.clear();
+  double penetration = 0.0;
+  for (std::size_t k = 0; k < problem_.size(); ++k) {
+    const Eigen::Vector3d& r = reactions_[k];
+    const std::int32_t i = problem_.body_i[k], j = problem_.body_j[k];
+    force_[k] = problem_.to_global(k, r) / h;
+    penetration = std::max(penetration, -gap_after_[k]);
+    // -r . u_theta, u_theta the relative velocity the position update uses (bias removed).
+    const Eigen::Vector3d u_theta =
+        theta * problem_.local_velocity(k, body_velocity_, body_angular_velocity_) +
+        (1.0 - theta) * problem_.local_velocity(k, old_velocity_, old_angular_velocity_) -
+        Eigen::Vector3d(problem_.bias[k], 0.0, 0.0);
+    double dissipated_J = -r.dot(u_theta);
+    if (rolling_) {
+      // Rolling work: -m . (theta w_rel+ + (1 - theta) w_rel-), w_rel = omega_i - omega_j.
+      const Eigen::Vector3d& m = rolling_impulse_[k];
+      torque_[k] = m / h;
+      dissipated_J -= m.dot(theta * problem_.rolling_velocity(k, body_angular_velocity_) +
+                            (1.0 - theta) * problem_.rolling_velocity(k, old_angular_velocity_));
+    }
+    report.contact_dissipation_J += dissipated_J;
+    if (r[0] > 0.0) {
+      ContactForce out;
+      out.i = i;
+      out.j = j;
+      out.normal = problem_.normal[k];
+      out.gap_m = gap_[k];
+      out.normal_impulse_Ns = r[0];
+      out.normal_force_N = r[0] / h;
+      out.tangential_force_N = (r[1] * problem_.tangent1[k] + r[2] * problem_.tangent2[k]) / h;
+      out.dissipated_power_W = dissipated_J / h;
+      contacts_.push_back(out);
+    }
+  }
+  report.max_penetration_m = penetration;
+  report.active_contacts = contacts_.size();
+  stats_.add(report);
+  return report;
+}
+
+void NscdIntegrator::use_tolerance(double tolerance) {
+  if (tolerance == solver_settings_.tolerance) return;
+  // A new solver of the same kind with the other tolerance, carrying what the solver carries
+  // between solves: what a restart does (restore_state), so the switch keeps restarts bitwise.
+  const std::vector<double> carried = solver_->carried_state();
+  solver_settings_.tolerance = tolerance;
+  solver_ = make_contact_solver(parameters_.solver, solver_settings_);
+  solver_->restore_carried_state(carried);
+}
+
+SolveReport NscdIntegrator::solve_contacts() {
+  if (particles_.size() >= parameters_.spatial_order_from) {
+    // The order of the table's reference positions (MechanicsState.h saves them): a restored
+    // integrator computes the same order as the one it was saved from.
+    if (!order_.valid())
+      order_.update(problem_, detector_.reference_positions(), 2.0 * particles_.max_radius());
+    return order_.solve(*solver_, problem_, reactions_, rolling_impulse_, body_velocity_,
+                        body_angular_velocity_);
+  }
+  // Without rolling resistance rolling_impulse_ stays empty and is not read (ContactSolver.h),
+  // as in the ordered call above.
+  return solver_->solve_with_rolling(problem_, reactions_, rolling_impulse_, body_velocity_,
+                                     body_angular_velocity_);
+}
+
+void NscdIntegrator::account_energy(double h, StepReport& report) const {
+  // Exact increments (no difference of large totals): dK = sum (m/2) (v+ - v-).(v+ + v-) (+ the
+  // same for spin), dV = -sum m g . dx with dx the position update's own displacement.
+  const double theta = parameters_.theta;
+  double kinetic = 0.0, potential = 0.0, jump = 0.0;
+  for (std::size_t i = 0; i < particles_.size(); ++i) {
+    if (inverse_mass_[i] == 0.0) continue;
+    const Eigen::Vector3d& v = particles_.velocity[i];
+    const Eigen::Vector3d& v0 = old_velocity_[i];
+    const Eigen::Vector3d& w = particles_.angular_velocity[i];
+    const Eigen::Vector3d& w0 = old_angular_velocity_[i];
+    const double m = particles_.mass[i], I = particles_.inertia[i];
+    kinetic += 0.5 * (m * (v - v0).dot(v + v0) + I * (w - w0).dot(w + w0));
+    potential -= m * gravity_.dot(h * (theta * v + (1.0 - theta) * v0));
+    jump += m * (v - v0).squaredNorm() + I * (w - w0).squaredNorm();
+  }
+  // Pistons: their kinetic energy, and the potential of the constant external force on them
+  // (load along the normal plus weight), -F . dx.
+  for (std::size_t w = 0; w < walls_.size(); ++w) {
+    if (!walls_[w].moves()) continue;
+    const Eigen::Vector3d& v = body_velocity_[particles_.size() + w];
+    const Eigen::Vector3d& v0 = old_velocity_[particles_.size() + w];
+    const double m = walls_[w].mass_kg;
+    const Eigen::Vector3d force = walls_[w].load_N * walls_[w].normal + m * gravity_;
+    kinetic += 0.5 * m * (v - v0).dot(v + v0);
+    potential -= force.dot(h * (theta * v + (1.0 - theta) * v0));
+    jump += m * (v - v0).squaredNorm();
+  }
+  report.energy_change_J = kinetic + potential;
+  report.numerical_dissipation_J = (theta - 0.5) * jump;
+}
+
+void NscdIntegrator::gaps_after_step(std::vector<double>& gap) const {
+  gap.resize(problem_.size());
+  for (std::size_t k = 0; k < problem_.size(); ++k) {
+    const std::int32_t i = problem_.body_i[k], j = problem_.body_j[k];
+    if (!is_wall(j)) {
+      gap[k] = (particles_.position[i] - particles_.position[j]).norm() - problem_.lever_i[k] -
+               problem_.lever_j[k];
+    } else {
+      gap[k] = walls_[wall_index(j)].signed_distance(particles_.position[i]) - problem_.lever_i[k];
+    }
+  }
+}
+
+double NscdIntegrator::kinetic_energy() const {
+  double energy = 0.0;
+  for (std::size_t i = 0; i < particles_.size(); ++i) {
+    if (inverse_mass_[i] == 0.0) continue;
+    energy += 0.5 * particles_.mass[i] * particles_.velocity[i].squaredNorm() +
+              0.5 * particles_.inertia[i] * particles_.angular_velocity[i].squaredNorm();
+  }
+  for (const auto& wall : walls_) energy += 0.5 * wall.mass_kg * wall.velocity_m_per_s * wall.velocity_m_per_s;
+  return energy;
+}
+
+double NscdIntegrator::potential_energy() const {
+  double energy = 0.0;
+  for (std::size_t i = 0; i < particles_.size(); ++i) {
+    if (inverse_mass_[i] == 0.0) continue;
+    energy -= particles_.mass[i] * gravity_.dot(particles_.position[i]);
+  }
+  for (const auto& wall : walls_) energy -= wall.mass_kg * gravity_.dot(wall.point);
+  return energy;
+}
+
+double NscdIntegrator::max_speed() const {
+  double speed = 0.0;
+  for (std::size_t i = 0; i < particles_.size(); ++i) {
+    if (inverse_mass_[i] == 0.0) continue;
+    speed = std::max(speed, particles_.velocity[i].norm());
+  }
+  for (const auto& wall : walls_) speed = std::max(speed, std::abs(wall.velocity_m_per_s));
+  return speed;
+}
+
+}  // namespace tmdem::mechanics

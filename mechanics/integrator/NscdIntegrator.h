@@ -1,0 +1,184 @@
+#pragma once
+// Non-smooth contact dynamics (Moreau-Jean theta scheme, [MOR 94][JEA 99]) with the
+// bipotential contact law solved by nonlinear Gauss-Seidel ("equilibres successifs").
+//
+// One step of length h:
+//   1. refresh the candidate table if needed (ContactDetector);
+//   2. free velocities v_free = v + h M^-1 F_ext (gravity; no torque);
+//   3. for each candidate: local frame (n from j to i, tangents), Delassus block
+//      W = H^T M^-1 H, and the position term of the Signorini condition (below);
+//   4. the contact solver chosen by name (ContactSolverRegistry.h; "nlgs": Gauss-Seidel sweeps,
+//      each contact solving its own law with the others frozen), warm-started from the
+//      previous step's forces of the same pair;
+//   5. q_{n+1} = q_n + h (theta v_{n+1} + (1 - theta) v_n);
+//   6. penetration correction by positions only (split impulse, PenetrationCorrection.h).
+//
+// Signorini, activated by the predicted gap. Let g be the gap at the start of the step and
+// P = g + h (1 - theta) u_n(v_n) the gap predicted with the part of the position update that
+// is already known. The normal condition is applied to U_n = u_n(v_{n+1}) + max(P, 0) / h:
+//   U_n >= 0, r_n >= 0, r_n U_n = 0   (inside the bipotential law, u_n is replaced by U_n).
+// For P >= 0 this keeps P >= 0 from step to step, hence g_{n+1} >= (1 - theta) P >= 0 (for
+// spheres the linearised gap is a lower bound of the true one): a contact reached at P = 0
+// ends with u_n = 0 (inelastic impact), a resting contact (g = 0, u = 0) carries exactly the
+// weight, and far candidates (P > 0) only act if they would close. An overlap (P < 0, from
+// solver error or an initial overlap) only gets u_n >= 0: it may not deepen, and it is never
+// pushed out by the velocity. Pushing it out there (bias P / h, as before) turned an overlap
+// d into a speed d / h (1e-6 m in 1e-3 s = 1e-3 m/s), so solver error alone kept piles
+// moving. Instead step 6 moves the centres apart (pseudo-velocities that are thrown away)
+// when an overlap is deeper than twice the slop (NscdParameters::penetration_slop_fraction),
+// back to the slop: no velocity, no energy is ever made of an overlap.
+//
+// Pistons (Wall.h: a plane wall with a mass) are bodies of the contact problem with one
+// translational degree of freedom along their normal n_w: free velocity
+// v + h (load / m + g.n_w) n_w, their inverse mass in w_n of their contacts (exact, no
+// penalty), and the same theta update of their point as the particles. The candidate table
+// follows their motion (ContactDetector.h); max_speed and the energies include them.
+//
+// Energy account of a step. With M (v+ - v-) = h F_gravity + sum_c H_c r_c and the position
+// update above, kinetic plus gravitational energy change exactly by
+//   dK + dV = sum_c r_c . u_theta,c - (theta - 1/2) |v+ - v-|_M^2,
+// u_theta,c = theta u_c(v+) + (1 - theta) u_c(v-) the contact's relative velocity (no bias).
+// So D_c = -r_c . u_theta,c is what contact c dissipated (slip work plus impact loss; >= 0
+// except where a penetration beyond the slop is pushed out, which does work), and
+// (theta - 1/2) |v+ - v-|_M^2 is the scheme's own numerical damping (0 for theta = 1/2, > 0
+// above). StepReport carries the three terms; ContactForce::dissipated_power_W is D_c / h.
+// A piston counts as a body: its kinetic energy, and its load plus weight as a constant
+// external force whose potential is -F . x.
+//
+// Friction between two materials uses the smaller coefficient (see Material.h), and so does
+// rolling resistance: with rolling_friction > 0 each contact also carries a rolling angular
+// impulse bounded by mu_r R_eff r_n (ContactProblem.h), solved with the (n, t) block in the
+// same Gauss-Seidel visit; its work -m . (theta w_rel+ + (1 - theta) w_rel-) counts in D_c.
+// dimension 2: gravity, reactions and velocities are kept in the xy-plane exactly
+// (z, v_z, omega_x, omega_y stay as they are: 0 for a planar scene); spheres still roll.
+// Fixed particles have infinite mass and inertia: they never move and keep zero velocity.
+
+#include <Eigen/Core>
+#include <vector>
+
+#include <memory>
+
+#include "mechanics/detection/ContactDetector.h"
+#include "mechanics/contact/ContactForce.h"
+#include "mechanics/contact/ContactProblem.h"
+#include "mechanics/solvers/ContactSolver.h"
+#include "mechanics/model/Material.h"
+#include "mechanics/integrator/MechanicsState.h"
+#include "mechanics/integrator/NscdParameters.h"
+#include "mechanics/model/ParticleSet.h"
+#include "mechanics/integrator/PenetrationCorrection.h"
+#include "mechanics/solvers/SpatialContactOrder.h"
+#include "mechanics/integrator/StepReport.h"
+#include "mechanics/integrator/ToleranceSchedule.h"
+#include "mechanics/model/Wall.h"
+
+namespace tmdem::mechanics {
+
+class NscdIntegrator {
+ public:
+  // Throws std::invalid_argument for inconsistent input (bad material index, non-positive
+  // step, theta outside (0, 1], dimension not 2 or 3, ...).
+  NscdIntegrator(ParticleSet particles, std::vector<Material> materials, std::vector<Wall> walls,
+                 const Eigen::Vector3d& gravity_m_per_s2, int dimension,
+                 NscdParameters parameters = {});
+
+  StepReport step();          // one step of parameters().time_step
+  StepReport step(double h);  // one step of h seconds
+
+  // Contacts with r_n > 0 after the last step (forces are the step means, impulse / h), in
+  // strictly increasing (i, j) order, j signed (walls first for each i), as the candidates are.
+  // The coupling relies on this order (gather_contacts does not sort).
+  const std::vector<ContactForce>& contacts() const { return contacts_; }
+  const MechanicsStats& stats() const { return stats_; }
+  void restore_stats(const MechanicsStats& stats) { stats_ = stats; }  // after a restart
+
+  // What the next step reads (MechanicsState.h), and putting it back into an integrator built
+  // from the same scene: the steps after restore_state(save_state()) are bitwise those of the
+  // saved integrator. Both in NscdIntegratorState.cpp. restore_state throws
+  // std::invalid_argument when the particle or candidate counts do not fit.
+  MechanicsState save_state() const;
+  void restore_state(const MechanicsState& state);
+
+  double kinetic_energy() const;    // J, translation + rotation of moving particles
+  double potential_energy() const;  // J, -sum m g.x (zero at the origin), moving particles
+  // Largest centre speed |v| of a moving particle, m/s; the "settle" phase ends when it
+  // drops below settle_velocity. Spin is left out on purpose: a sphere spinning about its
+  // contact normal is at rest as far as the packing goes, and point contacts never stop it.
+  double max_speed() const;
+
+  const ParticleSet& particles() const { return particles_; }
+  // Mutable access (e.g. restoring a checkpoint). Call invalidate_contacts() after moving
+  // particles by hand; velocities can be changed freely.
+  ParticleSet& particles() { return particles_; }
+  void invalidate_contacts();
+
+  // Walls as they are now (a piston's point and velocity change with every step).
+  const std::vector<Wall>& walls() const { return walls_; }
+  // Changes the imposed force of piston `wall`, N (throws for a fixed wall or a non-finite load).
+  void set_piston_load(std::size_t wall, double load_N);
+  const std::vector<Material>& materials() const { return materials_; }
+  const Eigen::Vector3d& gravity() const { return gravity_; }
+  int dimension() const { return dimension_; }
+  const NscdParameters& parameters() const { return parameters_; }
+  const ContactDetector& detector() const { return detector_; }
+  // The last step's contact problem and its solver (mechanics.solver).
+  const ContactProblem& problem() const { return problem_; }
+  const ContactSolver& solver() const { return *solver_; }
+  // The tolerance schedule (mechanics.fall_tolerance, fall_speed; ToleranceSchedule.h): its
+  // phase, and the step that first used the tight tolerance after the fall.
+  const ToleranceSchedule& tolerance_schedule() const { return schedule_; }
+  // The solver tolerance the last step used (the scene's tolerance before the first step).
+  double tolerance_in_force() const { return solver_settings_.tolerance; }
+
+ private:
+  void refresh_candidates(double h);
+  void setup_contacts(double h);
+  void keep_in_plane();
+  void refresh_wall_bodies(double h);
+  // The step's energy change and numerical damping (see above), from v- and v+.
+  void account_energy(double h, StepReport& report) const;
+  void gaps_after_step(std::vector<double>& gap) const;  // per candidate, current positions, m
+  // The contact solver on problem_ (in a spatial order from parameters_.spatial_order_from).
+  SolveReport solve_contacts();
+  // The solver at this tolerance from now on (a no-op when it already is).
+  void use_tolerance(double tolerance);
+
+  ParticleSet particles_;
+  std::vector<Material> materials_;
+  std::vector<Wall> walls_;
+  Eigen::Vector3d gravity_;
+  int dimension_;
+  NscdParameters parameters_;
+  ContactDetector detector_;
+
+  std::vector<double> inverse_mass_, inverse_inertia_;  // 0 for fixed particles
+  // Per body (particles, then walls: ContactProblem.h): start-of-step velocities, and the
+  // solver's velocities (copied back to the particles and walls after the solve).
+  std::vector<Eigen::Vector3d> old_velocity_, old_angular_velocity_;
+  std::vector<Eigen::Vector3d> body_velocity_, body_angular_velocity_;
+  std::vector<double> lookahead_;
+  std::vector<double> wall_lookahead_;  // m; empty when no wall moves
+  bool has_piston_ = false;
+  double slop_m_ = 0.0;  // penetration slop (NscdParameters), m
+  ContactProblem problem_;
+  std::unique_ptr<ContactSolver> solver_;
+  SolverSettings solver_settings_;  // solver_'s, tolerance as in force
+  ToleranceSchedule schedule_;
+  SpatialContactOrder order_;  // of the candidate table (invalidated when it changes)
+  std::vector<Eigen::Vector3d> reactions_;   // local impulse per candidate (n, t1, t2), N s
+  std::vector<double> gap_;                  // per candidate at the start of the step, m
+  std::vector<double> gap_after_;            // per candidate after the step, m
+  PenetrationCorrection correction_{SolverSettings{}};
+  std::vector<Eigen::Vector3d> force_;       // global reaction force per candidate, N
+  std::vector<Eigen::Vector3d> old_force_;   // same, before a candidate rebuild
+  // Rolling resistance (some material has rolling_friction > 0; empty otherwise): rolling
+  // angular impulse per candidate (N m s, global, on i), and its mean torque (N m) carried to
+  // the next step as the warm start, like force_.
+  bool rolling_ = false;
+  std::vector<Eigen::Vector3d> rolling_impulse_;
+  std::vector<Eigen::Vector3d> torque_, old_torque_;
+  std::vector<ContactForce> contacts_;
+  MechanicsStats stats_;
+};
+
+}  // namespace tmdem::mechanics

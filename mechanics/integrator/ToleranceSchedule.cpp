@@ -1,0 +1,42 @@
+#include "mechanics/integrator/ToleranceSchedule.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace tmdem::mechanics {
+
+ToleranceSchedule::ToleranceSchedule(double tolerance, double fall_tolerance,
+                                     double fall_speed_m_per_s, int tighten_steps)
+    : tolerance_(tolerance),
+      fall_tolerance_(fall_tolerance),
+      fall_speed_m_per_s_(fall_speed_m_per_s),
+      tighten_steps_(tighten_steps) {
+  if (tighten_steps < 1) throw std::invalid_argument("mechanics: tighten_steps must be >= 1");
+  if (!(fall_tolerance >= 0.0 && std::isfinite(fall_tolerance)))
+    throw std::invalid_argument("mechanics: fall_tolerance must be >= 0 (0: no tolerance schedule)");
+  if (enabled() && !(fall_speed_m_per_s > 0.0 && std::isfinite(fall_speed_m_per_s)))
+    throw std::invalid_argument("mechanics: fall_speed must be > 0 (m/s) with a fall_tolerance");
+}
+
+double ToleranceSchedule::tolerance_for_step(double max_speed_m_per_s, std::int64_t step) {
+  if (!enabled()) return tolerance_;
+  switch (state_.phase) {
+    case Phase::Before:
+      if (max_speed_m_per_s >= fall_speed_m_per_s_) state_.phase = Phase::Falling;
+      break;
+    case Phase::Falling:
+      if (max_speed_m_per_s < fall_speed_m_per_s_) {
+        state_.phase = Phase::Landed;
+        state_.landed_step = step;
+      }
+      break;
+    case Phase::Landed:
+      break;
+  }
+  if (state_.phase == Phase::Falling) return fall_tolerance_;
+  const std::int64_t j = state_.phase == Phase::Landed ? step - state_.landed_step + 1 : tighten_steps_;
+  if (j >= tighten_steps_) return tolerance_;
+  return fall_tolerance_ * std::pow(tolerance_ / fall_tolerance_, double(j) / double(tighten_steps_));
+}
+
+}  // namespace tmdem::mechanics

@@ -1,0 +1,57 @@
+#include "mechanics/solvers/ContactSolverRegistry.h"
+
+#include <stdexcept>
+
+#include "mechanics/solvers/ApgdSolver.h"
+#include "mechanics/solvers/BlockGaussSeidelSolver.h"
+#include "mechanics/solvers/ColouredGaussSeidelSolver.h"
+#include "mechanics/solvers/GaussSeidelSolver.h"
+#include "mechanics/solvers/NncgSolver.h"
+
+namespace tmdem::mechanics {
+namespace {
+
+struct Entry {
+  std::string name;
+  std::unique_ptr<ContactSolver> (*make)(const SolverSettings&);
+};
+
+template <class Solver>
+std::unique_ptr<ContactSolver> make(const SolverSettings& settings) {
+  return std::make_unique<Solver>(settings);
+}
+
+const std::vector<Entry>& entries() {
+  static const std::vector<Entry> table = {
+      {"nlgs", &make<GaussSeidelSolver>},
+      {"apgd", &make<ApgdSolver>},
+      {"nlgs_coloured", &make<ColouredGaussSeidelSolver>},
+      {"nlgs_block", &make<BlockGaussSeidelSolver>},
+      {"nncg", &make<NncgSolver>},
+  };
+  return table;
+}
+
+}  // namespace
+
+const std::vector<std::string>& contact_solver_names() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const auto& e : entries()) out.push_back(e.name);
+    return out;
+  }();
+  return names;
+}
+
+std::unique_ptr<ContactSolver> make_contact_solver(std::string_view name,
+                                                   const SolverSettings& settings) {
+  for (const auto& e : entries()) {
+    if (e.name == name) return e.make(settings);
+  }
+  std::string valid;
+  for (const auto& n : contact_solver_names()) valid += (valid.empty() ? "" : ", ") + ("\"" + n + "\"");
+  throw std::invalid_argument("mechanics: unknown solver \"" + std::string(name) +
+                              "\" (valid: " + valid + ")");
+}
+
+}  // namespace tmdem::mechanics

@@ -1,0 +1,21 @@
+#pragma once
+// Contact solvers by name (mechanics.solver). Adding a solver: its own file implementing
+// ContactSolver, plus one line in the table of ContactSolverRegistry.cpp.
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "mechanics/solvers/ContactSolver.h"
+
+namespace tmdem::mechanics {
+
+// Registered names, in registration order (the first is the default).
+const std::vector<std::string>& contact_solver_names();
+
+// Throws std::invalid_argument naming the bad value and listing the valid names.
+std::unique_ptr<ContactSolver> make_contact_solver(std::string_view name,
+                                                   const SolverSettings& settings);
+
+}  // namespace tmdem::mechanics

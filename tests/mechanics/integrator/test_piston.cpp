@@ -1,0 +1,184 @@
+// Pistons (Wall.h, NscdIntegrator.h): a plane wall with a mass that moves along its normal
+// under an imposed force, against exact answers: free flight under a constant force (the theta
+// scheme's closed form), static equilibrium of a column pressed by the piston (every contact
+// carries the load above it), the same through the "apgd" solver, and a bitwise restart.
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "mechanics/MechanicsTestScenes.h"
+
+using namespace tmdem::mechanics;
+using namespace tmdem::mechanics::test;
+using Eigen::Vector3d;
+
+namespace {
+
+// One fixed sphere far from everything, so the scene is not empty; the piston at y = 0.
+NscdIntegrator free_piston(double mass_kg, double load_N, double theta, double h) {
+  ParticleSet set;
+  set.add(Vector3d(0, -1, 0), kRadius, sphere_mass(kRadius, kDensity), 0, true);
+  Wall piston = Wall::through({0, 0, 0}, {0, 1, 0}, 0);
+  piston.make_piston(mass_kg, load_N);
+  NscdParameters parameters;
+  parameters.theta = theta;
+  parameters.time_step = h;
+  return NscdIntegrator(std::move(set), {steel(0.0)}, {piston}, Vector3d::Zero(), 3, parameters);
+}
+
+}  // namespace
+
+TEST(Piston, FreePistonFollowsConstantForceExactly) {
+  // v_{n+1} = v_n + h F/m and x_{n+1} = x_n + h (theta v_{n+1} + (1 - theta) v_n) give after N
+  // steps from rest x = (F/m) h^2 (N^2 / 2 + (theta - 1/2) N): theta = 1/2 is exact,
+  // x = F t^2 / (2m); theta = 1 is ahead by F h t / (2m).
+  const double mass = 0.02, load = 3.0, h = 1e-3, a = load / mass;
+  const int steps = 400;
+  const double t = steps * h;
+  for (const double theta : {0.5, 1.0}) {
+    NscdIntegrator sim = free_piston(mass, load, theta, h);
+    for (int s = 0; s < steps; ++s) sim.step();
+    const Wall& w = sim.walls()[0];
+    const double expected = 0.5 * a * t * t + (theta - 0.5) * a * h * t;
+    EXPECT_NEAR(w.point.y(), expected, 1e-12 * expected) << "theta " << theta;
+    EXPECT_EQ(w.point.x(), 0.0);
+    EXPECT_NEAR(w.velocity_m_per_s, a * t, 1e-12 * a * t);
+    EXPECT_NEAR(sim.max_speed(), a * t, 1e-12 * a * t);
+    EXPECT_NEAR(sim.kinetic_energy(), 0.5 * mass * a * a * t * t, 1e-11 * mass * a * a * t * t);
+  }
+}
+
+namespace {
+
+struct Column {
+  NscdIntegrator sim;
+  double weight_N;  // of one sphere
+};
+
+// count spheres of radius R stacked on the floor y = 0 along y, a piston of `mass` pressed
+// down with `load` starting `gap` above the top sphere; side walls x = +-R (frictionless
+// spheres need nothing to stay in line, but the walls check that no side reaction appears).
+Column pressed_column(int count, double mass, double load, double gap, double gravity,
+                      const std::string& solver = "nlgs", double tolerance = 1e-12) {
+  ParticleSet set;
+  for (int k = 0; k < count; ++k)
+    set.add(Vector3d(0, kRadius * (2 * k + 1), 0), kRadius, sphere_mass(kRadius, kDensity), 0);
+  Wall piston = Wall::through({0, 2 * count * kRadius + gap, 0}, {0, -1, 0}, 0);
+  piston.make_piston(mass, load);
+  NscdParameters parameters;
+  parameters.tolerance = tolerance;
+  parameters.solver = solver;
+  parameters.max_iterations = 100000;
+  return {NscdIntegrator(std::move(set), {steel(0.0)},
+                         {Wall::through({0, 0, 0}, {0, 1, 0}, 0), piston,
+                          Wall::through({-kRadius, 0, 0}, {1, 0, 0}, 0),
+                          Wall::through({kRadius, 0, 0}, {-1, 0, 0}, 0)},
+                         Vector3d(0, -gravity, 0), 3, parameters),
+          sphere_mass(kRadius, kDensity) * gravity};
+}
+
+// Every contact of the column against the load it carries: the piston's load plus its weight
+// plus the spheres above. Returns the floor's reaction.
+double expect_column_statics(const Column& c, int count, double piston_load_N) {
+  const auto& contacts = c.sim.contacts();
+  double floor = 0.0;
+  int vertical = 0;
+  for (const ContactForce& f : contacts) {
+    if (f.j == wall_code<std::int64_t>(2) || f.j == wall_code<std::int64_t>(3)) {
+      EXPECT_LT(f.normal_force_N, 1e-9 * piston_load_N) << "side wall pushes";
+      continue;
+    }
+    ++vertical;
+    // Contact below sphere k (k = 0: floor) or above the top one (the piston, wall 1).
+    double expected;
+    if (f.j == wall_code<std::int64_t>(0)) {
+      expected = piston_load_N + count * c.weight_N;
+      floor = f.normal_force_N;
+    } else if (f.j == wall_code<std::int64_t>(1)) {
+      expected = piston_load_N;
+    } else {
+      expected = piston_load_N + double(count - f.j) * c.weight_N;
+    }
+    EXPECT_NEAR(f.normal_force_N, expected, 1e-6 * expected) << "contact (" << f.i << ", " << f.j << ")";
+    EXPECT_LT(f.tangential_force_N.norm(), 1e-9 * expected);
+  }
+  EXPECT_EQ(vertical, count + 1);
+  return floor;
+}
+
+}  // namespace
+
+TEST(Piston, PressedColumnCarriesLoadPlusWeights) {
+  // Piston of 5 g under 2 N dropped from 0.2 R onto 6 steel spheres: at rest, every contact
+  // carries exactly what is above it, the floor F + m_p g + 6 m g.
+  const int count = 6;
+  const double mass = 0.005, load = 2.0;
+  Column c = pressed_column(count, mass, load, 0.2 * kRadius, kG);
+  for (int s = 0; s < 300; ++s) c.sim.step();
+  EXPECT_LT(c.sim.max_speed(), 1e-9);
+  const double floor = expect_column_statics(c, count, load + mass * kG);
+  EXPECT_NEAR(floor, load + mass * kG + count * c.weight_N, 1e-6 * floor);
+  // The piston rests on the top sphere: rigid contacts, the impact's penetration (2.6e-9 R
+  // measured) far inside the penetration slop (1e-4 R) that is held rather than pushed out.
+  EXPECT_NEAR(c.sim.walls()[1].point.y(), 2 * count * kRadius, 1e-8 * kRadius);
+  EXPECT_LT(c.sim.stats().max_penetration_m, 1e-8 * kRadius);
+  EXPECT_EQ(c.sim.stats().unconverged_steps, 0);
+}
+
+TEST(Piston, PressedColumnWithoutGravityCarriesTheLoadOnly) {
+  const int count = 5;
+  Column c = pressed_column(count, 0.01, 7.5, 0.0, 0.0);
+  for (int s = 0; s < 50; ++s) c.sim.step();
+  const double floor = expect_column_statics(c, count, 7.5);
+  EXPECT_NEAR(floor, 7.5, 1e-6 * 7.5);
+  EXPECT_LT(c.sim.max_speed(), 1e-9);
+}
+
+TEST(Piston, ApgdSolverReachesTheSameStatics) {
+  const int count = 4;
+  const double mass = 0.005, load = 1.0;
+  Column c = pressed_column(count, mass, load, 0.1 * kRadius, kG, "apgd", 1e-10);
+  for (int s = 0; s < 300; ++s) c.sim.step();
+  const double floor = expect_column_statics(c, count, load + mass * kG);
+  EXPECT_NEAR(floor, load + mass * kG + count * c.weight_N, 1e-6 * floor);
+}
+
+TEST(Piston, LoadCanChangeAndFixedWallsRefuseIt) {
+  Column c = pressed_column(3, 0.01, 1.0, 0.0, 0.0);
+  for (int s = 0; s < 20; ++s) c.sim.step();
+  c.sim.set_piston_load(1, 4.0);
+  for (int s = 0; s < 20; ++s) c.sim.step();
+  EXPECT_NEAR(expect_column_statics(c, 3, 4.0), 4.0, 4e-6);
+  EXPECT_THROW(c.sim.set_piston_load(0, 1.0), std::invalid_argument);
+  EXPECT_THROW(Wall::cylinder({0, 0, 0}, {0, 1, 0}, 1.0, 0).make_piston(1.0, 0.0), std::invalid_argument);
+  EXPECT_THROW(Wall::through({0, 0, 0}, {0, 1, 0}, 0).make_piston(0.0, 1.0), std::invalid_argument);
+}
+
+TEST(Piston, RestoredIntegratorContinuesBitwise) {
+  // A piston falling onto a random pile: its point and velocity and the detector's reference
+  // wall points are part of the state.
+  auto make = [] {
+    NscdIntegrator pile = random_pile(30, 3, 0.3, 11);
+    auto walls = pile.walls();
+    Wall piston = Wall::through({0, 0.012, 0}, {0, -1, 0}, 0);
+    walls.push_back(piston.make_piston(0.01, 0.5));
+    return NscdIntegrator(pile.particles(), pile.materials(), walls, pile.gravity(), 3, pile.parameters());
+  };
+  NscdIntegrator original = make();
+  for (int s = 0; s < 60; ++s) original.step();
+  const MechanicsState saved = original.save_state();
+  ASSERT_EQ(saved.wall_point_m.size(), original.walls().size());
+  NscdIntegrator restored = make();
+  restored.restore_state(saved);
+  for (int s = 0; s < 80; ++s) {
+    original.step();
+    restored.step();
+    const auto& a = original.walls().back();
+    const auto& b = restored.walls().back();
+    ASSERT_EQ(std::memcmp(a.point.data(), b.point.data(), sizeof(Vector3d)), 0) << "step " << s;
+    ASSERT_EQ(a.velocity_m_per_s, b.velocity_m_per_s) << "step " << s;
+    ASSERT_EQ(std::memcmp(original.particles().position.data(), restored.particles().position.data(),
+                          30 * sizeof(Vector3d)), 0) << "step " << s;
+  }
+  EXPECT_LT(original.walls().back().point.y(), 0.012);  // it moved
+}

@@ -1,0 +1,255 @@
+// The tolerance schedule (mechanics/integrator/ToleranceSchedule.h, NscdParameters::fall_tolerance and
+// fall_speed): which tolerance each step uses, checked against a sphere dropped onto a floor
+// whose speeds are known in closed form; that the tolerance in force is the one the solver
+// stops at; and that a restored integrator continues bit for bit across the switch.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+#include "mechanics/MechanicsTestScenes.h"
+#include "mechanics/integrator/ToleranceSchedule.h"
+
+using namespace tmdem::mechanics;
+using namespace tmdem::mechanics::test;
+
+namespace {
+
+constexpr double kStep = 1e-3;  // s
+
+// One sphere of radius kRadius whose gap to the floor is g h^2 n^2 / 2: in free fall under the
+// theta = 1/2 scheme (x_k = x_0 - g h^2 k^2 / 2 exactly, v_k = -k h g) it reaches the floor
+// after n steps. The gap is predicted one step ahead (P = gap + h u_n / 2; NscdIntegrator.h),
+// so the floor acts in step n already: at the start of step n the gap is g h^2 (2n - 1) / 2
+// and the speed (n - 1) h g, P = g h^2 n / 2 > 0, and the inelastic condition
+// u_n(v+) + P / h = 0 gives v+ = -n h g / 2 (half the free-fall speed), leaving the gap P / 2.
+// In step n + 1, P = P / 2 - h (n h g / 2) / 2 = 0: the sphere stops (v+ = 0) and rests.
+// In step n - 1 the floor does not act (P = (3n/2 - 1) g h^2, free U_n = n h g / 2 > 0).
+// So the speed at the start of step k is (k - 1) h g for k <= n, n h g / 2 at k = n + 1 and
+// 0 from k = n + 2 on.
+NscdIntegrator dropped_sphere(int n, NscdParameters parameters) {
+  parameters.time_step = kStep;
+  ParticleSet set;
+  const double gap = kG * kStep * kStep * n * n / 2.0;
+  set.add(Eigen::Vector3d(0.0, kRadius + gap, 0.0), kRadius, sphere_mass(kRadius, kDensity), 0);
+  return NscdIntegrator(std::move(set), {steel(0.3)}, {Wall::through({0, 0, 0}, {0, 1, 0}, 0)},
+                        Eigen::Vector3d(0, -kG, 0), 3, parameters);
+}
+
+NscdParameters schedule(double tolerance, double fall_tolerance, double fall_speed) {
+  NscdParameters p;
+  p.tolerance = tolerance;
+  p.fall_tolerance = fall_tolerance;
+  p.fall_speed = fall_speed;
+  return p;
+}
+
+// The speed at the start of step k (1-based) of dropped_sphere(n), closed form (see above).
+double start_speed(int k, int n) {
+  if (k <= n) return (k - 1) * kStep * kG;
+  if (k == n + 1) return n * kStep * kG / 2.0;
+  return 0.0;
+}
+
+bool bitwise_equal(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b) {
+  return a.size() == b.size() &&
+         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(Eigen::Vector3d)) == 0);
+}
+
+}  // namespace
+
+// The trajectory the schedule's test relies on: speeds at the start of every step as derived
+// above (to round-off), for a schedule that is off.
+TEST(ToleranceSchedule, DroppedSphereSpeedsAreTheClosedFormOnes) {
+  constexpr int n = 10;
+  NscdIntegrator sim = dropped_sphere(n, {});
+  for (int k = 1; k <= n + 4; ++k) {
+    EXPECT_NEAR(sim.max_speed(), start_speed(k, n), 1e-12) << "start of step " << k;
+    sim.step();
+  }
+  EXPECT_NEAR(sim.particles().position[0].y(), kRadius, 1e-12);
+}
+
+// The phase of every step, against the closed-form start speeds: falling from the first step
+// that starts at or above fall_speed, landed (tight) from the first one after it that starts
+// below; each step's report carries the tolerance it was solved at. Two thresholds: one the
+// half-speed step n + 1 still exceeds (landing at n + 2), one it does not (landing at n + 1).
+TEST(ToleranceSchedule, SwitchesWhereTheClosedFormSpeedsCrossFallSpeed) {
+  constexpr int n = 10;
+  for (const double units : {2.5, 5.5}) {  // fall_speed in units of h g (away from any speed)
+    const double fall_speed = units * kStep * kG;
+    const int first_fall = int(std::ceil(units)) + 1;           // start speed (k - 1) h g >= V
+    const int landed = n * 0.5 >= units ? n + 2 : n + 1;        // first start below V after it
+    NscdIntegrator sim = dropped_sphere(n, schedule(1e-9, 1e-3, fall_speed));
+    for (int k = 1; k <= n + 5; ++k) {
+      const bool falling = k >= first_fall && k < landed;
+      const StepReport report = sim.step();
+      EXPECT_EQ(report.fall, falling) << "fall_speed " << units << " h g, step " << k;
+      EXPECT_EQ(report.tolerance, falling ? 1e-3 : 1e-9) << "step " << k;
+      EXPECT_EQ(sim.tolerance_in_force(), report.tolerance);
+      EXPECT_EQ(sim.tolerance_schedule().landed_step(), k >= landed ? landed : 0) << "step " << k;
+    }
+    EXPECT_EQ(sim.stats().fall_steps, landed - first_fall);
+    EXPECT_EQ(sim.stats().fall_unconverged_steps, 0);
+    EXPECT_EQ(sim.tolerance_schedule().phase(), ToleranceSchedule::Phase::Landed);
+  }
+}
+
+// tighten_steps = 3 from 1e-3 to 1e-6: the landed steps take 1e-4, 1e-5 and then 1e-6 (a
+// factor 10 per step), starting at the closed-form landing step.
+TEST(ToleranceSchedule, TightensGeometricallyOverTightenSteps) {
+  constexpr int n = 10;
+  NscdParameters parameters = schedule(1e-6, 1e-3, 2.5 * kStep * kG);
+  parameters.tighten_steps = 3;
+  NscdIntegrator sim = dropped_sphere(n, parameters);
+  const double expected[] = {1e-6, 1e-6, 1e-6, 1e-3, 1e-3, 1e-3, 1e-3, 1e-3, 1e-3, 1e-3,
+                             1e-3, 1e-4, 1e-5, 1e-6, 1e-6, 1e-6};  // steps 1-16, landing at 12
+  for (int k = 1; k <= 16; ++k) {
+    const StepReport report = sim.step();
+    EXPECT_NEAR(report.tolerance, expected[k - 1], 1e-12 * expected[k - 1]) << "step " << k;
+    EXPECT_EQ(report.fall, k >= 4 && k < 12) << "step " << k;
+  }
+  EXPECT_EQ(sim.tolerance_schedule().landed_step(), n + 2);
+  EXPECT_EQ(sim.stats().fall_steps, 8);
+  EXPECT_THROW(ToleranceSchedule(1e-6, 1e-3, 0.1, 0), std::invalid_argument);
+}
+
+// One-way: after landing, speeds above fall_speed again (the sphere kicked upwards) keep the
+// tight tolerance.
+TEST(ToleranceSchedule, LandedStaysLanded) {
+  constexpr int n = 10;
+  NscdIntegrator sim = dropped_sphere(n, schedule(1e-9, 1e-3, 2.5 * kStep * kG));
+  for (int k = 1; k <= n + 2; ++k) sim.step();
+  ASSERT_EQ(sim.tolerance_schedule().landed_step(), n + 2);
+  sim.particles().velocity[0] = Eigen::Vector3d(0.0, 1.0, 0.0);  // 1 m/s up: far above 2.5 h g
+  for (int k = 0; k < 5; ++k) {
+    const StepReport report = sim.step();
+    EXPECT_FALSE(report.fall);
+    EXPECT_EQ(report.tolerance, 1e-9);
+  }
+  EXPECT_EQ(sim.tolerance_schedule().landed_step(), n + 2);
+}
+
+// Particles that never reach fall_speed are solved at `tolerance` throughout.
+TEST(ToleranceSchedule, NeverFastEnoughMeansTightThroughout) {
+  NscdIntegrator sim = dropped_sphere(10, schedule(1e-9, 1e-3, 1.0));  // 1 m/s: never reached
+  for (int k = 0; k < 20; ++k) {
+    const StepReport report = sim.step();
+    EXPECT_FALSE(report.fall);
+    EXPECT_EQ(report.tolerance, 1e-9);
+  }
+  EXPECT_EQ(sim.stats().fall_steps, 0);
+  EXPECT_EQ(sim.tolerance_schedule().phase(), ToleranceSchedule::Phase::Before);
+}
+
+// The tolerance in force is the one the solver stops at: on a pouring 3D pile, a falling step
+// stops as soon as its residual is below fall_tolerance (so some stop above the tight tolerance,
+// having used fewer sweeps), a landed step only below tolerance; converged means below the
+// tolerance of its own step.
+TEST(ToleranceSchedule, TheSolverStopsAtTheToleranceInForce) {
+  constexpr double tight = 1e-8, loose = 1e-3;
+  NscdParameters parameters = schedule(tight, loose, 0.05);
+  parameters.max_iterations = 20000;
+  NscdIntegrator sim = random_pile(40, 3, 0.3, 7, parameters);
+  int falling_above_tight = 0, landed_solved = 0;
+  for (int k = 0; k < 400; ++k) {
+    const StepReport report = sim.step();
+    const bool landed = sim.tolerance_schedule().phase() == ToleranceSchedule::Phase::Landed;
+    ASSERT_EQ(report.tolerance, report.fall ? loose : tight);
+    if (report.converged && report.candidates > 0 && report.sweeps > 0) {
+      EXPECT_LE(report.residual, report.tolerance) << "step " << k + 1;
+      if (report.fall && report.residual > tight) ++falling_above_tight;
+      if (landed && report.active_contacts > 0) ++landed_solved;
+    }
+  }
+  ASSERT_GT(sim.tolerance_schedule().landed_step(), 0) << "the pile should land within 400 steps";
+  EXPECT_GT(sim.stats().fall_steps, 10);
+  EXPECT_GT(falling_above_tight, 0) << "no falling step stopped at the loose tolerance";
+  EXPECT_GT(landed_solved, 0);
+}
+
+// A restored integrator continues bit for bit across the switch: saved while falling, both
+// tighten at the same step and take the same steps after it (and through a 4-step ramp).
+TEST(ToleranceSchedule, RestoredIntegratorContinuesBitwiseAcrossTheSwitch) {
+  for (const char* solver : {"nlgs", "nncg", "apgd", "nncg ramp"}) {
+    NscdParameters parameters = schedule(1e-7, 1e-3, 0.05);
+    parameters.solver = std::string(solver) == "nncg ramp" ? "nncg" : solver;
+    if (std::string(solver) == "nncg ramp") parameters.tighten_steps = 4;  // saved before it
+    NscdIntegrator probe = random_pile(40, 3, 0.3, 7, parameters);
+    for (int k = 0; k < 400 && probe.tolerance_schedule().landed_step() == 0; ++k) probe.step();
+    const std::int64_t landed = probe.tolerance_schedule().landed_step();
+    ASSERT_GT(landed, 20) << solver;
+
+    NscdIntegrator original = random_pile(40, 3, 0.3, 7, parameters);
+    const int before = int(landed) - 10;  // falling
+    for (int k = 0; k < before; ++k) original.step();
+    ASSERT_TRUE(original.tolerance_schedule().falling()) << solver;
+    const MechanicsState saved = original.save_state();
+    EXPECT_EQ(saved.tolerance_schedule.phase, ToleranceSchedule::Phase::Falling);
+    NscdIntegrator restored = random_pile(40, 3, 0.3, 7, parameters);
+    restored.restore_state(saved);
+    for (int k = 0; k < 40; ++k) {
+      const StepReport a = original.step(), b = restored.step();
+      ASSERT_EQ(a.tolerance, b.tolerance) << solver << ", step " << before + k + 1;
+      ASSERT_EQ(a.sweeps, b.sweeps) << solver << ", step " << before + k + 1;
+      ASSERT_TRUE(bitwise_equal(original.particles().position, restored.particles().position))
+          << solver << ", step " << before + k + 1;
+      ASSERT_TRUE(bitwise_equal(original.particles().velocity, restored.particles().velocity));
+      ASSERT_TRUE(bitwise_equal(original.particles().angular_velocity,
+                                restored.particles().angular_velocity));
+    }
+    EXPECT_EQ(original.tolerance_schedule().landed_step(), landed) << solver;
+    EXPECT_EQ(restored.tolerance_schedule().landed_step(), landed) << solver;
+    EXPECT_EQ(restored.stats().fall_steps, original.stats().fall_steps);
+    EXPECT_EQ(restored.stats().unconverged_steps, original.stats().unconverged_steps);
+
+    // The phase is what makes it so: saved after landing and restored without it (Before), a
+    // restarted run whose particles are fast again would go back to the loose tolerance.
+    MechanicsState landed_state = original.save_state();
+    ASSERT_EQ(landed_state.tolerance_schedule.phase, ToleranceSchedule::Phase::Landed);
+    NscdIntegrator kept = random_pile(40, 3, 0.3, 7, parameters);
+    kept.restore_state(landed_state);
+    EXPECT_EQ(kept.tolerance_schedule().landed_step(), landed);
+    landed_state.tolerance_schedule = {};
+    NscdIntegrator forgetful = random_pile(40, 3, 0.3, 7, parameters);
+    forgetful.restore_state(landed_state);
+    for (auto* sim : {&kept, &forgetful}) sim->particles().velocity[0] = Eigen::Vector3d(0, 1, 0);
+    EXPECT_EQ(kept.step().tolerance, 1e-7) << solver;
+    EXPECT_EQ(forgetful.step().tolerance, 1e-3) << solver << ": the saved phase should matter";
+  }
+}
+
+// A fall_tolerance equal to tolerance gives the bits of no schedule at all (the README's way
+// to measure an example's earlier settings again), while a looser one does not.
+TEST(ToleranceSchedule, EqualTolerancesGiveTheBitsOfNoSchedule) {
+  NscdParameters none;
+  none.tolerance = 1e-4;
+  NscdIntegrator plain = random_pile(40, 3, 0.3, 7, none);
+  NscdIntegrator same = random_pile(40, 3, 0.3, 7, schedule(1e-4, 1e-4, 0.05));
+  NscdIntegrator looser = random_pile(40, 3, 0.3, 7, schedule(1e-4, 1e-2, 0.05));
+  bool looser_differs = false;
+  for (int k = 0; k < 200; ++k) {
+    plain.step();
+    const StepReport report = same.step();
+    looser.step();
+    ASSERT_TRUE(bitwise_equal(plain.particles().position, same.particles().position)) << k;
+    ASSERT_TRUE(bitwise_equal(plain.particles().velocity, same.particles().velocity)) << k;
+    EXPECT_EQ(report.tolerance, 1e-4);
+    looser_differs = looser_differs || !bitwise_equal(plain.particles().velocity, looser.particles().velocity);
+  }
+  EXPECT_GT(same.stats().fall_steps, 0);  // it did fall: the schedule ran, at one tolerance
+  EXPECT_TRUE(looser_differs);
+}
+
+TEST(ToleranceSchedule, BadValuesAreRefused) {
+  EXPECT_THROW(ToleranceSchedule(1e-6, 1e-4, 0.0), std::invalid_argument);
+  EXPECT_THROW(ToleranceSchedule(1e-6, 1e-4, -1.0), std::invalid_argument);
+  EXPECT_THROW(ToleranceSchedule(1e-6, 1e-4, std::nan("")), std::invalid_argument);
+  EXPECT_THROW(ToleranceSchedule(1e-6, std::nan(""), 0.1), std::invalid_argument);
+  EXPECT_THROW(ToleranceSchedule(1e-6, -1e-4, 0.1), std::invalid_argument);
+  EXPECT_NO_THROW(ToleranceSchedule(1e-6, 0.0, 0.0));  // off
+  EXPECT_THROW(dropped_sphere(10, schedule(1e-6, -1e-4, 0.1)), std::invalid_argument);
+  EXPECT_THROW(dropped_sphere(10, schedule(1e-6, 1e-4, 0.0)), std::invalid_argument);
+}

@@ -1,0 +1,155 @@
+// Conduction through the stagnant gas between particles, and between a particle and an
+// isothermal wall, across touching and near pairs: q_a += H_g (T_b - T_a). H_g depends only on
+// the geometry of the frozen packing, so it is computed once per edge set (update_geometry) and
+// enters the Laplacian like contact conduction, with the same exact (constant) Jacobian.
+// Models: thermal/modes/GasGapConductance.h; README "Gas in the gaps".
+#include <memory>
+#include <string_view>
+#include <vector>
+
+#include "thermal/modes/GasGapConductance.h"
+#include "thermal/modes/ModeDescription.h"
+
+namespace tmdem::thermal {
+namespace {
+
+enum class GasModel { VargasMcCarthy, SurroundingLayer };
+
+class GasConductionMode final : public HeatTransferMode {
+ public:
+  explicit GasConductionMode(const ModeParameters& p)
+      : k_f_W_per_mK_(p["conductivity"]),
+        model_(p.choice("model") == "surrounding_layer" ? GasModel::SurroundingLayer
+                                                        : GasModel::VargasMcCarthy),
+        reach_(p["cutoff"]),
+        min_gap_m_(p["min_gap"]) {}
+
+  std::string_view name() const override { return "gas_conduction"; }
+
+  void update_geometry(const ThermalNetwork& net) override {
+    H_edge_.assign(net.edge_count(), 0.0);
+    for (std::size_t e = 0; e < net.edge_count(); ++e) H_edge_[e] = edge_conductance(net, e);
+    H_wall_.assign(net.wall_edge_count(), 0.0);
+    for (std::size_t w = 0; w < net.wall_edge_count(); ++w) H_wall_[w] = wall_conductance(net, w);
+    cached_edge_a_ = net.edge_a;
+    cached_edge_b_ = net.edge_b;
+    cached_wall_node_ = net.wall_node;
+  }
+
+  bool add_heat_flow(const ThermalNetwork& net, std::span<const double> T,
+                     std::span<double> q, double& boundary_W) const override {
+    // A network other than the system's (the conductivity study's wall-filtered copies): its
+    // conductances from its own geometry, computed here, not the cached ones.
+    if (!is_cached(net)) return GasConductionMode(*this, net).add_heat_flow(net, T, q, boundary_W);
+    const auto* held = net.held.data();
+    for (std::size_t e = 0; e < H_edge_.size(); ++e) {
+      const auto a = net.edge_a[e], b = net.edge_b[e];
+      const double flow_into_a = H_edge_[e] * (T[b] - T[a]);
+      q[a] += flow_into_a;
+      q[b] -= flow_into_a;
+      if (held[a] != held[b]) boundary_W += held[a] ? -flow_into_a : flow_into_a;
+    }
+    for (std::size_t w = 0; w < H_wall_.size(); ++w) {
+      const auto i = net.wall_node[w];
+      const double flow = H_wall_[w] * (net.wall_temperature_K[w] - T[i]);
+      q[i] += flow;
+      if (!held[i]) boundary_W += flow;
+    }
+    return true;
+  }
+
+  void add_jacobian(const ThermalNetwork& net, std::span<const double> T,
+                    JacobianView J) const override {
+    if (!is_cached(net)) return GasConductionMode(*this, net).add_jacobian(net, T, J);
+    for (std::size_t e = 0; e < H_edge_.size(); ++e) {
+      J.edge_W_per_K[e] += H_edge_[e];
+      J.diagonal_W_per_K[net.edge_a[e]] -= H_edge_[e];
+      J.diagonal_W_per_K[net.edge_b[e]] -= H_edge_[e];
+    }
+    for (std::size_t w = 0; w < H_wall_.size(); ++w) J.diagonal_W_per_K[net.wall_node[w]] -= H_wall_[w];
+  }
+
+ private:
+  GasConductionMode(const GasConductionMode& settings, const ThermalNetwork& net)
+      : k_f_W_per_mK_(settings.k_f_W_per_mK_), model_(settings.model_), reach_(settings.reach_),
+        min_gap_m_(settings.min_gap_m_) {
+    update_geometry(net);
+  }
+
+  bool is_cached(const ThermalNetwork& net) const {
+    return net.edge_a == cached_edge_a_ && net.edge_b == cached_edge_b_ &&
+           net.wall_node == cached_wall_node_;
+  }
+
+  double edge_conductance(const ThermalNetwork& net, std::size_t e) const {
+    return conductance({net.radius_m[net.edge_a[e]], net.radius_m[net.edge_b[e]], net.edge_gap_m[e],
+                        net.edge_contact_radius_m[e]},
+                       net.edge_in_contact[e] != 0);
+  }
+
+  double wall_conductance(const ThermalNetwork& net, std::size_t w) const {
+    GasGap g;
+    g.radius_a_m = net.radius_m[net.wall_node[w]];
+    g.gap_m = net.wall_gap_m[w];
+    g.contact_radius_m = net.wall_contact_radius_m[w];
+    return conductance(g, net.wall_in_contact[w] != 0);
+  }
+
+  double conductance(const GasGap& g, bool in_contact) const {
+    if (model_ == GasModel::VargasMcCarthy)
+      return in_contact || g.gap_m <= 0.0 ? vargas_mccarthy_conductance_W_per_K(g, k_f_W_per_mK_) : 0.0;
+    return surrounding_layer_conductance_W_per_K(g, k_f_W_per_mK_, reach_, min_gap_m_);
+  }
+
+  double k_f_W_per_mK_;
+  GasModel model_;
+  double reach_;      // fraction of the smaller radius
+  double min_gap_m_;  // L_min of the surrounding layer
+  std::vector<double> H_edge_, H_wall_;  // W/K, per edge of the current geometry
+  std::vector<std::int32_t> cached_edge_a_, cached_edge_b_, cached_wall_node_;  // that geometry
+};
+
+}  // namespace
+
+const ModeDescription& gas_conduction_mode() {
+  static const ModeDescription mode{
+      .name = "gas_conduction",
+      .summary = "conduction through the stagnant gas between particles and to isothermal walls, "
+                 "H_g (T_b - T_a) over touching and near pairs",
+      .effect = "gas_conduction",
+      .effect_description = "conduction through the interstitial gas, see [fluid]",
+      .section = "fluid",
+      .section_description =
+          "the stagnant interstitial fluid; used when effects.gas_conduction = true",
+      .parameters = {{.key = "conductivity",
+                      .unit = "W/(m K)",
+                      .default_value = 0.0262,
+                      .range = ParameterRange::greater(0.0),
+                      .description = "fluid thermal conductivity k_f (air at 300 K: 0.0262)"},
+                     {.key = "model",
+                      .range = ParameterRange::any(),
+                      .description = "gas-gap conductance model: \"vargas_mccarthy\" (touching "
+                                     "pairs, Vargas & McCarthy 2002) or \"surrounding_layer\" "
+                                     "(touching and near pairs, Rong & Horio 1999)",
+                      .choices = {"vargas_mccarthy", "surrounding_layer"}},
+                     {.key = "cutoff",
+                      .unit = "",
+                      .default_value = 0.4,
+                      .range = ParameterRange::open_closed(0.0, 2.0),
+                      .description = "largest gap that conducts, as a fraction of the smaller "
+                                     "radius; the surrounding layer's thickness"},
+                     {.key = "min_gap",
+                      .unit = "m",
+                      .default_value = 1.0e-7,
+                      .range = ParameterRange::greater(0.0),
+                      .description = "smallest gas thickness of the surrounding layer (surface "
+                                     "roughness, gas mean free path: air 6.8e-8 m)"}},
+      .near_pair_reach = "cutoff",
+      .make = [](const ModeParameters& p) -> std::unique_ptr<HeatTransferMode> {
+        return std::make_unique<GasConductionMode>(p);
+      },
+  };
+  return mode;
+}
+
+}  // namespace tmdem::thermal

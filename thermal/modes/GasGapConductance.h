@@ -1,0 +1,35 @@
+#pragma once
+// Conductance of the stagnant gas (or liquid) between two spheres, or between a sphere and a
+// plane wall, W/K: the models of effects.gas_conduction (thermal/modes/GasConductionMode.cpp; README
+// "Gas in the gaps" gives equations, sources and validity).
+#include <limits>
+
+namespace tmdem::thermal {
+
+struct GasGap {
+  double radius_a_m = 0.0;
+  double radius_b_m = std::numeric_limits<double>::infinity();  // infinity: a plane wall
+  double gap_m = 0.0;             // surface gap; < 0 for an overlap
+  double contact_radius_m = 0.0;  // radius of the solid contact disc (0: point or no contact)
+};
+
+// Surrounding fluid layer (Rong & Horio 1999; Musser 2011; Morris et al. 2016): heat flows
+// parallel to the line of centres through the gas lens inside a fluid layer of thickness
+// layer_fraction * r_min around the larger body,
+//   H = k_f * integral_{r_in}^{r_out} 2 pi r dr / max(L_min, S(r)),
+// S(r) = d - sqrt(R_a^2 - r^2) - sqrt(R_b^2 - r^2) the gas thickness at distance r from the
+// axis (plane: h - sqrt(R^2 - r^2)), r_in the contact radius, r_out where the layer meets the
+// other body (at most r_min). Zero once the gap exceeds the layer. Evaluated as the exact
+// constant-S part plus adaptive Gauss-Kronrod (G7K15) in r = r_min sin(theta), relative
+// accuracy about 1e-12.
+double surrounding_layer_conductance_W_per_K(const GasGap& gap, double fluid_conductivity_W_per_mK,
+                                             double layer_fraction, double min_gap_m);
+
+// Vargas & McCarthy (2002) stagnant-fluid conductance of a touching pair, in the closed form
+// used by Kratos ThermalDEM (IndirectConductionVargas): with the mean radius R = (R_a + R_b)/2
+// (a plane: R = R_a) and contact radius a,
+//   H = 2 pi k_f (R - a) (1 - a^2 / (2 R^2)) / (1 - pi/4).
+// Defined for touching pairs only; the caller passes touching pairs.
+double vargas_mccarthy_conductance_W_per_K(const GasGap& gap, double fluid_conductivity_W_per_mK);
+
+}  // namespace tmdem::thermal

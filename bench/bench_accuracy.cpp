@@ -61,7 +61,6 @@ int main(int argc, char** argv) {
   auto problem = build_frozen_thermal_problem(scene, progress);
   auto& system = *problem.system;
   const auto base = integrator_settings(scene);
-  const auto modes = ThermalNetworkBuilder(scene).mode_settings();
   const double T_end = scene.duration_s;
   AccuracyStudyOptions opt;
   // The CVODE runs are short: time each 5 times and keep the least (explicit runs: once).
@@ -71,7 +70,7 @@ int main(int argc, char** argv) {
 
   std::printf("scene: %s, %zu particles, end time %g s, target max error %g K\n",
               scene_path.c_str(), system.size(), T_end, target);
-  const auto ref = accuracy_reference(system, problem.T0_K, T_end, base, modes, opt);
+  const auto ref = accuracy_reference(system, problem.T0_K, T_end, base, opt);
   std::printf("reference: %s, %.3g s\n", ref.description.c_str(), ref.wall_time_s);
   {
     auto s = base;

@@ -23,7 +23,6 @@ int run_accuracy_command(const Scene& scene, const AccuracyCommandOptions& optio
   const int computed = csv.compute_or_discard<ReferenceError>([&] {
     ProgressReporter progress(log, options.quiet, options.terminal);
     const auto base = integrator_settings(scene);
-    const auto modes = ThermalNetworkBuilder(scene).mode_settings();
     if (scene.effects.mechanics == MechanicsMode::Dynamic && near_pair_reach(scene) > 0.0) {
       log << "error: tmdem study accuracy replays a dynamic scene's recorded contacts without "
              "positions, so it cannot follow the near pairs of effects.gas_conduction or "
@@ -45,11 +44,11 @@ int run_accuracy_command(const Scene& scene, const AccuracyCommandOptions& optio
                                        double, CouplingStrategy coupling) {
         replay.run(integ, T, coupling);
       };
-      result = run_accuracy_study(*system, T0, scene.duration_s, base, modes, study,
+      result = run_accuracy_study(*system, T0, scene.duration_s, base, study,
                                   options.quiet ? nullptr : &log, driver);
     } else {
       auto problem = build_frozen_thermal_problem(scene, progress);
-      result = run_accuracy_study(*problem.system, problem.T0_K, scene.duration_s, base, modes,
+      result = run_accuracy_study(*problem.system, problem.T0_K, scene.duration_s, base,
                                   options.study, options.quiet ? nullptr : &log);
     }
     return kExitOk;

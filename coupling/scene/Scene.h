@@ -11,6 +11,8 @@
 #include <string_view>
 #include <vector>
 
+#include "mechanics/solvers/ContactSolverRegistry.h"
+#include "thermal/integrators/IntegratorKind.h"
 #include "thermal/modes/ModeSettings.h"
 
 namespace tmdem::coupling {
@@ -115,7 +117,7 @@ struct Effects {
 struct MechanicsSettings {
   double time_step_s = 1.0e-3;
   double theta = 0.5;
-  std::string solver = "nncg";  // mechanics::contact_solver_names()
+  std::string solver = mechanics::default_contact_solver();  // mechanics::contact_solver_names()
   double tolerance = 1.0e-6;
   // Tolerance schedule (mechanics::ToleranceSchedule): fall_tolerance while the largest
   // particle speed is at or above fall_speed, until it first drops below; 0 = off (absent).
@@ -131,8 +133,8 @@ struct MechanicsSettings {
 };
 
 struct ThermalSettings {
-  std::string integrator = "cvode";    // cvode | ida | explicit
-  std::string linear_solver = "klu";   // klu | pcg
+  std::string integrator{thermal::name_of(thermal::kDefaultIntegrator)};  // thermal_integrator_names()
+  std::string linear_solver{thermal::name_of(thermal::kDefaultLinearSolver)};  // linear_solver_names()
   double relative_tolerance = 1.0e-6;
   double absolute_tolerance_K = 1.0e-6;
   double explicit_step_s = 0.0;        // 0 = largest stable step

@@ -4,6 +4,8 @@
 #include <map>
 
 #include "mechanics/solvers/ContactSolverRegistry.h"
+#include "thermal/integrators/IntegratorKind.h"
+#include "thermal/integrators/IntegratorRegistry.h"
 #include "thermal/modes/ModeRegistry.h"
 
 namespace tmdem::coupling {
@@ -58,6 +60,11 @@ Key value(std::string name, std::string unit, std::string default_text, std::str
 
 Key boolean(std::string name, std::string default_text, std::string description) {
   return value(std::move(name), "", std::move(default_text), "true, false", std::move(description));
+}
+
+// A registry's names as the schema's strings.
+std::vector<std::string> names_of(const std::vector<std::string_view>& names) {
+  return {names.begin(), names.end()};
 }
 
 Key choice(std::string name, std::string fallback, const std::vector<std::string>& choices,
@@ -301,7 +308,7 @@ std::vector<Section> build_sections() {
       {"mechanics", "NSCD (Moreau-Jean, Gauss-Seidel); range checks apply when mechanics is on",
        {number("time_step", "s", 1.0e-3, Range::greater(0.0), "mechanical time step"),
         number("theta", "", 0.5, Range::open_closed(0.0, 1.0), "Moreau-Jean theta"),
-        choice("solver", "nncg", mechanics::contact_solver_names(),
+        choice("solver", mechanics::default_contact_solver(), mechanics::contact_solver_names(),
                "contact solver by name (mechanics::ContactSolverRegistry)"),
         number("tolerance", "", 1.0e-6, Range::greater(0.0),
                "relative contact-law residual of a Gauss-Seidel sweep that counts as converged. "
@@ -337,9 +344,11 @@ std::vector<Section> build_sections() {
                "per step); 0 = no cap")}});
   sections.push_back(
       {"thermal", "the thermal integrator and the contact conductance",
-       {choice("integrator", "cvode", {"cvode", "ida", "explicit"},
+       {choice("integrator", std::string(thermal::name_of(thermal::kDefaultIntegrator)),
+               names_of(thermal::thermal_integrator_names()),
                "CVODE (BDF), IDA (DAE; held temperatures algebraic) or forward Euler"),
-        choice("linear_solver", "klu", {"klu", "pcg"},
+        choice("linear_solver", std::string(thermal::name_of(thermal::kDefaultLinearSolver)),
+               names_of(thermal::linear_solver_names()),
                "sparse direct (KLU) or preconditioned conjugate gradients"),
         number("relative_tolerance", "", 1.0e-6, Range::greater(0.0), "integrator tolerance"),
         number("absolute_tolerance", "K", 1.0e-6, Range::greater(0.0), "integrator tolerance"),

@@ -107,7 +107,6 @@ AccuracyRun timed_accuracy_run(thermal::ThermalSystem& system, const std::string
 
 AccuracyReference accuracy_reference(thermal::ThermalSystem& system, std::span<const double> T0_K,
                                      double end_time_s, const thermal::IntegratorSettings& base,
-                                     const thermal::ModeSettings& modes,
                                      const AccuracyStudyOptions& options,
                                      const ThermalDriver& driver) {
   AccuracyReference ref;
@@ -120,11 +119,7 @@ AccuracyReference accuracy_reference(thermal::ThermalSystem& system, std::span<c
     why_not = std::to_string(system.size()) + " particles, more than " +
               std::to_string(options.exact_reference_max_nodes) + " for a dense exponential";
   } else {
-    affine = affine_thermal_system(system, modes);
-    if (!affine)
-      why_not = system.network().temperature_dependent()
-                    ? "the network is nonlinear (properties that follow T)"
-                    : "the network is nonlinear (radiation)";
+    affine = affine_thermal_system(system, &why_not);
   }
   if (affine) {
     try {
@@ -167,7 +162,6 @@ AccuracyReference accuracy_reference(thermal::ThermalSystem& system, std::span<c
 AccuracyStudyResult run_accuracy_study(thermal::ThermalSystem& system,
                                        std::span<const double> T0_K, double end_time_s,
                                        const thermal::IntegratorSettings& base,
-                                       const thermal::ModeSettings& modes,
                                        const AccuracyStudyOptions& options, std::ostream* log,
                                        const ThermalDriver& driver) {
   AccuracyStudyResult result;
@@ -181,7 +175,7 @@ AccuracyStudyResult run_accuracy_study(thermal::ThermalSystem& system,
                                  : system.explicit_stability_bound_s(base.max_temperature_K);
 
   if (log) *log << "study: computing the reference..." << std::endl;
-  result.reference = accuracy_reference(system, T0_K, end_time_s, base, modes, options, driver);
+  result.reference = accuracy_reference(system, T0_K, end_time_s, base, options, driver);
   if (log)
     *log << "study: reference: " << result.reference.description << ", "
          << result.reference.wall_time_s << " s" << std::endl;

@@ -110,12 +110,11 @@ struct ReferenceError : std::runtime_error {
 
 // The study on `system` from T0_K over [0, end_time_s]. `base` gives what is common to every
 // run (max_temperature_K for the explicit bound); tolerances, step and linear solver are set
-// per run. `modes` are the settings the exact reference reads. Progress lines go to `log`
+// per run (the exact reference reads the modes' own parameters). Progress lines go to `log`
 // (nothing if null). Throws ReferenceError when the reference fails.
 AccuracyStudyResult run_accuracy_study(thermal::ThermalSystem& system,
                                        std::span<const double> T0_K, double end_time_s,
                                        const thermal::IntegratorSettings& base,
-                                       const thermal::ModeSettings& modes,
                                        const AccuracyStudyOptions& options, std::ostream* log,
                                        const ThermalDriver& driver = {});
 
@@ -131,7 +130,6 @@ AccuracyRun timed_accuracy_run(thermal::ThermalSystem& system, const std::string
 // The study's reference alone (as in run_accuracy_study). Throws ReferenceError.
 AccuracyReference accuracy_reference(thermal::ThermalSystem& system, std::span<const double> T0_K,
                                      double end_time_s, const thermal::IntegratorSettings& base,
-                                     const thermal::ModeSettings& modes,
                                      const AccuracyStudyOptions& options,
                                      const ThermalDriver& driver = {});
 

@@ -2,8 +2,8 @@
 
 #include <unsupported/Eigen/MatrixFunctions>
 
-#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 
 #include "thermal/modes/ModeRegistry.h"
@@ -11,50 +11,35 @@
 namespace tmdem::coupling {
 
 namespace {
-bool has(const std::vector<std::string>& names, const char* name) {
-  return std::find(names.begin(), names.end(), name) != names.end();
-}
-}  // namespace
-
-std::optional<AffineThermalSystem> affine_thermal_system(const thermal::ThermalNetwork& net,
-                                                         const std::vector<std::string>& mode_names,
-                                                         const thermal::ModeSettings& s) {
-  for (const auto& m : mode_names)
-    if (m != "contact_conduction" && m != "wall_conduction" && m != "convection" &&
-        m != "heat_source")
-      return std::nullopt;
+std::optional<AffineThermalSystem> affine_system_of_modes(
+    const thermal::ThermalNetwork& net, std::span<const thermal::HeatTransferMode* const> modes,
+    std::string* why_not) {
   // Wall temperatures that follow a table make the system time-dependent: not affine-constant.
-  if (!net.wall_temperature_tables.empty()) return std::nullopt;
+  if (!net.wall_temperature_tables.empty()) {
+    if (why_not) *why_not = "wall temperatures follow a table (time-dependent)";
+    return std::nullopt;
+  }
   // Conductivities or heat capacities that follow T make it nonlinear.
-  if (net.temperature_dependent()) return std::nullopt;
+  if (net.temperature_dependent()) {
+    if (why_not) *why_not = "the network is nonlinear (properties that follow T)";
+    return std::nullopt;
+  }
+  // Each mode states its own K and f (HeatTransferMode::add_affine_heat_flow), in the order the
+  // system sums the modes; a mode that cannot is named.
+  thermal::AffineHeatFlow flow(net.node_count());
+  std::string not_affine;
+  for (const thermal::HeatTransferMode* m : modes)
+    if (!m->add_affine_heat_flow(net, flow))
+      not_affine += (not_affine.empty() ? "" : ", ") + std::string(m->name());
+  if (!not_affine.empty()) {
+    if (why_not) *why_not = "the network is nonlinear (" + not_affine + ")";
+    return std::nullopt;
+  }
   const auto n = Eigen::Index(net.node_count());
   Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n);  // d q / d T, W/K
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(n);     // q at T = 0, W
-  if (has(mode_names, "contact_conduction"))
-    for (std::size_t e = 0; e < net.edge_count(); ++e) {
-      const Eigen::Index a = net.edge_a[e], b = net.edge_b[e];
-      const double h = net.edge_conductance_W_per_K[e];
-      K(a, b) += h;
-      K(b, a) += h;
-      K(a, a) -= h;
-      K(b, b) -= h;
-    }
-  if (has(mode_names, "wall_conduction"))
-    for (std::size_t w = 0; w < net.wall_edge_count(); ++w) {
-      const Eigen::Index i = net.wall_node[w];
-      K(i, i) -= net.wall_conductance_W_per_K[w];
-      f(i) += net.wall_conductance_W_per_K[w] * net.wall_temperature_K[w];
-    }
-  if (has(mode_names, "convection")) {
-    const auto p = thermal::resolve_mode_parameters(*thermal::find_heat_transfer_mode("convection"), s);
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const double hA = p["coefficient"] * net.surface_area_m2[std::size_t(i)];
-      K(i, i) -= hA;
-      f(i) += hA * p["fluid_temperature"];
-    }
-  }
-  if (has(mode_names, "heat_source"))
-    for (Eigen::Index i = 0; i < n; ++i) f(i) += net.heat_source_W[std::size_t(i)];
+  for (std::size_t k = 0; k < flow.value_W_per_K.size(); ++k)
+    K(Eigen::Index(flow.row[k]), Eigen::Index(flow.column[k])) += flow.value_W_per_K[k];
+  const Eigen::Map<const Eigen::VectorXd> f(flow.constant_W.data(), n);  // q at T = 0, W
 
   AffineThermalSystem out{Eigen::MatrixXd::Zero(n, n), Eigen::VectorXd::Zero(n),
                           Eigen::VectorXd::Zero(n)};
@@ -67,12 +52,26 @@ std::optional<AffineThermalSystem> affine_thermal_system(const thermal::ThermalN
   }
   return out;
 }
+}  // namespace
+
+std::optional<AffineThermalSystem> affine_thermal_system(const thermal::ThermalNetwork& net,
+                                                         const std::vector<std::string>& mode_names,
+                                                         const thermal::ModeSettings& s,
+                                                         std::string* why_not) {
+  std::vector<std::unique_ptr<thermal::HeatTransferMode>> built;
+  std::vector<const thermal::HeatTransferMode*> modes;
+  for (const auto& name : mode_names) {
+    built.push_back(thermal::make_heat_transfer_mode(name, s));
+    modes.push_back(built.back().get());
+  }
+  return affine_system_of_modes(net, modes, why_not);
+}
 
 std::optional<AffineThermalSystem> affine_thermal_system(const thermal::ThermalSystem& system,
-                                                         const thermal::ModeSettings& settings) {
-  std::vector<std::string> names;
-  for (const auto& m : system.modes()) names.emplace_back(m->name());
-  return affine_thermal_system(system.network(), names, settings);
+                                                         std::string* why_not) {
+  std::vector<const thermal::HeatTransferMode*> modes;
+  for (const auto& m : system.modes()) modes.push_back(m.get());
+  return affine_system_of_modes(system.network(), modes, why_not);
 }
 
 std::vector<double> exact_affine_temperatures(const AffineThermalSystem& sys,

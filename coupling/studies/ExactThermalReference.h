@@ -4,10 +4,9 @@
 // With only linear modes (contact and wall conduction, convection, sources) the thermal ODE is
 // affine, dT/dt = A T + b, and T(t) = exp(t M) [T0; 1] with M = [[A, b], [0, 0]] (dense matrix
 // exponential, Eigen MatrixFunctions: Pade 13 with scaling and squaring, applied to the
-// symmetrised system in y = sqrt(C) T). A and b are assembled
-// here from the network arrays and the mode settings alone, independently of ThermalSystem's
-// own right-hand side and Jacobian, so that the study measures the integrators against an
-// answer they did not help compute. Held particles have zero rows (dT/dt = 0).
+// symmetrised system in y = sqrt(C) T). A and b are assembled from what each mode states of its
+// affine part, written apart from its right-hand side and Jacobian, so that the study measures
+// the integrators against an answer they did not help compute. Held particles have zero rows (dT/dt = 0).
 #include <Eigen/Dense>
 
 #include <optional>
@@ -30,17 +29,19 @@ struct AffineThermalSystem {
   Eigen::VectorXd scale;
 };
 
-// A and b for the network with the named modes switched on (registry names, see
-// thermal/modes/ModeList.h). Empty when a mode is not linear ("radiation") or not known here: such a
-// network has no exact reference. The one place in coupling/ that names modes, on purpose: an
-// independent re-derivation of their physics is what makes it a reference; parameters come
-// from the modes' own declarations (defaults included).
+// A and b for the network with the named modes switched on (registry names, thermal/modes/
+// ModeList.h; an unknown name throws std::invalid_argument listing the valid ones), built with
+// `settings`. Each mode states its own affine part (HeatTransferMode::add_affine_heat_flow), so
+// nothing here names a mode. Empty when a mode is not affine ("radiation"), or the network's
+// properties follow T or its wall temperatures follow a table: such a network has no exact
+// reference; *why_not (when given) then says why, naming the modes.
 std::optional<AffineThermalSystem> affine_thermal_system(const thermal::ThermalNetwork& network,
                                                          const std::vector<std::string>& mode_names,
-                                                         const thermal::ModeSettings& settings);
+                                                         const thermal::ModeSettings& settings,
+                                                         std::string* why_not = nullptr);
 // The same for a system's network and the modes it holds.
 std::optional<AffineThermalSystem> affine_thermal_system(const thermal::ThermalSystem& system,
-                                                         const thermal::ModeSettings& settings);
+                                                         std::string* why_not = nullptr);
 
 // T(t_s) from T(0) = T0_K. Throws std::runtime_error if the result is not finite.
 std::vector<double> exact_affine_temperatures(const AffineThermalSystem& system,

@@ -11,8 +11,11 @@
 
 namespace tmdem::mechanics {
 
-// Registered names, in registration order (the first is the default).
+// Registered names, in registration order.
 const std::vector<std::string>& contact_solver_names();
+
+// The solver of a scene or NscdParameters that names none: the one place this default is set.
+const std::string& default_contact_solver();
 
 // Throws std::invalid_argument naming the bad value and listing the valid names.
 std::unique_ptr<ContactSolver> make_contact_solver(std::string_view name,

@@ -20,7 +20,7 @@ inline NscdIntegrator column(const std::vector<double>& masses_kg) {
     set.add(Eigen::Vector3d(0.0, (2.0 * k + 1.0) * kRadius, 0.0), kRadius, masses_kg[k], 0);
   }
   NscdIntegrator sim(std::move(set), {steel(0.3)}, {Wall::through({0, 0, 0}, {0, 1, 0}, 0)},
-                     Eigen::Vector3d(0, -kG, 0), 3, NscdParameters{});
+                     Eigen::Vector3d(0, -kG, 0), 3, nlgs_parameters());
   sim.step();
   return sim;
 }

@@ -10,6 +10,18 @@
 
 namespace tmdem::mechanics::test {
 
+// Random packings come from the scene generator's placement (coupling/scene; compiled into
+// the mechanics test program, tests/CMakeLists.txt).
+using tmdem::coupling::place_random;
+
+// The fixtures here were written and measured with Gauss-Seidel ("nlgs"), while the library's
+// default solver (default_contact_solver()) is another, so they name theirs.
+inline NscdParameters nlgs_parameters() {
+  NscdParameters parameters;
+  parameters.solver = "nlgs";
+  return parameters;
+}
+
 inline constexpr double kG = 9.81;        // m/s^2
 inline constexpr double kRadius = 1e-3;   // m
 inline constexpr double kDensity = 7800;  // kg/m^3
@@ -30,7 +42,7 @@ inline std::vector<Wall> box_walls(double width, double depth, int dimension) {
 
 // `count` spheres dropped at random in a box of walls (two radii), ready to settle.
 inline NscdIntegrator random_pile(std::size_t count, int dimension, double friction,
-                                  std::uint64_t seed, NscdParameters parameters = {},
+                                  std::uint64_t seed, NscdParameters parameters = nlgs_parameters(),
                                   double rolling_friction = 0.0) {
   // Wide, shallow boxes: a few layers once settled (Gauss-Seidel cost grows with depth).
   const double width = dimension == 3 ? 0.016 : 0.06;
@@ -55,7 +67,7 @@ inline NscdIntegrator random_pile(std::size_t count, int dimension, double frict
 // caller checks max_speed()). See test_nscd_rest.cpp for why 1e-8. full_sweep_every: the
 // solver's active-set sweeps (ActiveContactSet.h; 1: every sweep visits every candidate).
 inline NscdIntegrator settled_disk_pile(std::uint64_t seed = 1,
-                                        int full_sweep_every = NscdParameters{}.full_sweep_every) {
+                                        int full_sweep_every = nlgs_parameters().full_sweep_every) {
   constexpr double width = 0.008, height = 0.03;
   const auto placed = place_random(40, Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(width, height, 0),
                                    {kRadius, 0.7 * kRadius}, {0.5, 0.5}, seed, 2);
@@ -64,7 +76,7 @@ inline NscdIntegrator settled_disk_pile(std::uint64_t seed = 1,
     set.add(placed.positions[i], placed.radii[i], sphere_mass(placed.radii[i], kDensity), 0);
   auto walls = box_walls(width, width, 2);
   for (std::size_t w = 1; w < walls.size(); ++w) walls[w].material = 1;
-  NscdParameters parameters;
+  NscdParameters parameters = nlgs_parameters();
   parameters.tolerance = 1e-8;
   parameters.full_sweep_every = full_sweep_every;
   NscdIntegrator sim(std::move(set), {steel(0.5), steel(0.0)}, walls, Eigen::Vector3d(0, -kG, 0), 2,

@@ -29,7 +29,7 @@ inline const NscdIntegrator& lattice_pile() {
         for (int x = 0; x < kPileSide; ++x)
           set.add(Eigen::Vector3d(kRadius + x * d, kRadius + y * d, kRadius + z * d), kRadius, m, 0);
     NscdIntegrator s(std::move(set), {steel(0.3)}, {Wall::through({0, 0, 0}, {0, 1, 0}, 0)},
-                     Eigen::Vector3d(0, -kG, 0), 3, NscdParameters{});
+                     Eigen::Vector3d(0, -kG, 0), 3, nlgs_parameters());
     s.step();
     return s;
   }();
@@ -131,7 +131,7 @@ inline Drift drift_at_rest_with(const std::string& name, std::unique_ptr<NscdInt
 // A 3D pile with rolling resistance (30 spheres, radii 1 and 0.7 mm, mu = 0.5, mu_r = 0.1)
 // settled with "nlgs" at tolerance 1e-8, then one more step: its problem is the one solved.
 inline NscdIntegrator settled_rolling_pile() {
-  NscdParameters parameters;
+  NscdParameters parameters = nlgs_parameters();
   parameters.tolerance = 1e-8;
   NscdIntegrator sim = random_pile(30, 3, 0.5, 5, parameters, 0.1);
   for (int step = 0; step < 5000 && !(step > 10 && sim.max_speed() < 1e-9); ++step) sim.step();

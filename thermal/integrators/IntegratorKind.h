@@ -15,6 +15,10 @@ enum class LinearSolverKind { Klu, Pcg };
 inline constexpr std::array<std::string_view, 3> kIntegratorNames{"cvode", "ida", "explicit"};
 inline constexpr std::array<std::string_view, 2> kLinearSolverNames{"klu", "pcg"};
 
+// A scene that names no integrator or linear solver gets these: the one place they are set.
+inline constexpr IntegratorKind kDefaultIntegrator = IntegratorKind::Cvode;
+inline constexpr LinearSolverKind kDefaultLinearSolver = LinearSolverKind::Klu;
+
 constexpr std::string_view name_of(IntegratorKind k) { return kIntegratorNames[static_cast<int>(k)]; }
 constexpr std::string_view name_of(LinearSolverKind k) { return kLinearSolverNames[static_cast<int>(k)]; }
 

@@ -70,6 +70,21 @@ class ContactConductionMode final : public HeatTransferMode {
       J.diagonal_W_per_K[net.edge_b[e]] -= h;
     }
   }
+
+  // H (T_b - T_a) into a and its opposite into b: K_ab = K_ba = H, K_aa = K_bb = -H. With k(T)
+  // the flow is not affine.
+  bool add_affine_heat_flow(const ThermalNetwork& net, AffineHeatFlow& out) const override {
+    if (net.conductance_follows_conductivity) return false;
+    for (std::size_t e = 0; e < net.edge_count(); ++e) {
+      const std::int64_t a = net.edge_a[e], b = net.edge_b[e];
+      const double h = net.edge_conductance_W_per_K[e];
+      out.add(a, b, h);
+      out.add(b, a, h);
+      out.add(a, a, -h);
+      out.add(b, b, -h);
+    }
+    return true;
+  }
 };
 
 }  // namespace

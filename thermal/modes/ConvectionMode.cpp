@@ -29,6 +29,16 @@ class ConvectionMode final : public HeatTransferMode {
       J.diagonal_W_per_K[i] -= h_W_per_m2K_ * net.surface_area_m2[i];
   }
 
+  // h A_i (T_f - T_i): K_ii = -h A_i, f_i = h A_i T_f.
+  bool add_affine_heat_flow(const ThermalNetwork& net, AffineHeatFlow& out) const override {
+    for (std::size_t i = 0; i < net.node_count(); ++i) {
+      const double hA = h_W_per_m2K_ * net.surface_area_m2[i];
+      out.add(std::int64_t(i), std::int64_t(i), -hA);
+      out.constant_W[i] += hA * fluid_K_;
+    }
+    return true;
+  }
+
  private:
   double h_W_per_m2K_;
   double fluid_K_;

@@ -22,6 +22,12 @@ class HeatSourceMode final : public HeatTransferMode {
   }
 
   void add_jacobian(const ThermalNetwork&, std::span<const double>, JacobianView) const override {}
+
+  // f_i = P_i, nothing in K.
+  bool add_affine_heat_flow(const ThermalNetwork& net, AffineHeatFlow& out) const override {
+    for (std::size_t i = 0; i < net.node_count(); ++i) out.constant_W[i] += net.heat_source_W[i];
+    return true;
+  }
 };
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <span>
 #include <string_view>
 
+#include "thermal/modes/AffineHeatFlow.h"
 #include "thermal/network/ThermalNetwork.h"
 
 namespace tmdem::thermal {
@@ -47,6 +48,15 @@ class HeatTransferMode {
   // False when add_jacobian writes the one-sided spans: the Jacobian is then not symmetric under
   // sqrt(C) scaling and the conjugate-gradient linear solver cannot be used.
   virtual bool symmetric_jacobian() const { return true; }
+
+  // A mode whose heat flow is affine in T and fixed in time (q = K T + f) adds K and f to `out`
+  // and returns true; any other mode returns false (the default), and a network with such a
+  // mode has no exact reference in the accuracy study. Written from the physics, not by calling
+  // add_heat_flow (AffineHeatFlow.h says why).
+  virtual bool add_affine_heat_flow(const ThermalNetwork& /*network*/,
+                                    AffineHeatFlow& /*out*/) const {
+    return false;
+  }
 
   // True for a mode whose boundary power is mechanical energy turned into heat (friction heat):
   // the integrators integrate that power on its own as well (ThermalIntegrator::

@@ -33,6 +33,17 @@ class WallConductionMode final : public HeatTransferMode {
                                                   : -net.wall_conductance_W_per_K[w];
   }
 
+  // H_iw (T_w - T_i): K_ii = -H_iw, f_i = H_iw T_w. With k(T) the flow is not affine.
+  bool add_affine_heat_flow(const ThermalNetwork& net, AffineHeatFlow& out) const override {
+    if (net.conductance_follows_conductivity) return false;
+    for (std::size_t w = 0; w < net.wall_edge_count(); ++w) {
+      const std::int64_t i = net.wall_node[w];
+      out.add(i, i, -net.wall_conductance_W_per_K[w]);
+      out.constant_W[std::size_t(i)] += net.wall_conductance_W_per_K[w] * net.wall_temperature_K[w];
+    }
+    return true;
+  }
+
  private:
   // With k(T): the flow from the wall (its material at T_w) into the particle.
   static ContactFlow wall_flow(const ThermalNetwork& net, std::size_t w, std::span<const double> T) {

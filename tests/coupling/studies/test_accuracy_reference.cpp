@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -72,9 +73,32 @@ TEST(ExactThermalReference, AffineModesMatchClosedForm) {
   EXPECT_NEAR(T[0], 300.0 + 0.05 / 0.02 * 2.0, 1e-12 * 300.0);
 }
 
+// The modes state their own affine parts: a mode that has none is named in the reason, and an
+// unknown name is refused by the mode registry with the valid names.
 TEST(ExactThermalReference, RadiationHasNoExactReference) {
-  EXPECT_FALSE(affine_thermal_system(two_nodes(1.0, 1.0, 1.0), {"contact_conduction", "radiation"}, {}));
-  EXPECT_FALSE(affine_thermal_system(two_nodes(1.0, 1.0, 1.0), {"something_new"}, {}));
+  std::string why;
+  EXPECT_FALSE(affine_thermal_system(two_nodes(1.0, 1.0, 1.0), {"contact_conduction", "radiation"},
+                                     {}, &why));
+  EXPECT_NE(why.find("radiation"), std::string::npos) << why;
+  EXPECT_EQ(why.find("contact_conduction"), std::string::npos) << why;
+  try {
+    (void)affine_thermal_system(two_nodes(1.0, 1.0, 1.0), {"something_new"}, {});
+    FAIL() << "an unknown mode name was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("contact_conduction"), std::string::npos) << e.what();
+  }
+}
+
+// Properties that follow T make the network nonlinear, whatever its modes.
+TEST(ExactThermalReference, TemperatureDependentNetworkHasNoExactReference) {
+  auto net = two_nodes(1.0, 1.0, 1.0);
+  thermal::ModeSettings s;
+  const auto linear = affine_thermal_system(net, {"contact_conduction"}, s);
+  ASSERT_TRUE(linear);
+  net.wall_temperature_tables.resize(1);
+  std::string why;
+  EXPECT_FALSE(affine_thermal_system(net, {"contact_conduction"}, s, &why));
+  EXPECT_NE(why.find("table"), std::string::npos) << why;
 }
 
 // A stiff pair (capacities 1e6 apart) over a long time, |A| t up to 1e5: scaling and squaring

@@ -8,6 +8,7 @@
 #include "coupling/scene/RandomPlacement.h"
 
 using namespace tmdem::mechanics;
+using tmdem::coupling::place_random;
 using Eigen::Vector3d;
 
 namespace {

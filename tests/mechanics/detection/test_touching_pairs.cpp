@@ -12,6 +12,7 @@
 #include "mechanics/detection/TouchingPairs.h"
 
 using namespace tmdem::mechanics;
+using tmdem::coupling::place_random;
 using Eigen::Vector3d;
 
 namespace {

@@ -22,7 +22,7 @@ Wall incline(double alpha) {
 
 // One sphere resting (touching, at rest) on the incline at the origin's foot point.
 NscdIntegrator sphere_on_incline(double alpha, double friction, bool spin,
-                                 NscdParameters parameters = {}) {
+                                 NscdParameters parameters = nlgs_parameters()) {
   ParticleSet set;
   const Vector3d n(-std::sin(alpha), std::cos(alpha), 0);
   set.add(kRadius * n, kRadius, sphere_mass(kRadius, kDensity), 0);
@@ -56,7 +56,7 @@ Account run(NscdIntegrator& sim, int steps) {
 TEST(NscdEnergy, SlidingBlockDissipatesMuNTimesDistance) {
   const double alpha = 40.0 * std::numbers::pi / 180.0, mu = 0.3;
   for (double theta : {0.5, 0.7, 1.0}) {
-    NscdParameters p;
+    NscdParameters p = nlgs_parameters();
     p.theta = theta;
     p.tolerance = 1e-12;
     auto sim = sphere_on_incline(alpha, mu, false, p);
@@ -86,7 +86,7 @@ TEST(NscdEnergy, SlidingBlockDissipatesMuNTimesDistance) {
 // contact point does not slide, so nothing is dissipated.
 TEST(NscdEnergy, RollingWithoutSlipDissipatesNothing) {
   const double alpha = 20.0 * std::numbers::pi / 180.0;
-  NscdParameters p;
+  NscdParameters p = nlgs_parameters();
   p.tolerance = 1e-12;
   auto sim = sphere_on_incline(alpha, 0.3, true, p);
   const Account a = run(sim, 400);
@@ -106,7 +106,7 @@ TEST(NscdEnergy, RollingWithoutSlipDissipatesNothing) {
 // mu m g cos(a) * 1/2 g (sin a - 7/2 mu cos a) t^2.
 TEST(NscdEnergy, SlippingSphereDissipatesSlipWork) {
   const double alpha = 50.0 * std::numbers::pi / 180.0, mu = 0.3;
-  NscdParameters p;
+  NscdParameters p = nlgs_parameters();
   p.tolerance = 1e-12;
   auto sim = sphere_on_incline(alpha, mu, true, p);
   const int steps = 400;
@@ -125,7 +125,7 @@ TEST(NscdEnergy, SkiddingSphereDissipatesOneSeventhOfTwiceItsKineticEnergy) {
   set.add(Vector3d(0, kRadius, 0), kRadius, sphere_mass(kRadius, kDensity), 0);
   const double V = 0.05;  // m/s
   set.velocity[0] = Vector3d(V, 0, 0);
-  NscdParameters p;
+  NscdParameters p = nlgs_parameters();
   p.tolerance = 1e-12;
   NscdIntegrator sim(std::move(set), {steel(0.3)}, {Wall::through({0, 0, 0}, {0, 1, 0}, 0)},
                      Vector3d(0, -kG, 0), 3, p);
@@ -143,7 +143,7 @@ TEST(NscdEnergy, InelasticImpactDissipatesTheEnergyLost) {
     ParticleSet set;
     const double height = 5e-3;  // m of free fall before touching
     set.add(Vector3d(0, kRadius + height, 0), kRadius, sphere_mass(kRadius, kDensity), 0);
-    NscdParameters p;
+    NscdParameters p = nlgs_parameters();
     p.theta = theta;
     NscdIntegrator sim(std::move(set), {steel(0.3)}, {Wall::through({0, 0, 0}, {0, 1, 0}, 0)},
                        Vector3d(0, -kG, 0), 3, p);
@@ -165,7 +165,7 @@ TEST(NscdEnergy, InelasticImpactDissipatesTheEnergyLost) {
 TEST(NscdEnergy, SettlingPileAccountCloses) {
   for (int dimension : {2, 3}) {
     for (double theta : {0.5, 1.0}) {
-      NscdParameters p;
+      NscdParameters p = nlgs_parameters();
       p.theta = theta;
       p.tolerance = 1e-8;
       auto sim = random_pile(dimension == 3 ? 60 : 40, dimension, 0.3, 7, p);
@@ -189,7 +189,7 @@ TEST(NscdEnergy, PistonOnAColumnAccountCloses) {
       set.add(Vector3d(0, kRadius * (2 * k + 1), 0), kRadius, sphere_mass(kRadius, kDensity), 0);
     Wall piston = Wall::through({0, 7.0 * kRadius, 0}, {0, -1, 0}, 0);
     piston.make_piston(1e-3, 0.5);  // 1 g, 0.5 N down
-    NscdParameters p;
+    NscdParameters p = nlgs_parameters();
     p.theta = theta;
     p.tolerance = 1e-10;
     NscdIntegrator sim(std::move(set), {steel(0.3)},

@@ -14,7 +14,7 @@ using Eigen::Vector3d;
 namespace {
 
 NscdIntegrator single_sphere(const Vector3d& position, const std::vector<Wall>& walls,
-                             double friction, NscdParameters parameters = {},
+                             double friction, NscdParameters parameters = nlgs_parameters(),
                              std::vector<Material> materials = {}) {
   ParticleSet set;
   set.add(position, kRadius, sphere_mass(kRadius, kDensity), 0);
@@ -55,7 +55,7 @@ TEST(NscdExact, ColumnContactsCarryTheWeightAbove) {
   // The stop test bounds the change of one sweep, not the error: along a chain Gauss-Seidel
   // contracts slowly (rate ~ cos^2(pi / (2N + 1))) and the error is ~50x the last change for
   // N = 10. A tolerance of 1e-9 gives forces to 1e-6 (at 1e-6 they are within ~5e-5).
-  NscdParameters parameters;
+  NscdParameters parameters = nlgs_parameters();
   parameters.tolerance = 1e-9;
   NscdIntegrator sim(std::move(set), {steel(0.3)}, {Wall::through({0, 0, 0}, {0, 1, 0}, 0)},
                      Vector3d(0, -kG, 0), 3, parameters);
@@ -96,7 +96,7 @@ InclineResult run_incline(double particle_friction, double wall_friction, double
   const Vector3d down(-std::cos(angle), -std::sin(angle), 0.0);
   ParticleSet set;
   set.add(kRadius * n, kRadius, sphere_mass(kRadius, kDensity), 0);
-  NscdParameters parameters;
+  NscdParameters parameters = nlgs_parameters();
   parameters.time_step = h;
   NscdIntegrator sim(std::move(set), {steel(particle_friction), steel(wall_friction)},
                      {Wall::through({0, 0, 0}, n, 1)}, Vector3d(0, -kG, 0), 3, parameters);
@@ -181,7 +181,7 @@ TEST(NscdExact, FixedParticleNeverMovesAndHoldsTheOtherOne) {
 }
 
 TEST(NscdExact, UnconvergedStepsAreCounted) {
-  NscdParameters parameters;
+  NscdParameters parameters = nlgs_parameters();
   parameters.max_iterations = 1;
   parameters.tolerance = 1e-12;
   ParticleSet set;
@@ -204,7 +204,7 @@ TEST(NscdExact, RejectsInconsistentInput) {
   EXPECT_THROW(NscdIntegrator(set, {steel(0.3)}, {}, Vector3d(0, -kG, 0), 3), std::invalid_argument);
   set.material[0] = 0;
   EXPECT_THROW(NscdIntegrator(set, {steel(0.3)}, {}, Vector3d(0, -kG, 0), 4), std::invalid_argument);
-  NscdParameters bad;
+  NscdParameters bad = nlgs_parameters();
   bad.theta = 0.0;
   EXPECT_THROW(NscdIntegrator(set, {steel(0.3)}, {}, Vector3d(0, -kG, 0), 3, bad),
                std::invalid_argument);
@@ -228,7 +228,7 @@ double smallest_gap_of_fast_sphere(bool towards_sphere) {
     walls.push_back(Wall::through({0, 0, 0}, {1, 0, 0}, 0));
   }
   set.velocity[0] = Vector3d(-speed, 0, 0);
-  NscdParameters parameters;
+  NscdParameters parameters = nlgs_parameters();
   parameters.time_step = h;
   NscdIntegrator sim(std::move(set), {steel(0.3)}, walls, Vector3d::Zero(), 3, parameters);
   double smallest = 1.0;
@@ -254,7 +254,7 @@ TEST(NscdExact, FastSphereNeverPassesAnotherSphere) {
 // within the slop is held (no push-out, the sphere stays at rest exactly); beyond it the
 // position step removes d - slop by moving the centre, and the velocity stays exactly zero.
 TEST(NscdExact, PenetrationWithinTheSlopIsHeldNotPushedOut) {
-  NscdParameters parameters;  // slop 1e-4 r
+  NscdParameters parameters = nlgs_parameters();  // slop 1e-4 r
   const double slop = parameters.penetration_slop_fraction * kRadius;
   const double d = 0.5 * slop;
   auto sim = single_sphere(Vector3d(0, kRadius - d, 0), {Wall::through({0, 0, 0}, {0, 1, 0}, 0)},
@@ -276,7 +276,7 @@ TEST(NscdExact, PenetrationWithinTheSlopIsHeldNotPushedOut) {
 }
 
 TEST(NscdExact, PenetrationBeyondTheSlopIsRemovedWithoutSpeed) {
-  NscdParameters parameters;
+  NscdParameters parameters = nlgs_parameters();
   const double slop = parameters.penetration_slop_fraction * kRadius;
   const double h = parameters.time_step;
   const double d = 5.0 * slop;
@@ -313,7 +313,7 @@ TEST(NscdExact, PenetrationBeyondTheSlopIsRemovedWithoutSpeed) {
 // (which stays at zero: the sphere never moves). Its travel is 0 (the lift is not motion); a
 // sphere falling from rest travels h theta g h in its first step.
 TEST(NscdExact, PenetrationCorrectionReportsItsPotentialEnergy) {
-  NscdParameters parameters;
+  NscdParameters parameters = nlgs_parameters();
   const double slop = parameters.penetration_slop_fraction * kRadius;
   const double h = parameters.time_step;
   const double d = 5.0 * slop;
@@ -343,7 +343,7 @@ TEST(NscdExact, PenetrationCorrectionReportsItsPotentialEnergy) {
 // Two spheres side by side overlapping under gravity are pushed apart horizontally: the
 // correction moves them but makes no potential energy (g . dx = 0 for both), to round-off.
 TEST(NscdExact, SidewaysCorrectionMakesNoPotentialEnergy) {
-  NscdParameters parameters;
+  NscdParameters parameters = nlgs_parameters();
   const double slop = parameters.penetration_slop_fraction * kRadius;
   const double d = 20.0 * slop;
   ParticleSet set;
@@ -362,7 +362,7 @@ TEST(NscdExact, SidewaysCorrectionMakesNoPotentialEnergy) {
 // step moves them apart along the normal in the ratio of their inverse masses, so that the
 // overlap is the slop and the centre of mass stays where it was; both stay at rest.
 TEST(NscdExact, OverlapOfTwoSpheresIsSharedByInverseMass) {
-  NscdParameters parameters;
+  NscdParameters parameters = nlgs_parameters();
   const double slop = parameters.penetration_slop_fraction * kRadius;
   const double d = 20.0 * slop;
   ParticleSet set;

@@ -43,7 +43,7 @@ void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
 // The properties below do not depend on how tightly each step is solved, so most tests use
 // a loose tolerance to stay fast; the energy test needs a tight one (see there).
 NscdParameters loose() {
-  NscdParameters parameters;
+  NscdParameters parameters = nlgs_parameters();
   parameters.tolerance = 1e-4;
   return parameters;
 }
@@ -77,7 +77,7 @@ TEST(NscdPile, ReactionsStayInTheCoulombCone3D) {
 // 1e-10), so the solver runs at 1e-9 here and the allowance is 1e-9 of the initial energy
 // (potential energy counted from the floor).
 void expect_energy_never_grows(std::size_t count, int dimension, double mu, int steps) {
-  NscdParameters parameters;
+  NscdParameters parameters = nlgs_parameters();
   parameters.tolerance = 1e-9;
   auto sim = random_pile(count, dimension, mu, 9, parameters);
   const double initial = sim.kinetic_energy() + sim.potential_energy();

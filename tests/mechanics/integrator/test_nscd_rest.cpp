@@ -87,7 +87,7 @@ std::map<std::pair<std::int64_t, std::int64_t>, double> forces_after_one_step(Ns
 }
 
 NscdParameters tight() {
-  NscdParameters parameters;
+  NscdParameters parameters = nlgs_parameters();
   parameters.tolerance = 1e-12;
   return parameters;
 }

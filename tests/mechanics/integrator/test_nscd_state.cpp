@@ -6,6 +6,7 @@
 
 #include <cstring>
 
+#include "mechanics/SameBits.h"
 #include "mechanics/MechanicsTestScenes.h"
 
 using namespace tmdem::mechanics;
@@ -13,10 +14,8 @@ using namespace tmdem::mechanics::test;
 
 namespace {
 
-bool bitwise_equal(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b) {
-  return a.size() == b.size() &&
-         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(Eigen::Vector3d)) == 0);
-}
+using tmdem::mechanics::test::same_bits;
+
 
 struct Trajectory {
   std::vector<std::vector<Eigen::Vector3d>> position, velocity, angular_velocity;
@@ -37,7 +36,7 @@ Trajectory run_trajectory(NscdIntegrator& nscd, int steps) {
 // Steps `before` steps, saves, and compares `after` more steps of the original with those of
 // a fresh integrator of the same pile restored from the save.
 void expect_restored_run_identical(int dimension, double friction, int before, int after,
-                                   NscdParameters parameters = {}, double rolling_friction = 0.0) {
+                                   NscdParameters parameters = nlgs_parameters(), double rolling_friction = 0.0) {
   NscdIntegrator original = random_pile(40, dimension, friction, 7, parameters, rolling_friction);
   for (int s = 0; s < before; ++s) original.step();
   const MechanicsState saved = original.save_state();
@@ -53,9 +52,9 @@ void expect_restored_run_identical(int dimension, double friction, int before, i
 
   const Trajectory a = run_trajectory(original, after), b = run_trajectory(restored, after);
   for (int s = 0; s < after; ++s) {
-    ASSERT_TRUE(bitwise_equal(a.position[s], b.position[s])) << "step " << s;
-    ASSERT_TRUE(bitwise_equal(a.velocity[s], b.velocity[s])) << "step " << s;
-    ASSERT_TRUE(bitwise_equal(a.angular_velocity[s], b.angular_velocity[s])) << "step " << s;
+    ASSERT_TRUE(same_bits(a.position[s], b.position[s])) << "step " << s;
+    ASSERT_TRUE(same_bits(a.velocity[s], b.velocity[s])) << "step " << s;
+    ASSERT_TRUE(same_bits(a.angular_velocity[s], b.angular_velocity[s])) << "step " << s;
     ASSERT_EQ(a.sweeps[s], b.sweeps[s]) << "step " << s;
   }
   EXPECT_EQ(original.stats().total_sweeps, restored.stats().total_sweeps);
@@ -70,7 +69,7 @@ void expect_restored_run_identical(int dimension, double friction, int before, i
   cold.invalidate_contacts();
   const Trajectory c = run_trajectory(cold, after);
   bool differs = false;
-  for (int s = 0; s < after && !differs; ++s) differs = !bitwise_equal(a.velocity[s], c.velocity[s]);
+  for (int s = 0; s < after && !differs; ++s) differs = !same_bits(a.velocity[s], c.velocity[s]);
   EXPECT_TRUE(differs) << "a cold restart should not reproduce the run; the test would prove nothing";
 }
 
@@ -80,7 +79,7 @@ TEST(NscdState, RestoredIntegratorContinuesBitwise2D) { expect_restored_run_iden
 TEST(NscdState, RestoredIntegratorContinuesBitwise3D) { expect_restored_run_identical(3, 0.3, 120, 120); }
 // apgd carries its step-size (Lipschitz) estimate from solve to solve: part of the state.
 TEST(NscdState, RestoredApgdIntegratorContinuesBitwise) {
-  NscdParameters parameters;
+  NscdParameters parameters = nlgs_parameters();
   parameters.solver = "apgd";
   expect_restored_run_identical(2, 0.3, 150, 150, parameters);
 }
@@ -91,7 +90,7 @@ TEST(NscdState, RestoredIntegratorWithRollingFrictionContinuesBitwise) {
 }
 // apgd with rolling resistance: the rolling torques and the Lipschitz estimate together.
 TEST(NscdState, RestoredApgdIntegratorWithRollingFrictionContinuesBitwise) {
-  NscdParameters parameters;
+  NscdParameters parameters = nlgs_parameters();
   parameters.solver = "apgd";
   expect_restored_run_identical(2, 0.3, 100, 100, parameters, 0.1);
 }
@@ -99,7 +98,7 @@ TEST(NscdState, RestoredApgdIntegratorWithRollingFrictionContinuesBitwise) {
 // The solver given the problem in a spatial order (SpatialContactOrder.h): the order comes
 // from the candidate table's reference positions, which the state carries.
 TEST(NscdState, RestoredIntegratorInSpatialOrderContinuesBitwise) {
-  NscdParameters parameters;
+  NscdParameters parameters = nlgs_parameters();
   parameters.spatial_order_from = 0;
   expect_restored_run_identical(3, 0.3, 120, 120, parameters, 0.1);
 }

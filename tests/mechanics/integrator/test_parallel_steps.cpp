@@ -7,17 +7,17 @@
 #include <cstring>
 #include <vector>
 
+#include "mechanics/SameBits.h"
 #include "mechanics/MechanicsTestScenes.h"
 
 using namespace tmdem::mechanics;
+using tmdem::mechanics::test::nlgs_parameters;
 using Eigen::Vector3d;
 
 namespace {
 
-template <class T>
-bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
-}
+using tmdem::mechanics::test::same_bits;
+
 
 struct Snapshot {
   std::vector<Vector3d> position, velocity, normal, tangent1, tangent2;
@@ -29,7 +29,7 @@ struct Snapshot {
 Snapshot pour(int threads) {
   const int before = omp_get_max_threads();
   omp_set_num_threads(threads);
-  NscdParameters parameters;
+  NscdParameters parameters = nlgs_parameters();
   parameters.parallel_from = 0;
   parameters.tolerance = 1e-4;
   parameters.max_iterations = 300;

@@ -20,7 +20,7 @@ NscdIntegrator free_piston(double mass_kg, double load_N, double theta, double h
   set.add(Vector3d(0, -1, 0), kRadius, sphere_mass(kRadius, kDensity), 0, true);
   Wall piston = Wall::through({0, 0, 0}, {0, 1, 0}, 0);
   piston.make_piston(mass_kg, load_N);
-  NscdParameters parameters;
+  NscdParameters parameters = nlgs_parameters();
   parameters.theta = theta;
   parameters.time_step = h;
   return NscdIntegrator(std::move(set), {steel(0.0)}, {piston}, Vector3d::Zero(), 3, parameters);
@@ -65,7 +65,7 @@ Column pressed_column(int count, double mass, double load, double gap, double gr
     set.add(Vector3d(0, kRadius * (2 * k + 1), 0), kRadius, sphere_mass(kRadius, kDensity), 0);
   Wall piston = Wall::through({0, 2 * count * kRadius + gap, 0}, {0, -1, 0}, 0);
   piston.make_piston(mass, load);
-  NscdParameters parameters;
+  NscdParameters parameters = nlgs_parameters();
   parameters.tolerance = tolerance;
   parameters.solver = solver;
   parameters.max_iterations = 100000;

@@ -10,6 +10,7 @@
 #include <string>
 #include <stdexcept>
 
+#include "mechanics/SameBits.h"
 #include "mechanics/MechanicsTestScenes.h"
 #include "mechanics/solvers/ApgdSolver.h"
 #include "mechanics/solvers/ColouredGaussSeidelSolver.h"
@@ -22,6 +23,8 @@ using Eigen::Vector3d;
 
 namespace {
 
+using tmdem::mechanics::test::same_bits;
+
 Material rolling_steel(double friction, double rolling_friction) {
   Material m = steel(friction);
   m.rolling_friction = rolling_friction;
@@ -29,7 +32,7 @@ Material rolling_steel(double friction, double rolling_friction) {
 }
 
 NscdParameters tight(const char* solver = "nlgs") {
-  NscdParameters parameters;
+  NscdParameters parameters = nlgs_parameters();
   parameters.tolerance = 1e-13;
   parameters.solver = solver;
   return parameters;
@@ -158,7 +161,7 @@ namespace {
 // `count` spheres (radii 1 and 0.7 mm, mu = 0.5, mu_r = 0.1) settled in a 3D box until every
 // speed is below 1e-9 m/s, solved to 1e-8 as the 2D rest test does (NscdRest).
 NscdIntegrator settled_pile_3d(std::size_t count) {
-  NscdParameters parameters;
+  NscdParameters parameters = nlgs_parameters();
   parameters.tolerance = 1e-8;
   NscdIntegrator sim = random_pile(count, 3, 0.5, 5, parameters, 0.1);
   for (int step = 0; step < 5000 && !(step > 10 && sim.max_speed() < 1e-9); ++step) sim.step();
@@ -195,9 +198,6 @@ RollingSolve solve_cold(ContactSolver& solver, const ContactProblem& problem) {
   return out;
 }
 
-bool same_bits(const std::vector<Vector3d>& a, const std::vector<Vector3d>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Vector3d)) == 0;
-}
 
 }  // namespace
 

@@ -12,7 +12,7 @@ using namespace tmdem::mechanics;
 using namespace tmdem::mechanics::test;
 
 TEST(StepTiming, PartsAreNonNegativeWithinTheStepAndSummedByTheStats) {
-  auto sim = random_pile(60, 3, 0.3, 7, NscdParameters{});
+  auto sim = random_pile(60, 3, 0.3, 7, nlgs_parameters());
   double detection = 0.0, solve = 0.0, correction = 0.0, outside = 0.0;
   for (int s = 0; s < 200; ++s) {
     const auto start = std::chrono::steady_clock::now();

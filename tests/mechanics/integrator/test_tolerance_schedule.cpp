@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "mechanics/SameBits.h"
 #include "mechanics/MechanicsTestScenes.h"
 #include "mechanics/integrator/ToleranceSchedule.h"
 
@@ -16,6 +17,8 @@ using namespace tmdem::mechanics;
 using namespace tmdem::mechanics::test;
 
 namespace {
+
+using tmdem::mechanics::test::same_bits;
 
 constexpr double kStep = 1e-3;  // s
 
@@ -39,7 +42,7 @@ NscdIntegrator dropped_sphere(int n, NscdParameters parameters) {
 }
 
 NscdParameters schedule(double tolerance, double fall_tolerance, double fall_speed) {
-  NscdParameters p;
+  NscdParameters p = nlgs_parameters();
   p.tolerance = tolerance;
   p.fall_tolerance = fall_tolerance;
   p.fall_speed = fall_speed;
@@ -53,10 +56,6 @@ double start_speed(int k, int n) {
   return 0.0;
 }
 
-bool bitwise_equal(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b) {
-  return a.size() == b.size() &&
-         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(Eigen::Vector3d)) == 0);
-}
 
 }  // namespace
 
@@ -194,10 +193,10 @@ TEST(ToleranceSchedule, RestoredIntegratorContinuesBitwiseAcrossTheSwitch) {
       const StepReport a = original.step(), b = restored.step();
       ASSERT_EQ(a.tolerance, b.tolerance) << solver << ", step " << before + k + 1;
       ASSERT_EQ(a.sweeps, b.sweeps) << solver << ", step " << before + k + 1;
-      ASSERT_TRUE(bitwise_equal(original.particles().position, restored.particles().position))
+      ASSERT_TRUE(same_bits(original.particles().position, restored.particles().position))
           << solver << ", step " << before + k + 1;
-      ASSERT_TRUE(bitwise_equal(original.particles().velocity, restored.particles().velocity));
-      ASSERT_TRUE(bitwise_equal(original.particles().angular_velocity,
+      ASSERT_TRUE(same_bits(original.particles().velocity, restored.particles().velocity));
+      ASSERT_TRUE(same_bits(original.particles().angular_velocity,
                                 restored.particles().angular_velocity));
     }
     EXPECT_EQ(original.tolerance_schedule().landed_step(), landed) << solver;
@@ -224,7 +223,7 @@ TEST(ToleranceSchedule, RestoredIntegratorContinuesBitwiseAcrossTheSwitch) {
 // A fall_tolerance equal to tolerance gives the bits of no schedule at all (the README's way
 // to measure an example's earlier settings again), while a looser one does not.
 TEST(ToleranceSchedule, EqualTolerancesGiveTheBitsOfNoSchedule) {
-  NscdParameters none;
+  NscdParameters none = nlgs_parameters();
   none.tolerance = 1e-4;
   NscdIntegrator plain = random_pile(40, 3, 0.3, 7, none);
   NscdIntegrator same = random_pile(40, 3, 0.3, 7, schedule(1e-4, 1e-4, 0.05));
@@ -234,10 +233,10 @@ TEST(ToleranceSchedule, EqualTolerancesGiveTheBitsOfNoSchedule) {
     plain.step();
     const StepReport report = same.step();
     looser.step();
-    ASSERT_TRUE(bitwise_equal(plain.particles().position, same.particles().position)) << k;
-    ASSERT_TRUE(bitwise_equal(plain.particles().velocity, same.particles().velocity)) << k;
+    ASSERT_TRUE(same_bits(plain.particles().position, same.particles().position)) << k;
+    ASSERT_TRUE(same_bits(plain.particles().velocity, same.particles().velocity)) << k;
     EXPECT_EQ(report.tolerance, 1e-4);
-    looser_differs = looser_differs || !bitwise_equal(plain.particles().velocity, looser.particles().velocity);
+    looser_differs = looser_differs || !same_bits(plain.particles().velocity, looser.particles().velocity);
   }
   EXPECT_GT(same.stats().fall_steps, 0);  // it did fall: the schedule ran, at one tolerance
   EXPECT_TRUE(looser_differs);

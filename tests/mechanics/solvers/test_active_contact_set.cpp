@@ -101,7 +101,7 @@ TEST_P(ActiveSetSweeps, APassiveCandidateThatClosesIsCaught) {
 // solve the problem are unique (a strictly convex quadratic program), so sweeps over active
 // sets must reach those of sweeps over every candidate, to the tolerance.
 TEST_P(ActiveSetSweeps, SameAnswerAsFullSweepsOnACollapsingPile) {
-  NscdParameters parameters;
+  NscdParameters parameters = nlgs_parameters();
   parameters.tolerance = 1e-4;
   parameters.max_iterations = 300;
   NscdIntegrator sim = random_pile(150, 3, 0.0, 3, parameters);

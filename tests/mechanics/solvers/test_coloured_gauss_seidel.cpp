@@ -9,19 +9,20 @@
 #include <map>
 #include <set>
 
+#include "mechanics/SameBits.h"
 #include "mechanics/SolverTestPile.h"
 #include "mechanics/solvers/ColouredGaussSeidelSolver.h"
 #include "mechanics/solvers/ContactSolverRegistry.h"
 #include "mechanics/contact/NaturalMapResidual.h"
 
 using namespace tmdem::mechanics;
+using tmdem::mechanics::test::nlgs_parameters;
 using Eigen::Vector3d;
 
 namespace {
 
-bool same_bits(const std::vector<Vector3d>& a, const std::vector<Vector3d>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Vector3d)) == 0;
-}
+using tmdem::mechanics::test::same_bits;
+
 
 }  // namespace
 
@@ -32,7 +33,7 @@ TEST(ColouredGaussSeidel, IsRegisteredByName) {
 }
 
 TEST(ColouredGaussSeidel, ColoursAreProperAndRecomputedOnlyWhenTheListChanges) {
-  NscdParameters parameters;
+  NscdParameters parameters = nlgs_parameters();
   parameters.tolerance = 1e-4;
   parameters.max_iterations = 300;
   NscdIntegrator sim = test::random_pile(150, 3, 0.3, 3, parameters);

@@ -11,6 +11,7 @@
 #include <random>
 #include <vector>
 
+#include "mechanics/SameBits.h"
 #include "mechanics/contact/ContactProblem.h"
 #include "mechanics/contact/CoulombCone.h"
 #include "mechanics/solvers/GaussSeidelUpdate.h"
@@ -20,6 +21,8 @@ using namespace tmdem::mechanics;
 using Eigen::Vector3d;
 
 namespace {
+
+using tmdem::mechanics::test::same_bits;
 
 // Draws of our own (std::uniform_real_distribution's are implementation-defined).
 struct Draws {
@@ -127,10 +130,6 @@ ContactUpdate reference_visit(const ContactProblem& p, std::size_t c, std::vecto
   return update;
 }
 
-bool same_bits(const std::vector<Vector3d>& a, const std::vector<Vector3d>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Vector3d)) == 0;
-}
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 class GaussSeidelVisit : public ::testing::TestWithParam<int> {};
 

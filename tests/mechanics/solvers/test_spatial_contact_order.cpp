@@ -176,9 +176,9 @@ TEST(SpatialContactOrder, SettledRollingPileGivesTheAnswerOfTheUnorderedSolve) {
 // Integrator: the ordered run is another run (other visiting order) that reproduces its own
 // bits, and it comes to the same place as the unordered one.
 TEST(SpatialContactOrder, IntegratorRunsAreReproducible) {
-  NscdParameters ordered_parameters;
+  NscdParameters ordered_parameters = nlgs_parameters();
   ordered_parameters.spatial_order_from = 0;
-  NscdParameters plain_parameters;
+  NscdParameters plain_parameters = nlgs_parameters();
   plain_parameters.spatial_order_from = std::numeric_limits<std::size_t>::max();
   NscdIntegrator a = random_pile(40, 3, 0.3, 7, ordered_parameters, 0.1);
   NscdIntegrator b = random_pile(40, 3, 0.3, 7, ordered_parameters, 0.1);

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Regenerates measured tables of README.md from fresh runs of build/tmdem.
+"""Regenerates the measured tables of docs/benchmarks.md from fresh runs of build/tmdem.
 
 Each table sits between the markers
     <!-- readme_tables: NAME -->
@@ -8,12 +8,13 @@ Each table sits between the markers
 and is rebuilt by running the commands its section names. Columns that depend on timing
 (wall-clock seconds) are marked "[timing]" in their header: they change from run to run and
 machine to machine; every other value (steps, errors, counts) is reproducible for a given build.
+(The script and marker names keep "readme" from the days these tables lived in README.md.)
 
-  scripts/readme_tables.py                  # rewrite every table in README.md
+  scripts/readme_tables.py                  # rewrite checkpoints, coupling, settle in docs/benchmarks.md
   scripts/readme_tables.py --check          # compare only: exit 1 naming the values that drifted
   scripts/readme_tables.py --only coupling  # one table
-
-  scripts/readme_tables.py --list           # every table of README.md and how it is kept true
+  scripts/readme_tables.py --list           # every table of docs/benchmarks.md and how it is kept true
+  scripts/readme_tables.py --file OTHER.md  # another Markdown file with the same markers
 
 Tables: checkpoints (thermal steps added by checkpoint boundaries), coupling (`tmdem study
 coupling examples/poured_bed.toml`), settle (how the default scene settles: `tmdem run`).
@@ -26,11 +27,9 @@ Needs python3 (standard library only). The ctest test readme_tables (label readm
 
 The other measured tables are marked `<!-- readme_tables: hand-measured (why); command ... -->`
 on the line above: the accuracy summary (its "cheapest run" is chosen by wall time), the
-piston bed's gas-model comparison (2 min), and the
-bench_thermal and bench_mechanics benchmarks (timings). Their timing columns say `[timing]`;
-they are refreshed by rerunning the command the README shows above them. The solver
-comparisons of "Contact solvers" and the bench_pour table are measured by hand too (same
-machine, commands above them).
+piston bed's gas-model comparison, the benchmark programs (bench_thermal, bench_mechanics,
+bench_solvers, bench_pour: timings) and the solver and thread comparisons. Their timing columns
+say `[timing]`; they are refreshed by rerunning the command docs/benchmarks.md shows above them.
 """
 import argparse
 import csv
@@ -250,16 +249,18 @@ def table_inventory(text):
 
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    p.add_argument("--readme", default=str(ROOT / "README.md"))
+    p.add_argument("--file", "--readme", dest="file", default=str(ROOT / "docs" / "benchmarks.md"),
+                   help="the Markdown file holding the tables (default: docs/benchmarks.md)")
     p.add_argument("--tmdem", default=str(ROOT / "build" / "tmdem"))
     p.add_argument("--only", choices=sorted(TABLES) + sorted(SLOW_TABLES), action="append")
     p.add_argument("--check", action="store_true", help="compare only; exit 1 on drift")
     p.add_argument("--list", action="store_true", help="list every table and how it is kept")
     args = p.parse_args(argv)
-    text = pathlib.Path(args.readme).read_text()
+    text = pathlib.Path(args.file).read_text()
+    shown = os.path.relpath(args.file, ROOT) if os.path.isabs(args.file) else args.file
     if args.list:
         for line, header, how in table_inventory(text):
-            print(f"README.md:{line}: {how}: {header}")
+            print(f"{shown}:{line}: {how}: {header}")
         return 0
     drifted = False
     with tempfile.TemporaryDirectory() as work:
@@ -268,22 +269,22 @@ def main(argv=None):
                                  re.S)
             found = pattern.search(text)
             if not found:
-                sys.exit(f"{args.readme}: no <!-- readme_tables: {name} --> ... <!-- /readme_tables --> block")
+                sys.exit(f"{args.file}: no <!-- readme_tables: {name} --> ... <!-- /readme_tables --> block")
             indent = re.match(r" *", found.group(2)).group(0)
             old_rows = [line.strip() for line in found.group(2).splitlines() if line.strip()]
             new_rows = {**TABLES, **SLOW_TABLES}[name](args.tmdem, work)
             for r, c, old, new in drift(old_rows, new_rows):
                 drifted = True
-                print(f"{name}: row {r}, column {c + 1}: README {old!r}, now {new!r}")
+                print(f"{name}: row {r}, column {c + 1}: {shown} {old!r}, now {new!r}")
             block = "\n".join(indent + row for row in new_rows)
             text = text[:found.start(2)] + block + text[found.end(2):]
     if args.check:
-        print("README tables drifted from fresh runs: rewrite them with scripts/readme_tables.py "
+        print(f"{shown}: tables drifted from fresh runs: rewrite them with scripts/readme_tables.py "
               "(and check the prose that cites them)" if drifted
-              else "README tables match fresh runs (timing columns aside)")
+              else f"{shown}: tables match fresh runs (timing columns aside)")
         return 1 if drifted else 0
-    pathlib.Path(args.readme).write_text(text)
-    print(f"rewrote {', '.join(args.only or sorted(TABLES))} in {args.readme}")
+    pathlib.Path(args.file).write_text(text)
+    print(f"rewrote {', '.join(args.only or sorted(TABLES))} in {shown}")
     return 0
 
 

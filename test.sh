@@ -8,7 +8,7 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 jobs="$(nproc)"
 # The test programs run OpenMP loops at 1 and 2 threads in-process, two programs at a time:
-# threads that spin at a barrier take the core their partner needs (README "Threads"), so
+# threads that spin at a barrier take the core their partner needs (docs/mechanics.md "Threads"), so
 # idle threads sleep instead, unless the caller chose otherwise.
 export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-passive}"
 "$root/scripts/setup.sh"

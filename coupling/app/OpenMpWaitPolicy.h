@@ -2,7 +2,7 @@
 // OpenMP threads that wait at a barrier spin by default (libgomp: up to 300,000 spins before
 // sleeping). On a machine whose cores are shared with other jobs, a spinning thread takes the
 // core its partner needs to reach the barrier: on the 2-core development machine under load,
-// 2-thread contact solves cost 10x the CPU of 1-thread ones (README "Threads"). Passive waiting
+// 2-thread contact solves cost 10x the CPU of 1-thread ones (docs/mechanics.md "Threads"). Passive waiting
 // (sleep at once) removes that. libgomp reads OMP_WAIT_POLICY once, when it is loaded, so the
 // program sets it and starts itself again before doing anything else.
 

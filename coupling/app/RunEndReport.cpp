@@ -33,7 +33,7 @@ std::vector<WarningCount> warning_counts(const RunSummary& summary) {
        "last iterate"},
       {"contact solve stalled", m.stalled_steps,
        "no progress for 500 sweeps, typical of frictional piles creeping on a plateau; a higher "
-       "mechanics.max_iterations converges them (README, Mechanics: known limit)"}};
+       "mechanics.max_iterations converges them (docs/mechanics.md)"}};
   std::erase_if(kinds, [](const WarningCount& k) { return k.count <= 0; });
   return kinds;
 }

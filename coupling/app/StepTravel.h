@@ -16,7 +16,7 @@
 //    r_min / 16: v h > kDynamicTravelFraction r_min = r_min / 2.
 //  - "settle": only the packing at rest is handed over; there speeds are below
 //    settle_velocity and ghost gaps vanish, so the travel of the fall changes the path the
-//    particles took, as the seed does. Measured on the default scene (README "Travel per
+//    particles took, as the seed does. Measured on the default scene (docs/mechanics.md "Travel per
 //    step"): 1.40 r_min per step gives the same bed height and hot-particle temperatures as
 //    0.36 r_min, within the seed-to-seed scatter. Warn beyond one smallest diameter per step,
 //    v h > kSettleTravelFraction r_min = 2 r_min: the ghost gap can then exceed r_min, so a

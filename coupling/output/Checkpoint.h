@@ -5,7 +5,7 @@
 // frames_written; datasets (each with a "units" attribute) /position [N,3] m,
 // /velocity [N,3] m/s, /angular_velocity [N,3] rad/s, /temperature [N] K,
 // /contacts/pair [C,2] int64, /contacts/impulse [C,3] N s, /contacts/tangential_force [C,3] N,
-// /contacts/normal_force [C] N, /extra/<name> scalar double; for a bitwise restart (README
+// /contacts/normal_force [C] N, /extra/<name> scalar double; for a bitwise restart (docs/restart-and-files.md
 // "Restart, interruption and files") also /mechanics (attributes margin_m, rebuilds; datasets
 // reference_position [N,3] or [0,3] m, candidate_pair [K,2], candidate_force [K,3] N,
 // candidate_rolling_torque [K,3] N m (only with rolling resistance),

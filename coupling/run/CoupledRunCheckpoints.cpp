@@ -1,4 +1,4 @@
-// CoupledRun's checkpoints, restarts and interruptions (README "Restart, interruption and
+// CoupledRun's checkpoints, restarts and interruptions (docs/restart-and-files.md "Restart, interruption and
 // files"): every checkpoint time is an integration boundary, in the run that writes the
 // checkpoint and in the run restarted from it.
 #include <cmath>
@@ -53,7 +53,7 @@ void CoupledRun::maybe_checkpoint(double t_s) {
   checkpoint(t_s);
 }
 
-// An integration boundary (README "Restart, interruption and files"): the thermal integrator
+// An integration boundary (docs/restart-and-files.md "Restart, interruption and files"): the thermal integrator
 // starts afresh from the checkpoint's temperatures, boundary heat and counters. The run that
 // writes the checkpoint does this right after writing it, a run restarted from it does the same
 // at its start, so both continue identically.

@@ -1,6 +1,6 @@
 #pragma once
 // What a checkpoint carries beyond positions and temperatures so that a restart continues bit
-// for bit (README "Restart, interruption and files"): the mechanics' own state
+// for bit (docs/restart-and-files.md "Restart, interruption and files"): the mechanics' own state
 // (mechanics/integrator/MechanicsState.h), its counters, the thermal integrator's counters and the contact
 // list with its exact forces. Converts between the run's objects and the flat CheckpointState
 // of the output room, which knows neither mechanics nor thermal.

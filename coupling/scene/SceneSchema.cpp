@@ -315,7 +315,7 @@ std::vector<Section> build_sections() {
                "The default is for small beds (the 2D examples); a 3D bed of thousands of "
                "spheres at 1e-6 spends thousands of sweeps per step while it lands: set what "
                "examples/pour_3d.toml sets (1e-5 with fall_tolerance 1e-4, fall_speed 0.05, "
-               "max_iterations 5000; README \"The tolerance defaults and a 3D bed\")"),
+               "max_iterations 5000; docs/mechanics.md \"The tolerance defaults and a 3D bed\")"),
         number("fall_tolerance", "", std::nullopt, Range::greater(0.0),
                "tolerance schedule: the solves stop at this tolerance instead of `tolerance` "
                "while the largest particle speed is at or above fall_speed; once it first drops "

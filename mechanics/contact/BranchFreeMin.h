@@ -3,7 +3,7 @@
 // back into a branch ("q < 1 ? q x : x", the multiplication by 1 skipped), and in the local
 // solve (CoulombCone.h) that branch is stick against slip, a coin toss on a poured bed: 45% of
 // it mispredicted on the 2,000 pour at rest (callgrind), and the branch-free select saved 5% of
-// a Gauss-Seidel sweep there (README "Pour and settle"). Only where the branch is that
+// a Gauss-Seidel sweep there (measured in development). Only where the branch is that
 // unpredictable: a select waits for its operands where a predicted branch does not (the
 // rolling limit, NaturalMapResidual.h, keeps its branch). An empty asm
 // statement that claims to change the result hides its value from the optimiser; it emits no

@@ -52,7 +52,7 @@ inline int solve_contact_bipotential(const Eigen::Vector3d& u0, double w_n, doub
   const double rn = -u0[0] / w_n;  // u_n = 0 while in contact
   const double rt1 = -u0[1] / w_t, rt2 = -u0[2] / w_t;
   // Not std::hypot: its overflow-safe scaling cost 15% of a visit on the pour bed (79 against
-  // 94 ns per candidate per sweep, README "Pour and settle"), and impulses are nowhere near
+  // 94 ns per candidate per sweep, measured in development), and impulses are nowhere near
   // overflow.
   const double rt = std::sqrt(rt1 * rt1 + rt2 * rt2);
   // Stick (|r_t| <= mu r_n: u = 0) keeps r_t; slip puts r on the cone surface, opposite to

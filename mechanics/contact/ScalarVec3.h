@@ -3,8 +3,8 @@
 // (GaussSeidelUpdate.h) and the rolling local solve (NaturalMapResidual.h). Eigen::Vector3d
 // with SSE2 computes two components as a packet and the third apart, with shuffles between;
 // the same visit written on this type costs 11% less on the 2,000 pour bed at rest (nlgs,
-// 40 cold sweeps, 1 thread: 55.9 -> 49.7 ns of CPU per candidate per sweep; README "Pour and
-// settle"), at about the same instruction count (valgrind); where the time goes was not
+// 40 cold sweeps, 1 thread: 55.9 -> 49.7 ns of CPU per candidate per sweep; measured in
+// development), at about the same instruction count (valgrind); where the time goes was not
 // measured (this VM's perf has no hardware counters). Every operation rounds as Eigen's does, component by component, and a dot product
 // adds left to right ((x x' + y y') + z z', as Eigen's redux of a 3-vector), so results keep
 // their bits (checked on that bed: reactions and velocities after 40 sweeps, bit for bit).

@@ -43,7 +43,7 @@ struct NscdParameters {
   // ends up elsewhere, as it does for any change to the solve (K = 1 at a 1% tighter
   // tolerance: the 2,000 pour not at rest in 5 s either, test_e2e_conductivity's seed-5 bed
   // exponent 0.394 instead of 0.320, as with 8), so the tests' measured trajectories hold
-  // for 1 only (README, "Active-set sweeps and where a bed comes to rest"). Default 1.
+  // for 1 only (measured in development). Default 1.
   int full_sweep_every = 1;
   // Penetration slop s, as a fraction of the smallest radius. The velocity solve never pushes
   // an overlap out (NscdIntegrator.h); the position step (PenetrationCorrection.h) holds

@@ -5,7 +5,7 @@
 // Why: when a poured fill lands (the "collapse" of bench_pour's 2,000 spheres, steps 49-122)
 // every step brings new impacts, and a tight tolerance there costs max_iterations sweeps per
 // step without converging; once the bed has landed, a loose tolerance leaves reactions that do
-// not hold it (nncg at 1e-4: the bed creeps for the whole 5 s settle). README "A tolerance
+// not hold it (nncg at 1e-4: the bed creeps for the whole 5 s settle). docs/mechanics.md "A tolerance
 // schedule".
 //
 // The rule, one-way so that it cannot chatter, judged on the largest particle speed v of the
@@ -16,7 +16,7 @@
 // A scene whose particles never reach fall_speed is solved at `tolerance` throughout.
 // With tighten_steps N > 1 the landed steps j = 1, 2, ... (j = 1: the first one) use
 // fall_tolerance (tolerance / fall_tolerance)^(j / N) until j = N reaches `tolerance`: the
-// first step at 1e-5 after 1e-4 took 577-2,000+ sweeps on the 2,000 pour (README "A tolerance
+// first step at 1e-5 after 1e-4 took 577-2,000+ sweeps on the 2,000 pour (docs/mechanics.md "A tolerance
 // schedule"), and a geometric ramp spreads that work over N steps.
 #include <cstdint>
 

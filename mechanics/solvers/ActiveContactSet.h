@@ -51,7 +51,7 @@ class ActiveContactSet {
   // Whether any sweep can be partial (full_sweep_every > 1). Otherwise every sweep is full
   // and nothing reads the passive marks or the active list: the solvers skip marking and
   // collecting (mark_* and collect), whose per-candidate branch on the 2,000 pour bed at rest
-  // was a third of a sweep's mispredicted branches (README "Pour and settle").
+  // was a third of a sweep's mispredicted branches (measured in development).
   bool partial_sweeps() const { return every_ > 1; }
 
   // Whether sweep number `sweep` (1, 2, ...) visits every contact.

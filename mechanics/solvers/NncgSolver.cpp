@@ -115,7 +115,7 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& problem,
     } else if (beta > 1.0) {
       // The pair's change grew. The paper restarts (beta = 0); in the collapse of a poured bed
       // that happens after every other pair and keeps only a 1.7x gain over "nlgs", while
-      // keeping the direction with a damped beta converges in 4.9x fewer sweeps (README).
+      // keeping the direction with a damped beta converges in 4.9x fewer sweeps (measured in development).
       beta = kBetaAfterGrowth;
       ++damped_;
     }

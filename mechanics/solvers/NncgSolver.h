@@ -17,7 +17,7 @@
 // poured bed (contacts closing and slipping change the map from pair to pair), and leaves
 // 1,091 sweeps to 1e-4 on the problem of step 60 of bench_pour 2000 (nlgs: 1,809); going on
 // along the direction with beta = 0.7 takes 369 (0.9: 374 but stalls before 1e-6; 0.95 and
-// 0.99 diverge; 0.5: 447; 0.3: 547). Measured with TMDEM_POUR_PROBE_STEP=60 (README).
+// 0.99 diverge; 0.5: 447; 0.3: 547). Measured with TMDEM_POUR_PROBE_STEP=60 (measured in development).
 // A drift: on frictional piles the pairs' change can stay the same from pair to pair for
 // thousands of sweeps (|d_{k+1}|^2 / |d_k|^2 = 1.0000-1.006, no contact changing status: the
 // sweeps move the reactions along a direction they do not correct, e.g. a loop of stuck
@@ -29,7 +29,7 @@
 // growing half of an oscillation also passes ratios just above 1 (1.007-1.01), where beta = 1
 // pumps it: over 25 runs of column_in_air, bed_in_air, piston_bed and first_scene (seeds 1-8),
 // 35 steps left unconverged with 1.003, 42 with 1.001, 53 with 1.01, 74 without the rule
-// (README, "nncg stall").
+// (measured in development).
 // Patience: the residual of these solves is not monotone: plateaus of 500-3,600 sweeps without
 // a 10% gain, then descent (the longest such plateau of a solve that then converged, over the
 // examples: 3,607 sweeps, column_in_air). The shared stall rule of "nlgs" (10% over

@@ -1,6 +1,6 @@
 // End to end: a run stopped at a checkpoint and restarted from it writes the same result file,
 // every dataset bit for bit, and the same summary (wall times aside), as the uninterrupted run:
-// thermal-only with every integrator, a settled packing, a dynamic packing (README "Restart,
+// thermal-only with every integrator, a settled packing, a dynamic packing (docs/restart-and-files.md "Restart,
 // interruption and files"). Both runs have the same checkpoint times, which are integration
 // boundaries in both.
 #include <gtest/gtest.h>

@@ -134,7 +134,7 @@ TEST(E2eConductivity, PistonLoadedLatticeFollowsHertzOneThirdPowerLaw) {
 // 1e4 Pa. Why the band is [0.28, 0.50] and not 1/3 +- 0.03: rigid spheres leave the forces of a
 // hyperstatic bed undetermined, and the load closes contacts that carried nothing, so the exponent
 // is a property of the bed the pour happened to make. Measured over 30 such beds (seeds 5-9, six
-// solver settings; README "Active-set sweeps and where a bed comes to rest"): 0.299-0.452, 27 of 30
+// solver settings; measured in development): 0.299-0.452, 27 of 30
 // above 1/3; seeds 5-10 with nlgs (the default then): 0.320, 0.374, 0.373, 0.354, 0.356, 0.432. The
 // band keeps what the test is for: a stress effect of Hertz's order (a conductance that ignored the
 // force gives 0, one linear in it about 1), without failing on the bed-to-bed spread. The exact 1/3

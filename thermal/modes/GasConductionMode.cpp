@@ -2,7 +2,7 @@
 // isothermal wall, across touching and near pairs: q_a += H_g (T_b - T_a). H_g depends only on
 // the geometry of the frozen packing, so it is computed once per edge set (update_geometry) and
 // enters the Laplacian like contact conduction, with the same exact (constant) Jacobian.
-// Models: thermal/modes/GasGapConductance.h; README "Gas in the gaps".
+// Models: thermal/modes/GasGapConductance.h; docs/heat-modes.md "Gas in the gaps".
 #include <memory>
 #include <string_view>
 #include <vector>

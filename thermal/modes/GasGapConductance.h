@@ -1,6 +1,6 @@
 #pragma once
 // Conductance of the stagnant gas (or liquid) between two spheres, or between a sphere and a
-// plane wall, W/K: the models of effects.gas_conduction (thermal/modes/GasConductionMode.cpp; README
+// plane wall, W/K: the models of effects.gas_conduction (thermal/modes/GasConductionMode.cpp; docs/heat-modes.md
 // "Gas in the gaps" gives equations, sources and validity).
 #include <limits>
 

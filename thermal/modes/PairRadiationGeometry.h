@@ -3,7 +3,7 @@
 // (RadiationMode.cpp) share: which network edges radiate, the view factor of a neighbour, and the
 // two [radiation] keys that switch pair radiation on and bound its reach. The ambient mode needs
 // them because the share of a particle's radiation that meets its radiating neighbours does not
-// also leave to the surroundings (README "Radiation between particles").
+// also leave to the surroundings (docs/heat-modes.md "Radiation between particles").
 #include <algorithm>
 #include <cmath>
 #include <cstddef>

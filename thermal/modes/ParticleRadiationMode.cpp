@@ -6,7 +6,7 @@
 // average makes G symmetric, so every pair conserves energy exactly. No shadowing by third
 // particles: pairs beyond [radiation] pair_cutoff are left out. The share F_ab of a's radiation
 // that meets b does not also reach the surroundings (RadiationMode.cpp). Exact Jacobian, one-sided:
-// d q_a / d T_b = 4 G T_b^3, d q_b / d T_a = 4 G T_a^3. README "Radiation between particles".
+// d q_a / d T_b = 4 G T_b^3, d q_b / d T_a = 4 G T_a^3. docs/heat-modes.md "Radiation between particles".
 #include <cmath>
 #include <memory>
 #include <numbers>

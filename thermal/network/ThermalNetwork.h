@@ -48,7 +48,7 @@ struct ThermalNetwork {
   std::vector<std::int32_t> flux_node, flux_wall;             // per flux edge
   std::vector<double> flux_conductance_W_per_K;               // per flux edge
 
-  // Temperature-dependent materials (README "Temperature-dependent properties"): empty unless
+  // Temperature-dependent materials (docs/heat-modes.md "Temperature-dependent properties"): empty unless
   // some material gives its conductivity or heat capacity as a table [[T, value], ...]. Then
   // every material has both tables (a constant is a one-point table), C_i(T) = m_i c(T_i), the
   // thermal energy is sum m_i int_0^T_i c, and, with conductance_follows_conductivity, each

@@ -91,7 +91,7 @@ TEST(StepTravel, SmallDisksFallingOneMetreWarn) {
 
 // The default scene (examples/paper_bed.toml, settle) must not warn: predicted 0.93 mm per step,
 // 1.86 r_min; measured 0.70 mm (1.40 r_min) in the run, whose settled packing matched one made
-// at a quarter of the step (README "Travel per step"). The same fall in a dynamic run warns.
+// at a quarter of the step (docs/mechanics.md "Travel per step"). The same fall in a dynamic run warns.
 TEST(StepTravel, DefaultSceneDoesNotWarnButItsDynamicTwinDoes) {
   const Scene scene = load_default_scene();
   const StepTravel t = estimate_step_travel(scene);

@@ -344,7 +344,7 @@ TEST(SceneRules, SolverByNameListsTheValidNames) {
                      {"mechanics.solver", "\"nlgs\"", "\"jacobi_typo\""});
   EXPECT_EQ(load_scene_text(kBaseScene, "t", {"mechanics.solver=nlgs"}).mechanics.solver, "nlgs");
   // The default is nncg (issue 10: fastest to rest and most steps converged on every example;
-  // README "Every example").
+  // docs/benchmarks.md "Every example").
   EXPECT_EQ(load_scene_text(kBaseScene, "t").mechanics.solver, "nncg");
 }
 

@@ -220,7 +220,7 @@ TEST(ToleranceSchedule, RestoredIntegratorContinuesBitwiseAcrossTheSwitch) {
   }
 }
 
-// A fall_tolerance equal to tolerance gives the bits of no schedule at all (the README's way
+// A fall_tolerance equal to tolerance gives the bits of no schedule at all (docs/mechanics.md's way
 // to measure an example's earlier settings again), while a looser one does not.
 TEST(ToleranceSchedule, EqualTolerancesGiveTheBitsOfNoSchedule) {
   NscdParameters none = nlgs_parameters();

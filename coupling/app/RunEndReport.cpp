@@ -107,10 +107,10 @@ void print_run_end(const RunSummary& summary, const Scene& scene, const std::str
   // A run interrupted while settling froze nothing: it stopped before t = 0.
   const bool stopped_settling = summary.status == "interrupted" && summary.simulated_time_s == 0.0;
   if (summary.settle && !summary.settle->at_rest && !stopped_settling) {
-    out << "warning: the packing was frozen WITHOUT coming to rest: largest speed "
-        << summary.settle->max_speed_m_s << " m/s after " << summary.settle->time_s << " s ("
-        << summary.settle->steps << " steps), above mechanics.settle_velocity = "
-        << scene.mechanics.settle_velocity_m_per_s
+    out << "warning: the packing was frozen WITHOUT coming to rest (mechanics.rest_test = \""
+        << scene.mechanics.rest_test << "\"): largest speed " << summary.settle->max_speed_m_s
+        << " m/s after " << summary.settle->time_s << " s (" << summary.settle->steps
+        << " steps), mechanics.settle_velocity = " << scene.mechanics.settle_velocity_m_per_s
         << " m/s; raise mechanics.settle_time or check the contact solver\n";
   }
   out.flush();

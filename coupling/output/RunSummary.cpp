@@ -99,7 +99,9 @@ nlohmann::json RunSummary::to_json() const {
     j["settle"] = {{"at_rest", settle->at_rest},
                    {"time_s", settle->time_s},
                    {"steps", settle->steps},
-                   {"max_speed_m_s", settle->max_speed_m_s}};
+                   {"max_speed_m_s", settle->max_speed_m_s},
+                   {"ended_by", settle->ended_by},
+                   {"rattlers", settle->rattlers}};
   }
   if (wall_time_parts) {
     j["wall_time_parts"] = {{"mechanics_s", wall_time_parts->mechanics_s},
@@ -157,6 +159,8 @@ RunSummary RunSummary::from_json(const nlohmann::json& j) {
     settle.time_s = number(st, "time_s", 0.0);
     settle.steps = integer(st, "steps", 0);
     settle.max_speed_m_s = number(st, "max_speed_m_s", 0.0);
+    if (st.contains("ended_by")) settle.ended_by = st.at("ended_by").get<std::string>();
+    settle.rattlers = integer(st, "rattlers", 0);
     s.settle = settle;
   }
 

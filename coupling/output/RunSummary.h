@@ -46,10 +46,14 @@ struct MechanicsSummary {
 
 // The "settle" block (mechanics = "settle" only): how the packing was frozen.
 struct SettleSummary {
-  bool at_rest = false;              // every particle slower than mechanics.settle_velocity
+  bool at_rest = false;              // the rest test (mechanics.rest_test) was met
   double time_s = 0.0;               // settle time used
   std::int64_t steps = 0;            // settle steps
   double max_speed_m_s = 0.0;        // largest particle speed when frozen
+  // extra: which test ended the settling ("network" or "velocity"; "settle_time" when none was
+  // met), and the moving particles with no contact carrying force when frozen.
+  std::string ended_by;
+  std::int64_t rattlers = 0;
 };
 
 struct ThermalSummary {

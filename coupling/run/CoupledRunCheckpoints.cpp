@@ -43,7 +43,13 @@ void CoupledRun::restore_checkpoint() {
       extra.contains("settle_steps") && extra.contains("settle_max_speed_m_s")) {
     summary_.settle = SettleSummary{extra.at("settle_at_rest") != 0.0, extra.at("settle_time_s"),
                                     std::llround(extra.at("settle_steps")),
-                                    extra.at("settle_max_speed_m_s")};
+                                    extra.at("settle_max_speed_m_s"), "settle_time", 0};
+    if (auto it = extra.find("settle_rattlers"); it != extra.end())
+      summary_.settle->rattlers = std::llround(it->second);
+    if (auto it = extra.find("settle_ended_by"); it != extra.end())
+      summary_.settle->ended_by = it->second == 1.0   ? "network"
+                                  : it->second == 2.0 ? "velocity"
+                                                      : "settle_time";
   }
 }
 
@@ -101,6 +107,10 @@ void CoupledRun::checkpoint(double t_s) {
     cs.extra["settle_time_s"] = summary_.settle->time_s;
     cs.extra["settle_steps"] = double(summary_.settle->steps);
     cs.extra["settle_max_speed_m_s"] = summary_.settle->max_speed_m_s;
+    cs.extra["settle_rattlers"] = double(summary_.settle->rattlers);
+    cs.extra["settle_ended_by"] = summary_.settle->ended_by == "network"    ? 1.0
+                                  : summary_.settle->ended_by == "velocity" ? 2.0
+                                                                            : 0.0;
   }
   const auto output_start = std::chrono::steady_clock::now();
   write_checkpoint(checkpoint_path_for(options_.output_path), cs);

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "coupling/bridge/SceneToMechanics.h"
+#include "coupling/run/SettleRestTest.h"
 #include "coupling/scene/HeatModes.h"
 #include "mechanics/detection/TouchingPairs.h"
 #include "thermal/modes/ModeRegistry.h"
@@ -27,6 +28,9 @@ SettleSummary settle_packing(mechanics::NscdIntegrator& nscd, const Scene& scene
   const double h = scene.mechanics.time_step_s;
   const double t_max = scene.mechanics.settle_time_s;
   const std::int64_t steps_before = nscd.stats().steps;
+  const bool network_test = scene.mechanics.rest_test == "network";
+  SettleRestTest rest({scene.mechanics.rest_window, scene.mechanics.rest_force_change,
+                       scene.mechanics.settle_velocity_m_per_s});
   SettleSummary outcome;
   double t = 0.0;
   while (t < t_max - 0.5 * h) {
@@ -38,11 +42,16 @@ SettleSummary settle_packing(mechanics::NscdIntegrator& nscd, const Scene& scene
       progress.message(msg);
     }
     const double speed = nscd.max_speed();
+    const bool network_at_rest = rest.after_step(nscd.contacts(), nscd.particles());
     std::ostringstream extra;
     extra << "max speed " << speed << " m/s, " << report.active_contacts << " contacts";
+    if (network_test)
+      extra << ", force change " << rest.force_change() << ", load speed " << rest.load_speed_m_s()
+            << " m/s";
     progress.update("settle", t, t_max, extra.str());
-    if (speed < scene.mechanics.settle_velocity_m_per_s) {
+    if (network_test ? network_at_rest : speed < scene.mechanics.settle_velocity_m_per_s) {
       outcome.at_rest = true;
+      outcome.ended_by = scene.mechanics.rest_test;
       break;
     }
     if (stop && stop()) break;
@@ -51,19 +60,29 @@ SettleSummary settle_packing(mechanics::NscdIntegrator& nscd, const Scene& scene
   outcome.time_s = t;
   outcome.steps = nscd.stats().steps - steps_before;
   outcome.max_speed_m_s = nscd.max_speed();
+  outcome.rattlers = rest.rattlers();
+  if (!outcome.at_rest) outcome.ended_by = "settle_time";
   std::ostringstream msg;
   if (!outcome.at_rest && stop && stop()) {
     msg << "settle: stopped after " << t << " s (" << outcome.steps << " steps), largest speed "
         << outcome.max_speed_m_s << " m/s";
   } else if (!outcome.at_rest) {
-    msg << "warning: not at rest after mechanics.settle_time = " << t_max
-        << " s: largest speed " << outcome.max_speed_m_s << " m/s (settle_velocity "
-        << scene.mechanics.settle_velocity_m_per_s << " m/s); freezing the packing as it is";
+    msg << "warning: not at rest after mechanics.settle_time = " << t_max << " s: ";
+    if (network_test)
+      msg << "normal forces changed by " << rest.force_change() << " over "
+          << scene.mechanics.rest_window << " steps (rest_force_change "
+          << scene.mechanics.rest_force_change << "), load carriers' mean speed "
+          << rest.load_speed_m_s() << " m/s (settle_velocity "
+          << scene.mechanics.settle_velocity_m_per_s << " m/s)";
+    else
+      msg << "largest speed " << outcome.max_speed_m_s << " m/s (settle_velocity "
+          << scene.mechanics.settle_velocity_m_per_s << " m/s)";
+    msg << "; freezing the packing as it is";
   } else {
-    msg << "settle: at rest after " << t << " s (" << outcome.steps << " steps, "
-        << nscd.contacts().size() << " contacts, max penetration "
-        << nscd.stats().max_penetration_m << " m, " << nscd.stats().unconverged_steps
-        << " unconverged steps)";
+    msg << "settle: at rest (" << outcome.ended_by << " test) after " << t << " s ("
+        << outcome.steps << " steps, " << nscd.contacts().size() << " contacts, "
+        << outcome.rattlers << " rattlers, max penetration " << nscd.stats().max_penetration_m
+        << " m, " << nscd.stats().unconverged_steps << " unconverged steps)";
   }
   progress.message(msg.str());
   return outcome;

@@ -20,9 +20,11 @@
 
 namespace tmdem::coupling {
 
-// Steps the NSCD integrator until every particle is slower than mechanics.settle_velocity or
-// mechanics.settle_time runs out (then a warning with the largest speed). Returns how it ended:
-// at rest or not, the settle time and steps used, the largest speed when frozen. `stop`, asked
+// Steps the NSCD integrator until the rest test of mechanics.rest_test is met ("network": the
+// normal forces stationary and the load carriers still, SettleRestTest.h; "velocity": every
+// particle slower than mechanics.settle_velocity) or mechanics.settle_time runs out (then a
+// warning with the figures). Returns how it ended: at rest or not, by which test, the settle
+// time and steps used, the largest speed and the rattlers when frozen. `stop`, asked
 // after every step, ends settling early (an interrupted run): at_rest is then false and no
 // "not at rest" warning is printed.
 SettleSummary settle_packing(mechanics::NscdIntegrator& nscd, const Scene& scene,

@@ -128,6 +128,12 @@ struct MechanicsSettings {
   int full_sweep_every = 1;  // Gauss-Seidel active-set sweeps (mechanics::NscdParameters)
   double settle_time_s = 5.0;
   double settle_velocity_m_per_s = 1.0e-4;
+  // When "settle" ends (coupling/run/SettleRestTest.h): "network" when the normal forces have
+  // stopped changing and the load carriers have stopped, "velocity" when every particle is
+  // slower than settle_velocity.
+  std::string rest_test = "network";
+  int rest_window = 5;              // steps
+  double rest_force_change = 1e-2;  // relative
   double penetration_slop = 1.0e-4;  // fraction of the smallest radius
   double recovery_speed_m_per_s = 0.0;  // 0 = no cap
 };

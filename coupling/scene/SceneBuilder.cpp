@@ -148,6 +148,9 @@ void SceneBuilder::read_settings() {
     m.tighten_steps = sweeps("tighten_steps", m.tighten_steps);
     m.settle_time_s = t.number("settle_time");
     m.settle_velocity_m_per_s = t.number("settle_velocity");
+    m.rest_test = t.choice("rest_test");
+    m.rest_window = sweeps("rest_window", m.rest_window);
+    m.rest_force_change = t.number("rest_force_change");
     m.penetration_slop = t.number("penetration_slop");
     m.recovery_speed_m_per_s = t.number("recovery_speed");
   }

@@ -335,7 +335,17 @@ std::vector<Section> build_sections() {
               "convergence is judged on full sweeps (1: every sweep is full)"),
         number("settle_time", "s", 5.0, Range::greater(0.0), "longest \"settle\" phase"),
         number("settle_velocity", "m/s", 1.0e-4, Range::greater(0.0),
-               "every particle slower than this counts as at rest"),
+               "rest_test \"velocity\": every particle slower than this; \"network\": the "
+               "mass-weighted mean speed sqrt(2 KE / M) of the load-carrying particles below this"),
+        choice("rest_test", "network", {"network", "velocity"},
+               "when \"settle\" ends: \"network\" once the contact normal forces changed by less "
+               "than rest_force_change over rest_window steps and the load-carrying particles "
+               "are slower than settle_velocity (rattlers are not waited for); \"velocity\" once "
+               "every particle is slower than settle_velocity"),
+        value("rest_window", "", "5", "integer >= 1",
+              "rest_test \"network\": steps over which the normal forces are compared"),
+        number("rest_force_change", "", 1.0e-2, Range::greater(0.0),
+               "rest_test \"network\": largest sum |F_now - F_window_before| / sum F_now"),
         number("penetration_slop", "", 1.0e-4, Range::closed(0.0, 0.5),
                "slop s, as a fraction of the smallest radius: overlaps up to 2 s are held, a "
                "deeper one is moved back to s by positions only (no speed is made of it)"),

@@ -97,10 +97,12 @@ TEST(RunSummary, FileRoundTrip) {
 TEST(RunSummary, SettleBlockAndStalledStepsRoundTrip) {
   RunSummary s = sample_summary();
   s.mechanics.stalled_steps = 3;
-  s.settle = tmdem::coupling::SettleSummary{false, 5.0, 5000, 1.15e-3};
+  s.settle = tmdem::coupling::SettleSummary{false, 5.0, 5000, 1.15e-3, "settle_time", 0};
   const nlohmann::json j = nlohmann::json::parse(s.to_json().dump());
   ASSERT_TRUE(j.contains("settle"));
-  EXPECT_EQ(j["settle"].size(), 4u);
+  EXPECT_EQ(j["settle"].size(), 6u);
+  EXPECT_EQ(j["settle"]["ended_by"].get<std::string>(), "settle_time");
+  EXPECT_EQ(j["settle"]["rattlers"].get<std::int64_t>(), 0);
   EXPECT_TRUE(j["settle"]["at_rest"].is_boolean());
   EXPECT_FALSE(j["settle"]["at_rest"].get<bool>());
   EXPECT_EQ(j["settle"]["time_s"].get<double>(), 5.0);

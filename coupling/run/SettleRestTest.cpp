@@ -1,0 +1,85 @@
+#include "coupling/run/SettleRestTest.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "mechanics/model/PairIndex.h"
+
+namespace tmdem::coupling {
+
+SettleRestTest::SettleRestTest(SettleRestTestSettings settings)
+    : settings_(settings), force_change_(std::numeric_limits<double>::infinity()) {
+  if (settings_.window_steps < 1)
+    throw std::invalid_argument("mechanics.rest_window must be >= 1");
+  if (!(settings_.force_change > 0.0))
+    throw std::invalid_argument("mechanics.rest_force_change must be > 0");
+  if (!(settings_.speed_m_s > 0.0)) throw std::invalid_argument("mechanics.settle_velocity must be > 0");
+}
+
+double SettleRestTest::force_difference_N(const Snapshot& a, const Snapshot& b) {
+  double sum = 0.0;
+  std::size_t i = 0, k = 0;
+  while (i < a.pair.size() || k < b.pair.size()) {
+    if (k == b.pair.size() || (i < a.pair.size() && a.pair[i] < b.pair[k])) {
+      sum += a.normal_force_N[i++];
+    } else if (i == a.pair.size() || b.pair[k] < a.pair[i]) {
+      sum += b.normal_force_N[k++];
+    } else {
+      sum += std::abs(a.normal_force_N[i++] - b.normal_force_N[k++]);
+    }
+  }
+  return sum;
+}
+
+bool SettleRestTest::after_step(const std::vector<mechanics::ContactForce>& contacts,
+                                const mechanics::ParticleSet& particles) {
+  // Reuse the oldest snapshot's storage once the window is full: no allocation when warm.
+  Snapshot now;
+  if (history_.size() == std::size_t(settings_.window_steps) + 1) {
+    now = std::move(history_.front());
+    history_.pop_front();
+  }
+  now.pair.clear();
+  now.normal_force_N.clear();
+  carries_.assign(particles.size(), 0);
+  double total_N = 0.0;
+  for (const auto& c : contacts) {
+    now.pair.emplace_back(c.i, c.j);
+    now.normal_force_N.push_back(c.normal_force_N);
+    total_N += c.normal_force_N;
+    if (c.normal_force_N > 0.0) {
+      carries_[std::size_t(c.i)] = 1;
+      if (!mechanics::is_wall(c.j)) carries_[std::size_t(c.j)] = 1;
+    }
+  }
+  history_.push_back(std::move(now));
+
+  double kinetic_2J = 0.0, mass_kg = 0.0;  // 2 KE and M of the load carriers
+  double max_speed_m_s = 0.0;
+  rattlers_ = 0;
+  for (std::size_t p = 0; p < particles.size(); ++p) {
+    if (particles.fixed[p]) continue;
+    max_speed_m_s = std::max(max_speed_m_s, particles.velocity[p].norm());
+    if (!carries_[p]) {
+      ++rattlers_;
+      continue;
+    }
+    kinetic_2J += particles.mass[p] * particles.velocity[p].squaredNorm();
+    mass_kg += particles.mass[p];
+  }
+  load_speed_m_s_ = mass_kg > 0.0 ? std::sqrt(kinetic_2J / mass_kg) : 0.0;
+
+  if (history_.size() < std::size_t(settings_.window_steps) + 1) return false;
+  // No force anywhere (no gravity, nothing pressed): nothing carries load, so every particle
+  // must be still, as the velocity test asks.
+  if (total_N == 0.0) {
+    force_change_ = 0.0;
+    return max_speed_m_s < settings_.speed_m_s;
+  }
+  force_change_ = force_difference_N(history_.front(), history_.back()) / total_N;
+  return force_change_ < settings_.force_change && load_speed_m_s_ < settings_.speed_m_s;
+}
+
+}  // namespace tmdem::coupling

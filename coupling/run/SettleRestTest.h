@@ -1,0 +1,64 @@
+#pragma once
+// When a settling packing is at rest for heating (mechanics.rest_test = "network"): the heat
+// sees the contact network and its normal forces, so settling ends when they have stopped
+// changing, not when the last rattler or free roller has. Over the last `window` steps the
+// normal forces changed by less than `force_change` relative to their sum (a contact that
+// opened or closed counts with its whole force), and the load-carrying particles (those with at
+// least one contact that carries force) move slower than `speed` in the mass-weighted mean
+// sense: sqrt(2 KE / M) < speed, so one sphere still rolling on top of 10^4 holds nothing up.
+// Particles with no contact carrying force are rattlers: counted, never waited for. A packing in
+// which no contact carries force (no gravity, no load) is at rest when every particle is slower
+// than `speed`.
+//
+// Not part of any checkpoint: a settle phase is never resumed (a restart starts settled).
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <utility>
+#include <vector>
+
+#include "mechanics/contact/ContactForce.h"
+#include "mechanics/model/ParticleSet.h"
+
+namespace tmdem::coupling {
+
+struct SettleRestTestSettings {
+  int window_steps = 5;        // forces compared with those this many steps before
+  double force_change = 1e-2;  // largest sum |F_now - F_before| / sum F_now
+  double speed_m_s = 1e-4;     // largest sqrt(2 KE / M) of the load-carrying particles
+};
+
+class SettleRestTest {
+ public:
+  explicit SettleRestTest(SettleRestTestSettings settings);
+
+  // After each settle step, with the step's contacts (NscdIntegrator::contacts(): strictly
+  // increasing (i, j)) and the particles: true when the packing is at rest.
+  bool after_step(const std::vector<mechanics::ContactForce>& contacts,
+                  const mechanics::ParticleSet& particles);
+
+  // Of the last step: the relative force change over the window (infinity until the window is
+  // full), the load carriers' mean speed (m/s), and the moving particles with no contact that
+  // carries force.
+  double force_change() const { return force_change_; }
+  double load_speed_m_s() const { return load_speed_m_s_; }
+  std::int64_t rattlers() const { return rattlers_; }
+
+ private:
+  using Pair = std::pair<std::int64_t, std::int64_t>;
+  struct Snapshot {
+    std::vector<Pair> pair;
+    std::vector<double> normal_force_N;
+  };
+  // sum |F_a - F_b| over the union of both contact lists (sorted by pair), N.
+  static double force_difference_N(const Snapshot& a, const Snapshot& b);
+
+  SettleRestTestSettings settings_;
+  std::deque<Snapshot> history_;  // the last window + 1 steps, oldest first
+  std::vector<std::uint8_t> carries_;  // per particle, scratch
+  double force_change_;
+  double load_speed_m_s_ = 0.0;
+  std::int64_t rattlers_ = 0;
+};
+
+}  // namespace tmdem::coupling

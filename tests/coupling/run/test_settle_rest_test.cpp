@@ -1,0 +1,99 @@
+// The network rest test of the settle phase (coupling/run/SettleRestTest.h) on hand-made steps:
+// it waits exactly one window of stationary forces, ignores rattlers, counts an opened contact
+// with its whole force, and falls back on every particle's speed where nothing carries force.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "coupling/run/SettleRestTest.h"
+#include "mechanics/model/PairIndex.h"
+
+namespace tmdem::coupling {
+namespace {
+
+using mechanics::ContactForce;
+using mechanics::ParticleSet;
+
+ContactForce contact(std::int64_t i, std::int64_t j, double force_N) {
+  ContactForce c;
+  c.i = i;
+  c.j = j;
+  c.normal_force_N = force_N;
+  return c;
+}
+
+// Three particles: 0 on the floor, 1 on 0, 2 a rattler touching nobody.
+ParticleSet three_particles() {
+  ParticleSet p;
+  for (int k = 0; k < 3; ++k) p.add({0.0, 0.002 * k, 0.0}, 1e-3, 1e-5, 0);
+  return p;
+}
+
+std::vector<ContactForce> carried_column(double floor_N, double pair_N) {
+  return {contact(0, mechanics::wall_code<std::int64_t>(0), floor_N), contact(0, 1, pair_N)};
+}
+
+TEST(SettleRestTest, WaitsOneWindowOfStationaryForces) {
+  SettleRestTest rest({3, 1e-2, 1e-4});
+  const auto particles = three_particles();
+  for (int step = 1; step <= 3; ++step)
+    EXPECT_FALSE(rest.after_step(carried_column(2e-4, 1e-4), particles)) << "step " << step;
+  EXPECT_TRUE(rest.after_step(carried_column(2e-4, 1e-4), particles));
+  EXPECT_EQ(rest.force_change(), 0.0);
+  EXPECT_EQ(rest.rattlers(), 1);
+}
+
+TEST(SettleRestTest, RattlerDoesNotHoldItUpButLoadCarriersDo) {
+  SettleRestTest rest({1, 1e-2, 1e-4});
+  auto particles = three_particles();
+  particles.velocity[2] = {0.0, -0.5, 0.0};  // a rattler falling through a pore
+  EXPECT_FALSE(rest.after_step(carried_column(2e-4, 1e-4), particles));
+  EXPECT_TRUE(rest.after_step(carried_column(2e-4, 1e-4), particles));
+  EXPECT_EQ(rest.rattlers(), 1);
+  // A load carrier at 2e-4 m/s: sqrt(2 KE / M) = 2e-4 / sqrt(2) = 1.41e-4 m/s > 1e-4.
+  particles.velocity[1] = {2e-4, 0.0, 0.0};
+  EXPECT_FALSE(rest.after_step(carried_column(2e-4, 1e-4), particles));
+  EXPECT_NEAR(rest.load_speed_m_s(), 2e-4 / std::sqrt(2.0), 1e-18);
+}
+
+TEST(SettleRestTest, ForceChangeIsRelativeToTheTotalAndCountsOpenedContacts) {
+  SettleRestTest rest({1, 1e-2, 1e-4});
+  const auto particles = three_particles();
+  rest.after_step(carried_column(2e-4, 1e-4), particles);
+  // 6e-6 N more on the floor: 2% of the 3.06e-4 N in all.
+  EXPECT_FALSE(rest.after_step(carried_column(2.06e-4, 1e-4), particles));
+  EXPECT_NEAR(rest.force_change(), 6e-6 / 3.06e-4, 1e-12);
+  // 1e-6 N less: 0.33%, at rest.
+  EXPECT_TRUE(rest.after_step(carried_column(2.05e-4, 1e-4), particles));
+  // The pair contact opens: its whole 1e-4 N counts against the 2.05e-4 N left.
+  EXPECT_FALSE(rest.after_step({contact(0, mechanics::wall_code<std::int64_t>(0), 2.05e-4)}, particles));
+  EXPECT_NEAR(rest.force_change(), 1e-4 / 2.05e-4, 1e-12);
+  EXPECT_EQ(rest.rattlers(), 2);
+}
+
+TEST(SettleRestTest, WithoutForcesEveryParticleMustBeStill) {
+  SettleRestTest rest({1, 1e-2, 1e-4});
+  auto particles = three_particles();
+  particles.velocity[2] = {0.0, 2e-4, 0.0};
+  EXPECT_FALSE(rest.after_step({}, particles));
+  EXPECT_FALSE(rest.after_step({}, particles));
+  particles.velocity[2] = {0.0, 5e-5, 0.0};
+  EXPECT_TRUE(rest.after_step({}, particles));
+  EXPECT_EQ(rest.rattlers(), 3);
+}
+
+TEST(SettleRestTest, RefusesBadSettingsNamingTheKey) {
+  EXPECT_THROW(SettleRestTest({0, 1e-2, 1e-4}), std::invalid_argument);
+  EXPECT_THROW(SettleRestTest({1, 0.0, 1e-4}), std::invalid_argument);
+  try {
+    SettleRestTest({1, -1.0, 1e-4});
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("rest_force_change"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace tmdem::coupling

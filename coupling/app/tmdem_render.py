@@ -16,8 +16,8 @@ Copy it and change what you like: it is plain paraview.simple.
   are drawn, and the camera looks at the cut face (from +x for x, from +z for z, from above
   for y), so the inside of the bed shows.
 - --forces: the contact network as tubes between the centres (a wall contact ends at the wall),
-  tube radius growing linearly with the normal force, from 4 % of the mean sphere radius for the
-  weakest contact to 40 % for the strongest; the spheres are then drawn translucent.
+  tube radius growing linearly with the normal force, from 3 % of the mean sphere radius for the
+  weakest contact to 30 % for the strongest; the spheres are then drawn translucent.
 Exit codes: 0; 2 for a bad argument (a frame the file does not hold); 1 for anything else.
 """
 import argparse
@@ -195,7 +195,7 @@ if args.forces:
         tubes = Tube(Input=surface)
         tubes.Scalars = ["POINTS", "normal_force"]
         tubes.NumberofSides = 12
-        tubes.Radius = 0.04 * r_mean
+        tubes.Radius = 0.03 * r_mean
         tubes.VaryRadius = "By Scalar" if F_max > F_min else "Off"
         tubes.RadiusFactor = 10.0
         tube_display = Show(tubes, view)

@@ -135,7 +135,12 @@ int run_render_command(const RenderOptions& options, std::ostream& out, std::ost
              "to render; install xvfb (scripts/setup.sh --with-paraview) or run under a display\n";
       return kExitIo;
     }
-    argv = {xvfb, "-a"};
+    // xvfb-run -a takes the first display number from -n on (given before -a) whose lock file
+    // is free; two xvfb-runs started together (ctest -j) or one just after another (whose Xvfb
+    // is still going away) can then meet on the same display, and pvbatch aborts with "bad X
+    // server connection". Starting from a number of our own makes that rare; a crash is tried
+    // once more.
+    argv = {xvfb, "-n", std::to_string(100 + ::getpid() % 5000), "-a"};
   }
   argv.push_back(pvbatch);
   argv.push_back("--force-offscreen-rendering");
@@ -151,7 +156,13 @@ int run_render_command(const RenderOptions& options, std::ostream& out, std::ost
 
   fs::remove(options.png_path, ec);  // an old image must not pass for a new one
   out.flush();
-  const int status = run_program(argv);
+  int status = run_program(argv);
+  if (status > 128 && argv[0] != pvbatch) {  // pvbatch died of a signal under xvfb-run
+    log << "pvbatch stopped by a signal under xvfb-run (exit " << status
+        << "); trying once more on another display\n";
+    argv[2] = std::to_string(100 + (::getpid() + 2500) % 5000);
+    status = run_program(argv);
+  }
   if (status != 0 || !fs::is_regular_file(options.png_path, ec)) {
     log << "error: pvbatch " << (status < 0 ? std::string("could not be started")
                                             : "exited with " + std::to_string(status))

@@ -138,8 +138,8 @@ int run_render_command(const RenderOptions& options, std::ostream& out, std::ost
     // xvfb-run -a takes the first display number from -n on (given before -a) whose lock file
     // is free; two xvfb-runs started together (ctest -j) or one just after another (whose Xvfb
     // is still going away) can then meet on the same display, and pvbatch aborts with "bad X
-    // server connection". Starting from a number of our own makes that rare; a crash is tried
-    // once more.
+    // server connection". Starting from a number of our own makes that rare; a failure is
+    // tried again (below).
     argv = {xvfb, "-n", std::to_string(100 + ::getpid() % 5000), "-a"};
   }
   argv.push_back(pvbatch);
@@ -157,10 +157,12 @@ int run_render_command(const RenderOptions& options, std::ostream& out, std::ost
   fs::remove(options.png_path, ec);  // an old image must not pass for a new one
   out.flush();
   int status = run_program(argv);
-  if (status > 128 && argv[0] != pvbatch) {  // pvbatch died of a signal under xvfb-run
-    log << "pvbatch stopped by a signal under xvfb-run (exit " << status
-        << "); trying once more on another display\n";
-    argv[2] = std::to_string(100 + (::getpid() + 2500) % 5000);
+  // Under xvfb-run, pvbatch now and then finds no X server ("bad X server connection", then
+  // SIGABRT; xvfb-run may then exit with its own code): try twice more on other displays.
+  // Exit 2 is the script refusing an argument, which another display would not change.
+  for (int attempt = 1; attempt < 3 && status != 0 && status != 2 && argv[0] != pvbatch; ++attempt) {
+    log << "pvbatch failed under xvfb-run (exit " << status << "); trying again on another display\n";
+    argv[2] = std::to_string(100 + (::getpid() + 1700 * attempt) % 5000);
     status = run_program(argv);
   }
   if (status != 0 || !fs::is_regular_file(options.png_path, ec)) {

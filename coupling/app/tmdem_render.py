@@ -160,10 +160,11 @@ bar.Title = "temperature (K)"
 bar.ComponentTitle = ""
 bar.TitleColor = [0.0, 0.0, 0.0]
 bar.LabelColor = [0.0, 0.0, 0.0]
-bar.TitleFontSize = 20
-bar.LabelFontSize = 18
+fonts = min(args.size[0] / 1200.0, args.size[1] / 900.0)  # text scales with the image
+bar.TitleFontSize = max(8, round(20 * fonts))
+bar.LabelFontSize = max(8, round(18 * fonts))
 bar.TitleBold = 1
-bar.ScalarBarThickness = 24
+bar.ScalarBarThickness = max(8, round(24 * fonts))
 bar.ScalarBarLength = 0.6
 bar.WindowLocation = "Any Location"
 bar.Orientation = "Vertical"
@@ -207,7 +208,7 @@ label = Text(Text=f"t = {time:g} s (frame {frame} of 0..{frames - 1})"
              + (f", cut at {args.cut} = {centre[axes[args.cut]]:.4g} m" if args.cut else ""))
 label_display = Show(label, view)
 label_display.Color = [0.0, 0.0, 0.0]
-label_display.FontSize = 18
+label_display.FontSize = max(8, round(18 * fonts))
 label_display.WindowLocation = "Upper Left Corner"
 
 # Camera: parallel projection, looking horizontally along -z (or along -x for a cut normal to

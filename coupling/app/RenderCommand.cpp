@@ -1,6 +1,8 @@
 #include "coupling/app/RenderCommand.h"
 
+#include <fcntl.h>
 #include <spawn.h>
+#include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -156,6 +158,17 @@ int run_render_command(const RenderOptions& options, std::ostream& out, std::ost
 
   fs::remove(options.png_path, ec);  // an old image must not pass for a new one
   out.flush();
+  // Several xvfb-run + pvbatch at once fail here (3 of 4 started together aborted with "bad X
+  // server connection", each on its own display, Xvfb reporting nothing), so renders under
+  // xvfb-run wait for each other: an flock on a file in the temporary folder (released when
+  // this process exits).
+  if (argv[0] != pvbatch) {
+    const std::string lock_path = (fs::temp_directory_path(ec) / "tmdem-render-xvfb.lock").string();
+    const int lock = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+    if (lock >= 0)
+      while (::flock(lock, LOCK_EX) != 0 && errno == EINTR) {
+      }
+  }
   int status = run_program(argv);
   // Under xvfb-run, pvbatch now and then finds no X server ("bad X server connection", then
   // SIGABRT; xvfb-run may then exit with its own code): try twice more on other displays.

@@ -3,7 +3,8 @@
 // result drawn by ParaView (pvbatch running tmdem_render.py, docs/paraview.md): the spheres at
 // their true size coloured by temperature over that frame's range, a colour bar
 // "temperature (K)", optionally cut at the bed's mid-plane and with the force network as tubes.
-// pvbatch is taken from $TMDEM_PVBATCH or PATH; without an X display it runs under xvfb-run.
+// pvbatch is taken from $TMDEM_PVBATCH or PATH; without an X display it runs under xvfb-run,
+// one render at a time (a lock file in the temporary folder), a failure tried twice more.
 // The script is $TMDEM_RENDER_SCRIPT, else tmdem_render.py next to the tmdem program (CMake
 // copies it there), else the source checkout's coupling/app/tmdem_render.py.
 // Exit codes: 0; 2 for a frame the file does not hold, an output that is not .png or a bad

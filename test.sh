@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Install what is missing, build in build/, then run the whole ctest suite; then build the fast
-# tests and the scene fuzzer with ASan+UBSan (clang) in build-asan/ and run them there (labels
-# fast and fuzz; any leak, sanitizer or UB report fails them).
+# Install what is missing (ParaView and xvfb too), build in build/, then run the whole ctest
+# suite; then build the fast tests and the scene fuzzer with ASan+UBSan (clang) in build-asan/
+# and run them there (labels fast and fuzz; any leak, sanitizer or UB report fails them).
 # Extra arguments go to the first ctest, e.g. ./test.sh -L thermal  or  ./test.sh -LE stability
 # TMDEM_SKIP_SANITIZE=1 skips the second build; TMDEM_FUZZ_SECONDS sets the fuzzing budget (60).
 set -euo pipefail
@@ -11,7 +11,9 @@ jobs="$(nproc)"
 # threads that spin at a barrier take the core their partner needs (docs/mechanics.md "Threads"), so
 # idle threads sleep instead, unless the caller chose otherwise.
 export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-passive}"
-"$root/scripts/setup.sh"
+# --with-paraview: ParaView's pvbatch and xvfb, so the ParaView tests (label paraview: the XDMF
+# readers, `tmdem render`) run rather than skip.
+"$root/scripts/setup.sh" --with-paraview
 # Layering: mechanics and thermal never include each other; coupling rooms include downwards only.
 "$root/scripts/check_layers.sh"
 (cd "$root/build" && ctest --output-on-failure -j "$jobs" --timeout 600 "$@")

@@ -2,8 +2,10 @@
 # Shared set-up for run.sh and test.sh: install missing Debian 12 packages, then configure and
 # build (Release) in build/. Safe to run again: installed packages and a configured build are reused.
 #   scripts/setup.sh [--with-paraview]
-# --with-paraview also installs Debian's ParaView (paraview, python3-paraview: pvbatch), which the
-# ctest test ParaView.* needs to open RESULT.xdmf with ParaView's readers (skipped without it).
+# --with-paraview also installs Debian's ParaView (paraview, python3-paraview: pvbatch) and xvfb
+# (Debian's pvbatch renders through X; without a display `tmdem render` runs it under xvfb-run).
+# The ctest tests ParaView.* (ParaView's readers on RESULT.xdmf) and ParaViewRender.* (`tmdem
+# render`) need them and are skipped without them. ./test.sh passes --with-paraview; run.sh not.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 with_paraview=0
@@ -19,7 +21,7 @@ packages=(build-essential cmake pkg-config libsundials-dev libsuitesparse-dev li
           nlohmann-json3-dev python3-matplotlib python3-h5py
           python3-pybind11 python3-pytest
           clang-14 libclang-rt-14-dev)  # clang: the sanitizer build and libFuzzer (build-asan/)
-[ "$with_paraview" -eq 1 ] && packages+=(paraview python3-paraview)
+[ "$with_paraview" -eq 1 ] && packages+=(paraview python3-paraview xvfb xauth)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

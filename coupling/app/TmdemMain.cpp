@@ -8,6 +8,7 @@
 #include "coupling/app/AccuracyCommand.h"
 #include "coupling/app/ConductivityCommand.h"
 #include "coupling/app/ExportCommand.h"
+#include "coupling/app/RenderCommand.h"
 #include "coupling/common/ExitCode.h"
 #include "coupling/run/CoupledRun.h"
 #include "coupling/studies/CouplingStudy.h"
@@ -113,6 +114,25 @@ int tmdem_main(int argc, char** argv) {
   export_command->add_option("-o,--output", export_options.csv_path, "CSV file to write")->required();
   export_command->add_flag("--overwrite", export_options.overwrite, "replace an existing CSV file");
 
+  RenderOptions render_options;
+  auto* render = app.add_subcommand(
+      "render", "draw one frame of a result (default: the last) as a PNG with ParaView's pvbatch: "
+                "spheres coloured by temperature over that frame's range");
+  render->add_option("result", render_options.result_path, "result file (HDF5; RESULT.xdmf next to it)")
+      ->required();
+  render->add_option("-o,--output", render_options.png_path, "PNG file to write (replaced if it exists)")
+      ->required();
+  render->add_option("--frame", render_options.frame,
+                     "\"last\" (default) or a frame number; negative counts from the end");
+  render->add_option("--cut", render_options.cut,
+                     "draw only the spheres below the bed's mid-plane normal to this axis, "
+                     "looking at the cut")
+      ->check(CLI::IsMember({"x", "y", "z"}));
+  render->add_flag("--forces", render_options.forces,
+                   "draw the contact force network as tubes (radius grows with the normal force)");
+  render->add_option("--size", render_options.size, "image width and height in pixels (1200 900)")
+      ->expected(2)->check(CLI::Range(64, 8192));
+
   auto* docs = app.add_subcommand("docs", "print generated reference documentation");
   auto* docs_scene = docs->add_subcommand(
       "scene", "the scene file reference (Markdown): every key with unit, default, range");
@@ -156,6 +176,7 @@ int tmdem_main(int argc, char** argv) {
       return outcome.exit_code;
     }
     if (*export_command) return run_export_command(export_options, std::cout, std::cerr);
+    if (*render) return run_render_command(render_options, std::cout, std::cerr);
     if (*docs_scene) {
       std::cout << scene_reference_markdown();
       return kExitOk;

@@ -43,16 +43,14 @@ bool SettleRestTest::after_step(const std::vector<mechanics::ContactForce>& cont
   }
   now.pair.clear();
   now.normal_force_N.clear();
-  carries_.assign(particles.size(), 0);
+  contact_force_N_.assign(particles.size(), 0.0);
   double total_N = 0.0;
   for (const auto& c : contacts) {
     now.pair.emplace_back(c.i, c.j);
     now.normal_force_N.push_back(c.normal_force_N);
     total_N += c.normal_force_N;
-    if (c.normal_force_N > 0.0) {
-      carries_[std::size_t(c.i)] = 1;
-      if (!mechanics::is_wall(c.j)) carries_[std::size_t(c.j)] = 1;
-    }
+    contact_force_N_[std::size_t(c.i)] += c.normal_force_N;
+    if (!mechanics::is_wall(c.j)) contact_force_N_[std::size_t(c.j)] += c.normal_force_N;
   }
   history_.push_back(std::move(now));
 
@@ -62,7 +60,8 @@ bool SettleRestTest::after_step(const std::vector<mechanics::ContactForce>& cont
   for (std::size_t p = 0; p < particles.size(); ++p) {
     if (particles.fixed[p]) continue;
     max_speed_m_s = std::max(max_speed_m_s, particles.velocity[p].norm());
-    if (!carries_[p]) {
+    const double force_N = contact_force_N_[p];
+    if (!(force_N > 0.0 && force_N >= 0.5 * particles.mass[p] * settings_.gravity_m_s2)) {
       ++rattlers_;
       continue;
     }

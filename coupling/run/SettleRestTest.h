@@ -3,10 +3,12 @@
 // sees the contact network and its normal forces, so settling ends when they have stopped
 // changing, not when the last rattler or free roller has. Over the last `window` steps the
 // normal forces changed by less than `force_change` relative to their sum (a contact that
-// opened or closed counts with its whole force), and the load-carrying particles (those with at
-// least one contact that carries force) move slower than `speed` in the mass-weighted mean
-// sense: sqrt(2 KE / M) < speed, so one sphere still rolling on top of 10^4 holds nothing up.
-// Particles with no contact carrying force are rattlers: counted, never waited for. A packing in
+// opened or closed counts with its whole force), and the load-carrying particles move slower
+// than `speed` in the mass-weighted mean sense: sqrt(2 KE / M) < speed, so one sphere still
+// rolling on top of 10^4 holds nothing up. A particle carries load when its contacts' normal
+// forces add up to at least half its weight (at rest they add up to its weight or more); the
+// others are rattlers, or on their way down a pore grazing a neighbour: counted as rattlers,
+// never waited for. A packing in
 // which no contact carries force (no gravity, no load) is at rest when every particle is slower
 // than `speed`.
 //
@@ -24,6 +26,7 @@ namespace tmdem::coupling {
 
 struct SettleRestTestSettings {
   int window_steps = 5;        // forces compared with those this many steps before
+  double gravity_m_s2 = 9.81;  // |g|, for a particle's weight
   double force_change = 1e-2;  // largest sum |F_now - F_before| / sum F_now
   double speed_m_s = 1e-4;     // largest sqrt(2 KE / M) of the load-carrying particles
 };
@@ -55,7 +58,7 @@ class SettleRestTest {
 
   SettleRestTestSettings settings_;
   std::deque<Snapshot> history_;  // the last window + 1 steps, oldest first
-  std::vector<std::uint8_t> carries_;  // per particle, scratch
+  std::vector<double> contact_force_N_;  // per particle: sum of its contacts' normal forces
   double force_change_;
   double load_speed_m_s_ = 0.0;
   std::int64_t rattlers_ = 0;

@@ -29,8 +29,10 @@ SettleSummary settle_packing(mechanics::NscdIntegrator& nscd, const Scene& scene
   const double t_max = scene.mechanics.settle_time_s;
   const std::int64_t steps_before = nscd.stats().steps;
   const bool network_test = scene.mechanics.rest_test == "network";
-  SettleRestTest rest({scene.mechanics.rest_window, scene.mechanics.rest_force_change,
-                       scene.mechanics.settle_velocity_m_per_s});
+  SettleRestTest rest({.window_steps = scene.mechanics.rest_window,
+                       .gravity_m_s2 = nscd.gravity().norm(),
+                       .force_change = scene.mechanics.rest_force_change,
+                       .speed_m_s = scene.mechanics.settle_velocity_m_per_s});
   SettleSummary outcome;
   double t = 0.0;
   while (t < t_max - 0.5 * h) {

@@ -32,12 +32,18 @@ ParticleSet three_particles() {
   return p;
 }
 
+// Particles of 1e-5 kg under 9.81 m/s^2: a weight of 9.81e-5 N each.
+SettleRestTestSettings settings(int window, double force_change = 1e-2) {
+  return {.window_steps = window, .gravity_m_s2 = 9.81, .force_change = force_change,
+          .speed_m_s = 1e-4};
+}
+
 std::vector<ContactForce> carried_column(double floor_N, double pair_N) {
   return {contact(0, mechanics::wall_code<std::int64_t>(0), floor_N), contact(0, 1, pair_N)};
 }
 
 TEST(SettleRestTest, WaitsOneWindowOfStationaryForces) {
-  SettleRestTest rest({3, 1e-2, 1e-4});
+  SettleRestTest rest(settings(3));
   const auto particles = three_particles();
   for (int step = 1; step <= 3; ++step)
     EXPECT_FALSE(rest.after_step(carried_column(2e-4, 1e-4), particles)) << "step " << step;
@@ -47,7 +53,7 @@ TEST(SettleRestTest, WaitsOneWindowOfStationaryForces) {
 }
 
 TEST(SettleRestTest, RattlerDoesNotHoldItUpButLoadCarriersDo) {
-  SettleRestTest rest({1, 1e-2, 1e-4});
+  SettleRestTest rest(settings(1));
   auto particles = three_particles();
   particles.velocity[2] = {0.0, -0.5, 0.0};  // a rattler falling through a pore
   EXPECT_FALSE(rest.after_step(carried_column(2e-4, 1e-4), particles));
@@ -59,8 +65,25 @@ TEST(SettleRestTest, RattlerDoesNotHoldItUpButLoadCarriersDo) {
   EXPECT_NEAR(rest.load_speed_m_s(), 2e-4 / std::sqrt(2.0), 1e-18);
 }
 
+// A particle sliding down a pore grazes a neighbour with much less than its weight: it carries
+// no load, so its speed holds nothing up; it counts as a rattler.
+TEST(SettleRestTest, ParticleHeldByLessThanHalfItsWeightIsNoLoadCarrier) {
+  SettleRestTest rest(settings(1));
+  auto particles = three_particles();
+  particles.velocity[2] = {0.0, -0.05, 0.0};
+  auto contacts = carried_column(2e-4, 1e-4);
+  contacts.push_back(contact(1, 2, 4.8e-5));  // just under half of 9.81e-5 N
+  EXPECT_FALSE(rest.after_step(contacts, particles));
+  EXPECT_TRUE(rest.after_step(contacts, particles));
+  EXPECT_EQ(rest.rattlers(), 1);
+  // Half its weight or more: it carries load, and 0.05 m/s is far too fast.
+  contacts.back().normal_force_N = 4.91e-5;
+  EXPECT_FALSE(rest.after_step(contacts, particles));
+  EXPECT_EQ(rest.rattlers(), 0);
+}
+
 TEST(SettleRestTest, ForceChangeIsRelativeToTheTotalAndCountsOpenedContacts) {
-  SettleRestTest rest({1, 1e-2, 1e-4});
+  SettleRestTest rest(settings(1));
   const auto particles = three_particles();
   rest.after_step(carried_column(2e-4, 1e-4), particles);
   // 6e-6 N more on the floor: 2% of the 3.06e-4 N in all.
@@ -75,7 +98,7 @@ TEST(SettleRestTest, ForceChangeIsRelativeToTheTotalAndCountsOpenedContacts) {
 }
 
 TEST(SettleRestTest, WithoutForcesEveryParticleMustBeStill) {
-  SettleRestTest rest({1, 1e-2, 1e-4});
+  SettleRestTest rest(settings(1));
   auto particles = three_particles();
   particles.velocity[2] = {0.0, 2e-4, 0.0};
   EXPECT_FALSE(rest.after_step({}, particles));
@@ -86,10 +109,11 @@ TEST(SettleRestTest, WithoutForcesEveryParticleMustBeStill) {
 }
 
 TEST(SettleRestTest, RefusesBadSettingsNamingTheKey) {
-  EXPECT_THROW(SettleRestTest({0, 1e-2, 1e-4}), std::invalid_argument);
-  EXPECT_THROW(SettleRestTest({1, 0.0, 1e-4}), std::invalid_argument);
+  EXPECT_THROW(SettleRestTest(settings(0)), std::invalid_argument);
+  EXPECT_THROW(SettleRestTest(settings(1, 0.0)), std::invalid_argument);
   try {
-    SettleRestTest({1, -1.0, 1e-4});
+    SettleRestTest(settings(1, -1.0));
+    ADD_FAILURE() << "a negative rest_force_change was accepted";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("rest_force_change"), std::string::npos);
   }

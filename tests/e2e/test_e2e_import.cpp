@@ -110,3 +110,33 @@ TEST(E2eImport, SettledBedExportedAndImportedBackRuns) {
 
 }  // namespace
 }  // namespace tmdem::e2e
+
+namespace tmdem::e2e {
+namespace {
+
+// A bed settled by tmdem until every particle was still, exported and imported into a settle
+// run at the defaults: the contact network's forces are found again at once, so the network
+// rest test ends the settling within a few windows (at most 10 steps), every step converged.
+TEST(E2eImport, SettledBedImportedIntoASettleRunReSettlesWithinTenSteps) {
+  const std::string dir = scratch_dir("import_resettle");
+  const std::string settle =
+      std::string(TMDEM_SOURCE_DIR) +
+      "/examples/poured_bed.toml -o bed.h5 --quiet --set effects.mechanics=\"settle\" "
+      "--set simulation.duration=0.1 --set mechanics.rest_test=\"velocity\"";
+  ASSERT_EQ(run_tmdem("run " + settle, dir).exit_code, 0);
+  ASSERT_EQ(run_tmdem("export bed.h5 -o bed.csv", dir).exit_code, 0);
+  write_file(dir + "/again.toml", imported_bed("file = \"bed.csv\"\noverlap_tolerance = 0.01"));
+  const auto again = run_tmdem(
+      "run again.toml -o again.h5 --summary again.json --set effects.mechanics=\"settle\" "
+      "--set simulation.duration=0.1", dir);
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  const auto summary = read_summary(dir + "/again.json");
+  ASSERT_TRUE(summary.contains("settle")) << summary.dump();
+  EXPECT_TRUE(summary["settle"]["at_rest"].get<bool>());
+  EXPECT_EQ(summary["settle"]["ended_by"].get<std::string>(), "network");
+  EXPECT_LE(summary["settle"]["steps"].get<int>(), 10) << summary["settle"].dump();
+  EXPECT_EQ(summary["mechanics"]["unconverged_steps"].get<int>(), 0);
+}
+
+}  // namespace
+}  // namespace tmdem::e2e

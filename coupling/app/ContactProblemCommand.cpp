@@ -257,6 +257,7 @@ int run_contact_problem_command(const Scene& scene, const ContactProblemOptions&
     local.solver_tolerance = outcome.report.tolerance;
     local.solver_residual = outcome.report.residual;
     local.solver_iterations = outcome.report.sweeps;
+    local.solver_seconds = outcome.report.solve_s;
     std::size_t active = 0;
     for (std::size_t k = 0; k < local.contacts; ++k) active += local.r[k * local.spacedim] > 0.0;
     std::ostringstream text;

@@ -60,6 +60,7 @@ void write_tmdem_group(const FclibLocalProblem& p, const std::string& path) {
   write_scalar(group, "dimension", p.dimension, H5::PredType::NATIVE_INT);
   write_scalar(group, "solver_tolerance", p.solver_tolerance, H5::PredType::NATIVE_DOUBLE);
   write_scalar(group, "solver_residual", p.solver_residual, H5::PredType::NATIVE_DOUBLE);
+  write_scalar(group, "solver_seconds", p.solver_seconds, H5::PredType::NATIVE_DOUBLE);
   write_scalar(group, "solver_iterations", p.solver_iterations, H5::PredType::NATIVE_INT64);
   write_scalar(group, "omitted_contacts", p.omitted_contacts, H5::PredType::NATIVE_INT64);
 }

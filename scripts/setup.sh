@@ -18,7 +18,7 @@ done
 
 packages=(build-essential cmake pkg-config libsundials-dev libsuitesparse-dev libeigen3-dev
           libhdf5-dev libgtest-dev libbenchmark-dev libtomlplusplus-dev libcli11-dev
-          nlohmann-json3-dev python3-matplotlib python3-h5py
+          nlohmann-json3-dev libfclib-dev python3-matplotlib python3-h5py python3-siconos
           python3-pybind11 python3-pytest
           clang-14 libclang-rt-14-dev)  # clang: the sanitizer build and libFuzzer (build-asan/)
 [ "$with_paraview" -eq 1 ] && packages+=(paraview python3-paraview xvfb xauth)

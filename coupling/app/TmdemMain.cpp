@@ -7,6 +7,7 @@
 
 #include "coupling/app/AccuracyCommand.h"
 #include "coupling/app/ConductivityCommand.h"
+#include "coupling/app/ContactProblemCommand.h"
 #include "coupling/app/ExportCommand.h"
 #include "coupling/app/RenderCommand.h"
 #include "coupling/common/ExitCode.h"
@@ -132,6 +133,21 @@ int tmdem_main(int argc, char** argv) {
                    "draw the contact force network as tubes (radius grows with the normal force)");
   render->add_option("--size", render_options.size, "image width and height in pixels (1200 900)")
       ->expected(2)->check(CLI::Range(64, 8192));
+  std::string problem_scene;
+  ContactProblemOptions problem_options;
+  auto* contact_problem = app.add_subcommand(
+      "contact-problem", "write one mechanical step's contact problem (FCLIB local format, "
+                         "HDF5) with tmdem's reactions as its solution");
+  contact_problem->add_option("scene", problem_scene, "scene file (TOML)")->required();
+  contact_problem->add_option("--step", problem_options.step,
+                              "mechanical step, 1 the first, or \"last\" (the settled packing "
+                              "of a settle scene)")
+      ->required();
+  contact_problem->add_option("-o,--output", problem_options.output_path, "FCLIB file to write")
+      ->required();
+  contact_problem->add_option("--set", sets, "override one scene value, KEY=VALUE (TOML value)")
+      ->take_all()->allow_extra_args(false);
+  contact_problem->add_flag("--overwrite", problem_options.overwrite, "replace an existing file");
 
   auto* docs = app.add_subcommand("docs", "print generated reference documentation");
   auto* docs_scene = docs->add_subcommand(
@@ -177,6 +193,9 @@ int tmdem_main(int argc, char** argv) {
     }
     if (*export_command) return run_export_command(export_options, std::cout, std::cerr);
     if (*render) return run_render_command(render_options, std::cout, std::cerr);
+    if (*contact_problem)
+      return run_contact_problem_command(load_scene_file(problem_scene, sets), problem_options,
+                                         std::cout, std::cerr);
     if (*docs_scene) {
       std::cout << scene_reference_markdown();
       return kExitOk;

@@ -124,6 +124,9 @@ class NscdIntegrator {
   // The last step's contact problem and its solver (mechanics.solver).
   const ContactProblem& problem() const { return problem_; }
   const ContactSolver& solver() const { return *solver_; }
+  // The last step's local reaction impulses (n, t1, t2), N s, one per contact of problem(), in
+  // its order: the solution of problem() the step used (the rolling impulses are not included).
+  const std::vector<Eigen::Vector3d>& reactions() const { return reactions_; }
   // The tolerance schedule (mechanics.fall_tolerance, fall_speed; ToleranceSchedule.h): its
   // phase, and the step that first used the tight tolerance after the fall.
   const ToleranceSchedule& tolerance_schedule() const { return schedule_; }

@@ -1,21 +1,55 @@
 #include "coupling/output/FclibProblemWriter.h"
 
-#include <H5Cpp.h>
+#include <hdf5.h>
 // fclib.h declares C functions without extern "C".
 extern "C" {
 #include <fclib.h>
 }
+
+#include <dlfcn.h>
 
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
 
 #include "coupling/output/Hdf5ErrorSilence.h"
+#include "coupling/output/Hdf5Handle.h"
+#include "coupling/output/Hdf5Io.h"
 #include "coupling/output/OutputError.h"
 
 namespace tmdem::coupling {
 
 namespace {
+
+// libfclib is loaded when a problem is written, not linked: linked into tmdem, it changed the
+// order in which the HDF5 libraries shut down at exit, and a run whose result file could not be
+// written (a full disk) then crashed there instead of ending with exit code 4.
+struct Fclib {
+  decltype(&fclib_write_local) write_local = nullptr;
+  decltype(&fclib_write_solution) write_solution = nullptr;
+  decltype(&fclib_write_guesses) write_guesses = nullptr;
+};
+
+const Fclib& fclib() {
+  static const Fclib loaded = [] {
+    Fclib f;
+    void* library = dlopen("libfclib.so.0", RTLD_NOW | RTLD_LOCAL);
+    if (!library) library = dlopen("libfclib.so", RTLD_NOW | RTLD_LOCAL);
+    if (!library)
+      throw OutputError(std::string("cannot load libfclib (install Debian's libfclib-dev, "
+                                    "or run scripts/setup.sh): ") + dlerror());
+    f.write_local = reinterpret_cast<decltype(f.write_local)>(dlsym(library, "fclib_write_local"));
+    f.write_solution =
+        reinterpret_cast<decltype(f.write_solution)>(dlsym(library, "fclib_write_solution"));
+    f.write_guesses =
+        reinterpret_cast<decltype(f.write_guesses)>(dlsym(library, "fclib_write_guesses"));
+    if (!f.write_local || !f.write_solution || !f.write_guesses)
+      throw OutputError("libfclib lacks fclib_write_local, fclib_write_solution or "
+                        "fclib_write_guesses");
+    return f;
+  }();
+  return loaded;
+}
 
 void check_sizes(const FclibLocalProblem& p) {
   const std::size_t m = p.contacts * std::size_t(p.spacedim);
@@ -29,40 +63,53 @@ void check_sizes(const FclibLocalProblem& p) {
   if (!ok) throw std::logic_error("write_fclib_local_problem: inconsistent problem sizes");
 }
 
-template <class T>
-void write_scalar(H5::Group& group, const char* name, const T& value, const H5::PredType& type) {
-  const H5::DataSet set = group.createDataSet(name, type, H5::DataSpace());
-  set.write(&value, type);
+// Written with HDF5's C API, as every other tmdem file: the C++ library, once linked, closes
+// what is left open at exit, and after a failed write (a full disk) that crashed the program.
+void write_dataset(hid_t group, const char* name, hid_t type, const void* data, int rank,
+                   const hsize_t* dims) {
+  const Hdf5Handle space(rank == 0 ? H5Screate(H5S_SCALAR) : H5Screate_simple(rank, dims, nullptr),
+                         H5Sclose);
+  hdf5::check_id(space.get(), std::string("dataspace of /tmdem/") + name);
+  const Hdf5Handle set(H5Dcreate2(group, name, type, space.get(), H5P_DEFAULT, H5P_DEFAULT,
+                                  H5P_DEFAULT), H5Dclose);
+  hdf5::check_id(set.get(), std::string("/tmdem/") + name);
+  if (rank == 0 || dims[0] > 0)
+    hdf5::check_ok(H5Dwrite(set.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data),
+                   std::string("writing /tmdem/") + name);
 }
 
 template <class T>
-void write_array(H5::Group& group, const char* name, const T* data, hsize_t rows, hsize_t columns,
-                 const H5::PredType& type) {
+void write_scalar(hid_t group, const char* name, const T& value, hid_t type) {
+  write_dataset(group, name, type, &value, 0, nullptr);
+}
+
+template <class T>
+void write_array(hid_t group, const char* name, const T* data, hsize_t rows, hsize_t columns,
+                 hid_t type) {
   const hsize_t dims[2] = {rows, columns};
-  const H5::DataSpace space(columns == 1 ? 1 : 2, dims);
-  const H5::DataSet set = group.createDataSet(name, type, space);
-  if (rows > 0) set.write(data, type);
+  write_dataset(group, name, type, data, columns == 1 ? 1 : 2, dims);
 }
 
 // The /tmdem group (FclibProblemWriter.h), into the file FCLIB has written.
 void write_tmdem_group(const FclibLocalProblem& p, const std::string& path) {
-  H5::H5File file(path, H5F_ACC_RDWR);
-  H5::Group group = file.createGroup("/tmdem");
+  const Hdf5Handle file = hdf5::open_file(path, true, false);
+  const Hdf5Handle group = hdf5::create_group(file.get(), "/tmdem");
+  const hid_t g = group.get();
   const hsize_t n = p.contacts;
-  write_array(group, "body_i", p.body_i.data(), n, 1, H5::PredType::NATIVE_INT32);
-  write_array(group, "body_j", p.body_j.data(), n, 1, H5::PredType::NATIVE_INT32);
-  write_array(group, "normal", p.normal.data()->data(), n, 3, H5::PredType::NATIVE_DOUBLE);
-  write_array(group, "tangent1", p.tangent1.data()->data(), n, 3, H5::PredType::NATIVE_DOUBLE);
-  write_array(group, "tangent2", p.tangent2.data()->data(), n, 3, H5::PredType::NATIVE_DOUBLE);
-  write_array(group, "gravity_impulse", p.gravity_impulse.data(), 3, 1, H5::PredType::NATIVE_DOUBLE);
-  write_scalar(group, "time_step", p.time_step_s, H5::PredType::NATIVE_DOUBLE);
-  write_scalar(group, "step", p.step, H5::PredType::NATIVE_INT64);
-  write_scalar(group, "dimension", p.dimension, H5::PredType::NATIVE_INT);
-  write_scalar(group, "solver_tolerance", p.solver_tolerance, H5::PredType::NATIVE_DOUBLE);
-  write_scalar(group, "solver_residual", p.solver_residual, H5::PredType::NATIVE_DOUBLE);
-  write_scalar(group, "solver_seconds", p.solver_seconds, H5::PredType::NATIVE_DOUBLE);
-  write_scalar(group, "solver_iterations", p.solver_iterations, H5::PredType::NATIVE_INT64);
-  write_scalar(group, "omitted_contacts", p.omitted_contacts, H5::PredType::NATIVE_INT64);
+  write_array(g, "body_i", p.body_i.data(), n, 1, H5T_NATIVE_INT32);
+  write_array(g, "body_j", p.body_j.data(), n, 1, H5T_NATIVE_INT32);
+  write_array(g, "normal", p.normal.data()->data(), n, 3, H5T_NATIVE_DOUBLE);
+  write_array(g, "tangent1", p.tangent1.data()->data(), n, 3, H5T_NATIVE_DOUBLE);
+  write_array(g, "tangent2", p.tangent2.data()->data(), n, 3, H5T_NATIVE_DOUBLE);
+  write_array(g, "gravity_impulse", p.gravity_impulse.data(), 3, 1, H5T_NATIVE_DOUBLE);
+  write_scalar(g, "time_step", p.time_step_s, H5T_NATIVE_DOUBLE);
+  write_scalar(g, "step", p.step, H5T_NATIVE_INT64);
+  write_scalar(g, "dimension", p.dimension, H5T_NATIVE_INT);
+  write_scalar(g, "solver_tolerance", p.solver_tolerance, H5T_NATIVE_DOUBLE);
+  write_scalar(g, "solver_residual", p.solver_residual, H5T_NATIVE_DOUBLE);
+  write_scalar(g, "solver_seconds", p.solver_seconds, H5T_NATIVE_DOUBLE);
+  write_scalar(g, "solver_iterations", p.solver_iterations, H5T_NATIVE_INT64);
+  write_scalar(g, "omitted_contacts", p.omitted_contacts, H5T_NATIVE_INT64);
 }
 
 void write_all(const FclibLocalProblem& p, const std::string& path) {
@@ -93,18 +140,18 @@ void write_all(const FclibLocalProblem& p, const std::string& path) {
   // FCLIB adds to an existing file and refuses one that holds a local problem already.
   std::error_code ec;
   std::filesystem::remove(path, ec);
-  if (!fclib_write_local(&local, path.c_str()))
+  if (!fclib().write_local(&local, path.c_str()))
     throw OutputError("cannot write FCLIB problem '" + path + "' (fclib_write_local failed)");
   fclib_solution solution{nullptr, u.data(), r.data(), nullptr};
-  if (!fclib_write_solution(&solution, path.c_str()))
+  if (!fclib().write_solution(&solution, path.c_str()))
     throw OutputError("cannot write the solution into '" + path + "' (fclib_write_solution failed)");
-  if (!fclib_write_guesses(1, &solution, path.c_str()))
+  if (!fclib().write_guesses(1, &solution, path.c_str()))
     throw OutputError("cannot write the guess into '" + path + "' (fclib_write_guesses failed)");
   try {
     const Hdf5ErrorSilence silence;
     write_tmdem_group(p, path);
-  } catch (const H5::Exception& e) {
-    throw OutputError("cannot write the /tmdem group into '" + path + "': " + e.getDetailMsg());
+  } catch (const Hdf5Failure& e) {
+    throw OutputError("cannot write the /tmdem group into '" + path + "': " + e.what());
   }
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 
+#include "mechanics/contact/ContactKinematics.h"
 #include "mechanics/solvers/GaussSeidelUpdate.h"
 
 namespace tmdem::mechanics {
@@ -51,7 +52,7 @@ void NncgSolver::conjugate_step(const ContactProblem& problem, double beta,
     if (beta > 0.0 && !is_zero(p_[c])) {
       const Eigen::Vector3d step = beta * p_[c];
       r[c] += step;
-      problem.apply_impulse(c, step, velocity, angular_velocity);
+      apply_impulse(problem, c, step, velocity, angular_velocity);
     }
     p_[c] = d_[c] + beta * p_[c];
     start_[c] = r[c];
@@ -59,7 +60,7 @@ void NncgSolver::conjugate_step(const ContactProblem& problem, double beta,
     if (beta > 0.0 && !is_zero(p_m_[c])) {
       const Eigen::Vector3d step = beta * p_m_[c];
       m[c] += step;
-      problem.apply_rolling_impulse(c, step, angular_velocity);
+      apply_rolling_impulse(problem, c, step, angular_velocity);
     }
     p_m_[c] = d_m_[c] + beta * p_m_[c];
     start_m_[c] = m[c];

@@ -1,9 +1,9 @@
-// The Gauss-Seidel visit (GaussSeidelUpdate.h, written on ScalarVec3 for speed) against the same
-// visit in ContactProblem's own Eigen operations (normal_velocity, local_velocity,
-// apply_impulse, rolling_velocity, apply_rolling_impulse) and the rolling cone's projection
-// written out: bit for bit, reactions, rolling impulses, velocities and the stop test's sums,
-// over sweeps of random problems with walls, a piston and rolling resistance, in 3D and 2D.
-// The visit repeats those operations by hand, so this is what keeps the two in step.
+// The Gauss-Seidel visit (GaussSeidelUpdate.h, its kinematics on ScalarVec3 for speed) against
+// the same visit with the kinematics (ContactKinematics.h: normal_velocity, local_velocity,
+// apply_impulse, rolling_velocity, apply_rolling_impulse) on Eigen::Vector3d and the rolling
+// cone's projection written out: bit for bit, reactions, rolling impulses, velocities and the
+// stop test's sums, over sweeps of random problems with walls, a piston and rolling
+// resistance, in 3D and 2D. ScalarVec3 must round as Eigen does; this is what checks it.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "mechanics/SameBits.h"
+#include "mechanics/contact/ContactKinematics.h"
 #include "mechanics/contact/ContactProblem.h"
 #include "mechanics/contact/CoulombCone.h"
 #include "mechanics/solvers/GaussSeidelUpdate.h"
@@ -97,11 +98,11 @@ ContactProblem random_problem(int dimension, std::uint64_t seed) {
 ContactUpdate reference_visit(const ContactProblem& p, std::size_t c, std::vector<Vector3d>& r,
                               std::vector<Vector3d>& m, std::vector<Vector3d>& v,
                               std::vector<Vector3d>& w) {
-  if (r[c] == Vector3d::Zero() && m[c] == Vector3d::Zero() && !(p.normal_velocity(c, v) < 0.0)) {
+  if (r[c] == Vector3d::Zero() && m[c] == Vector3d::Zero() && !(normal_velocity(p, c, v) < 0.0)) {
     return {};
   }
   const bool planar = p.dimension == 2;
-  const Vector3d u = p.local_velocity(c, v, w);
+  const Vector3d u = local_velocity<Vector3d>(p, c, v, w);
   const Vector3d u0(u[0] - p.w_n[c] * r[c][0], u[1] - p.w_t[c] * r[c][1],
                     planar ? 0.0 : u[2] - p.w_t[c] * r[c][2]);
   Vector3d next;
@@ -109,19 +110,19 @@ ContactUpdate reference_visit(const ContactProblem& p, std::size_t c, std::vecto
   if (planar) next[2] = 0.0;
   const Vector3d dr = next - r[c];
   if (dr != Vector3d::Zero()) {
-    p.apply_impulse(c, dr, v, w);
+    apply_impulse(p, c, dr, v, w);
     r[c] = next;
   }
   ContactUpdate update{dr.norm(), next.norm()};
   const Vector3d& n = p.normal[c];
-  Vector3d mn = m[c] - p.rolling_velocity(c, w) / p.w_r[c];
+  Vector3d mn = m[c] - rolling_velocity<Vector3d>(p, c, w) / p.w_r[c];
   mn -= mn.dot(n) * n;
   const double limit = p.rolling_limit[c] * std::max(r[c][0], 0.0), size = mn.norm();
   if (size > limit) mn *= limit / size;
   if (planar) mn.x() = mn.y() = 0.0;
   const Vector3d dm = mn - m[c];
   if (dm != Vector3d::Zero()) {
-    p.apply_rolling_impulse(c, dm, w);
+    apply_rolling_impulse(p, c, dm, w);
     m[c] = mn;
   }
   const double scale = 1.0 / p.rolling_radius[c];

@@ -47,8 +47,19 @@ Vec global_impulse(const ContactProblem& problem, std::size_t c, const Vec& r_lo
   return r_local[0] * n + r_local[1] * t1 + r_local[2] * t2;
 }
 
-// The velocity of i's material point at contact c minus j's, global, m/s (no bias).
-template <class Vec>
+// The order in which relative_velocity adds its terms: the same quantity, other last bits.
+enum class VelocityRounding {
+  solver,       // (v_i - v_j) - (R_i w_i + R_j w_j) x n: U_c, for every solver
+  points_first  // (v_i - R_i w_i x n) - (v_j + R_j w_j x n): each body's material point first.
+                // NscdIntegrator's position term (the normal velocity at the start of a step)
+                // has always been built on it; built on `solver` instead, the trajectories
+                // change in their last bits (first_scene: 104 contacts in the first output
+                // instead of 103).
+};
+
+// The velocity of i's material point at contact c minus j's, global, m/s (no bias); a wall's
+// point moves with its body.
+template <class Vec, VelocityRounding rounding = VelocityRounding::solver>
 Vec relative_velocity(const ContactProblem& problem, std::size_t c,
                       const std::vector<Eigen::Vector3d>& velocity,
                       const std::vector<Eigen::Vector3d>& angular_velocity) {
@@ -56,30 +67,16 @@ Vec relative_velocity(const ContactProblem& problem, std::size_t c,
   const std::int32_t i = problem.body_i[c], j = problem.body_j[c];
   const double lever_i = problem.lever_i[c], lever_j = problem.lever_j[c];
   const Vec vi(velocity[i]), wi(angular_velocity[i]);
-  Vec u;
-  if (!is_wall(j)) {
-    u = vi - Vec(velocity[j]) - (lever_i * wi + lever_j * Vec(angular_velocity[j])).cross(n);
+  assert((!is_wall(j) || problem.wall_body(j) < velocity.size()) &&
+         "a wall contact needs its wall body (add_fixed_wall_bodies)");
+  if constexpr (rounding == VelocityRounding::points_first) {
+    const Vec point_i = vi - (lever_i * wi).cross(n);
+    if (is_wall(j)) return point_i - Vec(velocity[problem.wall_body(j)]);
+    return point_i - (Vec(velocity[j]) + (lever_j * Vec(angular_velocity[j])).cross(n));
   } else {
-    assert(problem.wall_body(j) < velocity.size() && "a wall contact needs its wall body (add_fixed_wall_bodies)");
-    u = vi - Vec(velocity[problem.wall_body(j)]) - (lever_i * wi).cross(n);
+    if (is_wall(j)) return vi - Vec(velocity[problem.wall_body(j)]) - (lever_i * wi).cross(n);
+    return vi - Vec(velocity[j]) - (lever_i * wi + lever_j * Vec(angular_velocity[j])).cross(n);
   }
-  return u;
-}
-
-// relative_velocity rounded in another order: each body's material point velocity first,
-// (v_i - R_i w_i x n) - (v_j + R_j w_j x n) (a wall's point: its body's velocity), m/s.
-// The position term of NscdIntegrator (the normal velocity at the start of a step) has
-// always been built on this order; built on relative_velocity's instead, the trajectories
-// change in their last bits (first_scene: 104 contacts in the first output instead of 103).
-template <class Vec>
-Vec relative_point_velocity(const ContactProblem& problem, std::size_t c,
-                            const std::vector<Eigen::Vector3d>& velocity,
-                            const std::vector<Eigen::Vector3d>& angular_velocity) {
-  const Vec n(problem.normal[c]);
-  const std::int32_t i = problem.body_i[c], j = problem.body_j[c];
-  const Vec point_i = Vec(velocity[i]) - (problem.lever_i[c] * Vec(angular_velocity[i])).cross(n);
-  if (is_wall(j)) return point_i - Vec(velocity[problem.wall_body(j)]);
-  return point_i - (Vec(velocity[j]) + (problem.lever_j[c] * Vec(angular_velocity[j])).cross(n));
 }
 
 // Local velocity U_c = H_c^T v (+ bias along n) in (n, t1, t2), m/s; t2 is 0 in 2D.

@@ -270,8 +270,8 @@ void NscdIntegrator::setup_contacts(double h) {
     p.mu[k] = mu;
 
     // Position term P / h, with the normal velocity at the start of the step.
-    const Eigen::Vector3d u_old =
-        relative_point_velocity<Eigen::Vector3d>(p, k, old_velocity_, old_angular_velocity_);
+    const Eigen::Vector3d u_old = relative_velocity<Eigen::Vector3d, VelocityRounding::points_first>(
+        p, k, old_velocity_, old_angular_velocity_);
     // Activation by predicted gap only: an overlap is never turned into a push-out speed
     // (U_n = u_n there); the position step removes it (PenetrationCorrection.h).
     const double predicted = gap + h * (1.0 - theta) * u_old.dot(n);

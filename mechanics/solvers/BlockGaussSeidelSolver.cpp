@@ -66,14 +66,11 @@ void BlockGaussSeidelSolver::build_blocks(const ContactProblem& problem) {
 // The sweep's block visits (GaussSeidelSweep.h, body_block order).
 struct BlockGaussSeidelSolver::SweepHooks : GaussSeidelSweepHooks {
   BlockGaussSeidelSolver& solver;
-  const ContactProblem& problem;
-  std::vector<Eigen::Vector3d>& r;
-  std::vector<Eigen::Vector3d>& m;
-  std::vector<Eigen::Vector3d>& velocity;
-  std::vector<Eigen::Vector3d>& angular_velocity;
 
   template <class Single>
-  void visit_block(std::size_t b, bool forward, ContactUpdate& sums, Single&& single) {
+  void visit_block(const GaussSeidelSweepState& state, std::size_t b, bool forward,
+                   ContactUpdate& sums, Single&& single) {
+    const ContactProblem& problem = state.problem;
     const std::int32_t* contacts = solver.block_contacts_.data() + solver.block_start_[b];
     const int size = solver.block_start_[b + 1] - solver.block_start_[b];
     auto singles = [&] {
@@ -90,7 +87,8 @@ struct BlockGaussSeidelSolver::SweepHooks : GaussSeidelSweepHooks {
     }
     ++solver.block_visits_;
     const BodyContactBlock::Result solved = solver.block_.solve(
-        problem, static_cast<std::size_t>(solver.block_body_[b]), contacts, size, r, velocity, angular_velocity);
+        problem, static_cast<std::size_t>(solver.block_body_[b]), contacts, size, state.r, state.velocity,
+        state.angular_velocity);
     if (!solved.solved) {
       ++solver.block_fallbacks_;
       singles();
@@ -102,7 +100,8 @@ struct BlockGaussSeidelSolver::SweepHooks : GaussSeidelSweepHooks {
     if (!problem.rolling) return;
     for (int k = 0; k < size; ++k) {
       const auto ck = static_cast<std::size_t>(contacts[k]);
-      const ContactUpdate roll = gauss_seidel_rolling_update(problem, ck, r[ck][0], m[ck], angular_velocity);
+      const ContactUpdate roll =
+          gauss_seidel_rolling_update(problem, ck, state.r[ck][0], state.m[ck], state.angular_velocity);
       sums.change += roll.change;
       sums.total += roll.total;
     }
@@ -117,14 +116,14 @@ SolveReport BlockGaussSeidelSolver::solve_with_rolling(const ContactProblem& pro
   build_blocks(problem);
   block_visits_ = 0;
   block_fallbacks_ = 0;
-  SweepHooks hooks{{}, *this, problem, r, m, velocity, angular_velocity};
+  SweepHooks hooks{{}, *this};
   GaussSeidelSweep::Options options;
   options.order = GaussSeidelSweep::Order::body_block;
   options.full_sweep_every = 1;
   options.stall_sweeps = settings_.stall_sweeps;
   options.block_of = &owner_;
   options.block_count = block_body_.size();
-  return sweep_.solve(problem, settings_, options, r, m, velocity, angular_velocity, hooks);
+  return sweep_.solve(settings_, options, {problem, r, m, velocity, angular_velocity}, hooks);
 }
 
 }  // namespace tmdem::mechanics

@@ -41,7 +41,7 @@ SolveReport ColouredGaussSeidelSolver::solve_with_rolling(
   options.parallel = parallel;
   GaussSeidelSweepHooks hooks;
   const SolveReport report =
-      sweep_.solve(ordered_, settings_, options, ordered_r_, ordered_m_, velocity, angular_velocity, hooks);
+      sweep_.solve(settings_, options, {ordered_, ordered_r_, ordered_m_, velocity, angular_velocity}, hooks);
 #pragma omp parallel for schedule(static) if (parallel)
   for (std::ptrdiff_t p = 0; p < count; ++p) {
     r[static_cast<std::size_t>(order[p])] = ordered_r_[p];

@@ -14,7 +14,7 @@ SolveReport GaussSeidelSolver::solve_with_rolling(const ContactProblem& problem,
   options.full_sweep_every = settings_.full_sweep_every;
   options.stall_sweeps = settings_.stall_sweeps;
   GaussSeidelSweepHooks hooks;
-  return sweep_.solve(problem, settings_, options, r, m, velocity, angular_velocity, hooks);
+  return sweep_.solve(settings_, options, {problem, r, m, velocity, angular_velocity}, hooks);
 }
 
 }  // namespace tmdem::mechanics

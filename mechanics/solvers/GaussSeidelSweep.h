@@ -34,17 +34,29 @@
 
 namespace tmdem::mechanics {
 
+// What a solve works on: the problem, its reactions r (N s, local) and rolling impulses m
+// (N m s; read only when problem.rolling) and the body velocities they give.
+struct GaussSeidelSweepState {
+  const ContactProblem& problem;
+  std::vector<Eigen::Vector3d>& r;
+  std::vector<Eigen::Vector3d>& m;
+  std::vector<Eigen::Vector3d>& velocity;
+  std::vector<Eigen::Vector3d>& angular_velocity;
+};
+
 // The solver's steps inside the loop; a solver derives from this and hides what it needs.
 struct GaussSeidelSweepHooks {
   // After the single visit of solvable contact c (colour order: from several threads at once,
   // each with its own c).
-  void after_visit(std::size_t /*c*/) {}
+  void after_visit(const GaussSeidelSweepState& /*state*/, std::size_t /*c*/) {}
   // body_block order: the visit of block b, `forward` as the sweep goes. single(c) visits
   // contact c alone and adds it to `sums`, the sweep's running change and total (N s).
   template <class Single>
-  void visit_block(std::size_t /*b*/, bool /*forward*/, ContactUpdate& /*sums*/, Single&& /*single*/) {}
+  void visit_block(const GaussSeidelSweepState& /*state*/, std::size_t /*b*/, bool /*forward*/,
+                   ContactUpdate& /*sums*/, Single&& /*single*/) {}
   // After a sweep the stop test let pass (report.sweeps: its number).
-  void after_sweep(const SolveReport& /*report*/, bool /*forward*/) {}
+  void after_sweep(const GaussSeidelSweepState& /*state*/, const SolveReport& /*report*/,
+                   bool /*forward*/) {}
 };
 
 class GaussSeidelSweep {
@@ -64,25 +76,17 @@ class GaussSeidelSweep {
   };
 
   template <class Hooks>
-  SolveReport solve(const ContactProblem& problem, const SolverSettings& settings,
-                    const Options& options, std::vector<Eigen::Vector3d>& r,
-                    std::vector<Eigen::Vector3d>& m, std::vector<Eigen::Vector3d>& velocity,
-                    std::vector<Eigen::Vector3d>& angular_velocity, Hooks& hooks);
+  SolveReport solve(const SolverSettings& settings, const Options& options,
+                    const GaussSeidelSweepState& state, Hooks& hooks);
 
  private:
   // One sweep in index order (Blocks: body_block order); returns its change and total.
   template <bool Blocks, class Hooks>
-  ContactUpdate sweep_index(const ContactProblem& problem, const Options& options,
-                            double relaxation, int sweep, bool forward, bool full, bool mark,
-                            std::vector<Eigen::Vector3d>& r, std::vector<Eigen::Vector3d>& m,
-                            std::vector<Eigen::Vector3d>& velocity,
-                            std::vector<Eigen::Vector3d>& angular_velocity, Hooks& hooks);
+  ContactUpdate sweep_index(const Options& options, double relaxation, int sweep, bool forward,
+                            bool full, bool mark, const GaussSeidelSweepState& state, Hooks& hooks);
   template <class Hooks>
-  ContactUpdate sweep_colours(const ContactProblem& problem, const Options& options,
-                              double relaxation, bool forward, bool full, bool mark,
-                              std::vector<Eigen::Vector3d>& r, std::vector<Eigen::Vector3d>& m,
-                              std::vector<Eigen::Vector3d>& velocity,
-                              std::vector<Eigen::Vector3d>& angular_velocity, Hooks& hooks);
+  ContactUpdate sweep_colours(const Options& options, double relaxation, bool forward, bool full,
+                              bool mark, const GaussSeidelSweepState& state, Hooks& hooks);
 
   ActiveContactSet active_;             // the contacts partial sweeps visit
   std::vector<double> change_, total_;  // colour order: per visit slot, this sweep, N s
@@ -91,13 +95,10 @@ class GaussSeidelSweep {
 };
 
 template <class Hooks>
-SolveReport GaussSeidelSweep::solve(const ContactProblem& problem, const SolverSettings& settings,
-                                    const Options& options, std::vector<Eigen::Vector3d>& r,
-                                    std::vector<Eigen::Vector3d>& m,
-                                    std::vector<Eigen::Vector3d>& velocity,
-                                    std::vector<Eigen::Vector3d>& angular_velocity, Hooks& hooks) {
-  problem.velocities_from_reactions(r, m, velocity, angular_velocity);
-  const std::size_t count = problem.size();
+SolveReport GaussSeidelSweep::solve(const SolverSettings& settings, const Options& options,
+                                    const GaussSeidelSweepState& state, Hooks& hooks) {
+  state.problem.velocities_from_reactions(state.r, state.m, state.velocity, state.angular_velocity);
+  const std::size_t count = state.problem.size();
   if (options.order == Order::colour) {
     change_.resize(count);
     total_.resize(count);
@@ -118,16 +119,15 @@ SolveReport GaussSeidelSweep::solve(const ContactProblem& problem, const SolverS
     ContactUpdate sums;
     switch (options.order) {
       case Order::index:
-        sums = sweep_index<false>(problem, options, settings.relaxation, report.sweeps, forward, full,
-                                  mark, r, m, velocity, angular_velocity, hooks);
+        sums = sweep_index<false>(options, settings.relaxation, report.sweeps, forward, full, mark,
+                                  state, hooks);
         break;
       case Order::body_block:
-        sums = sweep_index<true>(problem, options, settings.relaxation, report.sweeps, forward, full,
-                                 mark, r, m, velocity, angular_velocity, hooks);
+        sums = sweep_index<true>(options, settings.relaxation, report.sweeps, forward, full, mark,
+                                 state, hooks);
         break;
       case Order::colour:
-        sums = sweep_colours(problem, options, settings.relaxation, forward, full, mark, r, m,
-                             velocity, angular_velocity, hooks);
+        sums = sweep_colours(options, settings.relaxation, forward, full, mark, state, hooks);
         break;
     }
     if (stop.after_sweep(sums.change, sums.total, report, full)) break;
@@ -139,19 +139,20 @@ SolveReport GaussSeidelSweep::solve(const ContactProblem& problem, const SolverS
       }
     }
     active_.after_sweep(full, stop.met());
-    hooks.after_sweep(report, forward);
+    hooks.after_sweep(state, report, forward);
   }
   return report;
 }
 
 template <bool Blocks, class Hooks>
-ContactUpdate GaussSeidelSweep::sweep_index(const ContactProblem& problem, const Options& options,
-                                            double relaxation, int sweep, bool forward, bool full,
-                                            bool mark, std::vector<Eigen::Vector3d>& r,
-                                            std::vector<Eigen::Vector3d>& m,
-                                            std::vector<Eigen::Vector3d>& velocity,
-                                            std::vector<Eigen::Vector3d>& angular_velocity,
-                                            Hooks& hooks) {
+ContactUpdate GaussSeidelSweep::sweep_index(const Options& options, double relaxation, int sweep,
+                                            bool forward, bool full, bool mark,
+                                            const GaussSeidelSweepState& state, Hooks& hooks) {
+  const ContactProblem& problem = state.problem;
+  std::vector<Eigen::Vector3d>& r = state.r;
+  std::vector<Eigen::Vector3d>& m = state.m;
+  std::vector<Eigen::Vector3d>& velocity = state.velocity;
+  std::vector<Eigen::Vector3d>& angular_velocity = state.angular_velocity;
   ContactUpdate sums;
   auto single = [&](std::size_t c) {
     const ContactUpdate u = gauss_seidel_visit(problem, c, relaxation, r[c], m, velocity, angular_velocity);
@@ -172,25 +173,26 @@ ContactUpdate GaussSeidelSweep::sweep_index(const ContactProblem& problem, const
       if (const std::int32_t b = (*options.block_of)[c]; b >= 0) {
         if (visited_[b] == sweep) continue;
         visited_[b] = sweep;
-        hooks.visit_block(static_cast<std::size_t>(b), forward, sums, single);
+        hooks.visit_block(state, static_cast<std::size_t>(b), forward, sums, single);
         continue;
       }
     }
     const ContactUpdate u = single(c);
     if (mark) active_.mark_visited(c, u.total);
-    hooks.after_visit(c);
+    hooks.after_visit(state, c);
   }
   return sums;
 }
 
 template <class Hooks>
-ContactUpdate GaussSeidelSweep::sweep_colours(const ContactProblem& problem, const Options& options,
-                                              double relaxation, bool forward, bool full, bool mark,
-                                              std::vector<Eigen::Vector3d>& r,
-                                              std::vector<Eigen::Vector3d>& m,
-                                              std::vector<Eigen::Vector3d>& velocity,
-                                              std::vector<Eigen::Vector3d>& angular_velocity,
+ContactUpdate GaussSeidelSweep::sweep_colours(const Options& options, double relaxation, bool forward,
+                                              bool full, bool mark, const GaussSeidelSweepState& state,
                                               Hooks& hooks) {
+  const ContactProblem& problem = state.problem;
+  std::vector<Eigen::Vector3d>& r = state.r;
+  std::vector<Eigen::Vector3d>& m = state.m;
+  std::vector<Eigen::Vector3d>& velocity = state.velocity;
+  std::vector<Eigen::Vector3d>& angular_velocity = state.angular_velocity;
   const std::vector<std::int32_t>& start = *options.colour_start;
   const auto colours = static_cast<std::ptrdiff_t>(start.size()) - 1;
   const std::vector<std::int32_t>& active = active_.active();
@@ -209,7 +211,7 @@ ContactUpdate GaussSeidelSweep::sweep_colours(const ContactProblem& problem, con
         if (problem.solvable(c)) {
           u = gauss_seidel_visit(problem, c, relaxation, r[c], m, velocity, angular_velocity);
           if (mark) active_.mark_visited(c, u.total);
-          hooks.after_visit(c);
+          hooks.after_visit(state, c);
         } else if (mark) {
           active_.mark_unsolvable(c);
         }

@@ -89,20 +89,17 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& problem,
   // support and, after each backward sweep, take the conjugate step.
   struct Hooks : GaussSeidelSweepHooks {
     NncgSolver& solver;
-    const ContactProblem& problem;
-    std::vector<Eigen::Vector3d>& r;
-    std::vector<Eigen::Vector3d>& m;
-    std::vector<Eigen::Vector3d>& velocity;
-    std::vector<Eigen::Vector3d>& angular_velocity;
     double previous = 0.0;  // |d|^2 of the last sweep pair; 0: no direction yet
 
-    void after_visit(std::size_t c) { solver.enter(problem, c, r, m); }
+    void after_visit(const GaussSeidelSweepState& state, std::size_t c) {
+      solver.enter(state.problem, c, state.r, state.m);
+    }
     // A symmetric pair (forward, backward) is one application of the map the conjugate
     // directions are built on. The solve only stops before a step (GaussSeidelSweep stops
     // right after a sweep), so it returns a sweep's reactions.
-    void after_sweep(const SolveReport& report, bool forward) {
+    void after_sweep(const GaussSeidelSweepState& state, const SolveReport& report, bool forward) {
       if (forward || report.sweeps >= solver.settings_.max_iterations) return;
-      const double current = solver.take_change(problem, r, m);
+      const double current = solver.take_change(state.problem, state.r, state.m);
       double beta = previous > 0.0 ? current / previous : 0.0;
       if (beta > 1.0 && beta <= solver.options_.drift_ratio) {
         beta = 1.0;  // a drift (NncgSolver.h): followed with the whole step
@@ -116,15 +113,15 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& problem,
         ++solver.damped_;
       }
       if (beta > 0.0) ++solver.steps_;
-      solver.conjugate_step(problem, beta, r, m, velocity, angular_velocity);
+      solver.conjugate_step(state.problem, beta, state.r, state.m, state.velocity, state.angular_velocity);
       previous = current;
     }
-  } hooks{{}, *this, problem, r, m, velocity, angular_velocity};
+  } hooks{{}, *this};
   GaussSeidelSweep::Options options;
   options.order = GaussSeidelSweep::Order::index;
   options.full_sweep_every = 1;  // a partial sweep's change is not a map of all the reactions
   options.stall_sweeps = stall_window();
-  return sweep_.solve(problem, settings_, options, r, m, velocity, angular_velocity, hooks);
+  return sweep_.solve(settings_, options, {problem, r, m, velocity, angular_velocity}, hooks);
 }
 
 }  // namespace tmdem::mechanics

@@ -46,7 +46,7 @@ SweepResult sweep_with(const ContactProblem& problem, GaussSeidelSweep::Order or
   out.m.assign(count, Vector3d::Zero());
   GaussSeidelSweep sweep;
   GaussSeidelSweepHooks hooks;
-  out.sweeps = sweep.solve(problem, settings, options, out.r, out.m, out.v, out.w, hooks).sweeps;
+  out.sweeps = sweep.solve(settings, options, {problem, out.r, out.m, out.v, out.w}, hooks).sweeps;
   return out;
 }
 

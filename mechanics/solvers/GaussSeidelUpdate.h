@@ -1,6 +1,6 @@
 #pragma once
-// One Gauss-Seidel visit of one contact, shared by "nlgs" (GaussSeidelSolver.h) and
-// "nlgs_coloured" (ColouredGaussSeidelSolver.h): the contact solves its own bipotential law
+// One Gauss-Seidel visit of one contact, the step of every Gauss-Seidel sweep
+// (GaussSeidelSweep.h: "nlgs", "nlgs_coloured", "nlgs_block", "nncg"): the contact solves its own bipotential law
 // with every other reaction frozen (closed form, CoulombCone.h) and updates its two bodies'
 // velocities at once. Touches only contact c and its two bodies, so contacts that share no
 // body can be visited at the same time.

@@ -26,7 +26,7 @@ namespace {
 
 using tmdem::mechanics::test::same_bits;
 
-// The visit as ContactProblem's operations give it (the open test, u0 = U - W r, the closed-form
+// The visit with the kinematics on Eigen::Vector3d (the open test, u0 = U - W r, the closed-form
 // solve, apply_impulse; rolling_velocity, the rolling cone's projection, apply_rolling_impulse).
 ContactUpdate reference_visit(const ContactProblem& p, std::size_t c, std::vector<Vector3d>& r,
                               std::vector<Vector3d>& m, std::vector<Vector3d>& v,

@@ -12,6 +12,7 @@
 #include "coupling/bridge/SceneToMechanics.h"
 #include "coupling/common/ExitCode.h"
 #include "coupling/output/OutputError.h"
+#include "mechanics/contact/ContactKinematics.h"
 #include "mechanics/integrator/NscdIntegrator.h"
 
 namespace tmdem::coupling {
@@ -186,10 +187,10 @@ FclibLocalProblem fclib_local_problem(const ContactProblem& problem,
         }
     std::sort(near.begin(), near.end());
     for (int a = 0; a < d; ++a) {
-      problem.apply_impulse(c, Eigen::Vector3d::Unit(a), dv, dw);
+      mechanics::apply_impulse(problem, c, Eigen::Vector3d(Eigen::Vector3d::Unit(a)), dv, dw);
       for (const std::size_t other : near) {
         const std::size_t e = kept[other];
-        Eigen::Vector3d u = problem.local_velocity(e, dv, dw);
+        Eigen::Vector3d u = mechanics::local_velocity<Eigen::Vector3d>(problem, e, dv, dw);
         u[0] -= problem.bias[e];
         for (int b = 0; b < d; ++b)
           if (u[b] != 0.0) {
@@ -207,8 +208,8 @@ FclibLocalProblem fclib_local_problem(const ContactProblem& problem,
   problem.velocities_from_reactions(reactions, v, w);
   for (const std::size_t c : kept) {
     const Eigen::Vector3d q =
-        problem.local_velocity(c, problem.free_velocity, problem.free_angular_velocity);
-    const Eigen::Vector3d u = problem.local_velocity(c, v, w);
+        mechanics::local_velocity<Eigen::Vector3d>(problem, c, problem.free_velocity, problem.free_angular_velocity);
+    const Eigen::Vector3d u = mechanics::local_velocity<Eigen::Vector3d>(problem, c, v, w);
     for (int a = 0; a < d; ++a) {
       out.q.push_back(q[a]);
       out.r.push_back(reactions[c][a]);

@@ -29,7 +29,7 @@ int run_contact_problem_command(const Scene& scene, const ContactProblemOptions&
                                 std::ostream& out, std::ostream& log);
 
 // The local problem of `problem` with `reactions` (one per contact, N s) as its solution:
-// W_cd = H_c^T M^-1 H_d assembled column by column from unit impulses (apply_impulse, then
+// W_cd = H_c^T M^-1 H_d assembled column by column from unit impulses (ContactKinematics.h: apply_impulse, then
 // local_velocity of every contact sharing a body), q = U(r = 0), u = U(r). Contacts between two
 // immobile bodies (W_cc = 0: no reaction) are left out and counted in omitted_contacts.
 // spacedim 2 for a 2D problem (n, t1), else 3. Throws std::invalid_argument for a problem with

@@ -1,5 +1,7 @@
 #include "mechanics/contact/ContactProblem.h"
 
+#include "mechanics/contact/ContactKinematics.h"
+
 namespace tmdem::mechanics {
 
 void ContactProblem::resize_contacts(std::size_t count) {
@@ -24,7 +26,7 @@ void ContactProblem::resize_contacts(std::size_t count) {
 void ContactProblem::add_rolling_impulses(const std::vector<Eigen::Vector3d>& m,
                                           std::vector<Eigen::Vector3d>& angular_velocity) const {
   for (std::size_t c = 0; c < size(); ++c) {
-    if (m[c][0] != 0.0 || m[c][1] != 0.0 || m[c][2] != 0.0) apply_rolling_impulse(c, m[c], angular_velocity);
+    if (m[c][0] != 0.0 || m[c][1] != 0.0 || m[c][2] != 0.0) apply_rolling_impulse(*this, c, m[c], angular_velocity);
   }
 }
 
@@ -34,7 +36,7 @@ void ContactProblem::velocities_from_reactions(const std::vector<Eigen::Vector3d
   velocity.assign(free_velocity.begin(), free_velocity.end());
   angular_velocity.assign(free_angular_velocity.begin(), free_angular_velocity.end());
   for (std::size_t c = 0; c < size(); ++c) {
-    if (r[c][0] > 0.0) apply_impulse(c, r[c], velocity, angular_velocity);
+    if (r[c][0] > 0.0) apply_impulse(*this, c, r[c], velocity, angular_velocity);
   }
 }
 

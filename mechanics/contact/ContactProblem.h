@@ -6,12 +6,12 @@
 // H_c maps a local impulse to the two bodies' velocity changes; W = H^T M^-1 H is the
 // Delassus operator, whose diagonal block for two spheres is diag(w_n, w_t, w_t) exactly.
 //
-// The problem is built by NscdIntegrator and only read by the solvers (ContactSolver.h).
+// The problem is built by NscdIntegrator and only read by the solvers (ContactSolver.h); the
+// kinematics of one contact (U_c, applying r_c, the rolling pair) are ContactKinematics.h.
 // Everything is a structure of arrays reused from step to step: no allocation once warm.
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
-#include <cassert>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -78,42 +78,12 @@ struct ContactProblem {
   // A contact between two immobile bodies carries no reaction (W_cc = 0).
   bool solvable(std::size_t c) const { return w_n[c] > 0.0; }
 
-  // Local velocity U_c = H_c^T v (+ bias along n) in (n, t1, t2), m/s; t2 is 0 in 2D.
-  Eigen::Vector3d local_velocity(std::size_t c, const std::vector<Eigen::Vector3d>& velocity,
-                                 const std::vector<Eigen::Vector3d>& angular_velocity) const;
-
-  // The normal component of local_velocity, m/s: n . (v_i - v_j) + bias (the spin terms
-  // (R_i w_i + R_j w_j) x n are perpendicular to n and drop out).
-  double normal_velocity(std::size_t c, const std::vector<Eigen::Vector3d>& velocity) const {
-    const std::int32_t j = body_j[c];
-    const Eigen::Vector3d& vj = is_wall(j) ? velocity[wall_body(j)] : velocity[j];
-    return (velocity[body_i[c]] - vj).dot(normal[c]) + bias[c];
-  }
-
-  // velocity += M^-1 H_c r_c for one local impulse r_c.
-  void apply_impulse(std::size_t c, const Eigen::Vector3d& r_local,
-                     std::vector<Eigen::Vector3d>& velocity,
-                     std::vector<Eigen::Vector3d>& angular_velocity) const;
-
   // velocity = v_free + M^-1 H r for all reactions at once (the start of any solver, and the
   // W r product of a Jacobi-type method: U(r) - U(0)).
   void velocities_from_reactions(const std::vector<Eigen::Vector3d>& r,
                                  std::vector<Eigen::Vector3d>& velocity,
                                  std::vector<Eigen::Vector3d>& angular_velocity) const;
 
-  // Rolling (only when `rolling`): the relative spin omega_i - omega_j of contact c without
-  // its component along n, rad/s; and angular_velocity += W m for a rolling impulse m.
-  Eigen::Vector3d rolling_velocity(std::size_t c,
-                                   const std::vector<Eigen::Vector3d>& angular_velocity) const {
-    Eigen::Vector3d w = angular_velocity[body_i[c]];
-    if (!is_wall(body_j[c])) w -= angular_velocity[body_j[c]];
-    return w - w.dot(normal[c]) * normal[c];
-  }
-  void apply_rolling_impulse(std::size_t c, const Eigen::Vector3d& m,
-                             std::vector<Eigen::Vector3d>& angular_velocity) const {
-    angular_velocity[body_i[c]] += inverse_inertia[body_i[c]] * m;
-    if (!is_wall(body_j[c])) angular_velocity[body_j[c]] -= inverse_inertia[body_j[c]] * m;
-  }
   // angular_velocity += sum_c W m_c over all contacts (after velocities_from_reactions).
   void add_rolling_impulses(const std::vector<Eigen::Vector3d>& m,
                             std::vector<Eigen::Vector3d>& angular_velocity) const;
@@ -126,31 +96,7 @@ struct ContactProblem {
     velocities_from_reactions(r, velocity, angular_velocity);
     if (rolling) add_rolling_impulses(m, angular_velocity);
   }
-
-  // Global impulse of a local one, N s.
-  Eigen::Vector3d to_global(std::size_t c, const Eigen::Vector3d& r_local) const {
-    return r_local[0] * normal[c] + r_local[1] * tangent1[c] + r_local[2] * tangent2[c];
-  }
 };
-
-// Inline: the inner loop of every solver.
-inline Eigen::Vector3d ContactProblem::local_velocity(
-    std::size_t c, const std::vector<Eigen::Vector3d>& velocity,
-    const std::vector<Eigen::Vector3d>& angular_velocity) const {
-  // Velocity of i's material point at the contact minus j's: contact points sit at
-  // x_i - R_i n and x_j + R_j n.
-  const Eigen::Vector3d& n = normal[c];
-  const std::int32_t i = body_i[c], j = body_j[c];
-  Eigen::Vector3d u;
-  if (!is_wall(j)) {
-    u = velocity[i] - velocity[j] - (lever_i[c] * angular_velocity[i] + lever_j[c] * angular_velocity[j]).cross(n);
-  } else {
-    assert(wall_body(j) < velocity.size() && "a wall contact needs its wall body (add_fixed_wall_bodies)");
-    u = velocity[i] - velocity[wall_body(j)] - (lever_i[c] * angular_velocity[i]).cross(n);
-  }
-  return Eigen::Vector3d(u.dot(n) + bias[c], u.dot(tangent1[c]),
-                         dimension == 2 ? 0.0 : u.dot(tangent2[c]));
-}
 
 inline void ContactProblem::copy_contact(std::size_t k, const ContactProblem& from, std::size_t c) {
   body_i[k] = from.body_i[c];
@@ -168,23 +114,6 @@ inline void ContactProblem::copy_contact(std::size_t k, const ContactProblem& fr
     rolling_limit[k] = from.rolling_limit[c];
     rolling_radius[k] = from.rolling_radius[c];
     w_r[k] = from.w_r[c];
-  }
-}
-
-inline void ContactProblem::apply_impulse(std::size_t c, const Eigen::Vector3d& r_local,
-                                   std::vector<Eigen::Vector3d>& velocity,
-                                   std::vector<Eigen::Vector3d>& angular_velocity) const {
-  // p acts on i at x_i - R_i n (torque -R_i n x p) and -p on j at x_j + R_j n (same sign).
-  const Eigen::Vector3d p = to_global(c, r_local);
-  const Eigen::Vector3d nxp = normal[c].cross(p);
-  const std::int32_t i = body_i[c], j = body_j[c];
-  velocity[i] += inverse_mass[i] * p;
-  angular_velocity[i] -= (inverse_inertia[i] * lever_i[c]) * nxp;
-  if (!is_wall(j)) {
-    velocity[j] -= inverse_mass[j] * p;
-    angular_velocity[j] -= (inverse_inertia[j] * lever_j[c]) * nxp;
-  } else if (const std::size_t b = wall_body(j); inverse_mass[b] > 0.0) {
-    velocity[b] -= (inverse_mass[b] * r_local[0]) * normal[c];  // a piston: along n only
   }
 }
 

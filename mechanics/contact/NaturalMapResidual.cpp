@@ -1,5 +1,7 @@
 #include "mechanics/contact/NaturalMapResidual.h"
 
+#include "mechanics/contact/ContactKinematics.h"
+
 namespace tmdem::mechanics {
 
 double natural_map_residual(const ContactProblem& problem, const std::vector<Eigen::Vector3d>& r,
@@ -9,7 +11,7 @@ double natural_map_residual(const ContactProblem& problem, const std::vector<Eig
   for (std::size_t c = 0; c < problem.size(); ++c) {
     if (!problem.solvable(c)) continue;
     const Eigen::Vector3d next =
-        local_law_solution(problem, c, r[c], problem.local_velocity(c, velocity, angular_velocity));
+        local_law_solution(problem, c, r[c], local_velocity<Eigen::Vector3d>(problem, c, velocity, angular_velocity));
     defect += (next - r[c]).norm();
     total += next.norm();
   }
@@ -25,9 +27,9 @@ double natural_map_residual(const ContactProblem& problem, const std::vector<Eig
   for (std::size_t c = 0; c < problem.size(); ++c) {
     if (!problem.solvable(c)) continue;
     const Eigen::Vector3d next =
-        local_law_solution(problem, c, r[c], problem.local_velocity(c, velocity, angular_velocity));
+        local_law_solution(problem, c, r[c], local_velocity<Eigen::Vector3d>(problem, c, velocity, angular_velocity));
     const Eigen::Vector3d next_m = local_rolling_solution(
-        problem, c, next[0], m[c], problem.rolling_velocity(c, angular_velocity));
+        problem, c, next[0], m[c], rolling_velocity<Eigen::Vector3d>(problem, c, angular_velocity));
     const double scale = 1.0 / problem.rolling_radius[c];
     defect += (next - r[c]).norm() + (next_m - m[c]).norm() * scale;
     total += next.norm() + next_m.norm() * scale;

@@ -34,7 +34,7 @@ inline Eigen::Vector3d local_law_solution(const ContactProblem& problem, std::si
 
 // The rolling part of R_c (ContactProblem::rolling): contact c's rolling impulse solved
 // exactly with everything else frozen, normal_impulse its normal reaction, spin its rolling
-// velocity (ContactProblem::rolling_velocity). The block is w_r I on the plane perpendicular
+// velocity (rolling_velocity, ContactKinematics.h). The block is w_r I on the plane perpendicular
 // to n, so m = proj_{|m| <= mu_r R_eff r_n}(m_c - spin / w_r), kept perpendicular to n (and
 // along z in 2D). 0 when the contact's bodies cannot turn (w_r = 0).
 inline ScalarVec3 local_rolling_solution(const ContactProblem& problem, std::size_t c,

@@ -25,6 +25,8 @@ struct ScalarVec3 {
     v[1] = y;
     v[2] = z;
   }
+  // Component k (0, 1, 2), as Eigen's v[k]: the kinematics (ContactKinematics.h) index both.
+  double operator[](int k) const { return k == 0 ? x : (k == 1 ? y : z); }
   bool is_zero() const { return x == 0.0 && y == 0.0 && z == 0.0; }
   double dot(const ScalarVec3& o) const { return x * o.x + y * o.y + z * o.z; }
   double squared_norm() const { return dot(*this); }

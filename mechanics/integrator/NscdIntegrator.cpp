@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 
 #include "mechanics/solvers/ContactSolverRegistry.h"
+#include "mechanics/contact/ContactKinematics.h"
 #include "mechanics/contact/CoulombCone.h"
 #include "mechanics/model/PairIndex.h"
 
@@ -269,9 +270,8 @@ void NscdIntegrator::setup_contacts(double h) {
     p.mu[k] = mu;
 
     // Position term P / h, with the normal velocity at the start of the step.
-    Eigen::Vector3d u_old = old_velocity_[i] - (lever_i * old_angular_velocity_[i]).cross(n);
-    if (!is_wall(j)) u_old -= old_velocity_[j] + (lever_j * old_angular_velocity_[j]).cross(n);
-    else if (has_piston_) u_old -= old_velocity_[p.wall_body(j)];
+    const Eigen::Vector3d u_old = relative_velocity<Eigen::Vector3d, VelocityRounding::points_first>(
+        p, k, old_velocity_, old_angular_velocity_);
     // Activation by predicted gap only: an overlap is never turned into a push-out speed
     // (U_n = u_n there); the position step removes it (PenetrationCorrection.h).
     const double predicted = gap + h * (1.0 - theta) * u_old.dot(n);
@@ -394,20 +394,20 @@ StepReport NscdIntegrator::step(double h) {
   for (std::size_t k = 0; k < problem_.size(); ++k) {
     const Eigen::Vector3d& r = reactions_[k];
     const std::int32_t i = problem_.body_i[k], j = problem_.body_j[k];
-    force_[k] = problem_.to_global(k, r) / h;
+    force_[k] = global_impulse(problem_, k, r) / h;
     penetration = std::max(penetration, -gap_after_[k]);
     // -r . u_theta, u_theta the relative velocity the position update uses (bias removed).
     const Eigen::Vector3d u_theta =
-        theta * problem_.local_velocity(k, body_velocity_, body_angular_velocity_) +
-        (1.0 - theta) * problem_.local_velocity(k, old_velocity_, old_angular_velocity_) -
+        theta * local_velocity<Eigen::Vector3d>(problem_, k, body_velocity_, body_angular_velocity_) +
+        (1.0 - theta) * local_velocity<Eigen::Vector3d>(problem_, k, old_velocity_, old_angular_velocity_) -
         Eigen::Vector3d(problem_.bias[k], 0.0, 0.0);
     double dissipated_J = -r.dot(u_theta);
     if (rolling_) {
       // Rolling work: -m . (theta w_rel+ + (1 - theta) w_rel-), w_rel = omega_i - omega_j.
       const Eigen::Vector3d& m = rolling_impulse_[k];
       torque_[k] = m / h;
-      dissipated_J -= m.dot(theta * problem_.rolling_velocity(k, body_angular_velocity_) +
-                            (1.0 - theta) * problem_.rolling_velocity(k, old_angular_velocity_));
+      dissipated_J -= m.dot(theta * rolling_velocity<Eigen::Vector3d>(problem_, k, body_angular_velocity_) +
+                            (1.0 - theta) * rolling_velocity<Eigen::Vector3d>(problem_, k, old_angular_velocity_));
     }
     report.contact_dissipation_J += dissipated_J;
     if (r[0] > 0.0) {

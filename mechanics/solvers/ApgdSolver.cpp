@@ -104,8 +104,7 @@ void ApgdSolver::local_velocities(const ContactProblem& problem,
   {
 #pragma omp for schedule(static)
     for (std::ptrdiff_t c = 0; c < count; ++c) {
-      impulse_[c] = problem.to_global(static_cast<std::size_t>(c), x[c]);
-      torque_arm_[c] = problem.normal[c].cross(impulse_[c]);
+      impulse_[c] = body_impulse(problem, static_cast<std::size_t>(c), x[c]);
     }
 #pragma omp for schedule(static)
     for (std::ptrdiff_t b = 0; b < bodies; ++b) {
@@ -113,18 +112,16 @@ void ApgdSolver::local_velocities(const ContactProblem& problem,
       const double inverse_mass = problem.inverse_mass[b], inverse_inertia = problem.inverse_inertia[b];
       for (std::int32_t k = body_start_[b]; k < body_start_[b + 1]; ++k) {
         const std::int32_t e = body_contact_[k];
-        if (e >= 0) {  // body i: +p at x_i - R_i n, rolling impulse +m
-          v += inverse_mass * impulse_[e];
-          w -= (inverse_inertia * problem.lever_i[e]) * torque_arm_[e];
-          if (rolling) w += inverse_inertia * m[e];
-        } else if (b < particles) {  // body j: -p at x_j + R_j n, rolling impulse -m
+        if (e >= 0) {  // body i
+          take_impulse_as_i(impulse_[e], inverse_mass, inverse_inertia, problem.lever_i[e], v, w);
+          if (rolling) take_rolling_impulse_as_i(m[e], inverse_inertia, w);
+        } else if (b < particles) {  // body j, a particle
           const std::int32_t c = -1 - e;
-          v -= inverse_mass * impulse_[c];
-          w -= (inverse_inertia * problem.lever_j[c]) * torque_arm_[c];
-          if (rolling) w -= inverse_inertia * m[c];
-        } else {       // a piston: -r_n n, along its normal only (walls do not turn)
+          take_impulse_as_j(impulse_[c], inverse_mass, inverse_inertia, problem.lever_j[c], v, w);
+          if (rolling) take_rolling_impulse_as_j(m[c], inverse_inertia, w);
+        } else {  // body j, a piston
           const std::int32_t c = -1 - e;
-          v -= (inverse_mass * x[c][0]) * problem.normal[c];
+          take_impulse_as_piston(x[c][0], problem.normal[c], inverse_mass, v);
         }
       }
       velocity[b] = v;
@@ -133,8 +130,8 @@ void ApgdSolver::local_velocities(const ContactProblem& problem,
 #pragma omp for schedule(static)
     for (std::ptrdiff_t c = 0; c < count; ++c) {
       const auto cc = static_cast<std::size_t>(c);
-      u[c] = problem.local_velocity(cc, velocity, angular_velocity);
-      if (rolling) spin[c] = problem.rolling_velocity(cc, angular_velocity);
+      u[c] = local_velocity<Eigen::Vector3d>(problem, cc, velocity, angular_velocity);
+      if (rolling) spin[c] = rolling_velocity<Eigen::Vector3d>(problem, cc, angular_velocity);
     }
   }
 }
@@ -149,9 +146,10 @@ SolveReport ApgdSolver::solve_with_rolling(const ContactProblem& problem,
   const bool planar = problem.dimension == 2;
   const bool rolling = problem.rolling;
   const std::ptrdiff_t blocks = sum_block_count(n);
-  for (auto* v : {&x_, &x_old_, &y_, &ux_, &ux_old_, &uy_, &best_, &impulse_, &torque_arm_}) {
+  for (auto* v : {&x_, &x_old_, &y_, &ux_, &ux_old_, &uy_, &best_}) {
     v->resize(count);
   }
+  impulse_.resize(count);
   if (rolling) {
     for (auto* v : {&mx_, &mx_old_, &my_, &sx_, &sx_old_, &sy_, &mbest_}) v->resize(count);
   }

@@ -42,6 +42,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "mechanics/contact/ContactKinematics.h"
 #include "mechanics/solvers/ContactSolver.h"
 
 namespace tmdem::mechanics {
@@ -80,7 +81,7 @@ class ApgdSolver final : public ContactSolver {
   std::vector<Eigen::Vector3d> x_, x_old_, y_, ux_, ux_old_, uy_, best_;
   // Rolling: impulses m (N m s) at x, x_old, y, their rolling velocities (rad/s), the best m.
   std::vector<Eigen::Vector3d> mx_, mx_old_, my_, sx_, sx_old_, sy_, mbest_;
-  std::vector<Eigen::Vector3d> impulse_, torque_arm_;  // global p_c and n x p_c, N s
+  std::vector<BodyImpulse<Eigen::Vector3d>> impulse_;  // global p_c and n x p_c, N s
   std::vector<double> slip_bias_;                      // s_c = mu |u_t|, m/s
   std::vector<std::int32_t> body_start_, body_fill_;   // contacts of each body (CSR)
   std::vector<std::int32_t> body_contact_;             // contact index, negated-1 when j

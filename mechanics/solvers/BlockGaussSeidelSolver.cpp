@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-#include "mechanics/solvers/GaussSeidelUpdate.h"
 #include "mechanics/model/PairIndex.h"
 
 namespace tmdem::mechanics {
@@ -61,76 +60,70 @@ void BlockGaussSeidelSolver::build_blocks(const ContactProblem& problem) {
   for (std::size_t c = 0; c < count; ++c) {
     if (owner_[c] >= 0) block_contacts_[fill[owner_[c]]++] = static_cast<std::int32_t>(c);
   }
-  visited_.assign(blocks, 0);
   quiet_.assign(blocks, 0);
 }
+
+// The sweep's block visits (GaussSeidelSweep.h, body_block order).
+struct BlockGaussSeidelSolver::SweepHooks : GaussSeidelSweepHooks {
+  BlockGaussSeidelSolver& solver;
+
+  template <class Single>
+  void visit_block(const GaussSeidelSweepState& state, std::size_t b, bool forward,
+                   ContactUpdate& sums, Single&& single) {
+    const ContactProblem& problem = state.problem;
+    const std::int32_t* contacts = solver.block_contacts_.data() + solver.block_start_[b];
+    const int size = solver.block_start_[b + 1] - solver.block_start_[b];
+    auto singles = [&] {
+      for (int k = 0; k < size; ++k) single(static_cast<std::size_t>(contacts[forward ? k : size - 1 - k]));
+    };
+    const double tolerance = solver.settings_.tolerance;
+    if (solver.quiet_[b]) {
+      // Converged to the tolerance at its last block visit: single visits, back to the block
+      // as soon as they move it more than the tolerance.
+      const ContactUpdate before = sums;
+      singles();
+      solver.quiet_[b] = sums.change - before.change <= tolerance * (sums.total - before.total);
+      return;
+    }
+    ++solver.block_visits_;
+    const BodyContactBlock::Result solved = solver.block_.solve(
+        problem, static_cast<std::size_t>(solver.block_body_[b]), contacts, size, state.r, state.velocity,
+        state.angular_velocity);
+    if (!solved.solved) {
+      ++solver.block_fallbacks_;
+      singles();
+      return;
+    }
+    sums.change += solved.update.change;
+    sums.total += solved.update.total;
+    solver.quiet_[b] = solved.update.change <= tolerance * solved.update.total;
+    if (!problem.rolling) return;
+    for (int k = 0; k < size; ++k) {
+      const auto ck = static_cast<std::size_t>(contacts[k]);
+      const ContactUpdate roll =
+          gauss_seidel_rolling_update(problem, ck, state.r[ck][0], state.m[ck], state.angular_velocity);
+      sums.change += roll.change;
+      sums.total += roll.total;
+    }
+  }
+};
 
 SolveReport BlockGaussSeidelSolver::solve_with_rolling(const ContactProblem& problem,
                                                        std::vector<Eigen::Vector3d>& r,
                                                        std::vector<Eigen::Vector3d>& m,
                                                        std::vector<Eigen::Vector3d>& velocity,
                                                        std::vector<Eigen::Vector3d>& angular_velocity) {
-  problem.velocities_from_reactions(r, m, velocity, angular_velocity);
   build_blocks(problem);
   block_visits_ = 0;
   block_fallbacks_ = 0;
-  const std::size_t count = problem.size();
-  SolveReport report;
-  GaussSeidelStopTest stop(settings_.tolerance, settings_.stall_sweeps);
-  while (report.sweeps < settings_.max_iterations) {
-    ++report.sweeps;
-    double change = 0.0, total = 0.0;
-    const bool forward = report.sweeps % 2 == 1;  // symmetric sweeps, as "nlgs"
-    auto single = [&](std::size_t c) {
-      const ContactUpdate u =
-          gauss_seidel_visit(problem, c, settings_.relaxation, r[c], m, velocity, angular_velocity);
-      change += u.change;
-      total += u.total;
-    };
-    for (std::size_t visit = 0; visit < count; ++visit) {
-      const std::size_t c = forward ? visit : count - 1 - visit;
-      if (!problem.solvable(c)) continue;
-      const std::int32_t b = owner_[c];
-      if (b < 0) {
-        single(c);
-        continue;
-      }
-      // A block is visited at the first of its contacts the sweep reaches.
-      if (visited_[b] == report.sweeps) continue;
-      visited_[b] = report.sweeps;
-      const std::int32_t* contacts = block_contacts_.data() + block_start_[b];
-      const int size = block_start_[b + 1] - block_start_[b];
-      if (quiet_[b]) {
-        // Converged to the tolerance at its last block visit: single visits, back to the
-        // block as soon as they move it more than the tolerance.
-        const double change_before = change, total_before = total;
-        for (int k = 0; k < size; ++k) single(static_cast<std::size_t>(contacts[forward ? k : size - 1 - k]));
-        quiet_[b] = change - change_before <= settings_.tolerance * (total - total_before);
-        continue;
-      }
-      ++block_visits_;
-      const BodyContactBlock::Result solved =
-          block_.solve(problem, static_cast<std::size_t>(block_body_[b]), contacts, size, r, velocity, angular_velocity);
-      if (solved.solved) {
-        change += solved.update.change;
-        total += solved.update.total;
-        quiet_[b] = solved.update.change <= settings_.tolerance * solved.update.total;
-        if (problem.rolling) {
-          for (int k = 0; k < size; ++k) {
-            const auto ck = static_cast<std::size_t>(contacts[k]);
-            const ContactUpdate roll = gauss_seidel_rolling_update(problem, ck, r[ck][0], m[ck], angular_velocity);
-            change += roll.change;
-            total += roll.total;
-          }
-        }
-      } else {
-        ++block_fallbacks_;
-        for (int k = 0; k < size; ++k) single(static_cast<std::size_t>(contacts[forward ? k : size - 1 - k]));
-      }
-    }
-    if (stop.after_sweep(change, total, report)) break;
-  }
-  return report;
+  SweepHooks hooks{{}, *this};
+  GaussSeidelSweep::Options options;
+  options.order = GaussSeidelSweep::Order::body_block;
+  options.full_sweep_every = 1;
+  options.stall_sweeps = settings_.stall_sweeps;
+  options.block_of = &owner_;
+  options.block_count = block_body_.size();
+  return sweep_.solve(settings_, options, {problem, r, m, velocity, angular_velocity}, hooks);
 }
 
 }  // namespace tmdem::mechanics

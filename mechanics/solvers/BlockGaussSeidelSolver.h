@@ -12,6 +12,7 @@
 
 #include "mechanics/solvers/BodyContactBlock.h"
 #include "mechanics/solvers/ContactSolver.h"
+#include "mechanics/solvers/GaussSeidelSweep.h"
 
 namespace tmdem::mechanics {
 
@@ -34,11 +35,13 @@ class BlockGaussSeidelSolver final : public ContactSolver {
   std::int64_t block_fallbacks() const { return block_fallbacks_; }
 
  private:
+  struct SweepHooks;  // the block visits of the sweeps (BlockGaussSeidelSolver.cpp)
   void build_blocks(const ContactProblem& problem);
 
   SolverSettings settings_;
   double mass_ratio_;
   BodyContactBlock block_;
+  GaussSeidelSweep sweep_;                   // body_block order, every sweep full
   std::vector<double> heaviest_;             // kg, heaviest mobile neighbour per body
   std::vector<std::int32_t> owner_;          // per contact: its block, -1 for a single visit
   std::vector<std::int32_t> block_body_;     // per block: its body
@@ -46,7 +49,6 @@ class BlockGaussSeidelSolver final : public ContactSolver {
   std::vector<std::int32_t> block_contacts_; // contacts grouped by block, in index order
   std::vector<std::int32_t> scratch_;        // block per body, then fill positions
   std::vector<char> quiet_;                  // per block: single visits until they move it
-  std::vector<int> visited_;                 // per block: the sweep that last visited it
   std::int64_t block_visits_ = 0, block_fallbacks_ = 0;
 };
 

@@ -3,6 +3,7 @@
 #include <Eigen/LU>
 #include <cmath>
 
+#include "mechanics/contact/ContactKinematics.h"
 #include "mechanics/contact/CoulombCone.h"
 
 namespace tmdem::mechanics {
@@ -41,7 +42,7 @@ BodyContactBlock::Result BodyContactBlock::solve(const ContactProblem& problem, 
   };
 
   // Local velocity of contact c from the body's (v, omega): u = s F^T v + lever F^T (n x omega),
-  // s = +1 when the body is body_i, -1 when body_j (ContactProblem::local_velocity).
+  // s = +1 when the body is body_i, -1 when body_j (ContactKinematics.h).
   const double inverse_mass = problem.inverse_mass[body], inverse_inertia = problem.inverse_inertia[body];
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t c = static_cast<std::size_t>(contacts[k]);
@@ -57,7 +58,7 @@ BodyContactBlock::Result BodyContactBlock::solve(const ContactProblem& problem, 
     cross_n << 0.0, -nc[2], nc[1], nc[2], 0.0, -nc[0], -nc[1], nc[0], 0.0;
     jacobian_[k].leftCols<3>() = sign * frame_t;
     jacobian_[k].rightCols<3>() = lever * frame_t * cross_n;
-    u_[k] = problem.local_velocity(c, velocity, angular_velocity);
+    u_[k] = local_velocity<Vector3d>(problem, c, velocity, angular_velocity);
   }
   // Nothing to solve when every contact is unloaded and opening (most of a falling body's
   // candidates): the single visits would leave them at zero too.
@@ -240,7 +241,7 @@ BodyContactBlock::Result BodyContactBlock::solve(const ContactProblem& problem, 
     const std::size_t c = static_cast<std::size_t>(contacts[k]);
     const Vector3d dr = x_[k] - r[c];
     if (dr[0] != 0.0 || dr[1] != 0.0 || dr[2] != 0.0) {
-      problem.apply_impulse(c, dr, velocity, angular_velocity);
+      apply_impulse(problem, c, dr, velocity, angular_velocity);
       r[c] = x_[k];
     }
     result.update.change += dr.norm();

@@ -25,9 +25,9 @@
 #include <cstddef>
 #include <vector>
 
-#include "mechanics/solvers/ActiveContactSet.h"
 #include "mechanics/solvers/ContactColouring.h"
 #include "mechanics/solvers/ContactSolver.h"
+#include "mechanics/solvers/GaussSeidelSweep.h"
 
 namespace tmdem::mechanics {
 
@@ -50,9 +50,7 @@ class ColouredGaussSeidelSolver final : public ContactSolver {
   ContactProblem ordered_;                 // the problem with its contacts in colour order
   std::vector<Eigen::Vector3d> ordered_r_; // reactions in colour order
   std::vector<Eigen::Vector3d> ordered_m_; // rolling impulses in colour order
-  ActiveContactSet active_;                // the contacts partial sweeps visit, per colour
-  std::vector<double> change_, total_;     // per visit slot, this sweep
-  std::vector<double> block_sums_;         // per block of contacts: change, total
+  GaussSeidelSweep sweep_;                 // colour order, active set per colour
 };
 
 }  // namespace tmdem::mechanics

@@ -3,8 +3,8 @@
 // warm-start reactions, and returns the reactions and the body velocities they give.
 // Solvers are chosen by name (mechanics.solver) through ContactSolverRegistry.h.
 //
-// What a solver may use from the problem: local_velocity (H^T v + bias), apply_impulse /
-// velocities_from_reactions (v = v_free + M^-1 H r, so W r = H^T (v(r) - v_free)), the
+// What a solver may use from the problem: its kinematics (ContactKinematics.h: local_velocity,
+// H^T v + bias; apply_impulse), velocities_from_reactions (v = v_free + M^-1 H r, so W r = H^T (v(r) - v_free)), the
 // Delassus diagonal blocks (w_n, w_t), the local law (CoulombCone.h: projection onto the
 // cone and the closed-form local solve) and ContactResidual.h for the stop test.
 

@@ -5,8 +5,8 @@
 // active contacts only, a full sweep every SolverSettings::full_sweep_every sweeps and before
 // convergence is declared (ActiveContactSet.h).
 
-#include "mechanics/solvers/ActiveContactSet.h"
 #include "mechanics/solvers/ContactSolver.h"
+#include "mechanics/solvers/GaussSeidelSweep.h"
 
 namespace tmdem::mechanics {
 
@@ -21,7 +21,7 @@ class GaussSeidelSolver final : public ContactSolver {
 
  private:
   SolverSettings settings_;
-  ActiveContactSet active_;                  // the contacts partial sweeps visit
+  GaussSeidelSweep sweep_;  // index order, active set after SolverSettings::full_sweep_every
 };
 
 }  // namespace tmdem::mechanics

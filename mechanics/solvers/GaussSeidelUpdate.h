@@ -1,6 +1,6 @@
 #pragma once
-// One Gauss-Seidel visit of one contact, shared by "nlgs" (GaussSeidelSolver.h) and
-// "nlgs_coloured" (ColouredGaussSeidelSolver.h): the contact solves its own bipotential law
+// One Gauss-Seidel visit of one contact, the step of every Gauss-Seidel sweep
+// (GaussSeidelSweep.h: "nlgs", "nlgs_coloured", "nlgs_block", "nncg"): the contact solves its own bipotential law
 // with every other reaction frozen (closed form, CoulombCone.h) and updates its two bodies'
 // velocities at once. Touches only contact c and its two bodies, so contacts that share no
 // body can be visited at the same time.
@@ -11,6 +11,7 @@
 #include <limits>
 #include <vector>
 
+#include "mechanics/contact/ContactKinematics.h"
 #include "mechanics/contact/ContactProblem.h"
 #include "mechanics/solvers/ContactSolver.h"
 #include "mechanics/contact/CoulombCone.h"
@@ -32,28 +33,16 @@ inline ContactUpdate change_and_total(const ScalarVec3& d, const ScalarVec3& x) 
 
 // The (n, t) block of contact c: the contact solves its bipotential law with every other
 // reaction frozen (closed form, CoulombCone.h) and both bodies' velocities take the change at
-// once. Written on ScalarVec3 (why: ScalarVec3.h) in the operations of
-// ContactProblem::local_velocity and ContactProblem::apply_impulse, which it inlines.
+// once. The kinematics run on ScalarVec3 (why: ScalarVec3.h; the same bits as on Eigen).
 inline ContactUpdate gauss_seidel_update(const ContactProblem& problem, std::size_t c,
                                          double relaxation, Eigen::Vector3d& rc,
                                          std::vector<Eigen::Vector3d>& velocity,
                                          std::vector<Eigen::Vector3d>& angular_velocity) {
   const bool planar = problem.dimension == 2;
   const double w_n = problem.w_n[c], w_t = problem.w_t[c], mu = problem.mu[c];
-  const ScalarVec3 n(problem.normal[c]), t1(problem.tangent1[c]), t2(problem.tangent2[c]);
-  const std::int32_t i = problem.body_i[c], j = problem.body_j[c];
-  const double lever_i = problem.lever_i[c], lever_j = problem.lever_j[c];
-  // Local velocity U_c: the velocity of i's material point at the contact minus j's (contact
-  // points at x_i - R_i n and x_j + R_j n), in (n, t1, t2); then u0 = U_c - W_cc r_c.
-  const ScalarVec3 vi(velocity[i]), wi(angular_velocity[i]);
-  ScalarVec3 u;
-  if (!is_wall(j)) {
-    u = vi - ScalarVec3(velocity[j]) - (lever_i * wi + lever_j * ScalarVec3(angular_velocity[j])).cross(n);
-  } else {
-    u = vi - ScalarVec3(velocity[problem.wall_body(j)]) - (lever_i * wi).cross(n);
-  }
-  const Eigen::Vector3d u0(u.dot(n) + problem.bias[c] - w_n * rc[0], u.dot(t1) - w_t * rc[1],
-                           planar ? 0.0 : u.dot(t2) - w_t * rc[2]);
+  // u0 = U_c - W_cc r_c.
+  const ScalarVec3 u = local_velocity<ScalarVec3>(problem, c, velocity, angular_velocity);
+  const Eigen::Vector3d u0(u[0] - w_n * rc[0], u[1] - w_t * rc[1], planar ? 0.0 : u[2] - w_t * rc[2]);
   // Exact local solve (closed form of the bipotential fixed point, CoulombCone.h).
   Eigen::Vector3d next;
   solve_contact_bipotential(u0, w_n, w_t, mu, next);
@@ -61,18 +50,7 @@ inline ContactUpdate gauss_seidel_update(const ContactProblem& problem, std::siz
   if (planar) next[2] = 0.0;
   const ScalarVec3 after(next), dr = after - ScalarVec3(rc);
   if (!dr.is_zero()) {
-    // velocity += M^-1 H_c dr: p acts on i at x_i - R_i n (torque -R_i n x p) and -p on j at
-    // x_j + R_j n (same sign).
-    const ScalarVec3 p = dr.x * n + dr.y * t1 + dr.z * t2;
-    const ScalarVec3 nxp = n.cross(p);
-    add_to(velocity[i], problem.inverse_mass[i] * p);
-    subtract_from(angular_velocity[i], (problem.inverse_inertia[i] * lever_i) * nxp);
-    if (!is_wall(j)) {
-      subtract_from(velocity[j], problem.inverse_mass[j] * p);
-      subtract_from(angular_velocity[j], (problem.inverse_inertia[j] * lever_j) * nxp);
-    } else if (const std::size_t b = problem.wall_body(j); problem.inverse_mass[b] > 0.0) {
-      subtract_from(velocity[b], (problem.inverse_mass[b] * dr.x) * n);  // a piston: along n only
-    }
+    apply_impulse(problem, c, dr, velocity, angular_velocity);
     rc = next;
   }
   return change_and_total(dr, after);
@@ -82,24 +60,17 @@ inline ContactUpdate gauss_seidel_update(const ContactProblem& problem, std::siz
 // (n, t) block with r_n frozen: the exact local solve of the rolling cone, with the other
 // reactions frozen, m = proj_{|m| <= mu_r R_eff r_n}(m - omega_rel,t / w_r) (the block is
 // w_r I on the plane perpendicular to n). Change and total are divided by R_eff, so that they
-// add to the impulses' (N s) in the stop test. On ScalarVec3, in the operations of
-// ContactProblem::rolling_velocity and apply_rolling_impulse.
+// add to the impulses' (N s) in the stop test. On ScalarVec3, as the (n, t) block.
 inline ContactUpdate gauss_seidel_rolling_update(const ContactProblem& problem, std::size_t c,
                                                  double normal_impulse, Eigen::Vector3d& mc,
                                                  std::vector<Eigen::Vector3d>& angular_velocity) {
   if (problem.w_r[c] <= 0.0) return {};
-  const ScalarVec3 n(problem.normal[c]);
-  const std::int32_t i = problem.body_i[c], j = problem.body_j[c];
-  // The relative spin omega_i - omega_j without its part along n (a wall does not turn).
-  ScalarVec3 relative(angular_velocity[i]);
-  if (!is_wall(j)) relative = relative - ScalarVec3(angular_velocity[j]);
-  const ScalarVec3 spin = relative - relative.dot(n) * n;
+  const ScalarVec3 spin = rolling_velocity<ScalarVec3>(problem, c, angular_velocity);
   const ScalarVec3 before(mc);
   const ScalarVec3 next = local_rolling_solution(problem, c, normal_impulse, before, spin);
   const ScalarVec3 dm = next - before;
   if (!dm.is_zero()) {
-    add_to(angular_velocity[i], problem.inverse_inertia[i] * dm);
-    if (!is_wall(j)) subtract_from(angular_velocity[j], problem.inverse_inertia[j] * dm);
+    apply_rolling_impulse(problem, c, dm, angular_velocity);
     next.store(mc);
   }
   const double scale = 1.0 / problem.rolling_radius[c];
@@ -120,7 +91,7 @@ inline ContactUpdate gauss_seidel_visit(const ContactProblem& problem, std::size
                                         std::vector<Eigen::Vector3d>& angular_velocity) {
   if (rc[0] == 0.0 && rc[1] == 0.0 && rc[2] == 0.0 &&
       (!problem.rolling || (m[c][0] == 0.0 && m[c][1] == 0.0 && m[c][2] == 0.0)) &&
-      !(problem.normal_velocity(c, velocity) < 0.0)) {
+      !(normal_velocity(problem, c, velocity) < 0.0)) {
     return {};
   }
   ContactUpdate u = gauss_seidel_update(problem, c, relaxation, rc, velocity, angular_velocity);

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <limits>
 
-#include "mechanics/solvers/GaussSeidelUpdate.h"
+#include "mechanics/contact/ContactKinematics.h"
 
 namespace tmdem::mechanics {
 namespace {
@@ -51,7 +51,7 @@ void NncgSolver::conjugate_step(const ContactProblem& problem, double beta,
     if (beta > 0.0 && !is_zero(p_[c])) {
       const Eigen::Vector3d step = beta * p_[c];
       r[c] += step;
-      problem.apply_impulse(c, step, velocity, angular_velocity);
+      apply_impulse(problem, c, step, velocity, angular_velocity);
     }
     p_[c] = d_[c] + beta * p_[c];
     start_[c] = r[c];
@@ -59,7 +59,7 @@ void NncgSolver::conjugate_step(const ContactProblem& problem, double beta,
     if (beta > 0.0 && !is_zero(p_m_[c])) {
       const Eigen::Vector3d step = beta * p_m_[c];
       m[c] += step;
-      problem.apply_rolling_impulse(c, step, angular_velocity);
+      apply_rolling_impulse(problem, c, step, angular_velocity);
     }
     p_m_[c] = d_m_[c] + beta * p_m_[c];
     start_m_[c] = m[c];
@@ -71,7 +71,6 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& problem,
                                            std::vector<Eigen::Vector3d>& m,
                                            std::vector<Eigen::Vector3d>& velocity,
                                            std::vector<Eigen::Vector3d>& angular_velocity) {
-  problem.velocities_from_reactions(r, m, velocity, angular_velocity);
   const std::size_t count = problem.size();
   // assign() keeps the capacity: no allocation once the vectors have seen the largest problem.
   start_.assign(r.begin(), r.end());
@@ -86,44 +85,43 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& problem,
   support_.clear();
   for (std::size_t c = 0; c < count; ++c) enter(problem, c, r, m);
   steps_ = damped_ = drifted_ = 0;
-  double previous = 0.0;  // |d|^2 of the last sweep pair; 0: no direction yet
-  SolveReport report;
-  GaussSeidelStopTest stop(settings_.tolerance, stall_window());
-  while (report.sweeps < settings_.max_iterations) {
-    ++report.sweeps;
-    double change = 0.0, total = 0.0;
-    // Symmetric Gauss-Seidel, as "nlgs": a forward sweep, then a backward one. A symmetric
-    // pair is one application of the map the conjugate directions are built on.
-    const bool forward = report.sweeps % 2 == 1;
-    for (std::size_t visit = 0; visit < count; ++visit) {
-      const std::size_t c = forward ? visit : count - 1 - visit;
-      if (!problem.solvable(c)) continue;
-      const ContactUpdate u =
-          gauss_seidel_visit(problem, c, settings_.relaxation, r[c], m, velocity, angular_velocity);
-      change += u.change;
-      total += u.total;
-      enter(problem, c, r, m);
+  // The sweeps (GaussSeidelSweep.h) put each visited contact that carries a reaction into the
+  // support and, after each backward sweep, take the conjugate step.
+  struct Hooks : GaussSeidelSweepHooks {
+    NncgSolver& solver;
+    double previous = 0.0;  // |d|^2 of the last sweep pair; 0: no direction yet
+
+    void after_visit(const GaussSeidelSweepState& state, std::size_t c) {
+      solver.enter(state.problem, c, state.r, state.m);
     }
-    // Stopping only here (after a sweep, before any extrapolation) returns a sweep's reactions.
-    if (stop.after_sweep(change, total, report)) break;
-    if (forward || report.sweeps >= settings_.max_iterations) continue;
-    const double current = take_change(problem, r, m);
-    double beta = previous > 0.0 ? current / previous : 0.0;
-    if (beta > 1.0 && beta <= options_.drift_ratio) {
-      beta = 1.0;  // a drift (NncgSolver.h): followed with the whole step
-      ++drifted_;
-    } else if (beta > 1.0) {
-      // The pair's change grew. The paper restarts (beta = 0); in the collapse of a poured bed
-      // that happens after every other pair and keeps only a 1.7x gain over "nlgs", while
-      // keeping the direction with a damped beta converges in 4.9x fewer sweeps (measured in development).
-      beta = kBetaAfterGrowth;
-      ++damped_;
+    // A symmetric pair (forward, backward) is one application of the map the conjugate
+    // directions are built on. The solve only stops before a step (GaussSeidelSweep stops
+    // right after a sweep), so it returns a sweep's reactions.
+    void after_sweep(const GaussSeidelSweepState& state, const SolveReport& report, bool forward) {
+      if (forward || report.sweeps >= solver.settings_.max_iterations) return;
+      const double current = solver.take_change(state.problem, state.r, state.m);
+      double beta = previous > 0.0 ? current / previous : 0.0;
+      if (beta > 1.0 && beta <= solver.options_.drift_ratio) {
+        beta = 1.0;  // a drift (NncgSolver.h): followed with the whole step
+        ++solver.drifted_;
+      } else if (beta > 1.0) {
+        // The pair's change grew. The paper restarts (beta = 0); in the collapse of a poured
+        // bed that happens after every other pair and keeps only a 1.7x gain over "nlgs",
+        // while keeping the direction with a damped beta converges in 4.9x fewer sweeps
+        // (measured in development).
+        beta = kBetaAfterGrowth;
+        ++solver.damped_;
+      }
+      if (beta > 0.0) ++solver.steps_;
+      solver.conjugate_step(state.problem, beta, state.r, state.m, state.velocity, state.angular_velocity);
+      previous = current;
     }
-    if (beta > 0.0) ++steps_;
-    conjugate_step(problem, beta, r, m, velocity, angular_velocity);
-    previous = current;
-  }
-  return report;
+  } hooks{{}, *this};
+  GaussSeidelSweep::Options options;
+  options.order = GaussSeidelSweep::Order::index;
+  options.full_sweep_every = 1;  // a partial sweep's change is not a map of all the reactions
+  options.stall_sweeps = stall_window();
+  return sweep_.solve(settings_, options, {problem, r, m, velocity, angular_velocity}, hooks);
 }
 
 }  // namespace tmdem::mechanics

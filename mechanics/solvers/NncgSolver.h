@@ -44,6 +44,7 @@
 #include <vector>
 
 #include "mechanics/solvers/ContactSolver.h"
+#include "mechanics/solvers/GaussSeidelSweep.h"
 
 namespace tmdem::mechanics {
 
@@ -89,6 +90,7 @@ class NncgSolver final : public ContactSolver {
 
   SolverSettings settings_;
   Options options_;
+  GaussSeidelSweep sweep_;  // index order, every sweep full
   // Per contact: the reactions at the start of the sweep pair, their change over it, the
   // conjugate direction; the same for the rolling impulses (sized only with rolling).
   std::vector<Eigen::Vector3d> start_, d_, p_;

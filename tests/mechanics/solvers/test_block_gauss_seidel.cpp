@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "mechanics/contact/ContactKinematics.h"
 #include "mechanics/ColumnStatics.h"
 #include "mechanics/MechanicsTestScenes.h"
 #include "mechanics/SolverTestPile.h"
@@ -121,7 +122,7 @@ TEST(BlockGaussSeidel, SettledFrictionalPileLikeGaussSeidel) {
     const Vector3d& r = blocked.r[c];
     EXPECT_GE(r[0], 0.0);
     EXPECT_LE(r.tail<2>().norm(), problem.mu[c] * r[0] * (1.0 + 1e-12));
-    if (problem.body_j[c] == wall_code<std::int32_t>(0)) floor_Ns += problem.to_global(c, r).y();
+    if (problem.body_j[c] == wall_code<std::int32_t>(0)) floor_Ns += global_impulse(problem, c, r).y();
     largest = std::max(largest, plain.r[c].norm());
   }
   EXPECT_NEAR(floor_Ns, weight_Ns, 1e-5 * weight_Ns);

@@ -11,6 +11,7 @@
 #include <memory>
 #include <vector>
 
+#include "mechanics/contact/ContactKinematics.h"
 #include "mechanics/ColumnStatics.h"
 #include "mechanics/ContactProblemFile.h"
 #include "mechanics/MechanicsTestScenes.h"
@@ -138,7 +139,7 @@ TEST(Nncg, SettledFrictionalPileHasTheFixedPointsOfGaussSeidel) {
   double weight_Ns = 0.0, floor_Ns = 0.0, largest = 0.0;
   for (double m : sim.particles().mass) weight_Ns += m * kG * sim.parameters().time_step;
   for (std::size_t c = 0; c < problem.size(); ++c) {
-    if (problem.body_j[c] == wall_code<std::int32_t>(0)) floor_Ns += problem.to_global(c, conjugate.r[c]).y();
+    if (problem.body_j[c] == wall_code<std::int32_t>(0)) floor_Ns += global_impulse(problem, c, conjugate.r[c]).y();
     largest = std::max(largest, plain.r[c].norm());
   }
   EXPECT_NEAR(floor_Ns, weight_Ns, 1e-5 * weight_Ns);

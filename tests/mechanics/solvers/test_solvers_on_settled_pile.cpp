@@ -9,6 +9,7 @@
 #include <cmath>
 #include <string>
 
+#include "mechanics/contact/ContactKinematics.h"
 #include "mechanics/MechanicsTestScenes.h"
 #include "mechanics/SolverTestPile.h"
 #include "mechanics/contact/NaturalMapResidual.h"
@@ -46,7 +47,7 @@ Statics statics_of(const ContactProblem& p, const std::vector<Vector3d>& r) {
   Statics s;
   for (std::size_t c = 0; c < p.size(); ++c) {
     s.cone_excess = std::max({s.cone_excess, -r[c][0], r[c].tail<2>().norm() - p.mu[c] * r[c][0]});
-    if (p.body_j[c] == wall_code<std::int32_t>(0)) s.floor_Ns += p.to_global(c, r[c]).y();
+    if (p.body_j[c] == wall_code<std::int32_t>(0)) s.floor_Ns += global_impulse(p, c, r[c]).y();
   }
   return s;
 }

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <numeric>
 
+#include "mechanics/contact/ContactKinematics.h"
 #include "mechanics/MechanicsTestScenes.h"
 #include "mechanics/SolverTestPile.h"
 #include "mechanics/contact/NaturalMapResidual.h"
@@ -165,8 +166,8 @@ TEST(SpatialContactOrder, SettledRollingPileGivesTheAnswerOfTheUnorderedSolve) {
   double floor_plain = 0.0, floor_ordered = 0.0, weight = 0.0;
   for (std::size_t c = 0; c < problem.size(); ++c) {
     if (problem.body_j[c] != wall_code<std::int32_t>(0)) continue;
-    floor_plain += problem.to_global(c, plain.r[c]).y();
-    floor_ordered += problem.to_global(c, ordered.r[c]).y();
+    floor_plain += global_impulse(problem, c, plain.r[c]).y();
+    floor_ordered += global_impulse(problem, c, ordered.r[c]).y();
   }
   for (std::size_t p = 0; p < problem.particle_count; ++p) weight += speed / problem.inverse_mass[p];
   EXPECT_NEAR(floor_plain, weight, 1e-6 * weight);  // the floor carries the pile

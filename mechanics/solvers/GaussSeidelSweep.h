@@ -1,0 +1,237 @@
+#pragma once
+// The sweep loop of every Gauss-Seidel solver, written once: "nlgs" (GaussSeidelSolver.h),
+// "nlgs_coloured" (ColouredGaussSeidelSolver.h), "nlgs_block" (BlockGaussSeidelSolver.h) and
+// "nncg" (NncgSolver.h, these sweeps plus its conjugate step). A solve starts from
+// v = v_free + M^-1 H r, then sweeps single visits (gauss_seidel_visit, GaussSeidelUpdate.h)
+// until GaussSeidelStopTest ends it or max_iterations sweeps have run. Options:
+//   - the visiting order (Order): odd sweeps go forwards and even sweeps backwards in every
+//     order (symmetric: a load travels the whole length of a chain in one pair of sweeps,
+//     whichever way the contacts happen to be numbered);
+//       index       the contacts in index order;
+//       colour      colour by colour (ContactColouring.h); the contacts of one colour share no
+//                   body, so each colour is one OpenMP loop, and the sweep's sums add fixed
+//                   blocks of visit slots (FixedBlockSums.h): the same bits for any thread count;
+//       body_block  index order, except that a contact owned by a body block hands its whole
+//                   block to the solver (Hooks::visit_block) at the first of the block's
+//                   contacts a sweep reaches, once per sweep;
+//   - the active set (ActiveContactSet.h): full_sweep_every > 1 lets most sweeps visit the
+//     active contacts only (index and colour orders).
+// The solver's own steps are hooks called from the loop (static, no virtual call per contact;
+// GaussSeidelSweepHooks lists them). Sums: index and body_block orders add each visit's change
+// and total in visiting order; colour order as above. No allocation once warm.
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "mechanics/contact/ContactProblem.h"
+#include "mechanics/solvers/ActiveContactSet.h"
+#include "mechanics/solvers/ContactSolver.h"
+#include "mechanics/solvers/FixedBlockSums.h"
+#include "mechanics/solvers/GaussSeidelUpdate.h"
+
+namespace tmdem::mechanics {
+
+// What a solve works on: the problem, its reactions r (N s, local) and rolling impulses m
+// (N m s; read only when problem.rolling) and the body velocities they give.
+struct GaussSeidelSweepState {
+  const ContactProblem& problem;
+  std::vector<Eigen::Vector3d>& r;
+  std::vector<Eigen::Vector3d>& m;
+  std::vector<Eigen::Vector3d>& velocity;
+  std::vector<Eigen::Vector3d>& angular_velocity;
+};
+
+// The solver's steps inside the loop; a solver derives from this and hides what it needs.
+struct GaussSeidelSweepHooks {
+  // After the single visit of solvable contact c (colour order: from several threads at once,
+  // each with its own c).
+  void after_visit(const GaussSeidelSweepState& /*state*/, std::size_t /*c*/) {}
+  // body_block order: the visit of block b, `forward` as the sweep goes. single(c) visits
+  // contact c alone and adds it to `sums`, the sweep's running change and total (N s).
+  template <class Single>
+  void visit_block(const GaussSeidelSweepState& /*state*/, std::size_t /*b*/, bool /*forward*/,
+                   ContactUpdate& /*sums*/, Single&& /*single*/) {}
+  // After a sweep the stop test let pass (report.sweeps: its number).
+  void after_sweep(const GaussSeidelSweepState& /*state*/, const SolveReport& /*report*/,
+                   bool /*forward*/) {}
+};
+
+class GaussSeidelSweep {
+ public:
+  enum class Order { index, colour, body_block };
+  struct Options {
+    Order order = Order::index;
+    int full_sweep_every = 1;  // ActiveContactSet::start; 1: every sweep visits every contact
+    int stall_sweeps = 500;    // GaussSeidelStopTest's stall window, sweeps
+    // colour: contacts [colour_start[k], colour_start[k + 1]) have colour k; `parallel`: OpenMP
+    // threads inside each colour.
+    const std::vector<std::int32_t>* colour_start = nullptr;
+    bool parallel = false;
+    // body_block: per contact its block (< block_count), -1 for a single visit.
+    const std::vector<std::int32_t>* block_of = nullptr;
+    std::size_t block_count = 0;
+  };
+
+  template <class Hooks>
+  SolveReport solve(const SolverSettings& settings, const Options& options,
+                    const GaussSeidelSweepState& state, Hooks& hooks);
+
+ private:
+  // One sweep in index order (Blocks: body_block order); returns its change and total.
+  template <bool Blocks, class Hooks>
+  ContactUpdate sweep_index(const Options& options, double relaxation, int sweep, bool forward,
+                            bool full, bool mark, const GaussSeidelSweepState& state, Hooks& hooks);
+  template <class Hooks>
+  ContactUpdate sweep_colours(const Options& options, double relaxation, bool forward, bool full,
+                              bool mark, const GaussSeidelSweepState& state, Hooks& hooks);
+
+  ActiveContactSet active_;             // the contacts partial sweeps visit
+  std::vector<double> change_, total_;  // colour order: per visit slot, this sweep, N s
+  std::vector<double> block_sums_;      // colour order: per block of slots: change, total
+  std::vector<int> visited_;            // body_block order: per block, the sweep that last visited it
+};
+
+template <class Hooks>
+SolveReport GaussSeidelSweep::solve(const SolverSettings& settings, const Options& options,
+                                    const GaussSeidelSweepState& state, Hooks& hooks) {
+  state.problem.velocities_from_reactions(state.r, state.m, state.velocity, state.angular_velocity);
+  const std::size_t count = state.problem.size();
+  if (options.order == Order::colour) {
+    change_.resize(count);
+    total_.resize(count);
+    block_sums_.resize(static_cast<std::size_t>(2 * sum_block_count(static_cast<std::ptrdiff_t>(count))));
+  } else if (options.order == Order::body_block) {
+    visited_.assign(options.block_count, 0);
+  }
+  SolveReport report;
+  GaussSeidelStopTest stop(settings.tolerance, options.stall_sweeps);
+  active_.start(count, options.full_sweep_every, settings.max_iterations);
+  while (report.sweeps < settings.max_iterations) {
+    ++report.sweeps;
+    const bool forward = report.sweeps % 2 == 1;
+    // Full sweeps visit every contact and mark the passive ones, partial sweeps the active
+    // ones only, in the same relative order (ActiveContactSet.h).
+    const bool full = active_.full(report.sweeps);
+    const bool mark = full && active_.partial_sweeps();  // else nothing reads the marks
+    ContactUpdate sums;
+    switch (options.order) {
+      case Order::index:
+        sums = sweep_index<false>(options, settings.relaxation, report.sweeps, forward, full, mark,
+                                  state, hooks);
+        break;
+      case Order::body_block:
+        sums = sweep_index<true>(options, settings.relaxation, report.sweeps, forward, full, mark,
+                                 state, hooks);
+        break;
+      case Order::colour:
+        sums = sweep_colours(options, settings.relaxation, forward, full, mark, state, hooks);
+        break;
+    }
+    if (stop.after_sweep(sums.change, sums.total, report, full)) break;
+    if (mark) {
+      if (options.order == Order::colour) {
+        active_.collect(*options.colour_start);
+      } else {
+        active_.collect(count);
+      }
+    }
+    active_.after_sweep(full, stop.met());
+    hooks.after_sweep(state, report, forward);
+  }
+  return report;
+}
+
+template <bool Blocks, class Hooks>
+ContactUpdate GaussSeidelSweep::sweep_index(const Options& options, double relaxation, int sweep,
+                                            bool forward, bool full, bool mark,
+                                            const GaussSeidelSweepState& state, Hooks& hooks) {
+  const ContactProblem& problem = state.problem;
+  std::vector<Eigen::Vector3d>& r = state.r;
+  std::vector<Eigen::Vector3d>& m = state.m;
+  std::vector<Eigen::Vector3d>& velocity = state.velocity;
+  std::vector<Eigen::Vector3d>& angular_velocity = state.angular_velocity;
+  ContactUpdate sums;
+  auto single = [&](std::size_t c) {
+    const ContactUpdate u = gauss_seidel_visit(problem, c, relaxation, r[c], m, velocity, angular_velocity);
+    sums.change += u.change;
+    sums.total += u.total;
+    return u;
+  };
+  const std::vector<std::int32_t>& active = active_.active();
+  const std::size_t visits = full ? problem.size() : active.size();
+  for (std::size_t visit = 0; visit < visits; ++visit) {
+    const std::size_t k = forward ? visit : visits - 1 - visit;
+    const std::size_t c = full ? k : static_cast<std::size_t>(active[k]);
+    if (!problem.solvable(c)) {
+      if (mark) active_.mark_unsolvable(c);
+      continue;
+    }
+    if constexpr (Blocks) {
+      if (const std::int32_t b = (*options.block_of)[c]; b >= 0) {
+        if (visited_[b] == sweep) continue;
+        visited_[b] = sweep;
+        hooks.visit_block(state, static_cast<std::size_t>(b), forward, sums, single);
+        continue;
+      }
+    }
+    const ContactUpdate u = single(c);
+    if (mark) active_.mark_visited(c, u.total);
+    hooks.after_visit(state, c);
+  }
+  return sums;
+}
+
+template <class Hooks>
+ContactUpdate GaussSeidelSweep::sweep_colours(const Options& options, double relaxation, bool forward,
+                                              bool full, bool mark, const GaussSeidelSweepState& state,
+                                              Hooks& hooks) {
+  const ContactProblem& problem = state.problem;
+  std::vector<Eigen::Vector3d>& r = state.r;
+  std::vector<Eigen::Vector3d>& m = state.m;
+  std::vector<Eigen::Vector3d>& velocity = state.velocity;
+  std::vector<Eigen::Vector3d>& angular_velocity = state.angular_velocity;
+  const std::vector<std::int32_t>& start = *options.colour_start;
+  const auto colours = static_cast<std::ptrdiff_t>(start.size()) - 1;
+  const std::vector<std::int32_t>& active = active_.active();
+  // Visit slots: contact q in a full sweep, active()[q] in a partial one.
+  const std::vector<std::int32_t>& slot_start = full ? start : active_.active_start();
+  const std::ptrdiff_t slots = slot_start[static_cast<std::size_t>(colours)];
+  const std::ptrdiff_t slot_blocks = sum_block_count(slots);
+#pragma omp parallel if (options.parallel)
+  {
+    for (std::ptrdiff_t visit = 0; visit < colours; ++visit) {
+      const std::ptrdiff_t k = forward ? visit : colours - 1 - visit;
+#pragma omp for schedule(static)
+      for (std::ptrdiff_t q = slot_start[k]; q < slot_start[k + 1]; ++q) {
+        const auto c = static_cast<std::size_t>(full ? q : active[q]);
+        ContactUpdate u;
+        if (problem.solvable(c)) {
+          u = gauss_seidel_visit(problem, c, relaxation, r[c], m, velocity, angular_velocity);
+          if (mark) active_.mark_visited(c, u.total);
+          hooks.after_visit(state, c);
+        } else if (mark) {
+          active_.mark_unsolvable(c);
+        }
+        change_[q] = u.change;
+        total_[q] = u.total;
+      }
+    }
+#pragma omp for schedule(static)
+    for (std::ptrdiff_t block = 0; block < slot_blocks; ++block) {
+      double change = 0.0, total = 0.0;
+      for (std::ptrdiff_t q = block * kSumBlock; q < std::min(slots, (block + 1) * kSumBlock); ++q) {
+        change += change_[q];
+        total += total_[q];
+      }
+      block_sums_[2 * block] = change;
+      block_sums_[2 * block + 1] = total;
+    }
+  }
+  const auto [change, total] = add_block_sums<2>(block_sums_, slot_blocks);
+  return {change, total};
+}
+
+}  // namespace tmdem::mechanics

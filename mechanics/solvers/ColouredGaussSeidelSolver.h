@@ -25,6 +25,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "mechanics/solvers/ColourOrderedProblem.h"
 #include "mechanics/solvers/ContactColouring.h"
 #include "mechanics/solvers/ContactSolver.h"
 #include "mechanics/solvers/GaussSeidelSweep.h"
@@ -41,15 +42,12 @@ class ColouredGaussSeidelSolver final : public ContactSolver {
                                  std::vector<Eigen::Vector3d>& m,
                                  std::vector<Eigen::Vector3d>& velocity,
                                  std::vector<Eigen::Vector3d>& angular_velocity) override;
-  const ContactColouring& colouring() const { return colouring_; }
+  const ContactColouring& colouring() const { return ordered_.colouring(); }
 
  private:
   SolverSettings settings_;
   std::ptrdiff_t parallel_from_;
-  ContactColouring colouring_;
-  ContactProblem ordered_;                 // the problem with its contacts in colour order
-  std::vector<Eigen::Vector3d> ordered_r_; // reactions in colour order
-  std::vector<Eigen::Vector3d> ordered_m_; // rolling impulses in colour order
+  ColourOrderedProblem ordered_;           // the problem with its contacts in colour order
   GaussSeidelSweep sweep_;                 // colour order, active set per colour
 };
 

@@ -21,6 +21,12 @@ std::unique_ptr<ContactSolver> make(const SolverSettings& settings) {
   return std::make_unique<Solver>(settings);
 }
 
+std::unique_ptr<ContactSolver> make_coloured_nncg(const SolverSettings& settings) {
+  NncgSolver::Options options;
+  options.coloured = true;
+  return std::make_unique<NncgSolver>(settings, options);
+}
+
 const std::vector<Entry>& entries() {
   static const std::vector<Entry> table = {
       {"nlgs", &make<GaussSeidelSolver>},
@@ -28,6 +34,7 @@ const std::vector<Entry>& entries() {
       {"nlgs_coloured", &make<ColouredGaussSeidelSolver>},
       {"nlgs_block", &make<BlockGaussSeidelSolver>},
       {"nncg", &make<NncgSolver>},
+      {"nncg_coloured", &make_coloured_nncg},
   };
   return table;
 }

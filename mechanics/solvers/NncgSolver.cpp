@@ -66,11 +66,17 @@ void NncgSolver::conjugate_step(const ContactProblem& problem, double beta,
   }
 }
 
-SolveReport NncgSolver::solve_with_rolling(const ContactProblem& problem,
-                                           std::vector<Eigen::Vector3d>& r,
-                                           std::vector<Eigen::Vector3d>& m,
+SolveReport NncgSolver::solve_with_rolling(const ContactProblem& given,
+                                           std::vector<Eigen::Vector3d>& given_r,
+                                           std::vector<Eigen::Vector3d>& given_m,
                                            std::vector<Eigen::Vector3d>& velocity,
                                            std::vector<Eigen::Vector3d>& angular_velocity) {
+  const bool coloured = options_.coloured;
+  const bool parallel = coloured && static_cast<std::ptrdiff_t>(given.size()) >= options_.parallel_from;
+  if (coloured) ordered_.load(given, given_r, given_m, parallel);
+  const ContactProblem& problem = coloured ? ordered_.problem() : given;
+  std::vector<Eigen::Vector3d>& r = coloured ? ordered_.r() : given_r;
+  std::vector<Eigen::Vector3d>& m = coloured ? ordered_.m() : given_m;
   const std::size_t count = problem.size();
   // assign() keeps the capacity: no allocation once the vectors have seen the largest problem.
   start_.assign(r.begin(), r.end());
@@ -86,19 +92,26 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& problem,
   for (std::size_t c = 0; c < count; ++c) enter(problem, c, r, m);
   steps_ = damped_ = drifted_ = 0;
   // The sweeps (GaussSeidelSweep.h) put each visited contact that carries a reaction into the
-  // support and, after each backward sweep, take the conjugate step.
+  // support and, after each backward sweep, take the conjugate step. Coloured sweeps visit from
+  // several threads, so the support is then brought up to date after the sweep pair instead.
   struct Hooks : GaussSeidelSweepHooks {
     NncgSolver& solver;
+    bool coloured = false;
     double previous = 0.0;  // |d|^2 of the last sweep pair; 0: no direction yet
 
     void after_visit(const GaussSeidelSweepState& state, std::size_t c) {
-      solver.enter(state.problem, c, state.r, state.m);
+      if (!coloured) solver.enter(state.problem, c, state.r, state.m);
     }
     // A symmetric pair (forward, backward) is one application of the map the conjugate
     // directions are built on. The solve only stops before a step (GaussSeidelSweep stops
     // right after a sweep), so it returns a sweep's reactions.
     void after_sweep(const GaussSeidelSweepState& state, const SolveReport& report, bool forward) {
       if (forward || report.sweeps >= solver.settings_.max_iterations) return;
+      // A contact that opened and closed again within the pair has d = 0: a scan at the pair's
+      // end misses nothing.
+      if (coloured)
+        for (std::size_t c = 0; c < state.problem.size(); ++c)
+          solver.enter(state.problem, c, state.r, state.m);
       const double current = solver.take_change(state.problem, state.r, state.m);
       double beta = previous > 0.0 ? current / previous : 0.0;
       if (beta > 1.0 && beta <= solver.options_.drift_ratio) {
@@ -116,12 +129,19 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& problem,
       solver.conjugate_step(state.problem, beta, state.r, state.m, state.velocity, state.angular_velocity);
       previous = current;
     }
-  } hooks{{}, *this};
+  } hooks{{}, *this, coloured};
   GaussSeidelSweep::Options options;
-  options.order = GaussSeidelSweep::Order::index;
+  options.order = coloured ? GaussSeidelSweep::Order::colour : GaussSeidelSweep::Order::index;
   options.full_sweep_every = 1;  // a partial sweep's change is not a map of all the reactions
   options.stall_sweeps = stall_window();
-  return sweep_.solve(settings_, options, {problem, r, m, velocity, angular_velocity}, hooks);
+  if (coloured) {
+    options.colour_start = &ordered_.colour_start();
+    options.parallel = parallel;
+  }
+  const SolveReport report =
+      sweep_.solve(settings_, options, {problem, r, m, velocity, angular_velocity}, hooks);
+  if (coloured) ordered_.store(given_r, given_m, parallel);
+  return report;
 }
 
 }  // namespace tmdem::mechanics

@@ -43,6 +43,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "mechanics/solvers/ColourOrderedProblem.h"
 #include "mechanics/solvers/ContactSolver.h"
 #include "mechanics/solvers/GaussSeidelSweep.h"
 
@@ -55,10 +56,15 @@ class NncgSolver final : public ContactSolver {
   struct Options {
     int stall_patience = 8;    // stall window: this many times SolverSettings::stall_sweeps
     double drift_ratio = 1.003; // 1 < |d_{k+1}|^2 / |d_k|^2 <= this: beta = 1
+    // "nncg_coloured": the sweeps go colour by colour (ColourOrderedProblem.h), each colour one
+    // OpenMP loop from parallel_from contacts; the conjugate steps stay serial. The same bits
+    // for any thread count, other bits than "nncg" (another visiting order).
+    bool coloured = false;
+    std::ptrdiff_t parallel_from = 4096;
   };
   explicit NncgSolver(const SolverSettings& settings) : NncgSolver(settings, Options{}) {}
   NncgSolver(const SolverSettings& settings, const Options& options);
-  std::string_view name() const override { return "nncg"; }
+  std::string_view name() const override { return options_.coloured ? "nncg_coloured" : "nncg"; }
   SolveReport solve_with_rolling(const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
                                  std::vector<Eigen::Vector3d>& m,
                                  std::vector<Eigen::Vector3d>& velocity,
@@ -90,7 +96,8 @@ class NncgSolver final : public ContactSolver {
 
   SolverSettings settings_;
   Options options_;
-  GaussSeidelSweep sweep_;  // index order, every sweep full
+  GaussSeidelSweep sweep_;  // index (or colour) order, every sweep full
+  ColourOrderedProblem ordered_;  // "nncg_coloured": the problem in colour order
   // Per contact: the reactions at the start of the sweep pair, their change over it, the
   // conjugate direction; the same for the rolling impulses (sized only with rolling).
   std::vector<Eigen::Vector3d> start_, d_, p_;

@@ -5,6 +5,7 @@
 // whole steps of a drift on steps of the examples written out (tests/mechanics/data), and a
 // problem without a solution never reported converged.
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
@@ -15,6 +16,7 @@
 #include "mechanics/ColumnStatics.h"
 #include "mechanics/ContactProblemFile.h"
 #include "mechanics/MechanicsTestScenes.h"
+#include "mechanics/SameBits.h"
 #include "mechanics/SolverTestPile.h"
 #include "mechanics/solvers/ContactSolverRegistry.h"
 #include "mechanics/contact/NaturalMapResidual.h"
@@ -296,3 +298,44 @@ TEST(Nncg, ProblemWithoutSolutionIsNeverReportedConverged) {
   EXPECT_FALSE(floor.report.converged);
   EXPECT_LT(floor.report.sweeps, 200000);
 }
+
+namespace tmdem::mechanics {
+namespace {
+
+// "nncg_coloured": the conjugate steps on coloured sweeps. The lattice pile's statics and
+// "nlgs"'s reactions, in fewer sweeps than coloured Gauss-Seidel alone; and the same bits at 1
+// and 2 threads (the colours are OpenMP loops from parallel_from contacts; 0 here).
+TEST(NncgColoured, FrictionalLatticePileMatchesGaussSeidelAndStatics) {
+  constexpr double tolerance = 1e-8;
+  test::expect_pile_solved_like_gauss_seidel("nncg_coloured", tolerance, 10.0 * tolerance);
+  const ContactProblem& problem = test::lattice_pile().problem();
+  const test::Solved plain = test::solve_cold(problem, "nlgs_coloured", tolerance);
+  const test::Solved conjugate = test::solve_cold(problem, "nncg_coloured", tolerance);
+  EXPECT_LE(conjugate.report.sweeps, plain.report.sweeps / 2)
+      << plain.report.sweeps << " against " << conjugate.report.sweeps;
+}
+
+TEST(NncgColoured, SameBitsForAnyThreadCount) {
+  const ContactProblem& problem = test::lattice_pile().problem();
+  auto run = [&](int threads) {
+    omp_set_num_threads(threads);
+    SolverSettings settings = test::tight(1e-12);
+    settings.max_iterations = 60;
+    NncgSolver::Options options;
+    options.coloured = true;
+    options.parallel_from = 0;
+    NncgSolver solver(settings, options);
+    return test::solve_cold(problem, solver);
+  };
+  const int threads_before = omp_get_max_threads();
+  const test::Solved first = run(2), second = run(2), serial = run(1);
+  omp_set_num_threads(threads_before);
+  EXPECT_EQ(first.report.sweeps, 60);
+  EXPECT_TRUE(test::same_bits(first.r, second.r));
+  EXPECT_TRUE(test::same_bits(first.r, serial.r));
+  EXPECT_TRUE(test::same_bits(first.v, serial.v));
+  EXPECT_TRUE(test::same_bits(first.w, serial.w));
+}
+
+}  // namespace
+}  // namespace tmdem::mechanics

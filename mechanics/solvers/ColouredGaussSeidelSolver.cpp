@@ -34,14 +34,14 @@ SolveReport ColouredGaussSeidelSolver::solve_with_rolling(
     if (problem.rolling) ordered_m_[p] = m[c];
   }
   GaussSeidelSweep::Options options;
-  options.order = GaussSeidelSweep::Order::colour;
   options.full_sweep_every = settings_.full_sweep_every;
   options.stall_sweeps = settings_.stall_sweeps;
   options.colour_start = &colouring_.start();
   options.parallel = parallel;
   GaussSeidelSweepHooks hooks;
   const SolveReport report =
-      sweep_.solve(settings_, options, {ordered_, ordered_r_, ordered_m_, velocity, angular_velocity}, hooks);
+      sweep_.solve<GaussSeidelSweep::Order::colour>(
+          settings_, options, {ordered_, ordered_r_, ordered_m_, velocity, angular_velocity}, hooks);
 #pragma omp parallel for schedule(static) if (parallel)
   for (std::ptrdiff_t p = 0; p < count; ++p) {
     r[static_cast<std::size_t>(order[p])] = ordered_r_[p];

@@ -118,10 +118,10 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& problem,
     }
   } hooks{{}, *this};
   GaussSeidelSweep::Options options;
-  options.order = GaussSeidelSweep::Order::index;
   options.full_sweep_every = 1;  // a partial sweep's change is not a map of all the reactions
   options.stall_sweeps = stall_window();
-  return sweep_.solve(settings_, options, {problem, r, m, velocity, angular_velocity}, hooks);
+  return sweep_.solve<GaussSeidelSweep::Order::index>(settings_, options,
+                                                     {problem, r, m, velocity, angular_velocity}, hooks);
 }
 
 }  // namespace tmdem::mechanics

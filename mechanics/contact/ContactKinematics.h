@@ -5,7 +5,8 @@
 // applied to the two bodies (velocity += M^-1 H_c r_c, a piston wall body along n only), and
 // the rolling pair (relative spin perpendicular to n; a rolling impulse applied).
 //
-// Each function is a template over the vector type Vec it computes in: Eigen::Vector3d, or
+// Each function is an inline template (declared inline: gcc then inlines them into the visit as
+// it did the hand-written code) over the vector type Vec it computes in: Eigen::Vector3d, or
 // ScalarVec3 in the Gauss-Seidel visit (why: ScalarVec3.h). Body velocities are always stored
 // as Eigen::Vector3d. One expression tree serves both types, and ScalarVec3 rounds every
 // operation as Eigen does, so both give the same bits (tests/mechanics/solvers/
@@ -32,17 +33,17 @@ namespace tmdem::mechanics {
 
 // v += a and v -= a on a stored vector, for an Eigen operand (ScalarVec3's are in ScalarVec3.h).
 template <class Derived>
-void add_to(Eigen::Vector3d& v, const Eigen::MatrixBase<Derived>& a) {
+inline void add_to(Eigen::Vector3d& v, const Eigen::MatrixBase<Derived>& a) {
   v += a;
 }
 template <class Derived>
-void subtract_from(Eigen::Vector3d& v, const Eigen::MatrixBase<Derived>& a) {
+inline void subtract_from(Eigen::Vector3d& v, const Eigen::MatrixBase<Derived>& a) {
   v -= a;
 }
 
 // Global impulse of a local one, N s.
 template <class Vec>
-Vec global_impulse(const ContactProblem& problem, std::size_t c, const Vec& r_local) {
+inline Vec global_impulse(const ContactProblem& problem, std::size_t c, const Vec& r_local) {
   const Vec n(problem.normal[c]), t1(problem.tangent1[c]), t2(problem.tangent2[c]);
   return r_local[0] * n + r_local[1] * t1 + r_local[2] * t2;
 }
@@ -60,9 +61,9 @@ enum class VelocityRounding {
 // The velocity of i's material point at contact c minus j's, global, m/s (no bias); a wall's
 // point moves with its body.
 template <class Vec, VelocityRounding rounding = VelocityRounding::solver>
-Vec relative_velocity(const ContactProblem& problem, std::size_t c,
-                      const std::vector<Eigen::Vector3d>& velocity,
-                      const std::vector<Eigen::Vector3d>& angular_velocity) {
+inline Vec relative_velocity(const ContactProblem& problem, std::size_t c,
+                             const std::vector<Eigen::Vector3d>& velocity,
+                             const std::vector<Eigen::Vector3d>& angular_velocity) {
   const Vec n(problem.normal[c]);
   const std::int32_t i = problem.body_i[c], j = problem.body_j[c];
   const double lever_i = problem.lever_i[c], lever_j = problem.lever_j[c];
@@ -81,9 +82,9 @@ Vec relative_velocity(const ContactProblem& problem, std::size_t c,
 
 // Local velocity U_c = H_c^T v (+ bias along n) in (n, t1, t2), m/s; t2 is 0 in 2D.
 template <class Vec>
-Vec local_velocity(const ContactProblem& problem, std::size_t c,
-                   const std::vector<Eigen::Vector3d>& velocity,
-                   const std::vector<Eigen::Vector3d>& angular_velocity) {
+inline Vec local_velocity(const ContactProblem& problem, std::size_t c,
+                          const std::vector<Eigen::Vector3d>& velocity,
+                          const std::vector<Eigen::Vector3d>& angular_velocity) {
   const Vec n(problem.normal[c]);
   const Vec u = relative_velocity<Vec>(problem, c, velocity, angular_velocity);
   return Vec(u.dot(n) + problem.bias[c], u.dot(Vec(problem.tangent1[c])),
@@ -106,7 +107,7 @@ struct BodyImpulse {
   Vec p, n_cross_p;
 };
 template <class Vec>
-BodyImpulse<Vec> body_impulse(const ContactProblem& problem, std::size_t c, const Vec& r_local) {
+inline BodyImpulse<Vec> body_impulse(const ContactProblem& problem, std::size_t c, const Vec& r_local) {
   const Vec p = global_impulse(problem, c, r_local);
   return {p, Vec(problem.normal[c]).cross(p)};
 }
@@ -115,29 +116,29 @@ BodyImpulse<Vec> body_impulse(const ContactProblem& problem, std::size_t c, cons
 // (m/s) and angular velocity (rad/s) change by M^-1 of it. inverse_mass 1/kg,
 // inverse_inertia 1/(kg m^2), lever m.
 template <class Vec>
-void take_impulse_as_i(const BodyImpulse<Vec>& impulse, double inverse_mass, double inverse_inertia,
-                       double lever, Eigen::Vector3d& velocity, Eigen::Vector3d& angular_velocity) {
+inline void take_impulse_as_i(const BodyImpulse<Vec>& impulse, double inverse_mass, double inverse_inertia,
+                              double lever, Eigen::Vector3d& velocity, Eigen::Vector3d& angular_velocity) {
   add_to(velocity, inverse_mass * impulse.p);
   subtract_from(angular_velocity, (inverse_inertia * lever) * impulse.n_cross_p);
 }
 template <class Vec>
-void take_impulse_as_j(const BodyImpulse<Vec>& impulse, double inverse_mass, double inverse_inertia,
-                       double lever, Eigen::Vector3d& velocity, Eigen::Vector3d& angular_velocity) {
+inline void take_impulse_as_j(const BodyImpulse<Vec>& impulse, double inverse_mass, double inverse_inertia,
+                              double lever, Eigen::Vector3d& velocity, Eigen::Vector3d& angular_velocity) {
   subtract_from(velocity, inverse_mass * impulse.p);
   subtract_from(angular_velocity, (inverse_inertia * lever) * impulse.n_cross_p);
 }
 // The share of a piston wall body j: -r_n n, along its normal only (a wall does not turn).
 template <class Vec>
-void take_impulse_as_piston(double normal_impulse, const Vec& n, double inverse_mass,
-                            Eigen::Vector3d& velocity) {
+inline void take_impulse_as_piston(double normal_impulse, const Vec& n, double inverse_mass,
+                                   Eigen::Vector3d& velocity) {
   subtract_from(velocity, (inverse_mass * normal_impulse) * n);
 }
 
 // velocity += M^-1 H_c r_c for one local impulse r_c.
 template <class Vec>
-void apply_impulse(const ContactProblem& problem, std::size_t c, const Vec& r_local,
-                   std::vector<Eigen::Vector3d>& velocity,
-                   std::vector<Eigen::Vector3d>& angular_velocity) {
+inline void apply_impulse(const ContactProblem& problem, std::size_t c, const Vec& r_local,
+                          std::vector<Eigen::Vector3d>& velocity,
+                          std::vector<Eigen::Vector3d>& angular_velocity) {
   const BodyImpulse<Vec> impulse = body_impulse(problem, c, r_local);
   const std::int32_t i = problem.body_i[c], j = problem.body_j[c];
   take_impulse_as_i(impulse, problem.inverse_mass[i], problem.inverse_inertia[i], problem.lever_i[c],
@@ -153,8 +154,8 @@ void apply_impulse(const ContactProblem& problem, std::size_t c, const Vec& r_lo
 // Rolling (ContactProblem::rolling): the relative spin omega_i - omega_j of contact c without
 // its component along n, rad/s (a wall does not turn).
 template <class Vec>
-Vec rolling_velocity(const ContactProblem& problem, std::size_t c,
-                     const std::vector<Eigen::Vector3d>& angular_velocity) {
+inline Vec rolling_velocity(const ContactProblem& problem, std::size_t c,
+                            const std::vector<Eigen::Vector3d>& angular_velocity) {
   const Vec n(problem.normal[c]);
   const std::int32_t j = problem.body_j[c];
   Vec relative(angular_velocity[problem.body_i[c]]);
@@ -164,18 +165,18 @@ Vec rolling_velocity(const ContactProblem& problem, std::size_t c,
 
 // A rolling angular impulse m (N m s, global) as body i (+m) and a particle j (-m) take it.
 template <class Vec>
-void take_rolling_impulse_as_i(const Vec& m, double inverse_inertia, Eigen::Vector3d& angular_velocity) {
+inline void take_rolling_impulse_as_i(const Vec& m, double inverse_inertia, Eigen::Vector3d& angular_velocity) {
   add_to(angular_velocity, inverse_inertia * m);
 }
 template <class Vec>
-void take_rolling_impulse_as_j(const Vec& m, double inverse_inertia, Eigen::Vector3d& angular_velocity) {
+inline void take_rolling_impulse_as_j(const Vec& m, double inverse_inertia, Eigen::Vector3d& angular_velocity) {
   subtract_from(angular_velocity, inverse_inertia * m);
 }
 
 // angular_velocity += W m for a rolling impulse m of contact c.
 template <class Vec>
-void apply_rolling_impulse(const ContactProblem& problem, std::size_t c, const Vec& m,
-                           std::vector<Eigen::Vector3d>& angular_velocity) {
+inline void apply_rolling_impulse(const ContactProblem& problem, std::size_t c, const Vec& m,
+                                  std::vector<Eigen::Vector3d>& angular_velocity) {
   const std::int32_t i = problem.body_i[c], j = problem.body_j[c];
   take_rolling_impulse_as_i(m, problem.inverse_inertia[i], angular_velocity[i]);
   if (!is_wall(j)) take_rolling_impulse_as_j(m, problem.inverse_inertia[j], angular_velocity[j]);

@@ -118,12 +118,12 @@ SolveReport BlockGaussSeidelSolver::solve_with_rolling(const ContactProblem& pro
   block_fallbacks_ = 0;
   SweepHooks hooks{{}, *this};
   GaussSeidelSweep::Options options;
-  options.order = GaussSeidelSweep::Order::body_block;
   options.full_sweep_every = 1;
   options.stall_sweeps = settings_.stall_sweeps;
   options.block_of = &owner_;
   options.block_count = block_body_.size();
-  return sweep_.solve(settings_, options, {problem, r, m, velocity, angular_velocity}, hooks);
+  return sweep_.solve<GaussSeidelSweep::Order::body_block>(settings_, options,
+                                                          {problem, r, m, velocity, angular_velocity}, hooks);
 }
 
 }  // namespace tmdem::mechanics

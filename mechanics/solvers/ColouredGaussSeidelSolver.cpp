@@ -13,13 +13,12 @@ SolveReport ColouredGaussSeidelSolver::solve_with_rolling(
   const bool parallel = static_cast<std::ptrdiff_t>(problem.size()) >= parallel_from_;
   ordered_.load(problem, r, m, parallel);
   GaussSeidelSweep::Options options;
-  options.order = GaussSeidelSweep::Order::colour;
   options.full_sweep_every = settings_.full_sweep_every;
   options.stall_sweeps = settings_.stall_sweeps;
   options.colour_start = &ordered_.colour_start();
   options.parallel = parallel;
   GaussSeidelSweepHooks hooks;
-  const SolveReport report = sweep_.solve(
+  const SolveReport report = sweep_.solve<GaussSeidelSweep::Order::colour>(
       settings_, options,
       {ordered_.problem(), ordered_.r(), ordered_.m(), velocity, angular_velocity}, hooks);
   ordered_.store(r, m, parallel);

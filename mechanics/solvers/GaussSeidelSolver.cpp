@@ -10,11 +10,11 @@ SolveReport GaussSeidelSolver::solve_with_rolling(const ContactProblem& problem,
                                                   std::vector<Eigen::Vector3d>& velocity,
                                                   std::vector<Eigen::Vector3d>& angular_velocity) {
   GaussSeidelSweep::Options options;
-  options.order = GaussSeidelSweep::Order::index;
   options.full_sweep_every = settings_.full_sweep_every;
   options.stall_sweeps = settings_.stall_sweeps;
   GaussSeidelSweepHooks hooks;
-  return sweep_.solve(settings_, options, {problem, r, m, velocity, angular_velocity}, hooks);
+  return sweep_.solve<GaussSeidelSweep::Order::index>(settings_, options,
+                                                     {problem, r, m, velocity, angular_velocity}, hooks);
 }
 
 }  // namespace tmdem::mechanics

@@ -4,7 +4,8 @@
 // "nncg" (NncgSolver.h, these sweeps plus its conjugate step). A solve starts from
 // v = v_free + M^-1 H r, then sweeps single visits (gauss_seidel_visit, GaussSeidelUpdate.h)
 // until GaussSeidelStopTest ends it or max_iterations sweeps have run. Options:
-//   - the visiting order (Order): odd sweeps go forwards and even sweeps backwards in every
+//   - the visiting order (Order, a template argument: each solver compiles its own loop, with
+//     the visit inlined in it): odd sweeps go forwards and even sweeps backwards in every
 //     order (symmetric: a load travels the whole length of a chain in one pair of sweeps,
 //     whichever way the contacts happen to be numbered);
 //       index       the contacts in index order;
@@ -63,7 +64,6 @@ class GaussSeidelSweep {
  public:
   enum class Order { index, colour, body_block };
   struct Options {
-    Order order = Order::index;
     int full_sweep_every = 1;  // ActiveContactSet::start; 1: every sweep visits every contact
     int stall_sweeps = 500;    // GaussSeidelStopTest's stall window, sweeps
     // colour: contacts [colour_start[k], colour_start[k + 1]) have colour k; `parallel`: OpenMP
@@ -75,7 +75,7 @@ class GaussSeidelSweep {
     std::size_t block_count = 0;
   };
 
-  template <class Hooks>
+  template <Order order, class Hooks>
   SolveReport solve(const SolverSettings& settings, const Options& options,
                     const GaussSeidelSweepState& state, Hooks& hooks);
 
@@ -94,16 +94,16 @@ class GaussSeidelSweep {
   std::vector<int> visited_;            // body_block order: per block, the sweep that last visited it
 };
 
-template <class Hooks>
+template <GaussSeidelSweep::Order order, class Hooks>
 SolveReport GaussSeidelSweep::solve(const SolverSettings& settings, const Options& options,
                                     const GaussSeidelSweepState& state, Hooks& hooks) {
   state.problem.velocities_from_reactions(state.r, state.m, state.velocity, state.angular_velocity);
   const std::size_t count = state.problem.size();
-  if (options.order == Order::colour) {
+  if constexpr (order == Order::colour) {
     change_.resize(count);
     total_.resize(count);
     block_sums_.resize(static_cast<std::size_t>(2 * sum_block_count(static_cast<std::ptrdiff_t>(count))));
-  } else if (options.order == Order::body_block) {
+  } else if constexpr (order == Order::body_block) {
     visited_.assign(options.block_count, 0);
   }
   SolveReport report;
@@ -117,22 +117,15 @@ SolveReport GaussSeidelSweep::solve(const SolverSettings& settings, const Option
     const bool full = active_.full(report.sweeps);
     const bool mark = full && active_.partial_sweeps();  // else nothing reads the marks
     ContactUpdate sums;
-    switch (options.order) {
-      case Order::index:
-        sums = sweep_index<false>(options, settings.relaxation, report.sweeps, forward, full, mark,
-                                  state, hooks);
-        break;
-      case Order::body_block:
-        sums = sweep_index<true>(options, settings.relaxation, report.sweeps, forward, full, mark,
-                                 state, hooks);
-        break;
-      case Order::colour:
-        sums = sweep_colours(options, settings.relaxation, forward, full, mark, state, hooks);
-        break;
+    if constexpr (order == Order::colour) {
+      sums = sweep_colours(options, settings.relaxation, forward, full, mark, state, hooks);
+    } else {
+      sums = sweep_index<order == Order::body_block>(options, settings.relaxation, report.sweeps,
+                                                      forward, full, mark, state, hooks);
     }
     if (stop.after_sweep(sums.change, sums.total, report, full)) break;
     if (mark) {
-      if (options.order == Order::colour) {
+      if constexpr (order == Order::colour) {
         active_.collect(*options.colour_start);
       } else {
         active_.collect(count);

@@ -131,15 +131,16 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& given,
     }
   } hooks{{}, *this, coloured};
   GaussSeidelSweep::Options options;
-  options.order = coloured ? GaussSeidelSweep::Order::colour : GaussSeidelSweep::Order::index;
   options.full_sweep_every = 1;  // a partial sweep's change is not a map of all the reactions
   options.stall_sweeps = stall_window();
   if (coloured) {
     options.colour_start = &ordered_.colour_start();
     options.parallel = parallel;
   }
+  const GaussSeidelSweepState state{problem, r, m, velocity, angular_velocity};
   const SolveReport report =
-      sweep_.solve(settings_, options, {problem, r, m, velocity, angular_velocity}, hooks);
+      coloured ? sweep_.solve<GaussSeidelSweep::Order::colour>(settings_, options, state, hooks)
+               : sweep_.solve<GaussSeidelSweep::Order::index>(settings_, options, state, hooks);
   if (coloured) ordered_.store(given_r, given_m, parallel);
   return report;
 }

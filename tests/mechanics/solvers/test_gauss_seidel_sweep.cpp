@@ -36,7 +36,6 @@ SweepResult sweep_with(const ContactProblem& problem, GaussSeidelSweep::Order or
   std::vector<std::int32_t> singletons(count + 1), no_block(count, -1);
   std::iota(singletons.begin(), singletons.end(), 0);
   GaussSeidelSweep::Options options;
-  options.order = order;
   options.full_sweep_every = full_sweep_every;
   options.stall_sweeps = settings.stall_sweeps;
   options.colour_start = &singletons;
@@ -46,7 +45,18 @@ SweepResult sweep_with(const ContactProblem& problem, GaussSeidelSweep::Order or
   out.m.assign(count, Vector3d::Zero());
   GaussSeidelSweep sweep;
   GaussSeidelSweepHooks hooks;
-  out.sweeps = sweep.solve(settings, options, {problem, out.r, out.m, out.v, out.w}, hooks).sweeps;
+  const GaussSeidelSweepState state{problem, out.r, out.m, out.v, out.w};
+  switch (order) {
+    case GaussSeidelSweep::Order::index:
+      out.sweeps = sweep.solve<GaussSeidelSweep::Order::index>(settings, options, state, hooks).sweeps;
+      break;
+    case GaussSeidelSweep::Order::colour:
+      out.sweeps = sweep.solve<GaussSeidelSweep::Order::colour>(settings, options, state, hooks).sweeps;
+      break;
+    case GaussSeidelSweep::Order::body_block:
+      out.sweeps = sweep.solve<GaussSeidelSweep::Order::body_block>(settings, options, state, hooks).sweeps;
+      break;
+  }
   return out;
 }
 

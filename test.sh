@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Install what is missing (ParaView and xvfb too), build in build/, then run the whole ctest
-# suite; then build the fast tests and the scene fuzzer with ASan+UBSan (clang) in build-asan/
+# suite; then build the fast tests and the scene and packing fuzzers with ASan+UBSan (clang) in build-asan/
 # and run them there (labels fast and fuzz; any leak, sanitizer or UB report fails them).
 # Extra arguments go to the first ctest, e.g. ./test.sh -L thermal  or  ./test.sh -LE stability
 # TMDEM_SKIP_SANITIZE=1 skips the second build; TMDEM_FUZZ_SECONDS sets the fuzzing budget (60).

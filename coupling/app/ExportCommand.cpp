@@ -1,9 +1,9 @@
 #include "coupling/app/ExportCommand.h"
 
-#include <charconv>
 #include <filesystem>
 #include <fstream>
 
+#include "coupling/app/FrameOption.h"
 #include "coupling/common/ExitCode.h"
 #include "coupling/output/ResultFrameReader.h"
 #include "coupling/scene/CsvPackingWriter.h"
@@ -12,15 +12,12 @@
 namespace tmdem::coupling {
 
 int run_export_command(const ExportOptions& options, std::ostream& out, std::ostream& log) {
-  std::int64_t frame = -1;
-  if (options.frame != "last") {
-    const auto& text = options.frame;
-    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), frame);
-    if (text.empty() || error != std::errc() || end != text.data() + text.size()) {
-      log << "error: --frame must be \"last\" or a frame number (got \"" << text << "\")\n";
-      return kExitInvalid;
-    }
+  const std::optional<std::int64_t> parsed = parse_frame_option(options.frame);
+  if (!parsed) {
+    log << "error: --frame must be \"last\" or a frame number (got \"" << options.frame << "\")\n";
+    return kExitInvalid;
   }
+  const std::int64_t frame = *parsed;
   std::error_code ec;
   if (std::filesystem::exists(options.csv_path, ec) &&
       std::filesystem::equivalent(options.csv_path, options.result_path, ec)) {

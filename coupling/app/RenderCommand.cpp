@@ -8,10 +8,10 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <charconv>
 #include <cstdlib>
 #include <filesystem>
 
+#include "coupling/app/FrameOption.h"
 #include "coupling/common/ExitCode.h"
 #include "coupling/output/ResultFrameReader.h"
 #include "coupling/output/XdmfWriter.h"
@@ -76,15 +76,12 @@ std::string find_render_script() {
 }
 
 int run_render_command(const RenderOptions& options, std::ostream& out, std::ostream& log) {
-  std::int64_t frame = -1;
-  if (options.frame != "last") {
-    const auto& text = options.frame;
-    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), frame);
-    if (text.empty() || error != std::errc() || end != text.data() + text.size()) {
-      log << "error: --frame must be \"last\" or a frame number (got \"" << text << "\")\n";
-      return kExitInvalid;
-    }
+  const std::optional<std::int64_t> parsed = parse_frame_option(options.frame);
+  if (!parsed) {
+    log << "error: --frame must be \"last\" or a frame number (got \"" << options.frame << "\")\n";
+    return kExitInvalid;
   }
+  const std::int64_t frame = *parsed;
   if (!options.cut.empty() && options.cut != "x" && options.cut != "y" && options.cut != "z") {
     log << "error: --cut must be x, y or z (got \"" << options.cut << "\")\n";
     return kExitInvalid;

@@ -21,13 +21,16 @@ std::string imported_bed(const std::string& import_keys) {
   return s.substr(0, a) + "[[import]]\n" + import_keys + "\n\n" + s.substr(b);
 }
 
+// examples/poured_bed.toml settled into bed.h5 until every particle is still (rest_test
+// "velocity": the network test may freeze a bed while a rattler still creeps).
+const std::string kSettleBed =
+    "run " + std::string(TMDEM_SOURCE_DIR) +
+    "/examples/poured_bed.toml -o bed.h5 --quiet --set effects.mechanics=\"settle\" "
+    "--set simulation.duration=0.1 --set mechanics.rest_test=\"velocity\"";
+
 TEST(E2eImport, SettledBedExportedAndImportedBackRuns) {
   const std::string dir = scratch_dir("import");
-  const std::string settle =
-      std::string(TMDEM_SOURCE_DIR) +
-      "/examples/poured_bed.toml -o bed.h5 --quiet --set effects.mechanics=\"settle\" "
-      "--set simulation.duration=0.1 --set mechanics.rest_test=\"velocity\"";
-  ASSERT_EQ(run_tmdem("run " + settle, dir).exit_code, 0);
+  ASSERT_EQ(run_tmdem(kSettleBed, dir).exit_code, 0);
   const auto exported = run_tmdem("export bed.h5 -o bed.csv", dir);
   ASSERT_EQ(exported.exit_code, 0) << exported.output;
   EXPECT_NE(exported.output.find("exported 80 particles, frame 2 of 3 (t = 0.1 s)"),
@@ -108,22 +111,12 @@ TEST(E2eImport, SettledBedExportedAndImportedBackRuns) {
   EXPECT_LT(largest, 1e-3 * 5e-4);
 }
 
-}  // namespace
-}  // namespace tmdem::e2e
-
-namespace tmdem::e2e {
-namespace {
-
 // A bed settled by tmdem until every particle was still, exported and imported into a settle
 // run at the defaults: the contact network's forces are found again at once, so the network
 // rest test ends the settling within a few windows (at most 10 steps), every step converged.
 TEST(E2eImport, SettledBedImportedIntoASettleRunReSettlesWithinTenSteps) {
   const std::string dir = scratch_dir("import_resettle");
-  const std::string settle =
-      std::string(TMDEM_SOURCE_DIR) +
-      "/examples/poured_bed.toml -o bed.h5 --quiet --set effects.mechanics=\"settle\" "
-      "--set simulation.duration=0.1 --set mechanics.rest_test=\"velocity\"";
-  ASSERT_EQ(run_tmdem("run " + settle, dir).exit_code, 0);
+  ASSERT_EQ(run_tmdem(kSettleBed, dir).exit_code, 0);
   ASSERT_EQ(run_tmdem("export bed.h5 -o bed.csv", dir).exit_code, 0);
   write_file(dir + "/again.toml", imported_bed("file = \"bed.csv\"\noverlap_tolerance = 0.01"));
   const auto again = run_tmdem(

@@ -12,6 +12,7 @@
 #include "coupling/bridge/SceneToMechanics.h"
 #include "coupling/common/ExitCode.h"
 #include "coupling/output/OutputError.h"
+#include "coupling/run/SceneRestTest.h"
 #include "mechanics/contact/ContactKinematics.h"
 #include "mechanics/integrator/NscdIntegrator.h"
 
@@ -110,6 +111,7 @@ StepOutcome run_to_step(mechanics::NscdIntegrator& nscd, const Scene& scene, std
   StepOutcome outcome;
   const double h = scene.mechanics.time_step_s;
   const std::int64_t last = wanted == 0 ? limit : wanted;
+  SceneRestTest rest(scene, nscd);
   while (outcome.step < last) {
     const double t_next = settle ? double(outcome.step + 1) * h
                                  : std::min(double(outcome.step + 1) * h, scene.duration_s);
@@ -117,12 +119,14 @@ StepOutcome run_to_step(mechanics::NscdIntegrator& nscd, const Scene& scene, std
     outcome.report = nscd.step(outcome.h_s);
     outcome.time_s = t_next;
     ++outcome.step;
-    // Settling ends at rest (settle_packing): later steps are not the scene's.
-    if (settle && outcome.step < last && nscd.max_speed() < scene.mechanics.settle_velocity_m_per_s) {
+    // Settling ends at rest by the scene's test, as settle_packing's: later steps are not the
+    // scene's.
+    if (settle && rest.after_step() && outcome.step < last) {
       if (wanted == 0) break;
       std::ostringstream msg;
       msg << "--step " << wanted << " is beyond the scene's mechanical steps: it comes to rest "
-          << "(largest speed below mechanics.settle_velocity) after step " << outcome.step
+          << "(mechanics.rest_test = \"" << scene.mechanics.rest_test << "\") after step "
+          << outcome.step
           << " (t = " << outcome.time_s << " s), where settling ends; --step " << outcome.step
           << " or --step last is the settled packing";
       throw CommandError{msg.str(), kExitInvalid};

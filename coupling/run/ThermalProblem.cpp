@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "coupling/bridge/SceneToMechanics.h"
-#include "coupling/run/SettleRestTest.h"
+#include "coupling/run/SceneRestTest.h"
 #include "coupling/scene/HeatModes.h"
 #include "mechanics/detection/TouchingPairs.h"
 #include "thermal/modes/ModeRegistry.h"
@@ -28,11 +28,9 @@ SettleSummary settle_packing(mechanics::NscdIntegrator& nscd, const Scene& scene
   const double h = scene.mechanics.time_step_s;
   const double t_max = scene.mechanics.settle_time_s;
   const std::int64_t steps_before = nscd.stats().steps;
-  const bool network_test = scene.mechanics.rest_test == "network";
-  SettleRestTest rest({.window_steps = scene.mechanics.rest_window,
-                       .gravity_m_s2 = nscd.gravity().norm(),
-                       .force_change = scene.mechanics.rest_force_change,
-                       .speed_m_s = scene.mechanics.settle_velocity_m_per_s});
+  SceneRestTest rest_test(scene, nscd);
+  const bool network_test = rest_test.network_test();
+  const SettleRestTest& rest = rest_test.network();
   SettleSummary outcome;
   double t = 0.0;
   while (t < t_max - 0.5 * h) {
@@ -44,14 +42,14 @@ SettleSummary settle_packing(mechanics::NscdIntegrator& nscd, const Scene& scene
       progress.message(msg);
     }
     const double speed = nscd.max_speed();
-    const bool network_at_rest = rest.after_step(nscd.contacts(), nscd.particles());
+    const bool at_rest = rest_test.after_step();
     std::ostringstream extra;
     extra << "max speed " << speed << " m/s, " << report.active_contacts << " contacts";
     if (network_test)
       extra << ", force change " << rest.force_change() << ", load speed " << rest.load_speed_m_s()
             << " m/s";
     progress.update("settle", t, t_max, extra.str());
-    if (network_test ? network_at_rest : speed < scene.mechanics.settle_velocity_m_per_s) {
+    if (at_rest) {
       outcome.at_rest = true;
       outcome.ended_by = scene.mechanics.rest_test;
       break;

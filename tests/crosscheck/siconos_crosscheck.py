@@ -45,10 +45,13 @@ WALL_IMPULSE_AGREEMENT = 1e-4
 # first_scene pile (172 contacts, 69 of them open candidates, hyperstatic): its error stalls at
 # 1e-3 to 1e-5 from r = 0, from tmdem's solution, from NSGS's, with line search, with W scaled;
 # the Fischer-Burmeister variant aborts on an assertion, the natural-map one gives r_t2 != 0.
-# That is reported, not failed.
+# That is reported, not failed. paper_triangle is taken at its first step (at rest from the
+# start): its settle ends after 6 steps by the network rest test, and on that step's problem
+# neither Siconos NSGS (1.3e-6 after 20,000 iterations) nor NSN (3.9e-6 after 101) reaches its
+# tolerance from r = 0, while tmdem's warm-started solve sits at 3.5e-6.
 CASES = [
     ("first_scene settled", "examples/first_scene.toml", "last", [], True, False),
-    ("paper_triangle", "examples/paper_triangle.toml", "last", [], True, True),
+    ("paper_triangle", "examples/paper_triangle.toml", "1", [], True, True),
     ("3D lattice pile", "tests/crosscheck/lattice_pile.toml", "last", [], True, True),
 ]
 

@@ -88,7 +88,8 @@ void print_run_end(const RunSummary& summary, const Scene& scene, const std::str
         out << " (potential energy " << summary.energy.mechanical->correction_potential_J << " J)";
     }
     out << "\n";
-    if (const auto& ts = m.tolerance_schedule) {
+    // Nothing to say of a schedule whose fall never began (on by default: most small scenes).
+    if (const auto& ts = m.tolerance_schedule; ts && ts->fall_steps > 0) {
       out << "mechanics: tolerance " << ts->fall_tolerance << " while falling (" << ts->fall_steps
           << " steps, " << ts->fall_unconverged_steps << " unconverged), " << ts->tolerance;
       if (ts->tightened) {
@@ -100,7 +101,7 @@ void print_run_end(const RunSummary& summary, const Scene& scene, const std::str
             << " m/s)\n";
       }
       else
-        out << " before the fall; the largest speed never dropped back below mechanics.fall_speed = "
+        out << " not reached: the largest speed never dropped back below mechanics.fall_speed = "
             << ts->fall_speed_m_s << " m/s\n";
     }
   }

@@ -52,6 +52,7 @@ mechanics::NscdParameters make_nscd_parameters(const Scene& scene) {
   p.fall_tolerance = scene.mechanics.fall_tolerance;
   p.fall_speed = scene.mechanics.fall_speed_m_per_s;
   p.tighten_steps = scene.mechanics.tighten_steps;
+  p.stop_travel_fraction = scene.mechanics.stop_travel;
   p.max_iterations = scene.mechanics.max_iterations;
   p.full_sweep_every = scene.mechanics.full_sweep_every;
   p.penetration_slop_fraction = scene.mechanics.penetration_slop;

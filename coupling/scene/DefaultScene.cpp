@@ -71,8 +71,6 @@ material = "steel"
 [mechanics]
 time_step = 1.0e-3
 theta = 0.5
-tolerance = 1.0e-5                # settling needs forces to ~1e-5, not 1e-6 (3x faster, measured)
-max_iterations = 2000
 settle_time = 5.0
 settle_velocity = 1.0e-4
 

@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "mechanics/integrator/NscdParameters.h"
 #include "mechanics/solvers/ContactSolverRegistry.h"
 #include "thermal/integrators/IntegratorKind.h"
 #include "thermal/modes/ModeSettings.h"
@@ -118,13 +119,16 @@ struct MechanicsSettings {
   double time_step_s = 1.0e-3;
   double theta = 0.5;
   std::string solver = mechanics::default_contact_solver();  // mechanics::contact_solver_names()
-  double tolerance = 1.0e-6;
+  // The solver defaults are the mechanics library's (mechanics::NscdParameters).
+  double tolerance = mechanics::NscdParameters{}.tolerance;
   // Tolerance schedule (mechanics::ToleranceSchedule): fall_tolerance while the largest
-  // particle speed is at or above fall_speed, until it first drops below; 0 = off (absent).
-  double fall_tolerance = 0.0;
-  double fall_speed_m_per_s = 0.0;
-  int tighten_steps = 1;  // fall_tolerance -> tolerance over this many steps
-  int max_iterations = 10000;
+  // particle speed is at or above fall_speed, until it first drops below; fall_tolerance 0 =
+  // off; fall_speed 0 = automatic (a tenth of the smallest radius per time step).
+  double fall_tolerance = mechanics::NscdParameters{}.fall_tolerance;
+  double fall_speed_m_per_s = mechanics::NscdParameters{}.fall_speed;
+  double stop_travel = mechanics::NscdParameters{}.stop_travel_fraction;  // of r_min per step
+  int tighten_steps = mechanics::NscdParameters{}.tighten_steps;  // fall_tolerance -> tolerance over this many steps
+  int max_iterations = mechanics::NscdParameters{}.max_iterations;
   int full_sweep_every = 1;  // Gauss-Seidel active-set sweeps (mechanics::NscdParameters)
   double settle_time_s = 5.0;
   double settle_velocity_m_per_s = 1.0e-4;

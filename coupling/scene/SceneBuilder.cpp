@@ -123,20 +123,9 @@ void SceneBuilder::read_settings() {
     m.theta = t.number("theta");
     m.solver = t.choice("solver");
     m.tolerance = t.number("tolerance");
-    // The tolerance schedule: both keys or neither.
-    const auto fall_tolerance = t.optional_number("fall_tolerance");
-    const auto fall_speed = t.optional_number("fall_speed");
-    if (mechanics_on && fall_tolerance && !fall_speed)
-      t.fail("fall_tolerance", "needs mechanics.fall_speed (m/s): the speed below which the fall "
-                               "has landed and mechanics.tolerance takes over");
-    if (mechanics_on && fall_speed && !fall_tolerance)
-      t.fail("fall_speed", "needs mechanics.fall_tolerance: the tolerance used while the "
-                           "particles are at least this fast");
-    if (mechanics_on && t.has("tighten_steps") && !fall_tolerance)
-      t.fail("tighten_steps", "needs mechanics.fall_tolerance and mechanics.fall_speed (it sets "
-                              "how the tolerance schedule tightens after the fall)");
-    m.fall_tolerance = fall_tolerance.value_or(0.0);
-    m.fall_speed_m_per_s = fall_speed.value_or(0.0);
+    m.fall_tolerance = t.number("fall_tolerance");
+    m.fall_speed_m_per_s = t.optional_number("fall_speed").value_or(0.0);  // absent: automatic
+    m.stop_travel = t.number("stop_travel");
     // Sweep counts: integers >= 1 (checked only when mechanics is on).
     auto sweeps = [&](std::string_view key, int fallback) {
       return static_cast<int>(t.integer(key, fallback,

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 
+#include "mechanics/integrator/NscdParameters.h"
 #include "mechanics/solvers/ContactSolverRegistry.h"
 #include "thermal/integrators/IntegratorKind.h"
 #include "thermal/integrators/IntegratorRegistry.h"
@@ -16,6 +17,7 @@ using Kind = SceneSchema::Kind;
 using Key = SceneSchema::Key;
 using Section = SceneSchema::Section;
 using Range = thermal::ParameterRange;
+const mechanics::NscdParameters kNscd{};  // the mechanics defaults the scene keys take
 
 Key table(std::string name, Kind kind, std::string description, bool required = false) {
   Key k;
@@ -310,25 +312,30 @@ std::vector<Section> build_sections() {
         number("theta", "", 0.5, Range::open_closed(0.0, 1.0), "Moreau-Jean theta"),
         choice("solver", mechanics::default_contact_solver(), mechanics::contact_solver_names(),
                "contact solver by name (mechanics::ContactSolverRegistry)"),
-        number("tolerance", "", 1.0e-6, Range::greater(0.0),
-               "relative contact-law residual of a Gauss-Seidel sweep that counts as converged. "
-               "The default is for small beds (the 2D examples); a 3D bed of thousands of "
-               "spheres at 1e-6 spends thousands of sweeps per step while it lands: set what "
-               "examples/pour_3d.toml sets (1e-5 with fall_tolerance 1e-4, fall_speed 0.05, "
-               "max_iterations 5000; docs/mechanics.md \"The tolerance defaults and a 3D bed\")"),
-        number("fall_tolerance", "", std::nullopt, Range::greater(0.0),
+        number("tolerance", "", kNscd.tolerance, Range::greater(0.0),
+               "relative contact-law residual of a Gauss-Seidel sweep that counts as converged "
+               "(scale-free: the change of the reactions over one sweep relative to the "
+               "reactions; docs/mechanics.md \"The defaults\")"),
+        number("fall_tolerance", "", kNscd.fall_tolerance, Range::at_least(0.0),
                "tolerance schedule: the solves stop at this tolerance instead of `tolerance` "
-               "while the largest particle speed is at or above fall_speed; once it first drops "
-               "back below fall_speed, `tolerance` holds for the rest of the run (one-way; "
-               "settle and dynamic runs alike). Needs fall_speed; absent: `tolerance` for "
-               "every step. A step counts as converged when it met the tolerance in force"),
+               "while the largest particle speed is at or above fall_speed (never tighter than "
+               "`tolerance`); once it first drops back below fall_speed, `tolerance` holds for "
+               "the rest of the run (one-way; settle and dynamic runs alike). 0: no schedule, "
+               "`tolerance` for every step. A step counts as converged when it met the "
+               "tolerance in force"),
         number("fall_speed", "m/s", std::nullopt, Range::greater(0.0),
                "tolerance schedule: the largest particle speed at or above which the particles "
-               "count as falling (fall_tolerance applies); needs fall_tolerance"),
-        value("tighten_steps", "", "1", "integer >= 1",
+               "count as falling (fall_tolerance applies); absent: a tenth of the smallest "
+               "radius per time_step (0.05 m/s for 0.5 mm spheres at 1 ms)"),
+        number("stop_travel", "", kNscd.stop_travel_fraction, Range::at_least(0.0),
+               "the stop test counts a contact's impulse at most as the one that would move "
+               "its bodies by this fraction of the smallest radius per time_step, so that "
+               "contacts under a load far above their weight are solved to the same speed "
+               "error as the rest (docs/mechanics.md \"The defaults\"); 0: off"),
+        value("tighten_steps", "", std::to_string(kNscd.tighten_steps), "integer >= 1",
               "tolerance schedule: once the fall has ended, the tolerance goes from "
               "fall_tolerance to tolerance geometrically over this many steps (1: at once)"),
-        value("max_iterations", "", "10000", "integer >= 1", "Gauss-Seidel sweeps per step, at most"),
+        value("max_iterations", "", std::to_string(kNscd.max_iterations), "integer >= 1", "Gauss-Seidel sweeps per step, at most"),
         value("full_sweep_every", "", "1", "integer >= 1",
               "\"nlgs\", \"nlgs_coloured\": a sweep over every candidate at least every this "
               "many sweeps, the others visit the contacts the last full sweep left closed; "

@@ -42,6 +42,14 @@ struct ContactProblem {
   std::vector<double> w_n, w_t;         // Delassus block diag(w_n, w_t, w_t), 1/kg
   std::vector<double> bias;             // m/s, position term added to the normal velocity
   std::vector<double> mu;               // friction coefficient
+  // m/s; 0: off. The Gauss-Seidel stop test (GaussSeidelUpdate.h) counts a contact's impulse
+  // |r_c| at most as the impulse that would give its bodies this speed, stop_speed / w_n: the
+  // test is relative to the reactions (scale-free) where they carry weight, and relative to
+  // this speed where they carry a load far above it. Why: under a piston a contact's impulse
+  // is hundreds of weight impulses, a relative error of 1e-5 on it moves the bodies by 1e-5 of
+  // that impulse's speed every step, and the loaded bed creeps (NscdParameters::
+  // stop_travel_fraction).
+  double stop_speed = 0.0;
 
   // Rolling resistance (Material::rolling_friction; off when `rolling` is false, and then the
   // three arrays below are not sized). Each contact also carries a rolling angular impulse m_c

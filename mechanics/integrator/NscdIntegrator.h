@@ -163,6 +163,7 @@ class NscdIntegrator {
   std::vector<double> wall_lookahead_;  // m; empty when no wall moves
   bool has_piston_ = false;
   double slop_m_ = 0.0;  // penetration slop (NscdParameters), m
+  double stop_speed_m_per_s_ = 0.0;  // ContactProblem::stop_speed outside the fall
   ContactProblem problem_;
   std::unique_ptr<ContactSolver> solver_;
   SolverSettings solver_settings_;  // solver_'s, tolerance as in force

@@ -1,5 +1,6 @@
 #include "mechanics/integrator/ToleranceSchedule.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -16,6 +17,8 @@ ToleranceSchedule::ToleranceSchedule(double tolerance, double fall_tolerance,
     throw std::invalid_argument("mechanics: fall_tolerance must be >= 0 (0: no tolerance schedule)");
   if (enabled() && !(fall_speed_m_per_s > 0.0 && std::isfinite(fall_speed_m_per_s)))
     throw std::invalid_argument("mechanics: fall_speed must be > 0 (m/s) with a fall_tolerance");
+  // A fall tolerance tighter than `tolerance` would make the fall the hardest part of the run.
+  if (enabled()) fall_tolerance_ = std::max(fall_tolerance_, tolerance_);
 }
 
 double ToleranceSchedule::tolerance_for_step(double max_speed_m_per_s, std::int64_t step) {

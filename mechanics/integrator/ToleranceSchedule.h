@@ -11,7 +11,7 @@
 // The rule, one-way so that it cannot chatter, judged on the largest particle speed v of the
 // state a step starts from (NscdIntegrator::max_speed(), the settle criterion's speed):
 //   before:  v has not reached fall_speed yet   -> tolerance (tight)
-//   falling: v >= fall_speed                     -> fall_tolerance
+//   falling: v >= fall_speed                     -> fall_tolerance (or tolerance if looser)
 //   landed:  v < fall_speed after falling        -> tolerance, for the rest of the run
 // A scene whose particles never reach fall_speed is solved at `tolerance` throughout.
 // With tighten_steps N > 1 the landed steps j = 1, 2, ... (j = 1: the first one) use
@@ -40,6 +40,9 @@ class ToleranceSchedule {
                     int tighten_steps = 1);
 
   bool enabled() const { return fall_tolerance_ > 0.0; }
+  double fall_speed_m_per_s() const { return fall_speed_m_per_s_; }
+  // The tolerance while falling: fall_tolerance, or `tolerance` if that is looser.
+  double fall_tolerance() const { return fall_tolerance_; }
   // The tolerance for step number `step` (1-based over the run), which starts from a state whose
   // largest particle speed is `max_speed_m_per_s`; advances the phase.
   double tolerance_for_step(double max_speed_m_per_s, std::int64_t step);

@@ -53,7 +53,9 @@ inline ContactUpdate gauss_seidel_update(const ContactProblem& problem, std::siz
     apply_impulse(problem, c, dr, velocity, angular_velocity);
     rc = next;
   }
-  return change_and_total(dr, after);
+  ContactUpdate norms = change_and_total(dr, after);
+  if (problem.stop_speed > 0.0) norms.total = std::min(norms.total, problem.stop_speed / w_n);
+  return norms;
 }
 
 // The rolling block of contact c (ContactProblem::rolling), visited right after its

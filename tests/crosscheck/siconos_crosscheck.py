@@ -5,7 +5,8 @@ For each case, `tmdem contact-problem` writes one mechanical step's contact prob
 local format; it is read back with FCLIB's own reader (libfclib, through ctypes: Debian's
 python3-siconos is built without FCLIB support), then
   1. the file is consistent: W symmetric, the stored u equal to W r + q;
-  2. Siconos's error of tmdem's solution (fc3d_compute_error) is at most ERROR_BOUND;
+  2. Siconos's error of tmdem's solution (fc3d_compute_error) is at most
+     ERROR_BOUND_PER_TOLERANCE times the tolerance tmdem solved to;
   3. Siconos's NSGS and nonsmooth Newton (Alart-Curnier) solvers, started from r = 0, solve the
      problem (NSGS_TOLERANCE, NSN_TOLERANCE), and what is unique agrees: the total impulse of the walls on
      the particles (the hyperstatic reactions themselves are not unique); a pile at rest carries
@@ -30,9 +31,9 @@ import tempfile
 import time
 
 SKIP = 77
-# tmdem stops at sum|r - R(r)| / sum|R(r)| <= tolerance (1e-6 in these scenes); in Siconos's
-# measure (relative to ||q||) its solutions measure 3e-7 to 4e-6 (docs/benchmarks.md): allow 1e-5.
-ERROR_BOUND = 1e-5
+# tmdem stops at sum|r - R(r)| / sum|R(r)| <= tolerance; in Siconos's measure (relative to
+# ||q||) its solutions measure 0.3 to 4 times that (docs/benchmarks.md): allow 10 times.
+ERROR_BOUND_PER_TOLERANCE = 10.0
 # Siconos's solvers: NSGS to 1e-8 (its error falls slowly at the end: 1.1e-8 after 20,000
 # iterations on first_scene), NSN to 1e-9 in at most 100 Newton iterations.
 NSGS_TOLERANCE, NSGS_ITERATIONS, NSGS_BOUND = 1e-8, 20000, 1e-7
@@ -49,8 +50,12 @@ WALL_IMPULSE_AGREEMENT = 1e-4
 # start): its settle ends after 6 steps by the network rest test, and on that step's problem
 # neither Siconos NSGS (1.3e-6 after 20,000 iterations) nor NSN (3.9e-6 after 101) reaches its
 # tolerance from r = 0, while tmdem's warm-started solve sits at 3.5e-6.
+# first_scene is solved as it was when these figures were taken (tolerance 1e-6 throughout,
+# every impulse counted whole): at the defaults its pile settles elsewhere, and on that last
+# step Siconos NSGS stops at 5e-7 after 20,000 iterations.
+FIRST_SCENE_1E6 = ["mechanics.tolerance=1e-6", "mechanics.fall_tolerance=0", "mechanics.stop_travel=0"]
 CASES = [
-    ("first_scene settled", "examples/first_scene.toml", "last", [], True, False),
+    ("first_scene settled", "examples/first_scene.toml", "last", FIRST_SCENE_1E6, True, False),
     ("paper_triangle", "examples/paper_triangle.toml", "1", [], True, True),
     ("3D lattice pile", "tests/crosscheck/lattice_pile.toml", "last", [], True, True),
 ]
@@ -228,8 +233,9 @@ def run_case(lib, args, name, scene, step, sets, at_rest, nsn_converges, rows):
     fcp = siconos_problem(W3, q3, p["mu"])
     error = siconos_error(fcp, r3, q3)
     merit = p["fclib_merit"]
-    check(error <= ERROR_BOUND,
-          f"Siconos error of tmdem's solution {error:.2e} <= {ERROR_BOUND:.0e} (relative to |q|; "
+    bound = ERROR_BOUND_PER_TOLERANCE * p["solver_tolerance"]
+    check(error <= bound,
+          f"Siconos error of tmdem's solution {error:.2e} <= {bound:.0e} (relative to |q|; "
           f"tmdem residual {p['solver_residual']:.2e}, tolerance {p['solver_tolerance']:.0e}, "
           f"{p['solver_iterations']} sweeps)" + (f"; FCLIB merit {merit:.2e}" if merit is not None else ""))
     weight = np.linalg.norm(p["gravity_impulse"])

@@ -14,11 +14,15 @@ namespace tmdem::mechanics::test {
 // the mechanics test program, tests/CMakeLists.txt).
 using tmdem::coupling::place_random;
 
-// The fixtures here were written and measured with Gauss-Seidel ("nlgs"), while the library's
-// default solver (default_contact_solver()) is another, so they name theirs.
+// The fixtures here were written and measured with Gauss-Seidel ("nlgs") at tolerance 1e-6,
+// no tolerance schedule and a stop test relative to the whole impulses, while the library's
+// defaults are others, so they name theirs.
 inline NscdParameters nlgs_parameters() {
   NscdParameters parameters;
   parameters.solver = "nlgs";
+  parameters.tolerance = 1e-6;
+  parameters.fall_tolerance = 0.0;
+  parameters.stop_travel_fraction = 0.0;
   return parameters;
 }
 

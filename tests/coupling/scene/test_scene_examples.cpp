@@ -62,7 +62,9 @@ material = "m"
   EXPECT_EQ(scene.heat_modes.find("radiation", "ambient_temperature").value(), 293.15);
   EXPECT_EQ(scene.mechanics.time_step_s, 1e-3);
   EXPECT_EQ(scene.mechanics.theta, 0.5);
-  EXPECT_EQ(scene.mechanics.tolerance, 1e-6);
+  EXPECT_EQ(scene.mechanics.tolerance, 1e-5);
+  EXPECT_EQ(scene.mechanics.fall_tolerance, 1e-4);
+  EXPECT_EQ(scene.mechanics.fall_speed_m_per_s, 0.0);  // automatic
   EXPECT_EQ(scene.mechanics.max_iterations, 10000);
   EXPECT_EQ(scene.mechanics.settle_time_s, 5.0);
   EXPECT_EQ(scene.mechanics.settle_velocity_m_per_s, 1e-4);

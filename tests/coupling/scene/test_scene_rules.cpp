@@ -274,44 +274,33 @@ TEST(SceneRules, TolerancesPositive) {
   }
 }
 
-// The tolerance schedule (mechanics::ToleranceSchedule): both keys or neither, each > 0.
+// The tolerance schedule (mechanics::ToleranceSchedule): on by default, fall_tolerance 0 turns
+// it off, fall_speed absent is automatic (0 in the parameters), each key range-checked.
 TEST(SceneRules, ToleranceSchedule) {
+  expect_scene_error(kBaseScene, {"mechanics.fall_speed=0"}, {"mechanics.fall_speed", "must be > 0"});
+  expect_scene_error(kBaseScene, {"mechanics.fall_speed=-1"}, {"mechanics.fall_speed", "must be > 0"});
+  expect_scene_error(kBaseScene, {"mechanics.fall_tolerance=-1"}, {"mechanics.fall_tolerance", "must be >= 0"});
   for (const char* key : {"mechanics.fall_tolerance", "mechanics.fall_speed"}) {
     SCOPED_TRACE(key);
-    const std::string other =
-        std::string(key) == "mechanics.fall_speed" ? "mechanics.fall_tolerance=1e-4" : "mechanics.fall_speed=0.1";
-    expect_scene_error(kBaseScene, {std::string(key) + "=0", other}, {key, "must be > 0"});
-    expect_scene_error(kBaseScene, {std::string(key) + "=-1", other}, {key, "must be > 0"});
-    expect_scene_error(kBaseScene, {std::string(key) + "=nan", other}, {key});
-    expect_scene_error(kBaseScene, {std::string(key) + "=\"fast\"", other}, {key});
+    expect_scene_error(kBaseScene, {std::string(key) + "=nan"}, {key});
+    expect_scene_error(kBaseScene, {std::string(key) + "=\"fast\""}, {key});
   }
-  expect_scene_error(kBaseScene, {"mechanics.fall_tolerance=1e-4"},
-                     {"mechanics.fall_tolerance", "needs mechanics.fall_speed"});
-  expect_scene_error(kBaseScene, {"mechanics.fall_speed=0.1"},
-                     {"mechanics.fall_speed", "needs mechanics.fall_tolerance"});
-  expect_scene_error(kBaseScene, {"mechanics.tighten_steps=4"},
-                     {"mechanics.tighten_steps", "needs mechanics.fall_tolerance"});
-  expect_scene_error(kBaseScene,
-                     {"mechanics.fall_tolerance=1e-4", "mechanics.fall_speed=0.1", "mechanics.tighten_steps=0"},
-                     {"mechanics.tighten_steps", ">= 1"});
-  expect_scene_error(kBaseScene,
-                     {"mechanics.fall_tolerance=1e-4", "mechanics.fall_speed=0.1", "mechanics.tighten_steps=2.5"},
-                     {"mechanics.tighten_steps"});
-  EXPECT_EQ(make_nscd_parameters(load_scene_text(kBaseScene, "t",
-                                                 {"mechanics.fall_tolerance=1e-4", "mechanics.fall_speed=0.1",
-                                                  "mechanics.tighten_steps=4"}))
-                .tighten_steps,
-            4);
-  const Scene off = load_scene_text(kBaseScene, "t");
-  EXPECT_EQ(off.mechanics.fall_tolerance, 0.0);
+  expect_scene_error(kBaseScene, {"mechanics.tighten_steps=0"}, {"mechanics.tighten_steps", ">= 1"});
+  expect_scene_error(kBaseScene, {"mechanics.tighten_steps=2.5"}, {"mechanics.tighten_steps"});
+  EXPECT_EQ(make_nscd_parameters(load_scene_text(kBaseScene, "t", {"mechanics.tighten_steps=4"})).tighten_steps, 4);
+  const Scene defaults = load_scene_text(kBaseScene, "t");
+  EXPECT_EQ(make_nscd_parameters(defaults).fall_tolerance, mechanics::NscdParameters{}.fall_tolerance);
+  EXPECT_GT(make_nscd_parameters(defaults).fall_tolerance, make_nscd_parameters(defaults).tolerance);
+  EXPECT_EQ(make_nscd_parameters(defaults).fall_speed, 0.0);  // automatic
+  const Scene off = load_scene_text(kBaseScene, "t", {"mechanics.fall_tolerance=0"});
   EXPECT_EQ(make_nscd_parameters(off).fall_tolerance, 0.0);
-  const Scene on = load_scene_text(kBaseScene, "t", {"mechanics.fall_tolerance=1e-4", "mechanics.fall_speed=0.1"});
-  EXPECT_EQ(make_nscd_parameters(on).fall_tolerance, 1e-4);
+  const Scene on = load_scene_text(kBaseScene, "t", {"mechanics.fall_tolerance=1e-3", "mechanics.fall_speed=0.1"});
+  EXPECT_EQ(make_nscd_parameters(on).fall_tolerance, 1e-3);
   EXPECT_EQ(make_nscd_parameters(on).fall_speed, 0.1);
   // Ignored, as every [mechanics] key, when mechanics is off.
   EXPECT_NO_THROW(load_scene_text(kBaseScene, "t",
                                   {"effects.mechanics=\"off\"", "thermal.conductance=\"constant\"",
-                                   "mechanics.fall_speed=0.1"}));
+                                   "mechanics.fall_speed=-1"}));
 }
 
 TEST(SceneRules, ExplicitStepNonNegative) {

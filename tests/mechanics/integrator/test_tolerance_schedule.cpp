@@ -250,5 +250,18 @@ TEST(ToleranceSchedule, BadValuesAreRefused) {
   EXPECT_THROW(ToleranceSchedule(1e-6, -1e-4, 0.1), std::invalid_argument);
   EXPECT_NO_THROW(ToleranceSchedule(1e-6, 0.0, 0.0));  // off
   EXPECT_THROW(dropped_sphere(10, schedule(1e-6, -1e-4, 0.1)), std::invalid_argument);
-  EXPECT_THROW(dropped_sphere(10, schedule(1e-6, 1e-4, 0.0)), std::invalid_argument);
+  EXPECT_THROW(dropped_sphere(10, schedule(1e-6, 1e-4, -0.1)), std::invalid_argument);
+  EXPECT_NO_THROW(dropped_sphere(10, schedule(1e-6, 1e-4, 0.0)));  // automatic
+}
+
+// fall_speed 0 is automatic: fall_travel_fraction of the smallest radius per time step. A fall
+// tolerance tighter than the tolerance is raised to it (the fall never the hardest part).
+TEST(ToleranceSchedule, AutomaticFallSpeedAndNeverTighterThanTolerance) {
+  NscdParameters parameters = schedule(1e-6, 1e-3, 0.0);
+  parameters.fall_travel_fraction = 0.25;
+  const NscdIntegrator sim = dropped_sphere(10, parameters);
+  EXPECT_DOUBLE_EQ(sim.tolerance_schedule().fall_speed_m_per_s(), 0.25 * kRadius / kStep);
+  EXPECT_EQ(sim.tolerance_schedule().fall_tolerance(), 1e-3);
+  EXPECT_EQ(ToleranceSchedule(1e-4, 1e-6, 0.1).fall_tolerance(), 1e-4);
+  EXPECT_EQ(ToleranceSchedule(1e-4, 1e-6, 0.1).tolerance_for_step(1.0, 1), 1e-4);  // falling
 }

@@ -99,6 +99,12 @@ void print_accuracy_report(std::ostream& out, const AccuracyStudyResult& res,
       << " s\n";
   out << "reference: " << res.reference.description << "; "
       << fmt("%.3g", res.reference.wall_time_s) << " s\n";
+  // Errors near the bound measure the reference as much as the run.
+  if (std::isfinite(res.reference.error_bound_K))
+    out << "reference error bound: " << fmt("%.2e", res.reference.error_bound_K)
+        << " K (a max error below it is not resolved)\n";
+  else
+    out << "reference error bound: unknown (not an exact reference)\n";
   out << "explicit: forward Euler, h = " << opt.explicit_first_fraction
       << " x the stability bound (2/lambda_max = " << fmt("%.4g", res.stability_bound_s)
       << " s), then / " << opt.explicit_rung_factor << " per rung, " << opt.explicit_rungs

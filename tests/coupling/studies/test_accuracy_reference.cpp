@@ -7,23 +7,19 @@
 #include <vector>
 
 #include "coupling/studies/ExactThermalReference.h"
+#include "tests/coupling/studies/AffineTestNetworks.h"
 
 namespace tmdem::coupling {
 namespace {
 
-thermal::ThermalNetwork two_nodes(double C1, double C2, double H) {
-  thermal::ThermalNetwork net;
-  net.resize_nodes(2);
-  net.heat_capacity_J_per_K = {C1, C2};
-  net.surface_area_m2 = {1e-5, 2e-5};
-  net.add_edge(0, 1, H);
-  return net;
-}
+using testing::convection_settings;
+using testing::kAffineModes;
+using testing::two_node_network;
 
 // Two nodes: the mean sum C_i T_i / sum C_i stays, the difference decays at H (1/C1 + 1/C2).
 TEST(ExactThermalReference, TwoNodesMatchClosedForm) {
   const double C1 = 0.015, C2 = 0.004, H = 1e-3, T10 = 373.15, T20 = 293.15;
-  const auto sys = affine_thermal_system(two_nodes(C1, C2, H), {"contact_conduction"}, {});
+  const auto sys = affine_thermal_system(two_node_network(C1, C2, H), {"contact_conduction"}, {});
   ASSERT_TRUE(sys);
   const double Tm = (C1 * T10 + C2 * T20) / (C1 + C2);
   const double rate = H * (1.0 / C1 + 1.0 / C2);
@@ -37,7 +33,7 @@ TEST(ExactThermalReference, TwoNodesMatchClosedForm) {
 
 // One node with a held neighbour: T1 relaxes to the held temperature, which does not move.
 TEST(ExactThermalReference, HeldNodeKeepsItsTemperature) {
-  auto net = two_nodes(0.01, 0.02, 2e-3);
+  auto net = two_node_network(0.01, 0.02, 2e-3);
   net.held[1] = 1;
   const auto sys = affine_thermal_system(net, {"contact_conduction"}, {});
   ASSERT_TRUE(sys);
@@ -54,11 +50,8 @@ TEST(ExactThermalReference, AffineModesMatchClosedForm) {
   net.surface_area_m2[0] = 1.2e-5;
   net.heat_source_W[0] = 0.05;
   net.add_wall_edge(0, 350.0, 4e-4);
-  thermal::ModeSettings s;
-  s.set("convection", "coefficient", 20.0);
-  s.set("convection", "fluid_temperature", 280.0);
-  const auto sys = affine_thermal_system(
-      net, {"contact_conduction", "wall_conduction", "convection", "heat_source"}, s);
+  const auto s = convection_settings(20.0, 280.0);
+  const auto sys = affine_thermal_system(net, kAffineModes, s);
   ASSERT_TRUE(sys);
   const double hA = 20.0 * 1.2e-5, k = (4e-4 + hA) / 0.02;
   const double Tinf = (4e-4 * 350.0 + hA * 280.0 + 0.05) / (4e-4 + hA);
@@ -77,12 +70,12 @@ TEST(ExactThermalReference, AffineModesMatchClosedForm) {
 // unknown name is refused by the mode registry with the valid names.
 TEST(ExactThermalReference, RadiationHasNoExactReference) {
   std::string why;
-  EXPECT_FALSE(affine_thermal_system(two_nodes(1.0, 1.0, 1.0), {"contact_conduction", "radiation"},
+  EXPECT_FALSE(affine_thermal_system(two_node_network(1.0, 1.0, 1.0), {"contact_conduction", "radiation"},
                                      {}, &why));
   EXPECT_NE(why.find("radiation"), std::string::npos) << why;
   EXPECT_EQ(why.find("contact_conduction"), std::string::npos) << why;
   try {
-    (void)affine_thermal_system(two_nodes(1.0, 1.0, 1.0), {"something_new"}, {});
+    (void)affine_thermal_system(two_node_network(1.0, 1.0, 1.0), {"something_new"}, {});
     FAIL() << "an unknown mode name was accepted";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("contact_conduction"), std::string::npos) << e.what();
@@ -91,7 +84,7 @@ TEST(ExactThermalReference, RadiationHasNoExactReference) {
 
 // Properties that follow T make the network nonlinear, whatever its modes.
 TEST(ExactThermalReference, TemperatureDependentNetworkHasNoExactReference) {
-  auto net = two_nodes(1.0, 1.0, 1.0);
+  auto net = two_node_network(1.0, 1.0, 1.0);
   thermal::ModeSettings s;
   const auto linear = affine_thermal_system(net, {"contact_conduction"}, s);
   ASSERT_TRUE(linear);
@@ -105,7 +98,7 @@ TEST(ExactThermalReference, TemperatureDependentNetworkHasNoExactReference) {
 // loses about |A t| eps relative (observed 2e-12, 5e-10 K), far below the study's 1e-6 K target.
 TEST(ExactThermalReference, StiffPairOverLongTime) {
   const double C1 = 1e-5, C2 = 10.0, H = 1e-3, T10 = 400.0, T20 = 300.0;
-  const auto sys = affine_thermal_system(two_nodes(C1, C2, H), {"contact_conduction"}, {});
+  const auto sys = affine_thermal_system(two_node_network(C1, C2, H), {"contact_conduction"}, {});
   const double Tm = (C1 * T10 + C2 * T20) / (C1 + C2);
   const double rate = H * (1.0 / C1 + 1.0 / C2);
   for (double t : {1e-3, 0.05, 1e3}) {

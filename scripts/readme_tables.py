@@ -132,9 +132,9 @@ def piston_table(binary, work):
                           str(ROOT / "examples" / "conductivity" / "piston_bed.toml"),
                           "--pressures", PISTON_PRESSURES, "--csv", str(csv_path)],
                          cwd=work, check=True, capture_output=True, text=True)
-    # One settle line per load, in order: "settle: at rest after T s (N steps, ..." or the
-    # warning "not at rest after mechanics.settle_time = T s ...".
-    settles = re.findall(r"settle: at rest after \S+ s \((\d+) steps|(not at rest after "
+    # One settle line per load, in order: "settle: at rest (TEST test) after T s (N steps, ..."
+    # or the warning "not at rest after mechanics.settle_time = T s ...".
+    settles = re.findall(r"settle: at rest (?:\(\w+ test\) )?after \S+ s \((\d+) steps|(not at rest after "
                          r"mechanics\.settle_time = \S+ s)", out.stdout + out.stderr)
     rows = ["| pressure (Pa) | k_eff (W/(m K)) | porosity | coordination | L (mm) | "
             "contacts (+ walls) | settle steps |", "|---|---|---|---|---|---|---|"]

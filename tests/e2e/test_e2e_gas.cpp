@@ -77,6 +77,14 @@ TEST(EndToEndGas, UnknownModelAndReplayingStudiesAreRefusedByName) {
                           "(got \"voronoi\")"),
             std::string::npos) << r.output;
 
+  // A gas pressure rarefies the surrounding layer's gaps; the touching-pair closed form has none.
+  write_file(dir + "/s.toml", hovering_sphere().set({{"effects.gas_conduction", true},
+                                                     {"fluid.pressure", 100.0}}));
+  r = run_tmdem("check s.toml", dir);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("fluid.pressure: needs model = \"surrounding_layer\""), std::string::npos)
+      << r.output;
+
   // The replaying studies cannot follow near pairs (they record contacts, not positions).
   write_file(dir + "/s.toml", hovering_sphere().set({{"effects.gas_conduction", true},
                                                      {"effects.mechanics", "dynamic"}}));

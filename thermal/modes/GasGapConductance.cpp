@@ -54,8 +54,15 @@ double adaptive(F&& f, double a, double b, double tolerance, int depth) {
 
 }  // namespace
 
+double gas_jump_length_m(double pressure_Pa, double mean_free_path_at_1atm_m, double accommodation) {
+  if (!(pressure_Pa > 0.0)) return 0.0;
+  constexpr double kAtmosphere_Pa = 101325.0;
+  const double mean_free_path_m = mean_free_path_at_1atm_m * kAtmosphere_Pa / pressure_Pa;
+  return 2.0 * (2.0 - accommodation) / accommodation * mean_free_path_m;
+}
+
 double surrounding_layer_conductance_W_per_K(const GasGap& g, double k_f, double layer_fraction,
-                                             double min_gap_m) {
+                                             double min_gap_m, double jump_length_m) {
   const bool plane = std::isinf(g.radius_b_m);
   const double r_min = plane ? g.radius_a_m : std::min(g.radius_a_m, g.radius_b_m);
   const double r_max = plane ? g.radius_a_m : std::max(g.radius_a_m, g.radius_b_m);
@@ -93,12 +100,13 @@ double surrounding_layer_conductance_W_per_K(const GasGap& g, double k_f, double
     }
   }
   const double pi = std::numbers::pi;
-  double H = pi * (r_k * r_k - r_in * r_in) / min_gap_m;
+  double H = pi * (r_k * r_k - r_in * r_in) / (min_gap_m + jump_length_m);
   if (r_out > r_k) {
     // r = r_min sin(theta) removes the square-root end point at r = r_min.
     const auto f = [&](double theta) {
       const double r = r_min * std::sin(theta);
-      return 2.0 * pi * r * r_min * std::cos(theta) / std::max(min_gap_m, thickness(g, r));
+      return 2.0 * pi * r * r_min * std::cos(theta) /
+             (std::max(min_gap_m, thickness(g, r)) + jump_length_m);
     };
     const double t0 = std::asin(std::min(r_k / r_min, 1.0));
     const double t1 = std::asin(std::min(r_out / r_min, 1.0));

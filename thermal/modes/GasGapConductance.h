@@ -22,8 +22,18 @@ struct GasGap {
 // other body (at most r_min). Zero once the gap exceeds the layer. Evaluated as the exact
 // constant-S part plus adaptive Gauss-Kronrod (G7K15) in r = r_min sin(theta), relative
 // accuracy about 1e-12.
+// A rarefied gas (Smoluchowski): the gas meets each surface with a temperature jump, as if the
+// gap were wider by the jump length l (both surfaces together), so 1 / max(L_min, S(r)) becomes
+// 1 / (max(L_min, S(r)) + l); l = 0: continuum (gas_jump_length_m, below).
 double surrounding_layer_conductance_W_per_K(const GasGap& gap, double fluid_conductivity_W_per_mK,
-                                             double layer_fraction, double min_gap_m);
+                                             double layer_fraction, double min_gap_m,
+                                             double jump_length_m = 0.0);
+
+// The Smoluchowski jump length of both surfaces of a gap, as the VDI Heat Atlas writes it for
+// the Zehner-Schlunder-Bauer model: l = 2 (2 - gamma) / gamma * Lambda, with the accommodation
+// coefficient gamma in (0, 1] and the mean free path Lambda = Lambda_ref * p_ref / p (kinetic
+// theory at a fixed temperature; Lambda_ref at p_ref = 101325 Pa). m; 0 for p = 0 (continuum).
+double gas_jump_length_m(double pressure_Pa, double mean_free_path_at_1atm_m, double accommodation);
 
 // Vargas & McCarthy (2002) stagnant-fluid conductance of a touching pair, in the closed form
 // used by Kratos ThermalDEM (IndirectConductionVargas): with the mean radius R = (R_a + R_b)/2

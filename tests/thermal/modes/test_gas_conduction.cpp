@@ -65,7 +65,10 @@ double layer_integral_by_simpson(const GasGap& g, double layer_fraction, double 
 
 // Closed forms of the same integral (k_f = 1), u = sqrt(R^2 - r^2).
 // Equal spheres: S = D - 2u, int 2 pi r dr / S = 2 pi [-u/2 - (D/4) ln(D - 2u)] from u(r_hi) up.
-double equal_spheres_closed_form(double R, double gap, double a, double layer_fraction, double L) {
+// With a Smoluchowski jump l the integrand is 1 / (max(L, S) + l): D + l in place of D in the
+// logarithm's part, L + l in the constant part (r_k still where S = L).
+double equal_spheres_closed_form(double R, double gap, double a, double layer_fraction, double L,
+                                 double l = 0.0) {
   const double D = 2.0 * R + gap, P = R * (1.0 + layer_fraction);
   double r_out = R;
   if (D * D > P * P - R * R) {
@@ -76,22 +79,23 @@ double equal_spheres_closed_form(double R, double gap, double a, double layer_fr
   const double r_k = u_k < R ? std::clamp(std::sqrt(R * R - u_k * u_k), a, r_out) : a;
   const auto F = [&](double r) {
     const double u = std::sqrt(R * R - r * r);
-    return -0.5 * u - 0.25 * D * std::log(D - 2.0 * u);
+    return -0.5 * u - 0.25 * (D + l) * std::log(D + l - 2.0 * u);
   };
-  return kPi * (r_k * r_k - a * a) / L + 2.0 * kPi * (F(r_k) - F(r_out));
+  return kPi * (r_k * r_k - a * a) / (L + l) + 2.0 * kPi * (F(r_k) - F(r_out));
 }
 
 // Sphere and plane: S = h - u, int 2 pi r dr / S = 2 pi [-u - h ln(h - u)] from u(r_hi) up.
-double sphere_plane_closed_form(double R, double gap, double a, double layer_fraction, double L) {
+double sphere_plane_closed_form(double R, double gap, double a, double layer_fraction, double L,
+                                double l = 0.0) {
   const double h = R + gap, P = R * (1.0 + layer_fraction);
   const double r_out = std::min(R, std::sqrt(P * P - h * h));
   const double u_k = h - L;
   const double r_k = u_k < R ? std::clamp(std::sqrt(R * R - u_k * u_k), a, r_out) : a;
   const auto G = [&](double r) {
     const double u = std::sqrt(R * R - r * r);
-    return -u - h * std::log(h - u);
+    return -u - (h + l) * std::log(h + l - u);
   };
-  return kPi * (r_k * r_k - a * a) / L + 2.0 * kPi * (G(r_k) - G(r_out));
+  return kPi * (r_k * r_k - a * a) / (L + l) + 2.0 * kPi * (G(r_k) - G(r_out));
 }
 
 GasGap spheres(double Ra, double Rb, double gap, double a = 0.0) { return {Ra, Rb, gap, a}; }
@@ -116,6 +120,49 @@ TEST(GasGap, SurroundingLayerSpherePlaneMatchesClosedForm) {
     const double exact = sphere_plane_closed_form(kR, gap, a, kLayer, kL);
     EXPECT_NEAR(H / exact, 1.0, 1e-9) << "gap " << gap << " a " << a;
   }
+}
+
+// A rarefied gas: the Smoluchowski jump l widens every gap by l. Jump lengths from far below the
+// smallest gas thickness (1 bar of air is l = 1.7e-7 m) to far above the particle (near vacuum).
+TEST(GasGap, RarefiedSurroundingLayerMatchesClosedForm) {
+  for (const double l : {1e-9, 1.66e-7, 1e-5, 1e-3}) {
+    for (const auto& [gap, a] : {std::pair{0.0, 0.0}, {0.0, 2e-5}, {5e-8, 0.0}, {0.1 * kR, 0.0}}) {
+      const double H = surrounding_layer_conductance_W_per_K(spheres(kR, kR, gap, a), 1.0, kLayer, kL, l);
+      EXPECT_NEAR(H / equal_spheres_closed_form(kR, gap, a, kLayer, kL, l), 1.0, 1e-9)
+          << "spheres, l " << l << " gap " << gap << " a " << a;
+      const double Hp = surrounding_layer_conductance_W_per_K(plane(kR, gap, a), 1.0, kLayer, kL, l);
+      EXPECT_NEAR(Hp / sphere_plane_closed_form(kR, gap, a, kLayer, kL, l), 1.0, 1e-9)
+          << "plane, l " << l << " gap " << gap << " a " << a;
+    }
+  }
+}
+
+// The jump length as the VDI Heat Atlas writes it (l = 2 (2 - gamma) / gamma Lambda, Lambda
+// proportional to 1 / p), and the pressure trend it gives: H rises with the pressure towards the
+// continuum value, and at low pressure (l far above every gap) falls as the free-molecule limit
+// k_f pi (r_out^2 - a^2) / l, i.e. in proportion to p.
+TEST(GasGap, PressureTrendFromContinuumToFreeMolecules) {
+  EXPECT_EQ(gas_jump_length_m(0.0, 6.8e-8, 0.9), 0.0);  // continuum
+  EXPECT_NEAR(gas_jump_length_m(101325.0, 6.8e-8, 0.9), 2.0 * 1.1 / 0.9 * 6.8e-8, 1e-22);
+  EXPECT_NEAR(gas_jump_length_m(1013.25, 6.8e-8, 1.0), 2.0 * 6.8e-6, 1e-20);
+  const GasGap touching = spheres(kR, kR, 0.0);
+  const double continuum = surrounding_layer_conductance_W_per_K(touching, 0.026, kLayer, kL);
+  double previous = 0.0;
+  for (const double p : {1e-2, 1.0, 1e2, 1e4, 1e5, 1e7, 1e9}) {
+    const double H = surrounding_layer_conductance_W_per_K(touching, 0.026, kLayer, kL,
+                                                           gas_jump_length_m(p, 6.8e-8, 0.9));
+    EXPECT_GT(H, previous) << p << " Pa";
+    EXPECT_LT(H, continuum) << p << " Pa";
+    previous = H;
+  }
+  EXPECT_NEAR(previous / continuum, 1.0, 1e-3);  // 1e9 Pa: l = 1.7e-11 m
+  // Free molecules: r_out of equal spheres in a layer of 0.4 R (the layer sphere meets the
+  // other sphere at x = D/2 + (P^2 - R^2)/(2D)).
+  const double P = kR * (1.0 + kLayer), x = kR + (P * P - kR * kR) / (4.0 * kR);
+  const double r_out = std::sqrt(P * P - x * x);
+  const double l = gas_jump_length_m(1e-3, 6.8e-8, 0.9);  // 17 m
+  const double H = surrounding_layer_conductance_W_per_K(touching, 0.026, kLayer, kL, l);
+  EXPECT_NEAR(H / (0.026 * kPi * r_out * r_out / l), 1.0, 1e-4);
 }
 
 TEST(GasGap, SurroundingLayerMatchesQuadratureOfItsIntegral) {

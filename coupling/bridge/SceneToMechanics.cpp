@@ -53,6 +53,7 @@ mechanics::NscdParameters make_nscd_parameters(const Scene& scene) {
   p.fall_speed = scene.mechanics.fall_speed_m_per_s;
   p.tighten_steps = scene.mechanics.tighten_steps;
   p.stop_travel_fraction = scene.mechanics.stop_travel;
+  p.skip_out_of_reach = scene.mechanics.skip_out_of_reach;
   p.max_iterations = scene.mechanics.max_iterations;
   p.full_sweep_every = scene.mechanics.full_sweep_every;
   p.penetration_slop_fraction = scene.mechanics.penetration_slop;

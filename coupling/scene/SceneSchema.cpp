@@ -332,6 +332,11 @@ std::vector<Section> build_sections() {
                "its bodies by this fraction of the smallest radius per time_step, so that "
                "contacts under a load far above their weight are solved to the same speed "
                "error as the rest (docs/mechanics.md \"The defaults\"); 0: off"),
+        boolean("skip_out_of_reach", kNscd.skip_out_of_reach ? "true" : "false",
+                "leave out of each step's contact problem the candidates farther apart than "
+                "their two look-aheads (the bound on the step's motion the detector trusts): "
+                "about 2x faster while a large pour lands; off by default until validated "
+                "(docs/mechanics.md \"The defaults\")"),
         value("tighten_steps", "", std::to_string(kNscd.tighten_steps), "integer >= 1",
               "tolerance schedule: once the fall has ended, the tolerance goes from "
               "fall_tolerance to tolerance geometrically over this many steps (1: at once)"),

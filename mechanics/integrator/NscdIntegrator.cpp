@@ -279,6 +279,16 @@ void NscdIntegrator::setup_contacts(double h) {
     // diag(w_n, w_t, w_t) in the local frame.
     p.w_n[k] = inverse_mass;
     p.w_t[k] = inverse_mass + inverse_rotation;
+    // Out of reach this step (NscdParameters::skip_out_of_reach): the detector lists pairs for
+    // several steps (its margin, up to 2 radii while particles are fast), but within this one a
+    // pair can close only by the two look-aheads, the bound the detector itself trusts. Such a
+    // candidate leaves the problem (unsolvable) and the sweeps skip it.
+    if (parameters_.skip_out_of_reach) {
+      const double wall_ahead_m =
+          is_wall(j) && !wall_lookahead_.empty() ? wall_lookahead_[wall_index(j)] : 0.0;
+      const double reach_m = lookahead_[i] + (is_wall(j) ? wall_ahead_m : lookahead_[j]);
+      if (gap > reach_m) p.w_n[k] = 0.0;
+    }
     const double mu = contact_friction(materials_[particles_.material[i]], materials_[other_material]);
     p.mu[k] = mu;
 

@@ -335,7 +335,8 @@ std::vector<Section> build_sections() {
         boolean("skip_out_of_reach", kNscd.skip_out_of_reach ? "true" : "false",
                 "leave out of each step's contact problem the candidates farther apart than "
                 "their two look-aheads (the bound on the step's motion the detector trusts): "
-                "about 2x faster while a large pour lands; off by default until validated "
+                "about 2x faster while a large pour lands, but not exact (a struck particle can "
+                "outrun its own look-ahead), so off by default "
                 "(docs/mechanics.md \"The defaults\")"),
         value("tighten_steps", "", std::to_string(kNscd.tighten_steps), "integer >= 1",
               "tolerance schedule: once the fall has ended, the tolerance goes from "

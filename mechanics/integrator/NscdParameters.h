@@ -69,13 +69,16 @@ struct NscdParameters {
   // Largest distance per unit time, m/s, by which the position step moves an overlap out
   // (correction at most h * recovery_speed per step; 0 = no cap). No speed is made of it.
   double recovery_speed = 0.0;
-  // Candidates farther apart than their two look-aheads (the bound on this step's motion that
-  // the detector trusts) leave the step's problem. The 10,000-sphere pour's collapse: 95 steps
-  // in 199 s of CPU instead of 385 s, the same mean sweeps. With nlgs the trajectory keeps its
-  // bits (test_out_of_reach); with nncg and nlgs_block it does not (pour_3d: at rest after 297
-  // steps instead of 251, 20% less CPU), and on, three tests move (a resting nlgs_block pile
-  // drifts 2e-7 m in 10,000 steps instead of < 1e-9 m, an imported bed re-settles in 15 steps
-  // instead of <= 10, first_scene's last problem changes). Off by default until why is known.
+  // Candidates farther apart than their two look-aheads leave the step's problem. The
+  // 10,000-sphere pour's collapse: 95 steps in 199 s of CPU instead of 385 s, the same mean
+  // sweeps. Not exact: a look-ahead bounds a particle's motion from its own velocity, but a
+  // resting particle struck within the step moves at its striker's speed (impulses cross a
+  // rigid packing at once), and can then close a gap its own look-ahead did not foresee; the
+  // detector is safe because its margin follows the largest look-ahead of all. So a left-out
+  // pair may overlap after the step (the position step then removes it) and trajectories move:
+  // pour_3d with nncg at rest after 297 steps instead of 251, a resting nlgs_block pile drifts
+  // 2e-7 m in 10,000 steps instead of < 1e-9 m, an imported bed re-settles in 15 steps instead
+  // of <= 10. On a pile where nothing is struck it keeps the bits (test_out_of_reach). Off.
   bool skip_out_of_reach = false;
   // Candidate margin, as fractions of the largest radius (see ContactDetector).
   double min_margin_fraction = 0.1;

@@ -1,8 +1,9 @@
 // NscdParameters::skip_out_of_reach: candidates farther apart than their two look-aheads leave
 // the step's contact problem. Checked on a pile poured with nlgs (index order): while it falls
-// candidates are left out, and since a candidate out of reach is one Gauss-Seidel would have
-// left open (r = 0, no change, nothing added to the stop test), the pile lands on the same bits
-// as with every candidate in.
+// candidates are left out, and where nothing is struck hard enough to outrun the look-aheads a
+// candidate out of reach is one Gauss-Seidel would have left open (r = 0, no change, nothing
+// added to the stop test), so this pile lands on the same bits as with every candidate in. (A
+// resting particle struck within a step can outrun its own look-ahead: NscdParameters.h.)
 #include <gtest/gtest.h>
 
 #include <algorithm>

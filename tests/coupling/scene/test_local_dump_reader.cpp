@@ -1,10 +1,12 @@
 // [[import]] contacts: the LAMMPS / LIGGGHTS local dump reader gives the file's exact values of
 // the snapshot matching the particle dump (else the last); bad files are refused naming
-// FILE:LINE(:COLUMN).
+// FILE:LINE(:COLUMN); the import maps the dump's ids to scene particles and takes the normal
+// part of a force vector.
 #include <gtest/gtest.h>
 
 #include "coupling/scene/LocalDumpReader.h"
 #include "coupling/scene/PackingFile.h"
+#include "tests/coupling/scene/ImportFolder.h"
 #include "tests/coupling/SceneTestUtil.h"
 
 namespace tmdem::coupling::test {
@@ -96,6 +98,80 @@ TEST(LocalDump, BadFilesNameLineAndColumn) {
   EXPECT_EQ(local_error(local_snapshot(100, "id1 id2 fn", {}) + local_snapshot(200, "id1 id2 fn", {}),
                         {}, 150),
             "c.dump: no snapshot of timestep 150 (the one of p.dump); its timesteps: 100, 200");
+}
+
+// A scene file with its particle and contact dumps in a fresh folder.
+class SceneContactImport : public ImportFolder {
+ protected:
+  // Three 1 mm spheres side by side (ids 7, 3, 5 from x = 10 mm), at timestep 400.
+  std::string particles() const {
+    return file("p.dump",
+                "ITEM: TIMESTEP\n400\nITEM: NUMBER OF ATOMS\n3\nITEM: BOX BOUNDS ff ff ff\n0 1\n0 "
+                "1\n0 1\nITEM: ATOMS id x y z radius\n"
+                "5 0.014 0.005 0 0.001\n7 0.010 0.005 0 0.001\n3 0.012 0.005 0 0.001\n");
+  }
+  std::string scene(const TomlKeys& keys) const {
+    return base_scene().add("import", with({{"file", particles()}, {"material", "steel"}}, keys));
+  }
+};
+
+TEST_F(SceneContactImport, IdsMapToSceneParticlesAndTheNormalPartIsTaken) {
+  // base_scene has particles 0 and 1; the import's rows are sorted by id: 3 (x = 12 mm) is
+  // scene particle 2, 5 (x = 14 mm) is 3, 7 (x = 10 mm) is 4.
+  const auto contacts = file("c.dump", local_snapshot(400, "id1 id2 fx fy fz",
+                                                      {"3 7 -0.25 4e-3 0", "5 3 0.125 0 1e-3"}));
+  const Scene s = load_scene_text(scene({{"contacts", contacts}}), "test.toml");
+  const auto& f = s.imported_forces;
+  ASSERT_EQ(f.pairs.size(), 2u);  // sorted by scene ids
+  EXPECT_EQ(f.pairs[0].i, 2u);
+  EXPECT_EQ(f.pairs[0].j, 3u);
+  EXPECT_EQ(f.pairs[0].normal_force_N, 0.125);  // |F . n|, n along x
+  EXPECT_EQ(f.pairs[1].i, 2u);
+  EXPECT_EQ(f.pairs[1].j, 4u);
+  EXPECT_EQ(f.pairs[1].normal_force_N, 0.25);
+  ASSERT_EQ(f.wall_gap.size(), 5u);
+  EXPECT_FALSE(f.imported(0));
+  EXPECT_TRUE(f.imported(4));
+  EXPECT_EQ(f.wall_gap[2], 1e-3);  // the default
+  EXPECT_EQ(s.imports[0].contact_count, 2u);
+  EXPECT_EQ(s.imports[0].contacts_timestep, 400);
+
+  // Named columns, a scalar normal force.
+  const auto named = file("n.dump", local_snapshot(400, "c_p[1] c_p[2] c_f", {"7 3 0.5"}));
+  const Scene n = load_scene_text(
+      scene({{"contacts", named}, {"wall_gap", 0.01},
+             {"contact_columns", raw("{ id1 = \"c_p[1]\", id2 = \"c_p[2]\", normal_force = \"c_f\" }")}}),
+      "test.toml");
+  ASSERT_EQ(n.imported_forces.pairs.size(), 1u);
+  EXPECT_EQ(n.imported_forces.pairs[0].normal_force_N, 0.5);
+  EXPECT_EQ(n.imported_forces.wall_gap[3], 0.01);
+}
+
+TEST_F(SceneContactImport, ErrorsNameTheSceneKeyAndTheFilesLine) {
+  const auto unknown = file("u.dump", local_snapshot(400, "id1 id2 fn", {"7 3 1", "7 8 1"}));
+  expect_scene_error(scene({{"contacts", unknown}}),
+                     {"test.toml:", "import[0].contacts: ", "u.dump:11: particle id 8 is not in ",
+                      "p.dump"});
+  const auto twice = file("t.dump", local_snapshot(400, "id1 id2 fn", {"7 3 1", "3 7 1"}));
+  expect_scene_error(scene({{"contacts", twice}}),
+                     {"t.dump:11: the contact of particles 3 and 7 is also on line 10"});
+  const auto other_step = file("o.dump", local_snapshot(300, "id1 id2 fn", {}));
+  expect_scene_error(scene({{"contacts", other_step}}),
+                     {"o.dump: no snapshot of timestep 400 (the one of ", "p.dump); its timesteps: 300"});
+  expect_scene_error(scene({{"contact_columns", raw("{ id1 = \"a\" }")}}),
+                     {"import[0].contact_columns: goes with contacts"});
+  expect_scene_error(scene({{"contacts", unknown}, {"contact_columns", raw("{ force = [\"a\"] }")}}),
+                     {"force: expected 3 column names"});
+  // A particle file without ids cannot be matched.
+  const auto csv = file("p.csv", "x,y,z,radius\n0.010,0.005,0,0.001\n");
+  expect_scene_error(std::string(base_scene().add("import", {{"file", csv}, {"material", "steel"}, {"contacts", unknown}})),
+                     {"import[0].contacts: ", "p.csv: the particle file has no id column"});
+  // Hertz without mechanics: refused unless every particle comes with its forces.
+  const auto ok = file("ok.dump", local_snapshot(400, "id1 id2 fn", {"7 3 1"}));
+  expect_scene_error(std::string(base_scene()
+                                     .set("effects.mechanics", "off")
+                                     .add("import", {{"file", particles()}, {"material", "steel"}, {"contacts", ok}})),
+                     {"effects.mechanics: ", "import every particle with its forces"});
 }
 
 }  // namespace

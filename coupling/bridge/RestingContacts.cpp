@@ -28,9 +28,9 @@ ContactList resting_contacts(const Scene& scene, const mechanics::ParticleSet& p
       if (imported.imported(i)) load[i] = particle_mass_kg(scene, i) * Eigen::Vector3d(g[0], g[1], g[2]);
     for (const auto& c : imported.pairs) {
       pairs.emplace_back(std::int64_t(c.i), std::int64_t(c.j), c.normal_force_N);
-      const Eigen::Vector3d n = (particles.position[c.i] - particles.position[c.j]).normalized();
-      load[c.i] += c.normal_force_N * n;
-      load[c.j] -= c.normal_force_N * n;
+      const Eigen::Vector3d f(c.force_on_i_N[0], c.force_on_i_N[1], c.force_on_i_N[2]);
+      load[c.i] += f;
+      load[c.j] -= f;
     }
     for (std::size_t i = 0; i < particles.size(); ++i) {
       if (!imported.imported(i)) continue;

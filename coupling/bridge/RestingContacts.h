@@ -5,8 +5,9 @@
 // normal forces are the file's, and each one resting on a wall (gap <= wall_gap x radius)
 // carries the wall force that balances it:
 //   F_wall = max(0, -(m g + sum of its pair forces) . n_wall)   (N; n_wall into the domain)
-// the pair force on i from j being F_ij along (x_i - x_j)/|x_i - x_j|. Exact for a particle on
-// one wall or on mutually perpendicular walls (a box corner); a wall that would pull gets 0.
+// the pair forces being the file's force vectors (tangential parts included) when it has them,
+// else the normal forces along the centre line. Exact for a particle on one wall or on mutually
+// perpendicular walls (a box corner); a wall that would pull gets 0.
 #include "coupling/bridge/ContactList.h"
 #include "coupling/scene/Scene.h"
 #include "mechanics/model/ParticleSet.h"

@@ -81,26 +81,33 @@ void SceneBuilder::read_import_contacts(const SceneTable& t, const Packing& pack
       t.fail("contacts", at + "the contact of particles " + std::to_string(row.id1) + " and " +
                              std::to_string(row.id2) + " is also on line " +
                              std::to_string(previous->second));
-    double force_N = row.force[0];
-    if (forces.vector) {
-      // The normal part |F . n|, n the unit vector between the centres: the tangential part
-      // presses nothing together, and the sign convention of F (on which of the two) drops out.
-      const auto& a = scene_.particles[i].position_m;
-      const auto& b = scene_.particles[j].position_m;
-      double n[3], length = 0.0;
-      for (int d = 0; d < 3; ++d) {
-        n[d] = b[d] - a[d];
-        length += n[d] * n[d];
-      }
-      length = std::sqrt(length);
-      if (!(length > 0.0))
-        t.fail("contacts", at + "particles " + std::to_string(row.id1) + " and " +
-                               std::to_string(row.id2) + " have the same centre");
-      force_N = 0.0;
-      for (int d = 0; d < 3; ++d) force_N += row.force[d] * n[d] / length;
-      force_N = std::abs(force_N);
+    // n: the unit vector from j to i.
+    const auto& a = scene_.particles[i].position_m;
+    const auto& b = scene_.particles[j].position_m;
+    Vec3 n{};
+    double length = 0.0;
+    for (int d = 0; d < 3; ++d) {
+      n[d] = a[d] - b[d];
+      length += n[d] * n[d];
     }
-    imported.pairs.push_back({i, j, force_N});
+    length = std::sqrt(length);
+    if (!(length > 0.0))
+      t.fail("contacts", at + "particles " + std::to_string(row.id1) + " and " +
+                             std::to_string(row.id2) + " have the same centre");
+    for (auto& component : n) component /= length;
+    ImportedContact contact{i, j, row.force[0], {}};
+    if (forces.vector) {
+      // The normal part |F . n|: the tangential part presses nothing together. F is the force
+      // on one of the two (LIGGGHTS: on id1); its normal part pushes that one away from the
+      // other, which tells which one it is, so the convention need not be known.
+      double along = 0.0;
+      for (int d = 0; d < 3; ++d) along += row.force[d] * n[d];
+      contact.normal_force_N = std::abs(along);
+      for (int d = 0; d < 3; ++d) contact.force_on_i_N[d] = along >= 0.0 ? row.force[d] : -row.force[d];
+    } else {
+      for (int d = 0; d < 3; ++d) contact.force_on_i_N[d] = contact.normal_force_N * n[d];
+    }
+    imported.pairs.push_back(contact);
   }
   std::sort(imported.pairs.begin(), imported.pairs.end(), [](const auto& a, const auto& b) {
     return std::pair(a.i, a.j) < std::pair(b.i, b.j);

@@ -109,10 +109,13 @@ struct ImportReport {
 };
 
 // A pair contact with its normal force, from an [[import]] with contacts (a LAMMPS / LIGGGHTS
-// local dump): scene particle ids i < j, force in N.
+// local dump): scene particle ids i < j, forces in N. force_on_i_N: the whole contact force on
+// i when the file gives the vector (tangential part included), else the normal force along
+// (x_i - x_j)/|x_i - x_j|; the wall forces balance it (coupling/bridge/RestingContacts.h).
 struct ImportedContact {
   std::size_t i = 0, j = 0;
   double normal_force_N = 0.0;
+  Vec3 force_on_i_N{};
 };
 
 // The contacts and forces [[import]] read with its particles; effects.mechanics = "off" uses

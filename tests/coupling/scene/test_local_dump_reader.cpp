@@ -129,6 +129,10 @@ TEST_F(SceneContactImport, IdsMapToSceneParticlesAndTheNormalPartIsTaken) {
   EXPECT_EQ(f.pairs[1].i, 2u);
   EXPECT_EQ(f.pairs[1].j, 4u);
   EXPECT_EQ(f.pairs[1].normal_force_N, 0.25);
+  // The vector (-0.25, 4e-3, 0) pushes id 7 (x = 10 mm) away from id 3 (x = 12 mm): it acts on
+  // scene particle 4, so the force on particle 2 is its opposite, tangential part included.
+  EXPECT_EQ(f.pairs[1].force_on_i_N, (Vec3{0.25, -4e-3, 0.0}));
+  EXPECT_EQ(f.pairs[0].force_on_i_N, (Vec3{-0.125, 0.0, -1e-3}));  // id 5 pushes id 3 to -x
   ASSERT_EQ(f.wall_gap.size(), 5u);
   EXPECT_FALSE(f.imported(0));
   EXPECT_TRUE(f.imported(4));

@@ -76,10 +76,7 @@ TEST(EndToEndImportedForces, HertzConductancesOfTheDumpsForcesAndTheFloorCarries
   ASSERT_EQ(r.exit_code, 0) << r.output;
 
   H5::H5File f(dir + "/column.h5", H5F_ACC_RDONLY);
-  const auto pair = read_ints(f, "/contacts/pair");
-  const auto force = read_doubles(f, "/contacts/normal_force");
-  const auto H = read_doubles(f, "/contacts/conductance");
-  const auto offset = read_ints(f, "/frames/contact_offset");
+  const auto [pair, offset, force, H] = read_contact_data(f);
   const double W = kDensity * 4.0 / 3.0 * std::numbers::pi * std::pow(kRadius, 3) * kG;
   const double E_star = kE / (2.0 * (1.0 - kNu * kNu));
   // H = 2 k a, a = (3 F R* / (4 E*))^(1/3): R* = r/2 between spheres, r against the wall.

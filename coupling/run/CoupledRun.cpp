@@ -12,18 +12,18 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "coupling/common/ExitCode.h"
+#include "coupling/output/Checkpoint.h"
 #include "coupling/bridge/ContactHeatFlow.h"
 #include "coupling/bridge/ContactList.h"
 #include "coupling/bridge/DynamicNetwork.h"
 #include "coupling/bridge/RestingContacts.h"
-#include "coupling/bridge/SceneToMechanics.h"
-#include "coupling/bridge/ThermalDiagnostics.h"
-#include "coupling/bridge/ThermalNetworkBuilder.h"
-#include "coupling/common/ExitCode.h"
-#include "coupling/output/Checkpoint.h"
 #include "coupling/output/OutputError.h"
 #include "coupling/output/ProgressReporter.h"
 #include "coupling/output/ResultWriter.h"
+#include "coupling/bridge/SceneToMechanics.h"
+#include "coupling/bridge/ThermalDiagnostics.h"
+#include "coupling/bridge/ThermalNetworkBuilder.h"
 #include "coupling/run/CoupledRunLoop.h"
 #include "coupling/run/Interruption.h"
 #include "coupling/run/OutputPaths.h"
@@ -32,8 +32,8 @@
 #include "coupling/scene/HeatModes.h"
 #include "mechanics/integrator/NscdIntegrator.h"
 #include "thermal/integrators/IntegratorRegistry.h"
-#include "thermal/integrators/ThermalSolverError.h"
 #include "thermal/modes/ModeRegistry.h"
+#include "thermal/integrators/ThermalSolverError.h"
 
 namespace tmdem::coupling {
 

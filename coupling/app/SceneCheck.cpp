@@ -5,6 +5,7 @@
 
 #include "coupling/app/StepTravel.h"
 #include "coupling/bridge/ContactList.h"
+#include "coupling/bridge/RestingContacts.h"
 #include "coupling/bridge/SceneToMechanics.h"
 #include "coupling/bridge/ThermalDiagnostics.h"
 #include "coupling/run/ThermalProblem.h"
@@ -88,8 +89,12 @@ void check_scene(const Scene& scene, std::ostream& out) {
   ContactList contacts;
   const double g = std::hypot(scene.gravity_m_per_s2[0], scene.gravity_m_per_s2[1],
                               scene.gravity_m_per_s2[2]);
-  for (const auto& p : mechanics::find_touching_pairs(particles, make_mechanics_walls(scene), 1e-9))
-    contacts.add(p.i, p.j, particles.mass[std::size_t(p.i)] * g);
+  // Without mechanics, forces imported with the packing are the run's own: no estimate.
+  if (scene.effects.mechanics == MechanicsMode::Off && !scene.imported_forces.wall_gap.empty())
+    contacts = resting_contacts(scene, particles);
+  else
+    for (const auto& p : mechanics::find_touching_pairs(particles, make_mechanics_walls(scene), 1e-9))
+      contacts.add(p.i, p.j, particles.mass[std::size_t(p.i)] * g);
   const auto system = build_thermal_system(scene, contacts, &particles);
   out << "modes:";
   for (const auto& mode : system->modes()) out << " " << mode->name();

@@ -17,6 +17,7 @@
 #include "coupling/bridge/ContactHeatFlow.h"
 #include "coupling/bridge/ContactList.h"
 #include "coupling/bridge/DynamicNetwork.h"
+#include "coupling/bridge/RestingContacts.h"
 #include "coupling/output/OutputError.h"
 #include "coupling/output/ProgressReporter.h"
 #include "coupling/output/ResultWriter.h"
@@ -30,7 +31,6 @@
 #include "coupling/run/ThermalProblem.h"
 #include "coupling/scene/HeatModes.h"
 #include "mechanics/integrator/NscdIntegrator.h"
-#include "mechanics/detection/TouchingPairs.h"
 #include "thermal/integrators/IntegratorRegistry.h"
 #include "thermal/modes/ModeRegistry.h"
 #include "thermal/integrators/ThermalSolverError.h"
@@ -60,8 +60,7 @@ void CoupledRun::prepare_mechanics() {
   }
   const auto mode = scene_.effects.mechanics;
   if (mode == MechanicsMode::Off) {  // no mechanics: tangential force 0
-    for (const auto& p : mechanics::find_touching_pairs(particles_, make_mechanics_walls(scene_), 1e-9))
-      contacts_.add(p.i, p.j, 0.0);
+    contacts_ = resting_contacts(scene_, particles_);
     return;
   }
   nscd_ = make_nscd_integrator(scene_, particles_);

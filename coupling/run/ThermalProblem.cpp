@@ -4,10 +4,10 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "coupling/bridge/RestingContacts.h"
 #include "coupling/bridge/SceneToMechanics.h"
 #include "coupling/run/SceneRestTest.h"
 #include "coupling/scene/HeatModes.h"
-#include "mechanics/detection/TouchingPairs.h"
 #include "thermal/modes/ModeRegistry.h"
 
 namespace tmdem::coupling {
@@ -158,8 +158,7 @@ FrozenThermalProblem build_frozen_thermal_problem(const Scene& scene, ProgressRe
   switch (scene.effects.mechanics) {
     case MechanicsMode::Off: {
       const auto particles = make_particle_set(scene);
-      for (const auto& p : mechanics::find_touching_pairs(particles, make_mechanics_walls(scene), 1e-9))
-        problem.contacts.add(p.i, p.j, 0.0);
+      problem.contacts = resting_contacts(scene, particles);
       for (const auto& x : particles.position) problem.positions_m.push_back({x.x(), x.y(), x.z()});
       for (const auto& w : scene.walls) problem.wall_points_m.push_back(w.point_m);
       problem.system = build_thermal_system(scene, problem.contacts, &particles);

@@ -24,6 +24,7 @@ Packing read_csv_packing(std::string_view text, const std::string& file,
     }
     packing.rows.push_back(columns->read_row(fields, number));
     if (columns->has_id()) ids.push_back(columns->id_of(fields, number));
+    if (columns->has_id()) packing.rows.back().id = ids.back();
   }
   if (!columns) throw PackingFileError(file, 0, 0, "no header line (the file is empty)");
   if (packing.rows.empty()) throw PackingFileError(file, 0, 0, "no particle after the header");

@@ -72,9 +72,15 @@ Packing read_lammps_dump(std::string_view text, const std::string& file,
     const long long number = static_cast<long long>(k) + 1;
     packing.rows.push_back(columns.read_row(fields, number));
     if (columns.has_id()) ids.push_back(columns.id_of(fields, number));
+    if (columns.has_id()) packing.rows.back().id = ids.back();
   }
   columns.sort_by_id(packing.rows, ids);
   packing.ignored_columns = columns.ignored();
+  if (start + 1 < lines.size()) {
+    const auto fields = split_fields(lines[start + 1], ' ');
+    if (fields.size() == 1)
+      packing.timestep = FieldReader(file, static_cast<long long>(start) + 2).integer(fields[0], "TIMESTEP");
+  }
   packing.description = "last snapshot (line " + std::to_string(start + 1) + ")";
   return packing;
 }

@@ -22,6 +22,7 @@ struct PackingRow {
   std::optional<bool> fixed;
   std::optional<bool> fixed_temperature;
   std::optional<double> heat_source_W;
+  std::optional<long long> id;          // the file's id column (a dump's atom id)
   long long line = 0;  // 1-based line of the file (0: not a text file)
 };
 
@@ -29,6 +30,7 @@ struct Packing {
   std::vector<PackingRow> rows;
   std::vector<std::string> ignored_columns;  // columns the file has and the import does not read
   std::string description;                   // e.g. "frame 20 of 21 (t = 1 s)", "" if nothing to say
+  std::optional<long long> timestep;         // a LAMMPS dump's: the snapshot's ITEM: TIMESTEP
 };
 
 // A problem in a particle file, located "FILE:LINE:COLUMN" (column 1-based, in characters; 0

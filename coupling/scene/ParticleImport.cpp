@@ -60,6 +60,9 @@ std::string describe_import(const ImportReport& r) {
            " m), accepted up to " + brief(r.overlap_tolerance);
   else
     out += "no overlap";
+  if (!r.contacts_file.empty())
+    out += "; " + std::to_string(r.contact_count) + " pair contacts with forces from " +
+           r.contacts_file + " (timestep " + std::to_string(r.contacts_timestep) + ")";
   if (!r.ignored_columns.empty()) {
     out += "; ignored columns:";
     for (const auto& c : r.ignored_columns) out += " " + c;
@@ -159,8 +162,14 @@ void SceneBuilder::read_imports() {
       add_particle(position, radius, combined, report.origin + " (" + at + ")", t);
       import_of_.back() = static_cast<int>(scene_.imports.size());
     }
+    if (t.has("contacts")) read_import_contacts(t, packing, report.first_id, report);
+    else if (t.has("contact_columns") || t.has("wall_gap"))
+      t.fail(t.has("contact_columns") ? "contact_columns" : "wall_gap",
+             "goes with contacts (the local dump of the pair forces), which is not given");
     scene_.imports.push_back(std::move(report));
   }
+  auto& forces = scene_.imported_forces;
+  if (!forces.wall_gap.empty()) forces.wall_gap.resize(scene_.particles.size(), -1.0);
 }
 
 }  // namespace tmdem::coupling

@@ -102,6 +102,38 @@ struct ImportReport {
   double largest_overlap = 0.0;
   double largest_overlap_m = 0.0;
   std::string largest_overlap_between;
+  // contacts = "...": the local dump its pair forces came from, how many, of which timestep.
+  std::string contacts_file;
+  std::size_t contact_count = 0;
+  long long contacts_timestep = 0;
+};
+
+// A pair contact with its normal force, from an [[import]] with contacts (a LAMMPS / LIGGGHTS
+// local dump): scene particle ids i < j, forces in N. force_on_i_N: the whole contact force on
+// i when the file gives the vector (tangential part included), else the normal force along
+// (x_i - x_j)/|x_i - x_j|; the wall forces balance it (coupling/bridge/RestingContacts.h).
+struct ImportedContact {
+  std::size_t i = 0, j = 0;
+  double normal_force_N = 0.0;
+  Vec3 force_on_i_N{};
+};
+
+// The contacts and forces [[import]] read with its particles; effects.mechanics = "off" uses
+// them instead of touching pairs of zero force (coupling/bridge/RestingContacts.h).
+struct ImportedForces {
+  std::vector<ImportedContact> pairs;  // sorted by (i, j)
+  // Per scene particle: the gap to a wall, as a fraction of its radius, up to which it rests on
+  // the wall (its wall force then comes from its balance); < 0: its forces are not imported.
+  // Empty when no [[import]] has contacts.
+  std::vector<double> wall_gap;
+  bool imported(std::size_t particle) const {
+    return particle < wall_gap.size() && wall_gap[particle] >= 0.0;
+  }
+  bool covers_every_particle(std::size_t count) const {
+    for (std::size_t p = 0; p < count; ++p)
+      if (!imported(p)) return false;
+    return count > 0;
+  }
 };
 
 struct Effects {
@@ -175,6 +207,7 @@ struct Scene {
   std::vector<Particle> particles;
   std::vector<Wall> walls;
   std::vector<ImportReport> imports;  // one per [[import]], in file order
+  ImportedForces imported_forces;     // from [[import]] contacts; empty without
   // Every registered mode's parameters from its own section (defaults filled in), by mode name
   // and key: heat_modes.find("convection", "coefficient").
   thermal::ModeSettings heat_modes;

@@ -155,15 +155,23 @@ void SceneBuilder::read_settings() {
     th.conductance = t.choice("conductance");
     th.constant_conductance_W_per_K = t.number("constant_conductance");
     th.coupling = t.choice("coupling");
-    if (contacts_carry_heat(scene_.effects) && !mechanics_on && th.conductance == "hertz") {
+    // Forces imported with the packing ([[import]] contacts) stand in for the mechanics'.
+    if (contacts_carry_heat(scene_.effects) && !mechanics_on && th.conductance == "hertz" &&
+        !scene_.imported_forces.covers_every_particle(scene_.particles.size())) {
+      const std::string imported =
+          scene_.imported_forces.wall_gap.empty()
+              ? "import the packing with its forces ([[import]] contacts)"
+              : "import every particle with its forces ([[import]] contacts; some particles "
+                "have none)";
       if (t.has("conductance"))
         t.fail("conductance",
                "\"hertz\" needs contact forces but effects.mechanics = \"off\"; use "
-               "conductance = \"constant\" or mechanics = \"settle\" or \"dynamic\"");
+               "conductance = \"constant\" or mechanics = \"settle\" or \"dynamic\", or " +
+                   imported);
       const SceneTable effects = section("effects", true);
       effects.fail("mechanics",
                    "\"off\" leaves no contact forces for thermal.conductance = \"hertz\" "
-                   "(the default); set thermal.conductance = \"constant\"");
+                   "(the default); set thermal.conductance = \"constant\", or " + imported);
     }
   }
   {

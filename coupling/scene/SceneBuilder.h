@@ -15,6 +15,7 @@
 
 #include <toml++/toml.h>
 
+#include "coupling/scene/PackingFile.h"
 #include "coupling/scene/Scene.h"
 #include "coupling/scene/SceneError.h"
 #include "coupling/scene/SceneTable.h"
@@ -80,6 +81,10 @@ class SceneBuilder {
                    std::vector<double>& radii);
   // ParticleImport.cpp
   void read_imports();
+  // ContactImport.cpp: an [[import]]'s contacts = "local dump" (its particles are scene ids
+  // first .. first + packing.rows.size() - 1).
+  void read_import_contacts(const SceneTable& t, const Packing& packing, std::size_t first,
+                            ImportReport& report);
 
   SceneTable root_;
   std::string source_;

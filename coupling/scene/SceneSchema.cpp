@@ -260,11 +260,34 @@ std::vector<Section> build_sections() {
                number("overlap_tolerance", "", 1.0e-9, Range::closed(0.0, 0.5),
                       "overlap accepted between two particles of this import, and between one "
                       "of them and a wall, as a fraction of the smaller radius (settled packings "
-                      "overlap slightly); the largest found is reported")},
+                      "overlap slightly); the largest found is reported"),
+               value("contacts", "", "", "path of a regular file",
+                     "a LAMMPS/LIGGGHTS local dump (ITEM: ENTRIES ...) of the pair contacts "
+                     "with their forces in N, the snapshot of the particle dump's timestep (else "
+                     "the last); with effects.mechanics = \"off\" the run's contacts are these "
+                     "pairs and the walls the particles rest on (wall force from each particle's "
+                     "balance), so thermal.conductance = \"hertz\" can be used. Needs an id "
+                     "column in the particle file"),
+               table("contact_columns", Kind::Table,
+                     "the columns of contacts: { id1, id2, normal_force or force }"),
+               number("wall_gap", "", 1.0e-3, Range::closed(0.0, 0.5),
+                      "with contacts: a particle rests on a wall when its gap to it is at most "
+                      "wall_gap x its radius (overlaps included)")},
               concat(particle_settings(false),
                      {value("material", "", "", "a [[material]] name",
                             "material of every imported particle (else the file's material "
                             "column, or its type with type_materials)")}))},
+      {"contact_columns",
+       "the columns of an [[import]] contacts file, by name (LIGGGHTS `compute pc all "
+       "pair/gran/local pos id force`: id1 = \"c_pc[7]\", id2 = \"c_pc[8]\", force = "
+       "[\"c_pc[10]\", \"c_pc[11]\", \"c_pc[12]\"])",
+       {value("id1", "", "\"id1\"", "a column name", "id of the first particle"),
+        value("id2", "", "\"id2\"", "a column name", "id of the second particle"),
+        value("normal_force", "N", "\"fn\"", "a column name",
+              "the normal force, >= 0 (instead of force)"),
+        value("force", "N", "[\"fx\", \"fy\", \"fz\"]", "3 column names",
+              "the contact force vector; its normal part |F . n| (n: the unit vector between the "
+              "centres) is used. Neither given: fn if the file has it, else fx, fy, fz")}},
       {"assign",
        "changes selected particles: exactly one of ids, box, nearest; at least one setting",
        concat({value("ids", "", "", "integers >= 0, existing ids", "select these particle ids"),

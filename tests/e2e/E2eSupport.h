@@ -88,6 +88,18 @@ inline std::vector<long long> read_ints(const H5::H5File& f, const std::string& 
   return out;
 }
 
+// A result file's contacts: all frames' (pair: 2 per contact), frame f's being
+// offset[f] .. offset[f + 1] - 1.
+struct ResultContactData {
+  std::vector<long long> pair, offset;
+  std::vector<double> normal_force_N, conductance_W_per_K;
+};
+
+inline ResultContactData read_contact_data(const H5::H5File& f) {
+  return {read_ints(f, "/contacts/pair"), read_ints(f, "/frames/contact_offset"),
+          read_doubles(f, "/contacts/normal_force"), read_doubles(f, "/contacts/conductance")};
+}
+
 inline std::string read_string_attribute(const H5::H5Object& obj, const std::string& name) {
   H5::Attribute a = obj.openAttribute(name);
   std::string value;

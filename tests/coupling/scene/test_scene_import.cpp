@@ -10,6 +10,7 @@
 #include "coupling/scene/CsvPackingReader.h"
 #include "coupling/scene/CsvPackingWriter.h"
 #include "coupling/scene/LammpsDumpReader.h"
+#include "tests/coupling/scene/ImportFolder.h"
 #include "tests/coupling/SceneTestUtil.h"
 
 namespace tmdem::coupling::test {
@@ -129,23 +130,10 @@ TEST(ImportLammps, BadDumpsNameLineAndColumn) {
 }
 
 // A scene file and its particle files in a fresh folder; the scene is loaded from there.
-class SceneImport : public ::testing::Test {
+class SceneImport : public ImportFolder {
  protected:
-  void SetUp() override {
-    dir_ = std::filesystem::temp_directory_path() /
-           ("tmdem_import_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    std::filesystem::create_directories(dir_);
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-  std::string file(const std::string& name, const std::string& text) const {
-    const std::string path = (dir_ / name).string();
-    std::ofstream(path) << text;
-    return path;
-  }
   // base_scene (two particles, ids 0 and 1) plus one [[import]] with `keys`.
   std::string scene(const TomlKeys& keys) const { return base_scene().add("import", keys); }
-  std::filesystem::path dir_;
 };
 
 TEST_F(SceneImport, ParticlesFollowTheScenesOwnWithMaterialsScaleOffsetAndOverrides) {

@@ -83,6 +83,10 @@ int tmdem_main(int argc, char** argv) {
                        "skip explicit rungs whose steps x (particles + edges) exceed this "
                        "(default 2e9, a few seconds)")
       ->check(CLI::PositiveNumber);
+  accuracy->add_option("--implicit-budget", study_options.study.implicit_time_budget_s,
+                       "s: once an implicit run took longer, skip its method's tighter "
+                       "tolerances (default 60)")
+      ->check(CLI::NonNegativeNumber);
   std::string coupling_path, coupling_csv;
   auto* coupling = study->add_subcommand(
       "coupling", "compare how the thermal side follows a dynamic packing (continue, restart, explicit)");

@@ -117,7 +117,13 @@ void print_accuracy_report(std::ostream& out, const AccuracyStudyResult& res,
   }
   out << "implicit: relative tolerances";
   for (double t : opt.relative_tolerances) out << " " << fmt("%.0e", t);
-  out << ", absolute tolerance = relative tolerance (K)\n";
+  out << ", absolute tolerance = relative tolerance (K), loose to tight; a method's tighter "
+         "tolerances are skipped once one of its runs took over "
+      << fmt("%.3g", opt.implicit_time_budget_s) << " s\n";
+  for (const auto& s : res.skipped_tolerances)
+    out << "  skipped, over the time budget: " << s.method << "/" << s.linear_solver << " rtol "
+        << fmt("%.0e", s.relative_tolerance) << " (a looser run took " << fmt("%.3g", s.after_s)
+        << " s)\n";
   out << "timing: the integrator's initialize + advance only (steady_clock); runs under "
       << opt.repeat_below_s * 1e3 << " ms are repeated up to " << opt.max_timings
       << " times and the least time kept (cpu_time_s: thread CPU time of that run; well below "

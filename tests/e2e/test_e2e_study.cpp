@@ -106,6 +106,34 @@ TEST(EndToEndStudy, AccuracyStudyCsvAndConvergence) {
   EXPECT_EQ(tight, 2);
 }
 
+// --implicit-budget: once a method's run took longer, its tighter tolerances are skipped (a
+// tighter tolerance costs more). With a budget of 0 s every run is over it, so each implicit
+// method runs at its loosest tolerance only, and the others are listed as skipped.
+TEST(EndToEndStudy, ImplicitTimeBudgetSkipsTighterTolerances) {
+  const auto dir = scratch_dir("study_budget");
+  write_file(dir + "/lattice.toml", kStudyLattice);
+  const auto r = run_tmdem("study accuracy lattice.toml --csv out.csv --explicit-rungs 1 "
+                           "--implicit-budget 0 --set simulation.duration=20.0",
+                           dir);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream in(dir + "/out.csv");
+  std::string line;
+  ASSERT_TRUE(std::getline(in, line));
+  std::vector<std::string> implicit;
+  while (std::getline(in, line)) {
+    const auto c = split(line);
+    ASSERT_EQ(c.size(), 7u) << line;
+    if (c[0] != "explicit") {
+      implicit.push_back(c[0] + "/" + c[1]);
+      EXPECT_EQ(std::stod(c[2]), 1e-2) << line;  // the loosest only
+    }
+  }
+  EXPECT_EQ(implicit, (std::vector<std::string>{"cvode/klu", "cvode/pcg", "ida/klu", "ida/pcg"}));
+  for (const char* skipped : {"skipped, over the time budget: cvode/klu rtol 1e-04",
+                              "skipped, over the time budget: ida/pcg rtol 1e-10"})
+    EXPECT_NE(r.output.find(skipped), std::string::npos) << skipped << "\n" << r.output;
+}
+
 TEST(EndToEndStudy, ExitCodes) {
   const auto dir = scratch_dir("study_exit");
   write_file(dir + "/lattice.toml", kStudyLattice);

@@ -327,7 +327,8 @@ StepReport NscdIntegrator::step(double h) {
   if (!(h > 0.0) || !std::isfinite(h)) throw std::invalid_argument("mechanics: step must be > 0");
   StepReport report;
   const std::size_t n = particles_.size();
-  const double start_speed_m_per_s = schedule_.enabled() || stop_speed_m_per_s_ > 0.0 ? max_speed() : 0.0;
+  // Only the schedule reads it (and the cap, while the schedule says falling).
+  const double start_speed_m_per_s = schedule_.enabled() ? max_speed() : 0.0;
   report.tolerance = schedule_.enabled()
                          ? schedule_.tolerance_for_step(start_speed_m_per_s, stats_.steps + 1)
                          : parameters_.tolerance;

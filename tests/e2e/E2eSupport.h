@@ -22,9 +22,13 @@ struct ProgramResult {
   std::string output;  // stdout and stderr together
 };
 
-inline ProgramResult run_tmdem(const std::string& args, const std::string& workdir) {
+// `environment`: "VAR=value ..." for env(1) (e.g. "-u DISPLAY"), empty for the test's own.
+inline ProgramResult run_tmdem(const std::string& args, const std::string& workdir,
+                               const std::string& environment = "") {
   const std::string log = workdir + "/tmdem.log";
-  const std::string cmd = "cd '" + workdir + "' && '" + TMDEM_BINARY + "' " + args + " > '" + log + "' 2>&1";
+  const std::string program = (environment.empty() ? "" : "env " + environment + " ") + "'" +
+                              TMDEM_BINARY + "'";
+  const std::string cmd = "cd '" + workdir + "' && " + program + " " + args + " > '" + log + "' 2>&1";
   const int status = std::system(cmd.c_str());
   ProgramResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

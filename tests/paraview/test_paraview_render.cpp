@@ -21,21 +21,6 @@ bool have(const char* program) {
   return std::system(("command -v " + std::string(program) + " > /dev/null 2>&1").c_str()) == 0;
 }
 
-// `ENV tmdem ARGS` in DIR (ENV: variable assignments for the program, may be empty).
-ProgramResult run_with_env(const std::string& env, const std::string& args, const std::string& dir) {
-  const std::string log = dir + "/tmdem.log";
-  const std::string command = "cd '" + dir + "' && env " + env + " '" + TMDEM_BINARY + "' " + args +
-                              " > '" + log + "' 2>&1";
-  const int status = std::system(command.c_str());
-  ProgramResult r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(log);
-  std::stringstream text;
-  text << in.rdbuf();
-  r.output = text.str();
-  return r;
-}
-
 // 4 x 6 x 3 touching steel spheres settled on a floor at 373.15 K, heated for 120 s (frames at
 // 0, 60 and 120 s): after 120 s the bottom layer is near 340 K and the top one near 293 K.
 std::string heated_bed(const std::string& dir) {
@@ -132,7 +117,7 @@ TEST(Render, MissingPvbatchSaysWhatToInstall) {
   const auto dir = scratch_dir("render_no_pvbatch");
   heated_bed(dir);
   for (const std::string env : {"TMDEM_PVBATCH=/nonexistent/pvbatch", "PATH=/nonexistent"}) {
-    const auto r = run_with_env(env, "render bed.h5 -o bed.png", dir);
+    const auto r = run_tmdem("render bed.h5 -o bed.png", dir, env);
     EXPECT_EQ(r.exit_code, 4) << env << ": " << r.output;
     EXPECT_NE(r.output.find("pvbatch not found"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("python3-paraview"), std::string::npos) << r.output;

@@ -1,5 +1,7 @@
 #include "coupling/scene/LocalDumpReader.h"
 
+#include <cmath>
+
 #include <algorithm>
 
 #include "coupling/scene/PackingFile.h"
@@ -146,12 +148,14 @@ PairForces read_local_dump(std::string_view text, const std::string& file,
     const auto id = [&](std::size_t c) {
       const auto& field = fields[std::size_t(index[c])];
       const double value = read.number(field, needed[c]);
-      const auto whole = static_cast<long long>(value);
-      if (static_cast<double>(whole) != value)
+      // Whole and within 2^53 (every such double is an exact integer; the cast of one beyond
+      // long long's range is undefined, found by fuzz_packing).
+      constexpr double kLargestExactId = 9007199254740992.0;
+      if (!(value == std::floor(value) && std::abs(value) <= kLargestExactId))
         throw PackingFileError(file, number, field.column,
                                "column " + needed[c] + ": expected a particle id, got \"" +
                                    std::string(field.text) + "\"");
-      return whole;
+      return static_cast<long long>(value);
     };
     row.id1 = id(0);
     row.id2 = id(1);

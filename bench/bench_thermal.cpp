@@ -1,7 +1,8 @@
 // Cost of advancing the thermal network of a simple-cubic lattice (6-neighbour contacts, equal
 // conductances and capacities) over a fixed simulated time, per integrator:
-//   cvode/klu (BDF + sparse direct), cvode/pcg (BDF + Jacobi-preconditioned CG, matrix-free)
-//   and explicit (forward Euler at 0.9 of its stability bound).
+//   cvode/klu (BDF + sparse direct), cvode/pcg (BDF + CG preconditioned by IC(0), matrix-free),
+//   cvode/amg (BDF + CG preconditioned by a hypre BoomerAMG V-cycle) and explicit (forward Euler
+//   at 0.9 of its stability bound).
 // Lattices of 10^3, 22^3, 46^3 and 100^3 nodes (1e3 .. 1e6). The x = 0 face touches an
 // isothermal wall at 400 K, the x = L-1 face one at 300 K; the lattice starts at 300 K, so a
 // front diffuses in from one side (a smooth transient, as in a heated packing).
@@ -24,10 +25,12 @@
 #include <ctime>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "thermal/integrators/BoomerAmgPreconditioner.h"
 #include "thermal/integrators/IntegratorRegistry.h"
 #include "thermal/modes/ModeRegistry.h"
 #include "thermal/system/ThermalSystem.h"
@@ -38,11 +41,12 @@ using namespace tmdem::thermal;
 
 constexpr double kC_J_per_K = 1e-3;     // every node
 constexpr double kH_W_per_K = 1e-4;     // every contact and wall contact: H / C = 0.1 1/s
+constexpr double kStiffH_W_per_K = 0.1;  // the stiff_lattice cases: H / C = 100 1/s
 // 100 s of simulated time: 67 explicit steps (0.9 of the 1.67 s bound), ~60 BDF steps; the 1e6
 // cvode/pcg case then takes ~20 s.
 constexpr double kSimulatedTime_s = 100.0;
 
-ThermalNetwork lattice(int L) {
+ThermalNetwork lattice(int L, double H_W_per_K = kH_W_per_K) {
   ThermalNetwork net;
   const std::size_t n = std::size_t(L) * L * L;
   net.resize_nodes(n);
@@ -54,14 +58,14 @@ ThermalNetwork lattice(int L) {
   for (int z = 0; z < L; ++z)
     for (int y = 0; y < L; ++y)
       for (int x = 0; x < L; ++x) {
-        if (x + 1 < L) net.add_edge(id(x, y, z), id(x + 1, y, z), kH_W_per_K);
-        if (y + 1 < L) net.add_edge(id(x, y, z), id(x, y + 1, z), kH_W_per_K);
-        if (z + 1 < L) net.add_edge(id(x, y, z), id(x, y, z + 1), kH_W_per_K);
+        if (x + 1 < L) net.add_edge(id(x, y, z), id(x + 1, y, z), H_W_per_K);
+        if (y + 1 < L) net.add_edge(id(x, y, z), id(x, y + 1, z), H_W_per_K);
+        if (z + 1 < L) net.add_edge(id(x, y, z), id(x, y, z + 1), H_W_per_K);
       }
   for (int z = 0; z < L; ++z)
     for (int y = 0; y < L; ++y) {
-      net.add_wall_edge(id(0, y, z), 400.0, kH_W_per_K);
-      net.add_wall_edge(id(L - 1, y, z), 300.0, kH_W_per_K);
+      net.add_wall_edge(id(0, y, z), 400.0, H_W_per_K);
+      net.add_wall_edge(id(L - 1, y, z), 300.0, H_W_per_K);
     }
   return net;
 }
@@ -101,7 +105,9 @@ struct Method {
   const char* integrator;
   const char* solver;
 };
-constexpr Method kMethods[] = {{"cvode", "klu"}, {"cvode", "pcg"}, {"explicit", "klu"}};
+constexpr Method kMethods[] = {
+    {"cvode", "klu"}, {"cvode", "pcg"}, {"cvode", "amg"}, {"explicit", "klu"}};
+constexpr int kMethodCount = int(std::size(kMethods));
 
 // Cases known to take far too long on a 2-core machine, with the reason (measured growth).
 const char* skip_reason(int method, int L) {
@@ -111,7 +117,7 @@ const char* skip_reason(int method, int L) {
   return nullptr;
 }
 
-void BM_Lattice(benchmark::State& state, int method, int L) {
+void BM_Lattice(benchmark::State& state, int method, int L, double H_W_per_K) {
   if (const char* why = skip_reason(method, L)) {
     state.SkipWithError(why);
     for (auto _ : state) {
@@ -122,7 +128,7 @@ void BM_Lattice(benchmark::State& state, int method, int L) {
   std::vector<std::unique_ptr<HeatTransferMode>> modes;
   modes.push_back(make_heat_transfer_mode("contact_conduction", {}));
   modes.push_back(make_heat_transfer_mode("wall_conduction", {}));
-  ThermalSystem sys(lattice(L), std::move(modes));
+  ThermalSystem sys(lattice(L, H_W_per_K), std::move(modes));
   const std::size_t n = sys.size();
   const std::vector<double> T0(n, 300.0);
   IntegratorSettings settings;  // default tolerances (1e-6), explicit at 0.9 of its bound
@@ -165,15 +171,31 @@ void BM_Lattice(benchmark::State& state, int method, int L) {
 int main(int argc, char** argv) {
   // One run of a large case is already seconds of work: a fixed number of runs per case (more
   // for the small ones, whose times are short) instead of Google Benchmark's 0.5 s minimum.
-  for (int method = 0; method < 3; ++method)
+  // MPI and hypre start once per process (~0.3 s, BoomerAmgPreconditioner.h): not in a run's time.
+  { BoomerAmgPreconditioner warm_up; }
+  for (int method = 0; method < kMethodCount; ++method)
     for (int L : {10, 22, 46, 100}) {
       const auto& m = kMethods[method];
+      const bool explicit_method = std::string(m.integrator) == "explicit";
       const std::string name = std::string("lattice/") + m.integrator +
-                               (method == 2 ? "" : std::string("_") + m.solver) +
+                               (explicit_method ? "" : std::string("_") + m.solver) +
                                "/n=" + std::to_string(L * L * L);
-      benchmark::RegisterBenchmark(name.c_str(), BM_Lattice, method, L)
+      benchmark::RegisterBenchmark(name.c_str(), BM_Lattice, method, L, kH_W_per_K)
           ->Unit(benchmark::kMillisecond)
           ->Iterations(L <= 10 ? 20 : (L <= 22 && method != 0) ? 5 : 1);
+    }
+  // Stiff: H / C = 100 1/s, so over the same 100 s BDF's steps grow to ~10^3-10^4 times the
+  // fastest time scale, the Newton matrix I - gamma J is nearly the Laplacian, and IC(0)'s
+  // CG iterations grow with the lattice's width while a V-cycle's stay flat. Implicit methods
+  // only (the explicit bound is 1000x smaller).
+  for (int method = 1; method <= 2; ++method)
+    for (int L : {22, 46, 100}) {
+      const auto& m = kMethods[method];
+      const std::string name = std::string("stiff_lattice/") + m.integrator + "_" + m.solver +
+                               "/n=" + std::to_string(L * L * L);
+      benchmark::RegisterBenchmark(name.c_str(), BM_Lattice, method, L, kStiffH_W_per_K)
+          ->Unit(benchmark::kMillisecond)
+          ->Iterations(1);
     }
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;

@@ -395,7 +395,9 @@ std::vector<Section> build_sections() {
                "CVODE (BDF), IDA (DAE; held temperatures algebraic) or forward Euler"),
         choice("linear_solver", std::string(thermal::name_of(thermal::kDefaultLinearSolver)),
                names_of(thermal::linear_solver_names()),
-               "sparse direct (KLU) or preconditioned conjugate gradients"),
+               "sparse direct (KLU), conjugate gradients preconditioned by incomplete Cholesky (pcg) "
+               "or by an algebraic-multigrid V-cycle (amg, hypre BoomerAMG; also the steady "
+               "state of study conductivity)"),
         number("relative_tolerance", "", 1.0e-6, Range::greater(0.0), "integrator tolerance"),
         number("absolute_tolerance", "K", 1.0e-6, Range::greater(0.0), "integrator tolerance"),
         number("explicit_step", "s", 0.0, Range::at_least(0.0),

@@ -20,9 +20,12 @@ void print_conductivity_report(std::ostream& out, const ConductivityResult& r) {
   out << std::setprecision(10) << "heat in through the hot wall " << r.heat_hot_W
       << " W, out through the cold wall " << r.heat_cold_W << " W (relative difference "
       << std::setprecision(3) << r.balance_rel << ")\n"
-      << "steady state: " << r.newton_iterations << " Newton iterations, " << r.factorizations
-      << " KLU factorisation(s), largest residual "
-      << r.max_residual_W << " W\n";
+      << "steady state: " << r.newton_iterations << " Newton iterations, ";
+  if (r.linear_solver == "amg")
+    out << r.factorizations << " BoomerAMG setup(s), " << r.cg_iterations << " CG iterations";
+  else
+    out << r.factorizations << " KLU factorisation(s)";
+  out << ", largest residual " << r.max_residual_W << " W\n";
   for (const auto& m : r.modes)
     out << "  " << std::left << std::setw(20) << m.mode << std::right << " share "
         << std::setprecision(6) << m.share << "  (hot wall " << m.hot_wall_W + 0.0 << " W, cold wall "

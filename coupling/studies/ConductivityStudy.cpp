@@ -165,10 +165,16 @@ ConductivityResult measure_conductivity(const Scene& scene, const FrozenThermalP
   if (problem.settle) r.at_rest = problem.settle->at_rest;
 
   const auto& system = *problem.system;
-  const auto steady = thermal::solve_steady_state(system, problem.T0_K);
+  // thermal.linear_solver = "amg" solves the steady state with multigrid CG; klu and pcg with KLU.
+  thermal::SteadyStateOptions steady_options;
+  if (thermal::parse_linear_solver_kind(scene.thermal.linear_solver) == thermal::LinearSolverKind::Amg)
+    steady_options.linear_solver = thermal::LinearSolverKind::Amg;
+  const auto steady = thermal::solve_steady_state(system, problem.T0_K, steady_options);
   r.T_K = steady.T_K;
   r.newton_iterations = steady.newton_iterations;
   r.factorizations = steady.factorizations;
+  r.linear_solver = std::string(thermal::name_of(steady_options.linear_solver));
+  r.cg_iterations = steady.cg_iterations;
   r.max_residual_W = steady.max_residual_W;
   r.floating_particles = steady.floating_particles;
 

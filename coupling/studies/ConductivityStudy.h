@@ -56,7 +56,9 @@ struct ConductivityResult {
   std::size_t hot_wall_contacts = 0, cold_wall_contacts = 0;  // 0: no heat path through that wall
   std::size_t floating_particles = 0;  // exchange heat with nothing: kept at their start value
   int newton_iterations = 0;
-  int factorizations = 0;
+  int factorizations = 0;      // KLU factorisations or AMG setups
+  std::string linear_solver = "klu";  // of the steady state: "klu" or "amg"
+  long cg_iterations = 0;      // amg: conjugate-gradient iterations
   double max_residual_W = 0.0;
   bool at_rest = true;         // settled packings: came to rest within settle_time
   std::vector<ModeShare> modes;   // every switched-on mode, registry order

@@ -80,7 +80,8 @@ TEST_P(EndToEndBitwiseRestartLattice, TwoRestartsEqualTheUninterruptedRun) {
 
 INSTANTIATE_TEST_SUITE_P(EveryIntegrator, EndToEndBitwiseRestartLattice,
                          ::testing::Values(std::pair{"cvode", "klu"}, std::pair{"cvode", "pcg"},
-                                           std::pair{"ida", "klu"}, std::pair{"ida", "pcg"},
+                                           std::pair{"cvode", "amg"}, std::pair{"ida", "klu"},
+                                           std::pair{"ida", "pcg"}, std::pair{"ida", "amg"},
                                            std::pair{"explicit", "klu"}),
                          [](const auto& info) {
                            return std::string(info.param.first) + "_" + info.param.second;

@@ -38,6 +38,18 @@ inline std::unique_ptr<ThermalSystem> make_system(const ThermalNetwork& net,
   return std::make_unique<ThermalSystem>(net, std::move(built));
 }
 
+// J = d(dT/dt)/dT at 300 K in y = sqrt(C) T (the symmetric form the conjugate-gradient linear
+// solvers see), in pattern order.
+inline std::vector<double> scaled_jacobian(const ThermalSystem& sys) {
+  std::vector<double> v(sys.pattern().nonzeros());
+  std::vector<double> T(sys.size(), 300.0), scale(sys.size());
+  JacobianEvaluation J;
+  sys.evaluate_jacobian(T, J);
+  for (std::size_t i = 0; i < scale.size(); ++i) scale[i] = std::sqrt(sys.network().heat_capacity_J_per_K[i]);
+  sys.jacobian_values(J, v, scale);
+  return v;
+}
+
 // dT/dt = A T + b for the linear modes (contact and wall conduction, convection, sources);
 // held rows are zero.
 struct AffineSystem {
@@ -132,7 +144,8 @@ inline double balance_error_rel(const ThermalSystem& system, std::span<const dou
 // Every integrator / linear-solver pair (the explicit update ignores the linear solver).
 using IntegratorCase = std::tuple<std::string, std::string>;
 inline std::vector<IntegratorCase> all_integrator_cases() {
-  return {{"cvode", "klu"}, {"cvode", "pcg"}, {"ida", "klu"}, {"ida", "pcg"}, {"explicit", "klu"}};
+  return {{"cvode", "klu"}, {"cvode", "pcg"}, {"cvode", "amg"}, {"ida", "klu"},
+          {"ida", "pcg"},   {"ida", "amg"},   {"explicit", "klu"}};
 }
 inline std::string case_name(const IntegratorCase& c) {
   return std::get<0>(c) == "explicit" ? "explicit" : std::get<0>(c) + "_" + std::get<1>(c);

@@ -55,7 +55,7 @@ void CvodeIntegrator::initialize(double t0_s, std::span<const double> T0_K, doub
 
   create_linear_solver();
   check(CVodeSetLinearSolver(mem_.get(), LS_.get(), A_.get()), "CVodeSetLinearSolver");
-  if (pcg_) {
+  if (cg_) {
     check(CVodeSetJacTimes(mem_.get(), &CvodeIntegrator::jtimes_setup, &CvodeIntegrator::jtimes),
           "CVodeSetJacTimes");
     check(CVodeSetEpsLin(mem_.get(), kPcgEpsLin), "CVodeSetEpsLin");
@@ -117,7 +117,7 @@ IntegratorStats CvodeIntegrator::stats() const {
     CVodeGetNumSteps(mem_.get(), &v);               s.steps = v;
     CVodeGetNumRhsEvals(mem_.get(), &v);            s.rhs_evals = v;
     CVodeGetNumLinRhsEvals(mem_.get(), &v);         s.rhs_evals += v;
-    if (pcg_) { CVodeGetNumPrecEvals(mem_.get(), &v); } else { CVodeGetNumJacEvals(mem_.get(), &v); }
+    if (cg_) { CVodeGetNumPrecEvals(mem_.get(), &v); } else { CVodeGetNumJacEvals(mem_.get(), &v); }
     s.jacobian_evals = v;
     CVodeGetNumLinSolvSetups(mem_.get(), &v);       s.linear_setups = v;
     CVodeGetNumLinIters(mem_.get(), &v);            s.linear_iterations = v;

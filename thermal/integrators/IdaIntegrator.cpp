@@ -73,7 +73,7 @@ void IdaIntegrator::initialize(double t0_s, std::span<const double> T0_K, double
 
   create_linear_solver();
   check(IDASetLinearSolver(mem_.get(), LS_.get(), A_.get()), "IDASetLinearSolver");
-  if (pcg_) {
+  if (cg_) {
     check(IDASetJacTimes(mem_.get(), &IdaIntegrator::jtimes_setup, &IdaIntegrator::jtimes),
           "IDASetJacTimes");
     check(IDASetEpsLin(mem_.get(), kPcgEpsLin), "IDASetEpsLin");
@@ -132,7 +132,7 @@ IntegratorStats IdaIntegrator::stats() const {
     IDAGetNumSteps(mem_.get(), &v);               s.steps = v;
     IDAGetNumResEvals(mem_.get(), &v);            s.rhs_evals = v;
     IDAGetNumLinResEvals(mem_.get(), &v);         s.rhs_evals += v;
-    if (pcg_) { IDAGetNumPrecEvals(mem_.get(), &v); } else { IDAGetNumJacEvals(mem_.get(), &v); }
+    if (cg_) { IDAGetNumPrecEvals(mem_.get(), &v); } else { IDAGetNumJacEvals(mem_.get(), &v); }
     s.jacobian_evals = v;
     IDAGetNumLinSolvSetups(mem_.get(), &v);       s.linear_setups = v;
     IDAGetNumLinIters(mem_.get(), &v);            s.linear_iterations = v;

@@ -49,7 +49,7 @@ bool IncompleteCholesky::factor(std::span<const double> J_values, double scale,
   return true;
 }
 
-void IncompleteCholesky::solve(std::span<const double> r, std::span<double> z) const {
+void IncompleteCholesky::solve(std::span<const double> r, std::span<double> z) {
   const std::size_t n = start_.size() - 1;
   for (std::size_t i = 0; i < n; ++i) z[i] = r[i];
   for (std::size_t k = 0; k < n; ++k) {  // L y = r, column by column

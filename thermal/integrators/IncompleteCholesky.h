@@ -8,20 +8,21 @@
 #include <span>
 #include <vector>
 
+#include "thermal/integrators/NewtonPreconditioner.h"
 #include "thermal/system/JacobianPattern.h"
 
 namespace tmdem::thermal {
 
-class IncompleteCholesky {
+class IncompleteCholesky final : public NewtonPreconditioner {
  public:
   // Takes the lower triangle of `pattern` (symmetric, diagonal present) as L's pattern.
-  void analyse(const JacobianPattern& pattern);
+  void analyse(const JacobianPattern& pattern) override;
   // Factors A = scale * J + diag(shift), J given by its values in `pattern` order (both
   // triangles present), shift one value per row: the Newton matrix is formed on the fly, no copy
   // of it is kept. Returns false on a non-positive pivot (A not positive definite).
-  bool factor(std::span<const double> J_values, double scale, std::span<const double> shift);
+  bool factor(std::span<const double> J_values, double scale, std::span<const double> shift) override;
   // z = (L L^T)^-1 r.
-  void solve(std::span<const double> r, std::span<double> z) const;
+  void solve(std::span<const double> r, std::span<double> z) override;
 
  private:
   std::vector<std::int64_t> start_;  // n + 1, CSC columns of L

@@ -10,10 +10,12 @@
 namespace tmdem::thermal {
 
 enum class IntegratorKind { Cvode, Ida, Explicit };
-enum class LinearSolverKind { Klu, Pcg };
+enum class LinearSolverKind { Klu, Pcg, Amg };
 
 inline constexpr std::array<std::string_view, 3> kIntegratorNames{"cvode", "ida", "explicit"};
-inline constexpr std::array<std::string_view, 2> kLinearSolverNames{"klu", "pcg"};
+inline constexpr std::array<std::string_view, 3> kLinearSolverNames{"klu", "pcg", "amg"};
+// pcg and amg: conjugate gradients, preconditioned by IC(0) or by an algebraic-multigrid V-cycle.
+constexpr bool is_conjugate_gradients(LinearSolverKind k) { return k != LinearSolverKind::Klu; }
 
 // A scene that names no integrator or linear solver gets these: the one place they are set.
 inline constexpr IntegratorKind kDefaultIntegrator = IntegratorKind::Cvode;

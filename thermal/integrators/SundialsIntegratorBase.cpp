@@ -11,6 +11,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "thermal/integrators/BoomerAmgPreconditioner.h"
+#include "thermal/integrators/IncompleteCholesky.h"
 #include "thermal/integrators/IntegratorKind.h"
 #include "thermal/integrators/ThermalSolverError.h"
 
@@ -18,10 +20,11 @@ namespace tmdem::thermal {
 
 SundialsIntegratorBase::SundialsIntegratorBase(ThermalSystem& system,
                                                const IntegratorSettings& settings)
-    : system_(system), settings_(settings), pcg_(parse_linear_solver_kind(settings.linear_solver) == LinearSolverKind::Pcg) {
-  if (pcg_ && !system_.symmetric_jacobian())
+    : system_(system), settings_(settings),
+      cg_(is_conjugate_gradients(parse_linear_solver_kind(settings.linear_solver))) {
+  if (cg_ && !system_.symmetric_jacobian())
     throw std::invalid_argument(
-        "thermal.linear_solver = \"pcg\" needs a symmetric Jacobian, but " +
+        "thermal.linear_solver = \"" + settings.linear_solver + "\" needs a symmetric Jacobian, but " +
         std::string(system_.network().temperature_dependent()
                         ? "temperature-dependent material properties (a conductivity or "
                           "heat_capacity table) make it one-sided"
@@ -29,10 +32,17 @@ SundialsIntegratorBase::SundialsIntegratorBase(ThermalSystem& system,
                           "one-sidedly") +
         "; use \"klu\"");
   energy_state_ = system_.network().temperature_dependent();
-  if (pcg_) {
+  if (cg_) {
     scale_.resize(system_.size());
     for (std::size_t i = 0; i < scale_.size(); ++i)
       scale_[i] = std::sqrt(system_.network().heat_capacity_J_per_K[i]);
+    if (parse_linear_solver_kind(settings.linear_solver) == LinearSolverKind::Amg) {
+      auto amg = std::make_unique<BoomerAmgPreconditioner>();
+      amg->set_state_scale(scale_);
+      preconditioner_ = std::move(amg);
+    } else {
+      preconditioner_ = std::make_unique<IncompleteCholesky>();
+    }
   }
 }
 
@@ -73,7 +83,7 @@ bool SundialsIntegratorBase::begin(double t0_s, std::span<const double> T0_K,
 
 void SundialsIntegratorBase::create_linear_solver() {
   const auto n = sunindextype(system_.size());
-  if (pcg_) {
+  if (cg_) {
     LS_ = checked_sundials_object<LinearSolverPtr>(
         SUNLinSol_PCG(y_.get(), SUN_PREC_LEFT, std::min<int>(kMaxPcgIterations, int(n) + 1), ctx_),
         "SUNLinSol_PCG");
@@ -92,7 +102,7 @@ void SundialsIntegratorBase::create_linear_solver() {
 
 bool SundialsIntegratorBase::pattern_changed() {
   if (system_.topology_version() == topology_seen_) return false;
-  if (!pcg_) {
+  if (!cg_) {
     const auto nnz = sunindextype(system_.pattern().nonzeros());
     if (SUNLinSol_KLUReInit(LS_.get(), A_.get(), nnz, SUNKLU_REINIT_FULL) != 0)
       throw ThermalSolverError("SUNLinSol_KLUReInit failed for " + std::to_string(nnz) +
@@ -138,7 +148,7 @@ bool SundialsIntegratorBase::setup_preconditioner(N_Vector y, bool reuse_jacobia
                                                   double diagonal_held) {
   const auto& p = system_.pattern();
   if (preconditioner_topology_ != system_.topology_version()) {
-    preconditioner_.analyse(p);
+    preconditioner_->analyse(p);
     jacobian_values_.assign(p.nonzeros(), 0.0);
     preconditioner_topology_ = system_.topology_version();
     reuse_jacobian = false;
@@ -151,11 +161,11 @@ bool SundialsIntegratorBase::setup_preconditioner(N_Vector y, bool reuse_jacobia
   const auto& held = system_.network().held;
   newton_shift_.resize(held.size());
   for (std::size_t i = 0; i < held.size(); ++i) newton_shift_[i] = held[i] ? diagonal_held : diagonal_free;
-  return preconditioner_.factor(jacobian_values_, jacobian_factor, newton_shift_);
+  return preconditioner_->factor(jacobian_values_, jacobian_factor, newton_shift_);
 }
 
-void SundialsIntegratorBase::apply_preconditioner(N_Vector r, N_Vector z) const {
-  preconditioner_.solve(nvector_view(r), nvector_view(z));
+void SundialsIntegratorBase::apply_preconditioner(N_Vector r, N_Vector z) {
+  preconditioner_->solve(nvector_view(r), nvector_view(z));
 }
 
 double SundialsIntegratorBase::boundary_heat_J() const {

@@ -1,17 +1,18 @@
 #pragma once
-// What the CVODES and IDAS integrators share: the state vectors (y = sqrt(C) T with "pcg",
-// y = T with "klu"), the linear solver objects, the boundary-heat quadrature, error capture and
+// What the CVODES and IDAS integrators share: the state vectors (y = sqrt(C) T with "pcg" and
+// "amg", y = T with "klu"), the linear solver objects, the boundary-heat quadrature, error capture and
 // statistics across re-initialisations. Each derived class adds its solver's memory and
 // trampolines.
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_linearsolver.h>
 #include <sundials/sundials_matrix.h>
 
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
-#include "thermal/integrators/IncompleteCholesky.h"
+#include "thermal/integrators/NewtonPreconditioner.h"
 #include "thermal/integrators/SundialsContext.h"
 #include "thermal/integrators/SundialsHandles.h"
 #include "thermal/integrators/ThermalIntegrator.h"
@@ -59,13 +60,13 @@ class SundialsIntegratorBase : public ThermalIntegrator {
   std::span<const double> jacobian_scale();
   // Writes the system's pattern and J = d(dT/dt)/dT (scaled) at y into the sparse matrix.
   bool fill_jacobian(N_Vector y, SUNMatrix J);
-  // "pcg" preconditioner: IC(0) of the Newton matrix
+  // "pcg" / "amg" preconditioner: IC(0) or a BoomerAMG V-cycle of the Newton matrix
   //   M = jacobian_factor * J + diag(free particles: diagonal_free, held: diagonal_held)
   // (CVODES: -gamma, 1, 1; IDAS: -1, cj, 1). reuse_jacobian: keep the J values of the last
   // setup (only the shift changed). Returns false if the factorization broke down.
   bool setup_preconditioner(N_Vector y, bool reuse_jacobian, double jacobian_factor,
                             double diagonal_free, double diagonal_held);
-  void apply_preconditioner(N_Vector r, N_Vector z) const;
+  void apply_preconditioner(N_Vector r, N_Vector z);
   void record_reinitialization(const IntegratorStats& current);
   IntegratorStats with_history(IntegratorStats current) const;
 
@@ -88,7 +89,7 @@ class SundialsIntegratorBase : public ThermalIntegrator {
 
   ThermalSystem& system_;
   IntegratorSettings settings_;
-  bool pcg_ = false;
+  bool cg_ = false;  // "pcg" or "amg": conjugate gradients on y = sqrt(C) T, else KLU on y = T
   // Declaration order is destruction order reversed: the solver (refers to A_ and y_) goes
   // first, then the matrix, the vectors, and the context they were all created in last.
   SundialsContext ctx_;
@@ -103,7 +104,7 @@ class SundialsIntegratorBase : public ThermalIntegrator {
   std::vector<double> jacobian_scale_;  // C(T_work_) for the enthalpy state
   std::vector<double> T_work_, dT_work_;
   JacobianEvaluation mode_jacobian_;     // d q / d T at the last Jacobian or preconditioner setup
-  IncompleteCholesky preconditioner_;
+  std::unique_ptr<NewtonPreconditioner> preconditioner_;  // IC(0) or BoomerAMG, with cg_
   std::vector<double> jacobian_values_;  // pattern order, scaled
   std::vector<double> newton_shift_;     // diagonal added to scale * J, per particle
   std::uint64_t preconditioner_topology_ = ~std::uint64_t{0};

@@ -21,7 +21,7 @@ struct IntegratorStats {
 };
 
 struct IntegratorSettings {
-  std::string linear_solver = "klu";   // klu | pcg (cvode, ida)
+  std::string linear_solver = "klu";   // klu | pcg | amg (cvode, ida)
   double relative_tolerance = 1.0e-6;
   double absolute_tolerance_K = 1.0e-6;
   double explicit_step_s = 0.0;        // 0: 0.9 of the stability bound

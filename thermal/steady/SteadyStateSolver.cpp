@@ -5,9 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numeric>
 #include <string>
 
+#include "thermal/integrators/BoomerAmgPreconditioner.h"
 #include "thermal/integrators/SundialsContext.h"
 #include "thermal/integrators/SundialsHandles.h"
 
@@ -72,6 +74,11 @@ SteadyState solve_steady_state(const ThermalSystem& system, std::span<const doub
   const auto solved = solved_nodes(system, J);
   for (std::size_t i = 0; i < n; ++i) out.floating_particles += !net.held[i] && !solved[i];
 
+  const bool amg = options.linear_solver == LinearSolverKind::Amg;
+  if (amg && !system.symmetric_jacobian())
+    throw ThermalSolverError(
+        "steady state: linear_solver \"amg\" needs a symmetric Jacobian, but temperature-"
+        "dependent properties or pair radiation make it one-sided; use \"klu\"");
   SundialsContext ctx;
   auto x = make_serial_vector(sunindextype(n), ctx, "steady-state correction");
   auto b = make_serial_vector(sunindextype(n), ctx, "steady-state residual");
@@ -79,13 +86,21 @@ SteadyState solve_steady_state(const ThermalSystem& system, std::span<const doub
       SUNSparseMatrix(sunindextype(n), sunindextype(n), sunindextype(pattern.nonzeros()), CSC_MAT,
                       ctx),
       "SUNSparseMatrix");
-  auto LS = checked_sundials_object<LinearSolverPtr>(SUNLinSol_KLU(x.get(), A.get(), ctx),
-                                                     "SUNLinSol_KLU");
-  // Symmetric pattern: AMD ordering (as the integrators use).
-  if (SUNLinSol_KLUSetOrdering(LS.get(), 0) != 0)
-    throw ThermalSolverError("SUNLinSol_KLUSetOrdering failed");
-  if (const int flag = SUNLinSolInitialize(LS.get()); flag != 0)
-    throw ThermalSolverError("SUNLinSolInitialize (KLU) failed", flag);
+  LinearSolverPtr LS;
+  std::unique_ptr<BoomerAmgPreconditioner> multigrid;
+  if (amg) {
+    multigrid = std::make_unique<BoomerAmgPreconditioner>();
+    multigrid->analyse(pattern);
+  } else {
+    LS = checked_sundials_object<LinearSolverPtr>(SUNLinSol_KLU(x.get(), A.get(), ctx),
+                                                  "SUNLinSol_KLU");
+    // Symmetric pattern: AMD ordering (as the integrators use).
+    if (SUNLinSol_KLUSetOrdering(LS.get(), 0) != 0)
+      throw ThermalSolverError("SUNLinSol_KLUSetOrdering failed");
+    if (const int flag = SUNLinSolInitialize(LS.get()); flag != 0)
+      throw ThermalSolverError("SUNLinSolInitialize (KLU) failed", flag);
+  }
+  std::vector<double> zero_shift(amg ? n : 0, 0.0);
 
   std::vector<double> q(n);
   double* values = SM_DATA_S(A.get());
@@ -112,21 +127,48 @@ SteadyState solve_steady_state(const ThermalSystem& system, std::span<const doub
       values[pattern.slot_ab[e]] += J.edge_W_per_K[e] + J.edge_ab_W_per_K[e];
       values[pattern.slot_ba[e]] += J.edge_W_per_K[e] + J.edge_ba_W_per_K[e];
     }
+    if (amg) {
+      // CG needs a positive definite matrix: -J on the solved block (a Laplacian with a sink),
+      // the identity elsewhere (its rows are 1 already), and q as the right-hand side.
+      for (std::size_t i = 0; i < n; ++i) {
+        if (!solved[i]) continue;
+        rhs[i] = -rhs[i];
+        for (auto s = pattern.column_start[i]; s < pattern.column_start[i + 1]; ++s)
+          values[s] = -values[s];
+      }
+    }
     // A linear network (or a converged nonlinear one) gives the same matrix again: keep its
     // factors. The factorisation is nearly all the cost (a 40^3 lattice: ~70 s for KLU).
     const bool same_matrix = it > 1 && std::equal(values, values + pattern.nonzeros(),
                                                   factored_values.begin());
     if (!same_matrix) {
-      if (const int flag = SUNLinSolSetup(LS.get(), A.get()); flag != 0)
+      if (amg) {
+        if (!multigrid->factor({values, pattern.nonzeros()}, 1.0, zero_shift))
+          throw ThermalSolverError("steady state: BoomerAMG could not set up its hierarchy "
+                                   "(Newton iteration " + std::to_string(it) + ")");
+      } else if (const int flag = SUNLinSolSetup(LS.get(), A.get()); flag != 0) {
         throw ThermalSolverError("steady state: KLU could not factorise the conductance matrix "
                                  "(flag " + std::to_string(flag) + ", Newton iteration " +
                                  std::to_string(it) + "): singular or ill-conditioned", flag);
+      }
       factored_values.assign(values, values + pattern.nonzeros());
       ++out.factorizations;
     }
-    if (const int flag = SUNLinSolSolve(LS.get(), A.get(), x.get(), b.get(), 0.0); flag != 0)
+    if (amg) {
+      std::fill(dT, dT + n, 0.0);
+      const auto cg = multigrid->solve_cg({rhs, n}, {dT, n}, options.cg_tolerance,
+                                          options.max_cg_iterations);
+      out.cg_iterations += cg.iterations;
+      if (!cg.converged)
+        throw ThermalSolverError(
+            "steady state: conjugate gradients with BoomerAMG did not reach the relative "
+            "residual " + std::to_string(options.cg_tolerance) + " in " +
+            std::to_string(cg.iterations) + " iterations (reached " +
+            std::to_string(cg.relative_residual) + ", Newton iteration " + std::to_string(it) + ")");
+    } else if (const int flag = SUNLinSolSolve(LS.get(), A.get(), x.get(), b.get(), 0.0); flag != 0) {
       throw ThermalSolverError("steady state: KLU solve failed (flag " + std::to_string(flag) +
                                ", Newton iteration " + std::to_string(it) + ")", flag);
+    }
     double max_dT = 0.0, max_T = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
       if (!std::isfinite(dT[i]))

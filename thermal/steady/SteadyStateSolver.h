@@ -14,6 +14,7 @@
 #include <span>
 #include <vector>
 
+#include "thermal/integrators/IntegratorKind.h"
 #include "thermal/system/ThermalSystem.h"
 
 namespace tmdem::thermal {
@@ -23,12 +24,21 @@ struct SteadyStateOptions {
   // Converged when the largest Newton correction is at most this times (1 K + max |T|), or
   // when it stalls below 1e-9 times that (round-off of an ill-conditioned matrix).
   double relative_tolerance = 1e-13;
+  // Klu (and Pcg): each Newton system factorised by KLU. Amg: solved by hypre's conjugate
+  // gradients with a BoomerAMG V-cycle (BoomerAmgPreconditioner.h) to cg_tolerance; Newton's
+  // next step corrects what CG left (iterative refinement), so the answer is the same to the
+  // Newton tolerance, in memory linear in the bed instead of KLU's fill-in. Needs a symmetric
+  // Jacobian (no temperature-dependent properties, no pair radiation).
+  LinearSolverKind linear_solver = LinearSolverKind::Klu;
+  double cg_tolerance = 1e-12;  // relative residual of each CG solve
+  int max_cg_iterations = 1000;
 };
 
 struct SteadyState {
   std::vector<double> T_K;
   int newton_iterations = 0;
-  int factorizations = 0;          // KLU factorisations (a linear network: 1)
+  int factorizations = 0;          // KLU factorisations or AMG setups (a linear network: 1)
+  long cg_iterations = 0;          // Amg: conjugate-gradient iterations over all Newton steps
   double max_correction_K = 0.0;   // of the last Newton step
   double max_residual_W = 0.0;     // largest |q_i| over the free, anchored particles at T_K
   std::size_t floating_particles = 0;  // kept at their starting temperature (see above)

@@ -13,18 +13,6 @@ using namespace tmdem::thermal::testing;
 
 namespace {
 
-// J in y = sqrt(C) T, in pattern order (symmetric).
-std::vector<double> scaled_jacobian(const ThermalSystem& sys) {
-  std::vector<double> v(sys.pattern().nonzeros());
-  std::vector<double> T(sys.size(), 300.0);
-  JacobianEvaluation J;
-  sys.evaluate_jacobian(T, J);
-  std::vector<double> scale(sys.size());
-  for (std::size_t i = 0; i < scale.size(); ++i) scale[i] = std::sqrt(sys.network().heat_capacity_J_per_K[i]);
-  sys.jacobian_values(J, v, scale);
-  return v;
-}
-
 // A = I - gamma J, in pattern order.
 std::vector<double> newton_values(const ThermalSystem& sys, double gamma) {
   auto v = scaled_jacobian(sys);

@@ -12,6 +12,7 @@ TEST(IntegratorKind, EveryNameRoundTrips) {
   for (auto name : linear_solver_names()) EXPECT_EQ(name_of(parse_linear_solver_kind(name)), name);
   EXPECT_EQ(parse_integrator_kind("explicit"), IntegratorKind::Explicit);
   EXPECT_EQ(parse_linear_solver_kind("pcg"), LinearSolverKind::Pcg);
+  EXPECT_EQ(parse_linear_solver_kind("amg"), LinearSolverKind::Amg);
 }
 
 TEST(IntegratorKind, UnknownNamesListTheValidOnes) {

@@ -125,8 +125,10 @@ TEST_P(ChainTest, MatchesExactModalSolution) {
 INSTANTIATE_TEST_SUITE_P(Integrators, ChainTest,
                          ::testing::Values(std::make_tuple("cvode", "klu"),
                                            std::make_tuple("cvode", "pcg"),
+                                           std::make_tuple("cvode", "amg"),
                                            std::make_tuple("ida", "klu"),
                                            std::make_tuple("ida", "pcg"),
+                                           std::make_tuple("ida", "amg"),
                                            std::make_tuple("explicit", "klu")));
 
 TEST(Explicit, StepAboveBoundIsRefusedWithTheBound) {

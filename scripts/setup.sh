@@ -20,7 +20,7 @@ packages=(build-essential cmake pkg-config libsundials-dev libsuitesparse-dev li
           libhdf5-dev libgtest-dev libbenchmark-dev libtomlplusplus-dev libcli11-dev
           nlohmann-json3-dev libfclib-dev libhypre-dev python3-matplotlib python3-h5py python3-siconos
           python3-pybind11 python3-pytest
-          liggghts  # a real DEM code whose packings and forces the suite imports (docs/import-dem.md)
+          liggghts lammps  # real DEM codes whose packings and forces the suite imports (docs/import-dem.md)
           clang-14 libclang-rt-14-dev)  # clang: the sanitizer build and libFuzzer (build-asan/)
 [ "$with_paraview" -eq 1 ] && packages+=(paraview python3-paraview xvfb xauth)
 missing=()

@@ -18,7 +18,9 @@
 #include "mechanics/solvers/ContactSolverRegistry.h"
 #include "mechanics/contact/NaturalMapResidual.h"
 #include "mechanics/integrator/NscdIntegrator.h"
+#include "mechanics/solvers/NncgSolver.h"
 #include "mechanics/solvers/SpatialContactOrder.h"
+#include "mechanics/solvers/SubspaceGaussSeidelSolver.h"
 
 using namespace tmdem::mechanics;
 
@@ -164,6 +166,68 @@ BENCHMARK(BM_SweepsOrder)
     ->ArgsProduct({{2000, 10000, 20000, 100000}, {0, 1, 2}})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(3);
+
+// Issue 24: does a solve's work grow with the bed's height or load? Lattice piles (BenchLattice.h)
+// of 4 x 4 columns and 10, 40 or 160 layers (mu = 0.3), after one step from rest, solved cold
+// (reactions zero: the load has to travel the whole chain) to 1e-6 by "nlgs", "nncg",
+// "nlgs_subspace" and "nncg_subspace"; loaded: the top layer 100x heavier (a piston's load on a bed). Counters:
+// sweeps (Gauss-Seidel sweeps of the solve), subspace (subspace steps of "nlgs_subspace":
+// tried, kept, numeric factorisations), converged, residual (NaturalMapResidual.h) and
+// cpu_ms (CPU time of one solve).
+// Args: solver (0 nlgs, 1 nncg, 2 nlgs_subspace, 3 nncg_subspace), layers, loaded (0/1).
+//   OMP_NUM_THREADS=1 build/bench/bench_solvers --benchmark_filter=BM_PileHeight
+void BM_PileHeight(benchmark::State& state) {
+  static const char* const names[] = {"nlgs", "nncg", "nlgs_subspace", "nncg_subspace"};
+  const std::string name = names[state.range(0)];
+  const int layers = static_cast<int>(state.range(1));
+  const bool loaded = state.range(2) != 0;
+  NscdParameters parameters;
+  parameters.solver = "nncg";
+  NscdIntegrator sim(tmdem::bench::lattice(4, layers, 1.0, loaded ? 100.0 : 1.0),
+                     {Material{7800.0, 2.1e11, 0.3, 0.3}}, {Wall::through({0, 0, 0}, {0, 1, 0}, 0)},
+                     Eigen::Vector3d(0, -9.81, 0), 3, parameters);
+  sim.step();
+  const ContactProblem& problem = sim.problem();
+  SolverSettings settings;
+  settings.tolerance = 1e-6;
+  settings.max_iterations = 200000;
+  std::vector<Eigen::Vector3d> r, v, w;
+  double seconds = 0.0, residual = 0.0;
+  std::int64_t sweeps = 0, solves = 0, converged = 0, tried = 0, kept = 0, factorised = 0;
+  for (auto _ : state) {
+    auto solver = make_contact_solver(name, settings);
+    r.assign(problem.size(), Eigen::Vector3d::Zero());
+    const std::clock_t start = std::clock();
+    const SolveReport report = solver->solve(problem, r, v, w);
+    seconds += static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
+    sweeps += report.sweeps;
+    converged += report.converged ? 1 : 0;
+    ++solves;
+    residual = natural_map_residual(problem, r, v, w);
+    const ActiveSetSubspaceStep* subspace = nullptr;
+    if (const auto* gs = dynamic_cast<const SubspaceGaussSeidelSolver*>(solver.get())) subspace = &gs->subspace();
+    if (const auto* cg = dynamic_cast<const NncgSolver*>(solver.get())) subspace = &cg->subspace();
+    if (subspace != nullptr) {
+      tried += subspace->tried();
+      kept += subspace->accepted();
+      factorised += subspace->factorisations();
+    }
+  }
+  const auto per_solve = [&](double x) { return x / static_cast<double>(solves); };
+  state.SetLabel(name + (loaded ? " loaded" : ""));
+  state.counters["contacts"] = static_cast<double>(problem.size());
+  state.counters["sweeps"] = per_solve(static_cast<double>(sweeps));
+  state.counters["subspace_tried"] = per_solve(static_cast<double>(tried));
+  state.counters["subspace_kept"] = per_solve(static_cast<double>(kept));
+  state.counters["factorisations"] = per_solve(static_cast<double>(factorised));
+  state.counters["converged"] = per_solve(static_cast<double>(converged));
+  state.counters["residual"] = residual;
+  state.counters["cpu_ms"] = per_solve(seconds * 1e3);
+}
+BENCHMARK(BM_PileHeight)
+    ->ArgsProduct({{0, 1, 2, 3}, {10, 40, 160}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
 
 }  // namespace
 

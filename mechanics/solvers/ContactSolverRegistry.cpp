@@ -7,6 +7,7 @@
 #include "mechanics/solvers/ColouredGaussSeidelSolver.h"
 #include "mechanics/solvers/GaussSeidelSolver.h"
 #include "mechanics/solvers/NncgSolver.h"
+#include "mechanics/solvers/SubspaceGaussSeidelSolver.h"
 
 namespace tmdem::mechanics {
 namespace {
@@ -27,6 +28,12 @@ std::unique_ptr<ContactSolver> make_coloured_nncg(const SolverSettings& settings
   return std::make_unique<NncgSolver>(settings, options);
 }
 
+std::unique_ptr<ContactSolver> make_subspace_nncg(const SolverSettings& settings) {
+  NncgSolver::Options options;
+  options.subspace = true;
+  return std::make_unique<NncgSolver>(settings, options);
+}
+
 const std::vector<Entry>& entries() {
   static const std::vector<Entry> table = {
       {"nlgs", &make<GaussSeidelSolver>},
@@ -35,6 +42,8 @@ const std::vector<Entry>& entries() {
       {"nlgs_block", &make<BlockGaussSeidelSolver>},
       {"nncg", &make<NncgSolver>},
       {"nncg_coloured", &make_coloured_nncg},
+      {"nlgs_subspace", &make<SubspaceGaussSeidelSolver>},
+      {"nncg_subspace", &make_subspace_nncg},
   };
   return table;
 }

@@ -66,6 +66,17 @@ void NncgSolver::conjugate_step(const ContactProblem& problem, double beta,
   }
 }
 
+void NncgSolver::restart(const ContactProblem& problem, const std::vector<Eigen::Vector3d>& r,
+                         const std::vector<Eigen::Vector3d>& m) {
+  for (const std::int32_t c : support_) {
+    p_[c].setZero();
+    start_[c] = r[c];
+    if (!problem.rolling) continue;
+    p_m_[c].setZero();
+    start_m_[c] = m[c];
+  }
+}
+
 SolveReport NncgSolver::solve_with_rolling(const ContactProblem& given,
                                            std::vector<Eigen::Vector3d>& given_r,
                                            std::vector<Eigen::Vector3d>& given_m,
@@ -91,6 +102,7 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& given,
   support_.clear();
   for (std::size_t c = 0; c < count; ++c) enter(problem, c, r, m);
   steps_ = damped_ = drifted_ = 0;
+  subspace_.start_solve();
   // The sweeps (GaussSeidelSweep.h) put each visited contact that carries a reaction into the
   // support and, after each backward sweep, take the conjugate step. Coloured sweeps visit from
   // several threads, so the support is then brought up to date after the sweep pair instead.
@@ -112,6 +124,13 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& given,
       if (coloured)
         for (std::size_t c = 0; c < state.problem.size(); ++c)
           solver.enter(state.problem, c, state.r, state.m);
+      // The subspace step changes only contacts with r_n > 0, all in the support already.
+      if (solver.options_.subspace &&
+          solver.subspace_.after_pair(state.problem, state.r, state.velocity, state.angular_velocity)) {
+        solver.restart(state.problem, state.r, state.m);
+        previous = 0.0;
+        return;
+      }
       const double current = solver.take_change(state.problem, state.r, state.m);
       double beta = previous > 0.0 ? current / previous : 0.0;
       if (beta > 1.0 && beta <= solver.options_.drift_ratio) {

@@ -43,6 +43,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "mechanics/solvers/ActiveSetSubspaceStep.h"
 #include "mechanics/solvers/ColourOrderedProblem.h"
 #include "mechanics/solvers/ContactSolver.h"
 #include "mechanics/solvers/GaussSeidelSweep.h"
@@ -61,10 +62,16 @@ class NncgSolver final : public ContactSolver {
     // for any thread count, other bits than "nncg" (another visiting order).
     bool coloured = false;
     std::ptrdiff_t parallel_from = 4096;
+    // "nncg_subspace": before each conjugate step, the subspace step of ActiveSetSubspaceStep.h
+    // (a sparse direct solve of the contacts the pair left closed; its schedule); when it is
+    // kept the conjugate direction restarts from the new reactions (beta = 0 for the next pair).
+    bool subspace = false;
   };
   explicit NncgSolver(const SolverSettings& settings) : NncgSolver(settings, Options{}) {}
   NncgSolver(const SolverSettings& settings, const Options& options);
-  std::string_view name() const override { return options_.coloured ? "nncg_coloured" : "nncg"; }
+  std::string_view name() const override {
+    return options_.subspace ? "nncg_subspace" : options_.coloured ? "nncg_coloured" : "nncg";
+  }
   SolveReport solve_with_rolling(const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
                                  std::vector<Eigen::Vector3d>& m,
                                  std::vector<Eigen::Vector3d>& velocity,
@@ -78,6 +85,8 @@ class NncgSolver final : public ContactSolver {
   int steps() const { return steps_; }
   int damped() const { return damped_; }
   int drifted() const { return drifted_; }
+  // "nncg_subspace": the subspace steps of the last solve.
+  const ActiveSetSubspaceStep& subspace() const { return subspace_; }
   // Sweeps without a 10% gain after which a solve is stalled (saturated at INT_MAX).
   int stall_window() const;
 
@@ -94,8 +103,13 @@ class NncgSolver final : public ContactSolver {
                       std::vector<Eigen::Vector3d>& m, std::vector<Eigen::Vector3d>& velocity,
                       std::vector<Eigen::Vector3d>& angular_velocity);
 
+  // After a kept subspace step: no direction, the pair's start at the current reactions.
+  void restart(const ContactProblem& problem, const std::vector<Eigen::Vector3d>& r,
+               const std::vector<Eigen::Vector3d>& m);
+
   SolverSettings settings_;
   Options options_;
+  ActiveSetSubspaceStep subspace_;  // "nncg_subspace"
   GaussSeidelSweep sweep_;  // index (or colour) order, every sweep full
   ColourOrderedProblem ordered_;  // "nncg_coloured": the problem in colour order
   // Per contact: the reactions at the start of the sweep pair, their change over it, the

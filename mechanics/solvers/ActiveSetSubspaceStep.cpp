@@ -1,0 +1,297 @@
+#include "mechanics/solvers/ActiveSetSubspaceStep.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "mechanics/contact/ContactKinematics.h"
+#include "mechanics/contact/CoulombCone.h"
+#include "mechanics/contact/NaturalMapResidual.h"
+
+namespace tmdem::mechanics {
+namespace {
+
+// A contact sticks when its tangential impulse is inside the cone by more than round-off; the
+// sweeps leave a sliding contact on the cone's edge (CoulombCone.h), to its last bits.
+constexpr double kStickMargin = 1.0 - 1e-12;
+
+// The columns n, t1, t2 of contact c.
+Eigen::Matrix3d contact_frame(const ContactProblem& problem, std::size_t c) {
+  Eigen::Matrix3d frame;
+  frame.col(0) = problem.normal[c];
+  frame.col(1) = problem.tangent1[c];
+  frame.col(2) = problem.tangent2[c];
+  return frame;
+}
+
+// n x each column of `frame`.
+Eigen::Matrix3d cross_columns(const Eigen::Vector3d& n, const Eigen::Matrix3d& frame) {
+  Eigen::Matrix3d out;
+  for (int k = 0; k < 3; ++k) out.col(k) = n.cross(frame.col(k));
+  return out;
+}
+
+// The slot of entry (row, col) in a compressed column-major matrix (present by construction).
+std::int32_t slot_of(const Eigen::SparseMatrix<double>& matrix, int row, int col) {
+  const int* inner = matrix.innerIndexPtr();
+  const int* begin = inner + matrix.outerIndexPtr()[col];
+  const int* end = inner + matrix.outerIndexPtr()[col + 1];
+  return static_cast<std::int32_t>(std::lower_bound(begin, end, row) - inner);
+}
+
+}  // namespace
+
+ActiveSetSubspaceStep::ActiveSetSubspaceStep(const Options& options) : options_(options) {}
+
+double ActiveSetSubspaceStep::merit(const ContactProblem& problem, const std::vector<Eigen::Vector3d>& r,
+                                        const std::vector<Eigen::Vector3d>& velocity,
+                                        const std::vector<Eigen::Vector3d>& angular_velocity) {
+  double defect = 0.0, total = 0.0;
+  for (std::size_t c = 0; c < problem.size(); ++c) {
+    if (!problem.solvable(c)) continue;
+    if (r[c].isZero(0.0) && !(normal_velocity(problem, c, velocity) < 0.0)) continue;  // stays open
+    const Eigen::Vector3d u = local_velocity<Eigen::Vector3d>(problem, c, velocity, angular_velocity);
+    const Eigen::Vector3d next = local_law_solution(problem, c, r[c], u);
+    defect += (r[c] - next).norm();
+    total += next.norm();
+  }
+  return natural_map_ratio(defect, total);
+}
+
+bool ActiveSetSubspaceStep::classify(const ContactProblem& problem, const std::vector<Eigen::Vector3d>& r,
+                                     const std::vector<Eigen::Vector3d>& velocity) {
+  const std::int32_t stick_size = problem.dimension == 2 ? 2 : 3;
+  active_.clear();
+  offset_.clear();
+  size_.clear();
+  pattern_key_.clear();
+  std::int32_t unknowns = 0;
+  for (std::size_t c = 0; c < problem.size(); ++c) {
+    if (!problem.solvable(c)) continue;
+    // Open contacts that are closing (r = 0, u_n < 0) join as sticking: the load the sweeps have
+    // not yet carried to them (a cold column) is solved with the rest.
+    if (!(r[c][0] > 0.0)) {
+      if (!r[c].isZero(0.0) || !(normal_velocity(problem, c, velocity) < 0.0)) continue;
+    }
+    const double rt = r[c].tail<2>().norm(), limit = problem.mu[c] * r[c][0];
+    const bool stick = rt < options_.stick_fraction * limit;
+    if (!stick && rt < kStickMargin * limit) continue;  // near the edge: left to the sweeps
+    const std::int32_t size = stick ? stick_size : 1;
+    active_.push_back(static_cast<std::int32_t>(c));
+    offset_.push_back(unknowns);
+    size_.push_back(size);
+    unknowns += size;
+    pattern_key_.insert(pattern_key_.end(),
+                        {static_cast<std::int32_t>(c), size, problem.body_i[c], problem.body_j[c]});
+  }
+  offset_.push_back(unknowns);
+  return !active_.empty();
+}
+
+template <class Emit>
+void ActiveSetSubspaceStep::for_each_contribution(const ContactProblem& problem, Emit&& emit) const {
+  const std::size_t bodies = problem.body_count();
+  for (std::size_t b = 0; b < bodies; ++b) {
+    const double im = problem.inverse_mass[b], ii = problem.inverse_inertia[b];
+    for (std::int32_t p = body_start_[b]; p < body_start_[b + 1]; ++p) {
+      const std::int32_t kp = body_entries_[p] >> 1, sp = body_entries_[p] & 1;
+      // Entries of a body come in increasing active index: kq <= kp, the lower triangle.
+      for (std::int32_t q = body_start_[b]; q <= p; ++q) {
+        const std::int32_t kq = body_entries_[q] >> 1, sq = body_entries_[q] & 1;
+        const Eigen::Matrix3d block = im * linear_[sp][kp].transpose() * linear_[sq][kq] +
+                                      ii * angular_[sp][kp].transpose() * angular_[sq][kq];
+        for (std::int32_t a = 0; a < size_[kp]; ++a) {
+          for (std::int32_t e = 0; e < size_[kq]; ++e) {
+            if (kp == kq && e > a) continue;
+            emit(offset_[kp] + a, offset_[kq] + e, block(a, e));
+          }
+        }
+      }
+    }
+  }
+}
+
+bool ActiveSetSubspaceStep::assemble_and_factorise(const ContactProblem& problem) {
+  const std::size_t count = active_.size(), bodies = problem.body_count();
+  const int unknowns = offset_[count];
+  // Each side's velocity change per unit local impulse: body i takes +p at -R_i n, a particle j
+  // -p at +R_j n (both turn by -R n x p), a piston j -r_n n along its normal only, a fixed wall
+  // nothing (ContactKinematics.h).
+  for (auto* v : {&linear_[0], &linear_[1], &angular_[0], &angular_[1]}) v->resize(count);
+  body_start_.assign(bodies + 1, 0);
+  auto mobile = [&](std::size_t b) { return problem.inverse_mass[b] > 0.0 || problem.inverse_inertia[b] > 0.0; };
+  auto body_of = [&](std::size_t c, int side) -> std::size_t {
+    const std::int32_t j = problem.body_j[c];
+    if (side == 0) return static_cast<std::size_t>(problem.body_i[c]);
+    return is_wall(j) ? problem.wall_body(j) : static_cast<std::size_t>(j);
+  };
+  for (std::size_t k = 0; k < count; ++k) {
+    const auto c = static_cast<std::size_t>(active_[k]);
+    const Eigen::Matrix3d frame = contact_frame(problem, c);
+    const Eigen::Matrix3d turn = cross_columns(problem.normal[c], frame);
+    linear_[0][k] = frame;
+    angular_[0][k] = -problem.lever_i[c] * turn;
+    if (is_wall(problem.body_j[c])) {
+      linear_[1][k].setZero();
+      linear_[1][k].col(0) = -problem.normal[c];
+      angular_[1][k].setZero();
+    } else {
+      linear_[1][k] = -frame;
+      angular_[1][k] = -problem.lever_j[c] * turn;
+    }
+    for (int side = 0; side < 2; ++side)
+      if (mobile(body_of(c, side))) ++body_start_[body_of(c, side) + 1];
+  }
+  for (std::size_t b = 0; b < bodies; ++b) body_start_[b + 1] += body_start_[b];
+  body_entries_.resize(static_cast<std::size_t>(body_start_[bodies]));
+  // Filled in increasing active index (for_each_contribution relies on it).
+  cursor_.assign(body_start_.begin(), body_start_.end() - 1);
+  for (std::size_t k = 0; k < count; ++k)
+    for (int side = 0; side < 2; ++side)
+      if (const std::size_t b = body_of(static_cast<std::size_t>(active_[k]), side); mobile(b))
+        body_entries_[cursor_[b]++] = static_cast<std::int32_t>(2 * k + side);
+
+  const bool new_pattern = !have_pattern_ || pattern_key_ != last_key_;
+  if (new_pattern) {
+    triplets_.clear();
+    for_each_contribution(problem, [&](int row, int col, double value) { triplets_.emplace_back(row, col, value); });
+    matrix_.resize(unknowns, unknowns);
+    matrix_.setFromTriplets(triplets_.begin(), triplets_.end());
+    matrix_.makeCompressed();
+    value_index_.resize(triplets_.size());
+    for (std::size_t t = 0; t < triplets_.size(); ++t)
+      value_index_[t] = slot_of(matrix_, triplets_[t].row(), triplets_[t].col());
+    diagonal_index_.resize(static_cast<std::size_t>(unknowns));
+    for (int u = 0; u < unknowns; ++u) diagonal_index_[u] = slot_of(matrix_, u, u);
+    factor_.analyzePattern(matrix_);
+    last_key_ = pattern_key_;
+    have_pattern_ = true;
+    ++patterns_;
+  }
+  double* values = matrix_.valuePtr();
+  std::fill(values, values + matrix_.nonZeros(), 0.0);
+  std::size_t t = 0;
+  for_each_contribution(problem, [&](int, int, double value) { values[value_index_[t++]] += value; });
+  diagonal_.resize(unknowns);
+  for (int u = 0; u < unknowns; ++u) {
+    diagonal_[u] = values[diagonal_index_[u]];
+    values[diagonal_index_[u]] += options_.proximal * diagonal_[u];
+  }
+  factor_.factorize(matrix_);
+  ++factorisations_;
+  return factor_.info() == Eigen::Success;
+}
+
+bool ActiveSetSubspaceStep::take(const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
+                                              std::vector<Eigen::Vector3d>& velocity,
+                                              std::vector<Eigen::Vector3d>& angular_velocity) {
+  ++tried_;
+  saved_r_.assign(r.begin(), r.end());
+  saved_v_.assign(velocity.begin(), velocity.end());
+  saved_w_.assign(angular_velocity.begin(), angular_velocity.end());
+  const double before = merit(problem, r, velocity, angular_velocity);
+  double best = before;
+  const bool planar = problem.dimension == 2;
+  for (int pass = 0; pass < options_.active_passes; ++pass) {
+    if (!classify(problem, r, velocity)) break;
+    if (!assemble_and_factorise(problem)) break;
+    const std::size_t count = active_.size();
+    const int unknowns = offset_[count];
+    // residual = -U_A, the active components of the local velocities.
+    residual_.resize(unknowns);
+    pass_start_.resize(count);
+    for (std::size_t k = 0; k < count; ++k) {
+      const auto c = static_cast<std::size_t>(active_[k]);
+      const Eigen::Vector3d u = local_velocity<Eigen::Vector3d>(problem, c, velocity, angular_velocity);
+      for (std::int32_t a = 0; a < size_[k]; ++a) residual_[offset_[k] + a] = -u[a];
+      pass_start_[k] = r[c];
+    }
+    // Proximal point: (W + rho D) dx = -U_A(x), U_A(x) = U_A(0) + W x.
+    x_.setZero(unknowns);
+    const double start = residual_.norm();
+    for (int iteration = 0; iteration < options_.proximal_iterations; ++iteration) {
+      step_ = factor_.solve(residual_);
+      x_ += step_;
+      product_.noalias() = matrix_.selfadjointView<Eigen::Lower>() * step_;
+      product_ -= options_.proximal * diagonal_.cwiseProduct(step_);
+      residual_ -= product_;
+      if (residual_.norm() <= 1e-14 * start) break;
+    }
+    // A projected line search: r_A = proj(r_A + alpha x) for alpha = 1, 1/2, 1/4, ..., kept at
+    // the first that lowers the merit below the best so far. A contact the projection moves
+    // (opens, or reaches the cone's edge) has left its status: then another pass.
+    int moved = 0;
+    bool improved = false;
+    double alpha = 1.0;
+    for (int trial = 0; trial < options_.line_search_steps; ++trial, alpha *= 0.5) {
+      moved = 0;
+      for (std::size_t k = 0; k < count; ++k) {
+        const auto c = static_cast<std::size_t>(active_[k]);
+        const double mu = problem.mu[c];
+        const Eigen::Vector3d& from = pass_start_[k];
+        Eigen::Vector3d next = from;
+        if (size_[k] == 1) {  // sliding: r_n solved, r_t kept on the edge in its direction
+          const double rn = from[0] + alpha * x_[offset_[k]];
+          const double rt = from.tail<2>().norm();
+          if (rn > 0.0) {
+            next[0] = rn;
+            if (rt > 0.0) next.tail<2>() *= mu * rn / rt;
+          } else {
+            next.setZero();
+            ++moved;
+          }
+        } else {
+          for (std::int32_t a = 0; a < size_[k]; ++a) next[a] += alpha * x_[offset_[k] + a];
+          const Eigen::Vector3d projected = project_onto_coulomb_cone(next, mu);
+          if (projected != next) ++moved;
+          next = projected;
+        }
+        if (planar) next[2] = 0.0;
+        const Eigen::Vector3d change = next - r[c];
+        apply_impulse(problem, c, change, velocity, angular_velocity);
+        r[c] = next;
+      }
+      const double after = merit(problem, r, velocity, angular_velocity);
+      if (after < best) {
+        best = after;
+        improved = true;
+        break;
+      }
+    }
+    if (!improved) {  // back to the pass's start
+      for (std::size_t k = 0; k < count; ++k) {
+        const auto c = static_cast<std::size_t>(active_[k]);
+        const Eigen::Vector3d change = pass_start_[k] - r[c];
+        apply_impulse(problem, c, change, velocity, angular_velocity);
+        r[c] = pass_start_[k];
+      }
+      break;
+    }
+    if (moved == 0) break;
+  }
+  if (best < before) {
+    ++accepted_;
+    return true;
+  }
+  r.assign(saved_r_.begin(), saved_r_.end());
+  velocity.assign(saved_v_.begin(), saved_v_.end());
+  angular_velocity.assign(saved_w_.begin(), saved_w_.end());
+  return false;
+}
+
+void ActiveSetSubspaceStep::start_solve() {
+  tried_ = accepted_ = patterns_ = factorisations_ = 0;
+  wait_ = 1;
+  waited_ = 0;
+}
+
+bool ActiveSetSubspaceStep::after_pair(const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
+                                       std::vector<Eigen::Vector3d>& velocity,
+                                       std::vector<Eigen::Vector3d>& angular_velocity) {
+  if (++waited_ < wait_) return false;
+  waited_ = 0;
+  const bool kept = take(problem, r, velocity, angular_velocity);
+  wait_ = kept ? 1 : std::min(2 * wait_, kMaxWait);
+  return kept;
+}
+
+}  // namespace tmdem::mechanics

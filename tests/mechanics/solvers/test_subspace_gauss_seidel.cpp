@@ -130,7 +130,9 @@ TEST(SubspaceGaussSeidel, RandomProblemsSolvedToTolerance) {
       for (const Vector3d& x : r) largest = std::max(largest, x.norm());
       ASSERT_GT(largest, 0.0);
       EXPECT_LE(cone_overshoot(problem, r), 1e-12 * largest);
-      if (seed == 1) EXPECT_LE(report.sweeps, 100);
+      if (seed == 1) {
+        EXPECT_LE(report.sweeps, 100);
+      }
     }
   }
 }

@@ -54,4 +54,11 @@ long_runs+='|NscdState\.(RestoredApgdIntegratorContinuesBitwise|RestoredIntegrat
 long_runs+='|BlockGaussSeidel\.(RestingPileStaysAtRestFor10000Steps|SettledFrictionalPileLikeGaussSeidel)'
 long_runs+='|Nncg\.(RestingPileStaysAtRestFor10000Steps|SettledFrictionalPileHasTheFixedPointsOfGaussSeidel)'
 long_runs+='|GaussSeidel/ActiveSetSweeps\.ARestingPileStaysAtRest/.*)$'
-ctest --output-on-failure -j "$jobs" --timeout 600 -L 'fast|fuzz' -E "$long_runs"
+# The linear solver "amg" runs hypre, which Debian builds with MPI: OpenMPI's singleton start
+# leaves allocations in its plug-ins (dlclosed at MPI_Finalize, so LeakSanitizer cannot even name
+# them; none in tmdem's or hypre's own frames). Those tests run with every check but the leak one:
+# the ones named for amg, and HeldAndSource's, which loops over every integrator case itself.
+amg_tests='amg|Amg|HeldAndSource\.ImplicitIntegratorsAgreeWithTheMatrixExponential'
+ctest --output-on-failure -j "$jobs" --timeout 600 -L 'fast|fuzz' -E "${long_runs}|${amg_tests}"
+ASAN_OPTIONS="${ASAN_OPTIONS/detect_leaks=1/detect_leaks=0}" \
+  ctest --output-on-failure -j "$jobs" --timeout 600 -L fast -R "$amg_tests"

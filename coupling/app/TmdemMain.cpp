@@ -87,6 +87,12 @@ int tmdem_main(int argc, char** argv) {
                        "s: once an implicit run took longer, skip its method's tighter "
                        "tolerances (default 60)")
       ->check(CLI::NonNegativeNumber);
+  std::vector<std::string> accuracy_methods;
+  accuracy->add_option("--methods", accuracy_methods,
+                       "implicit methods to study, INTEGRATOR/LINEAR_SOLVER separated by commas "
+                       "(default cvode/klu,cvode/pcg,ida/klu,ida/pcg; e.g. add cvode/amg on large "
+                       "beds)")
+      ->delimiter(',');
   std::string coupling_path, coupling_csv;
   auto* coupling = study->add_subcommand(
       "coupling", "compare how the thermal side follows a dynamic packing (continue, restart, explicit)");
@@ -98,7 +104,7 @@ int tmdem_main(int argc, char** argv) {
   ConductivityCommandOptions conductivity_options;
   auto* conductivity = study->add_subcommand(
       "conductivity", "effective conductivity of a bed between its two isothermal walls "
-                      "(steady state, KLU)");
+                      "(steady state: KLU, or multigrid CG with thermal.linear_solver = amg)");
   conductivity->add_option("scene", conductivity_path, "scene file (TOML)")->required();
   conductivity->add_option("--pressures", conductivity_options.pressures_Pa,
                            "piston pressures, Pa (needs a piston)")
@@ -220,6 +226,14 @@ int tmdem_main(int argc, char** argv) {
       return run_conductivity_command(scene, conductivity_options, std::cout, std::cerr);
     }
     if (*accuracy) {
+      if (!accuracy_methods.empty()) {
+        std::string problem;
+        study_options.study.implicit_methods = parse_implicit_methods(accuracy_methods, problem);
+        if (!problem.empty()) {
+          std::cerr << "error: --methods: " << problem << std::endl;
+          return kExitInvalid;
+        }
+      }
       const Scene scene = load_scene_file(study_path, sets);
       study_options.terminal = isatty(STDERR_FILENO);
       return run_accuracy_command(scene, study_options, std::cout, std::cerr);

@@ -1,4 +1,6 @@
 #include "coupling/studies/AccuracyStudy.h"
+
+#include "thermal/integrators/IntegratorKind.h"
 #include "coupling/common/ShortestNumber.h"
 
 #include <algorithm>
@@ -245,6 +247,32 @@ AccuracyStudyResult run_accuracy_study(thermal::ThermalSystem& system,
     }
   }
   return result;
+}
+
+std::vector<std::pair<std::string, std::string>> parse_implicit_methods(
+    const std::vector<std::string>& names, std::string& problem) {
+  std::vector<std::pair<std::string, std::string>> methods;
+  for (const auto& name : names) {
+    const auto slash = name.find('/');
+    const std::string integrator = name.substr(0, slash);
+    const std::string solver = slash == std::string::npos ? "" : name.substr(slash + 1);
+    try {
+      if (slash == std::string::npos) throw std::invalid_argument("no \"/\" in it");
+      if (thermal::parse_integrator_kind(integrator) == thermal::IntegratorKind::Explicit)
+        throw std::invalid_argument("the explicit update is studied by its rungs "
+                                    "(--explicit-rungs), not as a method");
+      thermal::parse_linear_solver_kind(solver);
+    } catch (const std::invalid_argument& e) {
+      std::string valid;
+      for (const auto i : {thermal::IntegratorKind::Cvode, thermal::IntegratorKind::Ida})
+        for (const auto l : thermal::kLinearSolverNames)
+          valid += (valid.empty() ? "" : ", ") + std::string(thermal::name_of(i)) + "/" + std::string(l);
+      problem = "\"" + name + "\": " + e.what() + " (valid: " + valid + ")";
+      return {};
+    }
+    methods.emplace_back(integrator, solver);
+  }
+  return methods;
 }
 
 }  // namespace tmdem::coupling

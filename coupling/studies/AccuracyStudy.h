@@ -39,6 +39,12 @@
 
 namespace tmdem::coupling {
 
+// "cvode/amg"-style names (INTEGRATOR/LINEAR_SOLVER, implicit integrators only) parsed into
+// AccuracyStudyOptions::implicit_methods; on a bad name `problem` says which and lists the valid
+// ones, and the result is empty.
+std::vector<std::pair<std::string, std::string>> parse_implicit_methods(
+    const std::vector<std::string>& names, std::string& problem);
+
 struct AccuracyStudyOptions {
   std::vector<double> relative_tolerances{1e-2, 1e-4, 1e-6, 1e-8, 1e-10};
   std::vector<std::pair<std::string, std::string>> implicit_methods{

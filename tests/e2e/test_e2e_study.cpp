@@ -142,6 +142,34 @@ TEST(EndToEndStudy, ImplicitTimeBudgetSkipsTighterTolerances) {
     EXPECT_NE(r.output.find(skipped), std::string::npos) << skipped << "\n" << r.output;
 }
 
+// --methods chooses the implicit methods: cvode/amg alone gives five amg rows, each converging
+// like cvode/pcg (within 1e-6 K of the exact answer at 1e-10); a bad name is refused (exit 2)
+// with the valid ones listed, before any computation.
+TEST(EndToEndStudy, MethodsChooseTheImplicitMethods) {
+  const auto dir = scratch_dir("study_methods");
+  write_file(dir + "/lattice.toml", kStudyLattice);
+  auto r = run_tmdem("study accuracy lattice.toml --csv out.csv --explicit-rungs 0 "
+                     "--methods cvode/amg --set simulation.duration=20.0",
+                     dir);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto rows = read_study_csv(dir + "/out.csv");
+  ASSERT_EQ(rows.size(), 5u);
+  for (const auto& row : rows) {
+    EXPECT_EQ(row.method + "/" + row.solver, "cvode/amg");
+    if (row.parameter == 1e-10) {
+      EXPECT_LT(row.error, 1e-6);
+    }
+  }
+  r = run_tmdem("study accuracy lattice.toml --csv bad.csv --methods cvode/amg,ida/lu", dir);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("\"ida/lu\""), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("ida/amg"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/bad.csv"));
+  r = run_tmdem("study accuracy lattice.toml --methods explicit/klu", dir);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--explicit-rungs"), std::string::npos) << r.output;
+}
+
 TEST(EndToEndStudy, ExitCodes) {
   const auto dir = scratch_dir("study_exit");
   write_file(dir + "/lattice.toml", kStudyLattice);

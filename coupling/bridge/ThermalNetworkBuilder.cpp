@@ -12,6 +12,7 @@
 #include "mechanics/model/PairIndex.h"
 #include "mechanics/detection/TouchingPairs.h"
 #include "thermal/modes/ModeRegistry.h"
+#include "thermal/modes/ParticleResistance.h"
 
 namespace tmdem::coupling {
 
@@ -44,6 +45,17 @@ thermal::ThermalNetwork ThermalNetworkBuilder::nodes() const {
     net.held[i] = p.fixed_temperature ? 1 : 0;
   }
   if (temperature_dependent_) add_material_tables(net);
+  // The particle's own resistance: each shell per unit solid angle (the scene refuses it with
+  // conductivity tables; ThermalNetwork::validate refuses it with a k(T) contact law).
+  if (scene_.thermal.particle_resistance == "isothermal_core") {
+    net.shell_resistance_K_sr_per_W.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto& p = scene_.particles[i];
+      net.shell_resistance_K_sr_per_W[i] = thermal::shell_resistance_K_sr_per_W(
+          p.radius_m, scene_.materials[p.material].conductivity_W_per_mK,
+          scene_.thermal.core_fraction);
+    }
+  }
   for (const auto& w : scene_.walls) {
     net.isothermal_walls += w.temperature_K.has_value();
     if (!w.temperature_table.empty()) {

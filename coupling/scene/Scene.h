@@ -183,6 +183,10 @@ struct ThermalSettings {
   double explicit_step_s = 0.0;        // 0 = largest stable step
   std::string conductance = "hertz";   // hertz | constant
   double constant_conductance_W_per_K = 1.0e-4;
+  // The particle's own resistance in series with its contact and gas paths
+  // (thermal/modes/ParticleResistance.h): "off" | "isothermal_core"; core radius c r.
+  std::string particle_resistance = "off";
+  double core_fraction = 0.5;
   // Dynamic runs (extension): how the implicit integrators follow the moving packing.
   // "continue": keep the step history while contacts only change force, re-initialise when
   //             contacts appear or vanish; "restart": re-initialise every mechanical step.

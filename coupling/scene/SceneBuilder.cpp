@@ -154,6 +154,20 @@ void SceneBuilder::read_settings() {
     th.explicit_step_s = t.number("explicit_step");
     th.conductance = t.choice("conductance");
     th.constant_conductance_W_per_K = t.number("constant_conductance");
+    th.particle_resistance = t.choice("particle_resistance");
+    th.core_fraction = t.number("core_fraction");
+    // The shell's resistance is a constant conductance only for constant k; with any table and
+    // the Hertz law the contacts follow the Kirchhoff form (KirchhoffContactFlow.h), not handled.
+    if (th.particle_resistance != "off")
+      for (const auto& m : scene_.materials)
+        if (!m.conductivity_table.empty() || (m.temperature_dependent() && th.conductance == "hertz"))
+          t.fail("particle_resistance",
+                 "\"" + th.particle_resistance + "\" needs constant conductivities, but material \"" +
+                     m.name + "\" gives its " +
+                     (m.conductivity_table.empty() ? "heat capacity as a table (with conductance = "
+                                                     "\"hertz\" the contacts then follow k(T))"
+                                                   : "conductivity as a table") +
+                     "; set particle_resistance = \"off\" or constant properties");
     th.coupling = t.choice("coupling");
     // Forces imported with the packing ([[import]] contacts) stand in for the mechanics'.
     if (contacts_carry_heat(scene_.effects) && !mechanics_on && th.conductance == "hertz" &&

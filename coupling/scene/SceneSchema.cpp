@@ -407,6 +407,16 @@ std::vector<Section> build_sections() {
                "constant_conductance"),
         number("constant_conductance", "W/K", 1.0e-4, Range::greater(0.0),
                "H of every contact when conductance = \"constant\""),
+        choice("particle_resistance", "off", {"off", "isothermal_core"},
+               "the particle's own resistance: \"isothermal_core\" puts the solid shell between "
+               "an isothermal core (radius core_fraction x r) and the surface in series with the "
+               "summed contact and gas conductance of every pair, H' = 1 / (1/H + R_a + R_b), "
+               "R = (1/(c r) - 1/r) / (k Omega) over the cone Omega that the partner (a wall: "
+               "the mirror image) subtends; needs constant conductivities "
+               "(docs/heat-modes.md \"The particle's own resistance\")"),
+        number("core_fraction", "", 0.5, Range::open(0.0, 1.0),
+               "particle_resistance = \"isothermal_core\": radius of the isothermal core as a "
+               "fraction c of the particle radius"),
         choice("coupling", "continue", {"continue", "restart"},
                "dynamic runs: keep the integrator history while only forces change, or "
                "re-initialise every mechanical step")}});

@@ -37,10 +37,14 @@ thermal::ThermalNetwork with_wall_edges_of(const thermal::ThermalNetwork& net,
   thermal::ThermalNetwork out = net;
   out.clear_wall_edges();
   for (std::size_t w = 0; w < net.wall_edge_count(); ++w)
-    if (edge_wall[w] == keep)
+    if (edge_wall[w] == keep) {
       out.add_wall_edge(net.wall_node[w], net.wall_temperature_K[w], net.wall_conductance_W_per_K[w],
                         net.wall_schedule[w], net.wall_gap_m[w], net.wall_contact_radius_m[w],
                         net.wall_in_contact[w] != 0);
+      // The kept edge keeps the full network's series factor (the particle's own resistance),
+      // so the filtered flows add up to the system's.
+      if (!net.wall_series_factor.empty()) out.wall_series_factor.push_back(net.wall_series_factor[w]);
+    }
   return out;
 }
 

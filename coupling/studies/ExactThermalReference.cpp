@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "thermal/modes/ModeRegistry.h"
+#include "thermal/modes/ParticleResistance.h"
 
 namespace tmdem::coupling {
 
@@ -81,11 +82,15 @@ std::optional<AffineThermalSystem> affine_thermal_system(const thermal::ThermalN
                                                          std::string* why_not) {
   std::vector<std::unique_ptr<thermal::HeatTransferMode>> built;
   std::vector<const thermal::HeatTransferMode*> modes;
+  thermal::ThermalNetwork prepared = net;
   for (const auto& name : mode_names) {
     built.push_back(thermal::make_heat_transfer_mode(name, s));
+    built.back()->update_geometry(prepared);
     modes.push_back(built.back().get());
   }
-  return affine_system_of_modes(net, modes, why_not);
+  // The particle's own resistance, as a ThermalSystem of these modes would put it in series.
+  thermal::update_series_factors(prepared, modes);
+  return affine_system_of_modes(prepared, modes, why_not);
 }
 
 std::optional<AffineThermalSystem> affine_thermal_system(const thermal::ThermalSystem& system,

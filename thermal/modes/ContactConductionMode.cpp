@@ -40,13 +40,23 @@ class ContactConductionMode final : public HeatTransferMode {
     const auto* b = net.edge_b.data();
     const auto* H = net.edge_conductance_W_per_K.data();
     const auto* held = net.held.data();
+    // The particle's own resistance (ThermalNetwork::edge_series_factor): H' = f H. Without it
+    // the loop is today's, bit for bit.
+    const auto* f = net.edge_series_factor.empty() ? nullptr : net.edge_series_factor.data();
     for (std::size_t e = 0; e < m; ++e) {
-      const double flow_into_a = H[e] * (T[b[e]] - T[a[e]]);
+      const double h = f ? H[e] * f[e] : H[e];
+      const double flow_into_a = h * (T[b[e]] - T[a[e]]);
       q[a[e]] += flow_into_a;
       q[b[e]] -= flow_into_a;
       // A held particle is a reservoir: what it gives a free neighbour enters the free system.
       if (held[a[e]] != held[b[e]]) boundary_W += held[a[e]] ? -flow_into_a : flow_into_a;
     }
+    return true;
+  }
+
+  bool add_pair_conductance(const ThermalNetwork& net, std::span<double> edge_W_per_K,
+                            std::span<double> /*wall_W_per_K*/) const override {
+    for (std::size_t e = 0; e < net.edge_count(); ++e) edge_W_per_K[e] += net.edge_conductance_W_per_K[e];
     return true;
   }
 
@@ -64,20 +74,20 @@ class ContactConductionMode final : public HeatTransferMode {
       return;
     }
     for (std::size_t e = 0; e < net.edge_count(); ++e) {
-      const double h = net.edge_conductance_W_per_K[e];
+      const double h = net.edge_conductance_W_per_K[e] * net.edge_factor(e);
       J.edge_W_per_K[e] += h;
       J.diagonal_W_per_K[net.edge_a[e]] -= h;
       J.diagonal_W_per_K[net.edge_b[e]] -= h;
     }
   }
 
-  // H (T_b - T_a) into a and its opposite into b: K_ab = K_ba = H, K_aa = K_bb = -H. With k(T)
-  // the flow is not affine.
+  // H (T_b - T_a) into a and its opposite into b: K_ab = K_ba = H, K_aa = K_bb = -H (H' = f H
+  // with the particle's own resistance). With k(T) the flow is not affine.
   bool add_affine_heat_flow(const ThermalNetwork& net, AffineHeatFlow& out) const override {
     if (net.conductance_follows_conductivity) return false;
     for (std::size_t e = 0; e < net.edge_count(); ++e) {
       const std::int64_t a = net.edge_a[e], b = net.edge_b[e];
-      const double h = net.edge_conductance_W_per_K[e];
+      const double h = net.edge_conductance_W_per_K[e] * net.edge_factor(e);
       out.add(a, b, h);
       out.add(b, a, h);
       out.add(a, a, -h);

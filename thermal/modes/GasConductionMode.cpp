@@ -47,14 +47,14 @@ class GasConductionMode final : public HeatTransferMode {
     const auto* held = net.held.data();
     for (std::size_t e = 0; e < H_edge_.size(); ++e) {
       const auto a = net.edge_a[e], b = net.edge_b[e];
-      const double flow_into_a = H_edge_[e] * (T[b] - T[a]);
+      const double flow_into_a = H_edge_[e] * net.edge_factor(e) * (T[b] - T[a]);
       q[a] += flow_into_a;
       q[b] -= flow_into_a;
       if (held[a] != held[b]) boundary_W += held[a] ? -flow_into_a : flow_into_a;
     }
     for (std::size_t w = 0; w < H_wall_.size(); ++w) {
       const auto i = net.wall_node[w];
-      const double flow = H_wall_[w] * (net.wall_temperature_K[w] - T[i]);
+      const double flow = H_wall_[w] * net.wall_factor(w) * (net.wall_temperature_K[w] - T[i]);
       q[i] += flow;
       if (!held[i]) boundary_W += flow;
     }
@@ -65,11 +65,23 @@ class GasConductionMode final : public HeatTransferMode {
                     JacobianView J) const override {
     if (!is_cached(net)) return GasConductionMode(*this, net).add_jacobian(net, T, J);
     for (std::size_t e = 0; e < H_edge_.size(); ++e) {
-      J.edge_W_per_K[e] += H_edge_[e];
-      J.diagonal_W_per_K[net.edge_a[e]] -= H_edge_[e];
-      J.diagonal_W_per_K[net.edge_b[e]] -= H_edge_[e];
+      const double h = H_edge_[e] * net.edge_factor(e);
+      J.edge_W_per_K[e] += h;
+      J.diagonal_W_per_K[net.edge_a[e]] -= h;
+      J.diagonal_W_per_K[net.edge_b[e]] -= h;
     }
-    for (std::size_t w = 0; w < H_wall_.size(); ++w) J.diagonal_W_per_K[net.wall_node[w]] -= H_wall_[w];
+    for (std::size_t w = 0; w < H_wall_.size(); ++w)
+      J.diagonal_W_per_K[net.wall_node[w]] -= H_wall_[w] * net.wall_factor(w);
+  }
+
+  // The gas shares the solid near the contact with contact conduction: its H_g joins the pair's
+  // sum before the particle's own resistance is put in series (ParticleResistance.h).
+  bool add_pair_conductance(const ThermalNetwork& net, std::span<double> edge_W_per_K,
+                            std::span<double> wall_W_per_K) const override {
+    if (!is_cached(net)) return GasConductionMode(*this, net).add_pair_conductance(net, edge_W_per_K, wall_W_per_K);
+    for (std::size_t e = 0; e < H_edge_.size(); ++e) edge_W_per_K[e] += H_edge_[e];
+    for (std::size_t w = 0; w < H_wall_.size(); ++w) wall_W_per_K[w] += H_wall_[w];
+    return true;
   }
 
  private:

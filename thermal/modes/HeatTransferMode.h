@@ -45,6 +45,18 @@ class HeatTransferMode {
   // right-hand side. Default: nothing to prepare.
   virtual void update_geometry(const ThermalNetwork& /*network*/) {}
 
+  // A mode whose flow along a pair is H (T_b - T_a) with H fixed once the edges are set (contact,
+  // wall and gas conduction) adds that H, before any series factor, to edge_W_per_K (one per
+  // particle edge) and wall_W_per_K (one per isothermal-wall edge) and returns true. The
+  // particle's own resistance is put in series with the sum over such modes
+  // (thermal/modes/ParticleResistance.h); the mode then scales its H by the network's
+  // edge_factor / wall_factor. Called after update_geometry. Default: no pair conductance.
+  virtual bool add_pair_conductance(const ThermalNetwork& /*network*/,
+                                    std::span<double> /*edge_W_per_K*/,
+                                    std::span<double> /*wall_W_per_K*/) const {
+    return false;
+  }
+
   // False when add_jacobian writes the one-sided spans: the Jacobian is then not symmetric under
   // sqrt(C) scaling and the conjugate-gradient linear solver cannot be used.
   virtual bool symmetric_jacobian() const { return true; }

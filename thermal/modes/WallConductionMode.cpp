@@ -18,7 +18,8 @@ class WallConductionMode final : public HeatTransferMode {
       const auto i = net.wall_node[w];
       const double flow = net.conductance_follows_conductivity
                               ? wall_flow(net, w, T).W
-                              : net.wall_conductance_W_per_K[w] * (net.wall_temperature_K[w] - T[i]);
+                              : net.wall_conductance_W_per_K[w] * net.wall_factor(w) *
+                                    (net.wall_temperature_K[w] - T[i]);
       q[i] += flow;
       if (!net.held[i]) boundary_W += flow;
     }
@@ -30,7 +31,14 @@ class WallConductionMode final : public HeatTransferMode {
     for (std::size_t w = 0; w < net.wall_edge_count(); ++w)
       J.diagonal_W_per_K[net.wall_node[w]] += net.conductance_follows_conductivity
                                                   ? wall_flow(net, w, T).dW_dT2
-                                                  : -net.wall_conductance_W_per_K[w];
+                                                  : -net.wall_conductance_W_per_K[w] *
+                                                        net.wall_factor(w);
+  }
+
+  bool add_pair_conductance(const ThermalNetwork& net, std::span<double> /*edge_W_per_K*/,
+                            std::span<double> wall_W_per_K) const override {
+    for (std::size_t w = 0; w < net.wall_edge_count(); ++w) wall_W_per_K[w] += net.wall_conductance_W_per_K[w];
+    return true;
   }
 
   // H_iw (T_w - T_i): K_ii = -H_iw, f_i = H_iw T_w. With k(T) the flow is not affine.
@@ -38,8 +46,9 @@ class WallConductionMode final : public HeatTransferMode {
     if (net.conductance_follows_conductivity) return false;
     for (std::size_t w = 0; w < net.wall_edge_count(); ++w) {
       const std::int64_t i = net.wall_node[w];
-      out.add(i, i, -net.wall_conductance_W_per_K[w]);
-      out.constant_W[std::size_t(i)] += net.wall_conductance_W_per_K[w] * net.wall_temperature_K[w];
+      const double h = net.wall_conductance_W_per_K[w] * net.wall_factor(w);
+      out.add(i, i, -h);
+      out.constant_W[std::size_t(i)] += h * net.wall_temperature_K[w];
     }
     return true;
   }

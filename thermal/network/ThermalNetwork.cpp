@@ -23,6 +23,7 @@ void ThermalNetwork::clear_edges() {
   edge_gap_m.clear();
   edge_contact_radius_m.clear();
   edge_in_contact.clear();
+  edge_series_factor.clear();
   clear_wall_edges();
   flux_node.clear();
   flux_wall.clear();
@@ -41,6 +42,7 @@ void ThermalNetwork::clear_wall_edges() {
   wall_gap_m.clear();
   wall_contact_radius_m.clear();
   wall_in_contact.clear();
+  wall_series_factor.clear();
 }
 
 void ThermalNetwork::add_edge(std::int32_t a, std::int32_t b, double conductance_W_per_K,
@@ -161,6 +163,20 @@ void ThermalNetwork::validate() const {
     if (!(h >= 0.0) || !std::isfinite(h))
       fail("flux edge " + std::to_string(f) + " has conductance " + std::to_string(h) + " W/K");
   }
+  if (!shell_resistance_K_sr_per_W.empty()) {
+    if (shell_resistance_K_sr_per_W.size() != n) fail("shell resistances are not one per node");
+    for (std::size_t i = 0; i < n; ++i)
+      if (!(shell_resistance_K_sr_per_W[i] >= 0.0) || !std::isfinite(shell_resistance_K_sr_per_W[i]))
+        fail("node " + std::to_string(i) + " has shell resistance " +
+             std::to_string(shell_resistance_K_sr_per_W[i]) + " K sr/W");
+    if (conductance_follows_conductivity)
+      fail("the particle's own resistance needs constant conductivities (the contact law "
+           "follows k(T))");
+  }
+  if (!edge_series_factor.empty() && edge_series_factor.size() != edge_a.size())
+    fail("edge series factors are not one per edge");
+  if (!wall_series_factor.empty() && wall_series_factor.size() != wall_node.size())
+    fail("wall series factors are not one per wall edge");
   if (temperature_dependent()) {
     const auto materials = material_conductivity.size();
     if (node_material.size() != n || mass_kg.size() != n || material_specific_heat.size() != materials)

@@ -63,6 +63,23 @@ struct ThermalNetwork {
   // from which the modes take 2 a = H / k_h(reference).
   bool conductance_follows_conductivity = false;
 
+  // The particle's own thermal resistance (docs/heat-modes.md "The particle's own resistance"):
+  // empty unless thermal.particle_resistance = "isothermal_core". Per node, the resistance of
+  // its solid shell between the isothermal core (radius c r) and the surface per unit solid
+  // angle, (1/(c r) - 1/r) / k, K sr/W. Node data; needs constant conductivities.
+  std::vector<double> shell_resistance_K_sr_per_W;
+  // Derived from the above and the modes' pair conductances by thermal::update_series_factors
+  // (ThermalSystem calls it whenever the edges change): per particle edge and per isothermal-wall
+  // edge, the factor H'/H = 1 / (1 + H_pair (R_a + R_b)) that puts the particles' shells in
+  // series with the summed conductance H_pair of every mode on that pair. Empty: factor 1.
+  std::vector<double> edge_series_factor, wall_series_factor;
+  double edge_factor(std::size_t e) const {
+    return edge_series_factor.empty() ? 1.0 : edge_series_factor[e];
+  }
+  double wall_factor(std::size_t w) const {
+    return wall_series_factor.empty() ? 1.0 : wall_series_factor[w];
+  }
+
   // Mechanical power dissipated at the contacts over the current mechanical step (W; slip work
   // plus impact loss, mechanics' -r . u_theta / h), one entry per contact of a moving packing:
   // particle a, and particle b or -1 for a wall. Replaced every step like the edges; read by

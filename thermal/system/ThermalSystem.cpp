@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "thermal/modes/ParticleResistance.h"
+
 namespace tmdem::thermal {
 
 ThermalSystem::ThermalSystem(ThermalNetwork network,
@@ -15,6 +17,13 @@ ThermalSystem::ThermalSystem(ThermalNetwork network,
   network_.apply_time(time_s_);
   pattern_.build(network_);
   for (auto& mode : modes_) mode->update_geometry(network_);
+  update_series_factors();
+}
+
+void ThermalSystem::update_series_factors() {
+  std::vector<const HeatTransferMode*> modes;
+  for (const auto& mode : modes_) modes.push_back(mode.get());
+  thermal::update_series_factors(network_, modes);
 }
 
 bool ThermalSystem::symmetric_jacobian() const {
@@ -47,9 +56,12 @@ void ThermalSystem::replace_edges(const ThermalNetwork& edges) {
   network_.dissipation_a = edges.dissipation_a;
   network_.dissipation_b = edges.dissipation_b;
   network_.dissipation_W = edges.dissipation_W;
+  network_.edge_series_factor.clear();  // derived from the new edges below
+  network_.wall_series_factor.clear();
   network_.validate();
   network_.apply_time(time_s_);
   for (auto& mode : modes_) mode->update_geometry(network_);
+  update_series_factors();
   if (same_shape) {
     ++values_version_;
   } else {

@@ -80,6 +80,9 @@ class ThermalSystem {
 
  private:
   mutable std::vector<double> dissipation_scratch_W_;  // dissipation_boundary_W's node flows
+  // The particle's own resistance: the network's series factors from the modes' pair
+  // conductances (thermal/modes/ParticleResistance.h), after every update_geometry.
+  void update_series_factors();
   // Throws std::logic_error when J was evaluated before the contact graph changed shape.
   void check_evaluation(const JacobianEvaluation& J) const;
   // C_i at J's temperatures (the network's constant C_i when nothing depends on T).

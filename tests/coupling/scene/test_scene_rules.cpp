@@ -124,6 +124,28 @@ TEST(SceneRules, MaterialPropertiesPositive) {
   }
 }
 
+// thermal.particle_resistance ("off" by default) and thermal.core_fraction in (0, 1); refused
+// with a conductivity table (the shell would follow k(T)), naming the key and the material.
+TEST(SceneRules, ParticleResistanceKeys) {
+  const Scene plain = load_scene_text(kBaseScene, "t");
+  EXPECT_EQ(plain.thermal.particle_resistance, "off");
+  EXPECT_EQ(plain.thermal.core_fraction, 0.5);
+  const Scene on = load_scene_text(
+      kBaseScene, "t", {"thermal.particle_resistance=\"isothermal_core\"", "thermal.core_fraction=0.3"});
+  EXPECT_EQ(on.thermal.particle_resistance, "isothermal_core");
+  EXPECT_EQ(on.thermal.core_fraction, 0.3);
+  expect_scene_error(kBaseScene, {"thermal.particle_resistance=\"shell\""},
+                     {"thermal.particle_resistance", "shell", "isothermal_core"});
+  for (const char* c : {"0.0", "1.0", "1.5"})
+    expect_scene_error(kBaseScene, {std::string("thermal.core_fraction=") + c}, {"thermal.core_fraction"});
+  expect_scene_error(kBaseScene,
+                     {"thermal.particle_resistance=\"isothermal_core\"",
+                      "material[1].conductivity=[[250.0, 2.0], [400, 3.5]]"},
+                     {"thermal.particle_resistance", "isothermal_core", "glass", "conductivity as a table"});
+  // Off, the table is fine.
+  EXPECT_NO_THROW(load_scene_text(kBaseScene, "t", {"material[1].conductivity=[[250.0, 2.0], [400, 3.5]]"}));
+}
+
 // conductivity and heat_capacity may be tables [[T_K, value], ...]: read as given (first value
 // the reference), refused with the entry named when malformed.
 TEST(SceneRules, MaterialPropertyTables) {

@@ -14,6 +14,7 @@
 #include "coupling/studies/ConductivityStudy.h"
 #include "support/SceneBuilder.h"
 #include "thermal/integrators/IntegratorRegistry.h"
+#include "thermal/modes/GasGapConductance.h"
 #include "thermal/system/JacobianEvaluation.h"
 
 namespace tmdem::coupling {
@@ -48,6 +49,18 @@ std::string lattice_in_air(int nx, int ny, int nz, double lid_gap_m) {
 ProgressReporter quiet_progress() {
   static std::ostringstream sink;
   return ProgressReporter(sink, true, false);
+}
+
+// Every column of the lattice a chain of n_y - 1 sphere pairs (G_pp) and two wall pairs (G_w):
+// k_eff = n_y / (d ((n_y - 1) / G_pp + 2 / G_w)); heat in equals heat out, the shares add to 1.
+void expect_chain_of_columns(const ConductivityResult& r, int ny, double G_pp, double G_w,
+                             double tolerance) {
+  const double expected = ny / (kD * ((ny - 1) / G_pp + 2.0 / G_w));
+  EXPECT_NEAR(r.k_eff_W_per_mK, expected, tolerance * expected);
+  EXPECT_LE(r.balance_rel, 1e-12);
+  double sum = 0.0;
+  for (const auto& m : r.modes) sum += m.share;
+  EXPECT_NEAR(sum, 1.0, 1e-12);
 }
 
 // Each column is ny + 1 equal contacts in series (wall, ny - 1 between spheres, wall):
@@ -150,12 +163,7 @@ TEST(ConductivityStudy, LatticeInAirIsSeriesOfContactPlusGas) {
   ASSERT_EQ(node0_edges, 3);  // the floor corner touches 3 spheres
   ASSERT_GT(G_pp, kH);        // the gas adds to the contact
   const double G_w = -J.diagonal_W_per_K[0] - 3.0 * G_pp;
-  const double expected = ny / (kD * ((ny - 1) / G_pp + 2.0 / G_w));
-  EXPECT_NEAR(r.k_eff_W_per_mK, expected, 1e-12 * expected);
-  EXPECT_LE(r.balance_rel, 1e-12);
-  double sum = 0.0;
-  for (const auto& m : r.modes) sum += m.share;
-  EXPECT_NEAR(sum, 1.0, 1e-12);
+  expect_chain_of_columns(r, ny, G_pp, G_w, 1e-12);
   const auto gas = std::find_if(r.modes.begin(), r.modes.end(),
                                 [](const ModeShare& m) { return m.mode == "gas_conduction"; });
   ASSERT_NE(gas, r.modes.end());
@@ -175,6 +183,51 @@ TEST(ConductivityStudy, LidAcrossAGasGapCarriesHeat) {
   double sum = 0.0;
   for (const auto& m : r.modes) sum += m.share;
   EXPECT_NEAR(sum, 1.0, 1e-12);
+}
+
+// The particle's own resistance (thermal.particle_resistance = "isothermal_core"): every column
+// is still a chain, now of H'_pp = 1 / (1/H_pp + 2 R) between spheres and H'_w = 1 / (1/H_w + R)
+// at the walls, R = (1/(c r) - 1/r) / (k Omega) with the 30 degree cone of an equal touching
+// sphere (the mirror image at a wall), Omega = 2 pi (1 - cos 30 deg). Without gas H_pp = H_w = H;
+// with the surrounding layer each pair adds its H_g before the shells are put in series. The
+// lateral contacts carry nothing (every column alike), so k_eff = n_y / (d ((n_y - 1) / H'_pp +
+// 2 / H'_w)) exactly.
+TEST(ConductivityStudy, ParticleResistanceIsInSeriesWithEachPair) {
+  const int nx = 4, ny = 6, nz = 4;
+  const double k = 1.0, r = 0.5 * kD, theta = std::numbers::pi / 6.0;
+  for (const double c : {0.5, 0.3}) {
+    for (const bool air : {false, true}) {
+      SCOPED_TRACE(std::string(air ? "air" : "vacuum") + ", c = " + std::to_string(c));
+      auto text = SceneBuilder()
+                      .set("simulation.duration", 1.0)
+                      .add("material", steel({{"conductivity", k}}))
+                      .set({{"effects.mechanics", "off"},
+                            {"thermal.conductance", "constant"},
+                            {"thermal.constant_conductance", kH},
+                            {"thermal.particle_resistance", "isothermal_core"},
+                            {"thermal.core_fraction", c}})
+                      .add("generate", lattice({nx, ny, nz}, {{"temperature", 300.0}}))
+                      .add("wall", floor_wall({{"temperature", 310.0}}))
+                      .add("wall", plane_wall({0.0, ny * kD, 0.0}, {0.0, -1.0, 0.0}, {{"temperature", 290.0}}));
+      if (air) text.set({{"effects.gas_conduction", true}, {"fluid.model", "surrounding_layer"}});
+      auto progress = quiet_progress();
+      const auto result = run_conductivity_study(load_scene_text(text.str(), "resist"), progress);
+      const double R = (1.0 / (c * r) - 1.0 / r) / (k * 2.0 * std::numbers::pi * (1.0 - std::cos(theta)));
+      // Gas across a touching pair and a touching sphere-plane (defaults: k_f 0.0262, layer
+      // 0.4 r, L_min 1e-7 m; constant law: no contact disc).
+      const double Hg_pp =
+          air ? thermal::surrounding_layer_conductance_W_per_K({r, r, 0.0, 0.0}, 0.0262, 0.4, 1e-7) : 0.0;
+      thermal::GasGap plane;
+      plane.radius_a_m = r;
+      const double Hg_w = air ? thermal::surrounding_layer_conductance_W_per_K(plane, 0.0262, 0.4, 1e-7) : 0.0;
+      const double G_pp = 1.0 / (1.0 / (kH + Hg_pp) + 2.0 * R), G_w = 1.0 / (1.0 / (kH + Hg_w) + R);
+      expect_chain_of_columns(result, ny, G_pp, G_w, 1e-11);
+      if (!air) {
+        // Off, the same lattice gives today's H / d n_y / (n_y + 1): the shells cost this much.
+        EXPECT_LT(result.k_eff_W_per_mK, 0.6 * kH / kD * ny / (ny + 1.0));
+      }
+    }
+  }
 }
 
 TEST(ConductivityStudy, RefusesScenesWithoutTwoFacingIsothermalWalls) {

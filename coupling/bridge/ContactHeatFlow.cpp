@@ -17,15 +17,16 @@ double wall_temperature_K(const Wall& wall, double time_s) {
 
 }  // namespace
 
-void contact_heat_flow_W(const ContactList& contacts, std::span<const double> temperature_K,
-                         double time_s, const Scene& scene, std::vector<double>& out) {
+void contact_heat_flow_W(const ContactList& contacts, std::span<const double> conductance_W_per_K,
+                         std::span<const double> temperature_K, double time_s, const Scene& scene,
+                         std::vector<double>& out) {
   out.assign(contacts.size(), 0.0);
   std::vector<double> wall_T_K(scene.walls.size(), 0.0);
   for (std::size_t w = 0; w < scene.walls.size(); ++w)
     if (scene.walls[w].temperature_K) wall_T_K[w] = wall_temperature_K(scene.walls[w], time_s);
   std::vector<double> flux_conductance_W_per_K(scene.walls.size(), 0.0);
   for (std::size_t c = 0; c < contacts.size(); ++c) {
-    const double H = contacts.conductance_W_per_K[c];
+    const double H = conductance_W_per_K[c];
     const auto i = std::size_t(contacts.pair[2 * c]);
     const std::int64_t j = contacts.pair[2 * c + 1];
     if (j >= 0) {
@@ -46,7 +47,7 @@ void contact_heat_flow_W(const ContactList& contacts, std::span<const double> te
     const Wall& wall = scene.walls[w];
     if (!wall.heat_flux_W_per_m2 || !(flux_conductance_W_per_K[w] > 0.0)) continue;
     const double power_W = *wall.heat_flux_W_per_m2 * wall.heat_flux_area_m2;
-    out[c] = -power_W * contacts.conductance_W_per_K[c] / flux_conductance_W_per_K[w];
+    out[c] = -power_W * conductance_W_per_K[c] / flux_conductance_W_per_K[w];
   }
 }
 

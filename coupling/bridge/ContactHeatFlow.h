@@ -14,8 +14,11 @@
 
 namespace tmdem::coupling {
 
-// out gets one value per contact. Called once per frame (two small per-wall arrays).
-void contact_heat_flow_W(const ContactList& contacts, std::span<const double> temperature_K,
-                         double time_s, const Scene& scene, std::vector<double>& out);
+// out gets one value per contact, H taken from conductance_W_per_K (one per contact: the
+// list's own, or those in series with the particles' shells). Called once per frame (two small
+// per-wall arrays).
+void contact_heat_flow_W(const ContactList& contacts, std::span<const double> conductance_W_per_K,
+                         std::span<const double> temperature_K, double time_s, const Scene& scene,
+                         std::vector<double>& out);
 
 }  // namespace tmdem::coupling

@@ -15,6 +15,7 @@
 #include "coupling/common/ExitCode.h"
 #include "coupling/output/Checkpoint.h"
 #include "coupling/bridge/ContactHeatFlow.h"
+#include "coupling/bridge/ContactSeriesFactors.h"
 #include "coupling/bridge/ContactList.h"
 #include "coupling/bridge/DynamicNetwork.h"
 #include "coupling/bridge/RestingContacts.h"
@@ -171,9 +172,22 @@ void CoupledRun::write_frame(double t_s) {
   f.boundary_heat_J = integrator_->boundary_heat_J();
   f.contact_pair = contacts_.pair;
   f.normal_force_N = contacts_.normal_force_N;
-  f.conductance_W_per_K = contacts_.conductance_W_per_K;
   f.tangential_force_N = contacts_.tangential_force_N;
-  contact_heat_flow_W(contacts_, f.temperature_K, t_s, scene_, heat_flow_W_);
+  // With the particle's own resistance, each contact's conductance and flow are those of the
+  // path in series with the two shells (ContactSeriesFactors.h).
+  contact_series_factors(contacts_, system_->network(), series_factor_);
+  if (series_factor_.empty()) {
+    contact_heat_flow_W(contacts_, contacts_.conductance_W_per_K, f.temperature_K, t_s, scene_,
+                        heat_flow_W_);
+    f.conductance_W_per_K = contacts_.conductance_W_per_K;
+  } else {
+    effective_conductance_W_per_K_.resize(contacts_.size());
+    for (std::size_t c = 0; c < contacts_.size(); ++c)
+      effective_conductance_W_per_K_[c] = series_factor_[c] * contacts_.conductance_W_per_K[c];
+    contact_heat_flow_W(contacts_, effective_conductance_W_per_K_, f.temperature_K, t_s, scene_,
+                        heat_flow_W_);
+    f.conductance_W_per_K = effective_conductance_W_per_K_;
+  }
   f.heat_flow_W = heat_flow_W_;
   wall_point_m_.clear();  // where the walls are now: pistons move (move_scene_walls)
   for (const auto& wall : scene_.walls) wall_point_m_.insert(wall_point_m_.end(), wall.point_m.begin(), wall.point_m.end());

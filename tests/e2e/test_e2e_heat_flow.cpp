@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "E2eSupport.h"
 
@@ -57,6 +58,39 @@ TEST(EndToEndHeatFlow, SeriesColumnCarriesTheSameSteadyHeatFlowThroughEveryConta
     if (pair[2 * c + 1] == -1) {
       EXPECT_NEAR(Q[c], H0 * (293.15 - 400.0), 1e-15);
     }
+  }
+}
+
+// The same column with the particle's own resistance (thermal.particle_resistance): each path is
+// in series with the shells of its particles, R = (1/(c r) - 1/r) / (k Omega) with Omega the
+// cone of the partner (equal touching spheres, and a wall's mirror image: sin theta = 1/2). The
+// result file gives each contact's conductance in series, f H, and the flow through it: at
+// steady state the same Q = 100 K / (4 / H + 6 R) through all four (two wall paths with one
+// shell, two pair paths with two).
+TEST(EndToEndHeatFlow, ParticleResistanceIsInTheContactsConductanceAndFlow) {
+  const double c = 0.5, r = 1.0e-3, k = 50.0, H0 = 1.0e-3;
+  const double omega = 2.0 * std::numbers::pi * (1.0 - std::sqrt(3.0) / 2.0);
+  const double R = (1.0 / (c * r) - 1.0 / r) / (k * omega);  // K/W, one shell
+  const auto run = run_and_read(scratch_dir("heat_flow_shells"),
+             thermal_scene()
+                 .set("simulation.duration", 3000.0)
+                 .set({{"thermal.particle_resistance", "isothermal_core"}, {"thermal.core_fraction", c}})
+                 .add("generate", column(3))
+                 .add("wall", floor_wall({{"temperature", 400.0}}))
+                 .add("wall", plane_wall({0.0, 0.006, 0.0}, {0.0, -1.0, 0.0},
+                                         {{"temperature", 300.0}}))
+                 .set(tolerances(1.0e-12))
+                 .set(output("out.h5", 1000.0))
+                 .str());
+  const auto& [pair, offset, Q, H, T, time] = run;
+  const std::size_t frames = offset.size() - 1;
+  ASSERT_EQ(offset[frames] - offset[frames - 1], 4);
+  const double expected_W = 100.0 / (4.0 / H0 + 6.0 * R);
+  for (long long c_ = offset[frames - 1]; c_ < offset[frames]; ++c_) {
+    const long long j = pair[2 * c_ + 1];
+    const double shells = j < 0 ? R : 2.0 * R;
+    EXPECT_NEAR(H[c_], 1.0 / (1.0 / H0 + shells), 1e-12 * H0) << pair[2 * c_] << " " << j;
+    EXPECT_NEAR(Q[c_], (j == -1 ? -1.0 : 1.0) * expected_W, 1e-6 * expected_W) << pair[2 * c_] << " " << j;
   }
 }
 

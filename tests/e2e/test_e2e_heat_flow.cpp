@@ -28,19 +28,22 @@ HeatFlowRun run_and_read(const std::string& dir, const std::string& scene) {
           read_doubles(f, "/frames/temperature"), read_doubles(f, "/frames/time")};
 }
 
+// Three spheres between a floor at 400 K and a ceiling at 300 K, run to steady state (3000 s,
+// tolerances 1e-12), a frame every 1000 s in out.h5.
+std::string column_between_walls(SceneBuilder scene) {
+  return scene.set("simulation.duration", 3000.0)
+      .add("generate", column(3))
+      .add("wall", floor_wall({{"temperature", 400.0}}))
+      .add("wall", plane_wall({0.0, 0.006, 0.0}, {0.0, -1.0, 0.0}, {{"temperature", 300.0}}))
+      .set(tolerances(1.0e-12))
+      .set(output("out.h5", 1000.0))
+      .str();
+}
+
 }  // namespace
 
 TEST(EndToEndHeatFlow, SeriesColumnCarriesTheSameSteadyHeatFlowThroughEveryContact) {
-  const auto run = run_and_read(scratch_dir("heat_flow"),
-             thermal_scene()
-                 .set("simulation.duration", 3000.0)
-                 .add("generate", column(3))
-                 .add("wall", floor_wall({{"temperature", 400.0}}))
-                 .add("wall", plane_wall({0.0, 0.006, 0.0}, {0.0, -1.0, 0.0},
-                                         {{"temperature", 300.0}}))
-                 .set(tolerances(1.0e-12))
-                 .set(output("out.h5", 1000.0))
-                 .str());
+  const auto run = run_and_read(scratch_dir("heat_flow"), column_between_walls(thermal_scene()));
   const auto& [pair, offset, Q, H, T, time] = run;
   const std::size_t frames = offset.size() - 1;
   ASSERT_EQ(offset[frames] - offset[frames - 1], 4);
@@ -71,17 +74,10 @@ TEST(EndToEndHeatFlow, ParticleResistanceIsInTheContactsConductanceAndFlow) {
   const double c = 0.5, r = 1.0e-3, k = 50.0, H0 = 1.0e-3;
   const double omega = 2.0 * std::numbers::pi * (1.0 - std::sqrt(3.0) / 2.0);
   const double R = (1.0 / (c * r) - 1.0 / r) / (k * omega);  // K/W, one shell
-  const auto run = run_and_read(scratch_dir("heat_flow_shells"),
-             thermal_scene()
-                 .set("simulation.duration", 3000.0)
-                 .set({{"thermal.particle_resistance", "isothermal_core"}, {"thermal.core_fraction", c}})
-                 .add("generate", column(3))
-                 .add("wall", floor_wall({{"temperature", 400.0}}))
-                 .add("wall", plane_wall({0.0, 0.006, 0.0}, {0.0, -1.0, 0.0},
-                                         {{"temperature", 300.0}}))
-                 .set(tolerances(1.0e-12))
-                 .set(output("out.h5", 1000.0))
-                 .str());
+  const auto run = run_and_read(
+      scratch_dir("heat_flow_shells"),
+      column_between_walls(thermal_scene().set(
+          {{"thermal.particle_resistance", "isothermal_core"}, {"thermal.core_fraction", c}})));
   const auto& [pair, offset, Q, H, T, time] = run;
   const std::size_t frames = offset.size() - 1;
   ASSERT_EQ(offset[frames] - offset[frames - 1], 4);

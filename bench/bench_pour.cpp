@@ -4,8 +4,9 @@
 // half glass, [mechanics] settings) with three changes: N/2 spheres per material, and the
 // box's x and z widths scaled by sqrt(N / 2000) (fill region and side walls alike), so the
 // bed keeps the example's depth (about 20 mm once settled) and only its footprint grows.
-// Each benchmark settles once: steps until every sphere is slower than
-// mechanics.settle_velocity (at rest) or mechanics.settle_time runs out, as `tmdem run`'s
+// Each benchmark settles once: steps until the scene's rest test says at rest
+// (mechanics.rest_test: by default the contact network's forces stationary and the load
+// carriers still, SettleRestTest.h) or mechanics.settle_time runs out, as `tmdem run`'s
 // settle phase does (coupling/run/ThermalProblem.cpp).
 //
 //   build/bench/bench_pour --benchmark_filter=BM_Pour/2000/1/ --benchmark_counters_tabular=true
@@ -33,7 +34,7 @@
 //                          symmetric Gauss-Seidel and print where it is slow (SlowModeProbe.h;
 //                          TMDEM_POUR_PROBE_SWEEPS sweeps, default 400)
 // Counters: particles; contacts (active, at the end) and candidates; settle_steps; sim_time_s;
-// at_rest (1/0); mean_sweeps; converged_pct (steps whose solver converged); pen_rmin (largest
+// at_rest (1/0, by the scene's rest test); rattlers (of the network test, last step); mean_sweeps; converged_pct (steps whose solver converged); pen_rmin (largest
 // penetration during the run / smallest radius) and pen_end_rmin (after the last step);
 // fall_steps, fall_unconv, tight_step (the tolerance schedule: steps at fall_tolerance, of
 // those unconverged, first step at the tight tolerance after the fall, 0: none);
@@ -56,6 +57,7 @@
 #include <string>
 
 #include "coupling/bridge/SceneToMechanics.h"
+#include "coupling/run/SceneRestTest.h"
 #include "coupling/scene/SceneLoader.h"
 #include "mechanics/solvers/ContactColouring.h"
 #include "mechanics/solvers/ContactSolverRegistry.h"
@@ -142,6 +144,8 @@ void BM_Pour(benchmark::State& state) {
     bool at_rest = false;
     const bool trace = std::getenv("TMDEM_POUR_TRACE") != nullptr;
     const auto probe_step = static_cast<std::int64_t>(env_number("TMDEM_POUR_PROBE_STEP", -1));
+    // The scene's rest test (mechanics.rest_test), as tmdem run's settle phase asks it.
+    coupling::SceneRestTest rest(scene, *sim);
     const auto start = std::chrono::steady_clock::now();
     const std::clock_t cpu_start = std::clock();
     while (t < scene.mechanics.settle_time_s - 0.5 * h && steps < max_steps && wall < max_wall_s) {
@@ -193,7 +197,7 @@ void BM_Pour(benchmark::State& state) {
         bench::print_solver_sweeps(sim->problem(), {"nlgs", "nlgs_block", "nncg"}, stderr);
         bench::print_block_ratios(sim->problem(), stderr);
       }
-      if (sim->max_speed() < scene.mechanics.settle_velocity_m_per_s) {
+      if (rest.after_step()) {
         at_rest = true;
         break;
       }
@@ -228,6 +232,7 @@ void BM_Pour(benchmark::State& state) {
     state.counters["settle_steps"] = static_cast<double>(steps);
     state.counters["sim_time_s"] = t;
     state.counters["at_rest"] = at_rest ? 1.0 : 0.0;
+    state.counters["rattlers"] = static_cast<double>(rest.network().rattlers());
     state.counters["max_speed"] = sim->max_speed();
     state.counters["mean_sweeps"] = sim->stats().mean_sweeps();
     state.counters["converged_pct"] = 100.0 * static_cast<double>(converged) / static_cast<double>(steps);

@@ -137,7 +137,8 @@ class GasConductionMode final : public HeatTransferMode {
   }
 
   double edge_conductance(const ThermalNetwork& net, std::size_t e) const {
-    const double disk = std::min(share_radius_m(net, net.edge_a[e]), share_radius_m(net, net.edge_b[e]));
+    const double disk =
+        std::min(share_radius_m(net, net.edge_a[e]), share_radius_m(net, net.edge_b[e]));
     return conductance(edge_gap(net, e), net.edge_in_contact[e] != 0, disk);
   }
 

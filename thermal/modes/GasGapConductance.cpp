@@ -63,7 +63,8 @@ double gas_jump_length_m(double pressure_Pa, double mean_free_path_at_1atm_m, do
 }
 
 bool surrounding_layer_reaches(const GasGap& g, double layer_fraction) {
-  const double r_min = std::isinf(g.radius_b_m) ? g.radius_a_m : std::min(g.radius_a_m, g.radius_b_m);
+  const double r_min =
+      std::isinf(g.radius_b_m) ? g.radius_a_m : std::min(g.radius_a_m, g.radius_b_m);
   return g.gap_m < layer_fraction * r_min;
 }
 

@@ -461,6 +461,35 @@ TEST(GasShare, SimpleCubicNodeIsClippedOnlyWhenTheLayerReachesPastItsShare) {
   }
 }
 
+TEST(GasShare, AnIsothermalWallIsANeighbourAndItsDiskIsClippedToo) {
+  // The simple cubic node at cutoff 1.0 with a wall touching the outer particle at x = 2 R (the
+  // plane x = 3 R; every other particle 2 R or more from it): that particle has z = 6 (the
+  // centre, 4 outer at gap 0.83 R, the wall), share R sqrt(5)/3. Its wall layer would reach
+  // r_out = R (P = 2 R, centre 1 R from the plane), clipped to the share: the sphere-plane
+  // integral to R sqrt(5)/3, u = sqrt(R^2 - r^2), S = R - u, int 2 pi r dr / max(L, S) =
+  // pi r_k^2 / L + 2 pi [-u - R ln(R - u)] from r_k (S = L) to the disk's edge.
+  auto c = cluster(simple_cubic_node());
+  ASSERT_EQ(c.x[1][0], 2.0 * kR);
+  c.net.add_wall_edge(1, 400.0, 0.0, -1, 0.0, 0.0, true);
+  auto sys = make_system(c.net, {"gas_conduction"}, shared_settings(1.0));
+  std::vector<double> T(c.x.size(), 0.0), q(c.x.size());
+  double boundary = 0.0;
+  ASSERT_TRUE(sys->heat_flow(T, q, boundary));
+  const double rho6 = kR * std::sqrt(5.0) / 3.0, u_k = kR - kL;
+  const double r_k = std::sqrt(kR * kR - u_k * u_k);
+  const auto G = [](double r) {
+    const double u = std::sqrt(kR * kR - r * r);
+    return -u - kR * std::log(kR - u);
+  };
+  const double expected = kPi * r_k * r_k / kL + 2.0 * kPi * (G(r_k) - G(rho6));
+  EXPECT_NEAR(q[1] / (400.0 * expected), 1.0, 1e-9);
+  EXPECT_EQ(boundary, q[1]);
+  // Without sharing the whole layer, out to r = R, conducts more.
+  auto whole = make_system(c.net, {"gas_conduction"}, shared_settings(1.0, false));
+  ASSERT_TRUE(whole->heat_flow(T, q, boundary));
+  EXPECT_NEAR(q[1] / (400.0 * (kPi * r_k * r_k / kL + 2.0 * kPi * (G(r_k) - G(kR)))), 1.0, 1e-9);
+}
+
 TEST(GasShare, FccNodeGetsTheTwelfthOfItsSurroundings) {
   // Centre: 12 touching neighbours, share radius R sqrt(11)/6 = 0.553 R < the layer's 0.65 R.
   // Each outer particle: the centre and 4 outer neighbours touching (the rest 2.83 R and more
@@ -550,4 +579,18 @@ TEST(GasShare, SolidAnglesNeverExceedTheSurroundingsSymmetricAndConservative) {
   for (const double qi : q) sum += qi, scale += std::abs(qi);
   EXPECT_GT(scale, 0.0);
   EXPECT_NEAR(sum, 0.0, 1e-14 * scale);
+}
+
+TEST(GasShare, SharingNeedsTheSurroundingLayer) {
+  // The touching-pair closed form has no layer to clip: refused naming the key.
+  ModeSettings s;
+  s.set("gas_conduction", "layer_share", 1.0);
+  std::string why = "accepted";
+  try {
+    make_heat_transfer_mode("gas_conduction", s);
+  } catch (const std::invalid_argument& e) {
+    why = e.what();
+  }
+  EXPECT_NE(why.find("layer_share: needs model = \"surrounding_layer\""), std::string::npos) << why;
+  EXPECT_NO_THROW(make_heat_transfer_mode("gas_conduction", shared_settings(kLayer)));
 }

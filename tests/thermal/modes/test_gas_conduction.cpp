@@ -13,6 +13,7 @@
 
 #include "thermal/ThermalTestSupport.h"
 #include "thermal/modes/GasGapConductance.h"
+#include "thermal/modes/ParticleResistance.h"
 
 using namespace tmdem::thermal;
 using namespace tmdem::thermal::testing;
@@ -593,4 +594,23 @@ TEST(GasShare, SharingNeedsTheSurroundingLayer) {
   }
   EXPECT_NE(why.find("layer_share: needs model = \"surrounding_layer\""), std::string::npos) << why;
   EXPECT_NO_THROW(make_heat_transfer_mode("gas_conduction", shared_settings(kLayer)));
+}
+
+TEST(GasShare, ParticleResistanceTakesTheSharedConductance) {
+  // thermal.particle_resistance: the shells (core 0.7 R, k = 1) are in series with the gas
+  // conductance the mode reports, the shared one. Touching equal spheres: the partner's cone
+  // has half-angle asin(R / 2R) = 30 degrees, shell (1/(c R) - 1/R) / (k 2 pi (1 - cos 30)).
+  auto c = cluster(fcc_node());
+  const double core = 0.7, k = 1.0;
+  c.net.shell_resistance_K_sr_per_W.assign(c.x.size(), shell_resistance_K_sr_per_W(kR, k, core));
+  const auto H = edge_conductances(c.net, shared_settings(kLayer));
+  const double cone = 2.0 * kPi * (1.0 - std::cos(kPi / 6.0));
+  const double shell = (1.0 / (core * kR) - 1.0 / kR) / (k * cone);
+  const double clipped = equal_spheres_to(kR, 0.0, 0.0, kL, kR * std::sqrt(11.0) / 6.0);
+  const double whole = equal_spheres_to(kR, 0.0, 0.0, kL, layer_edge(kR, 2.0 * kR, kLayer));
+  for (std::size_t e = 0; e < H.size(); ++e) {
+    if (c.net.edge_gap_m[e] > 0.0) continue;
+    const double Hg = c.net.edge_a[e] == 0 ? clipped : whole;
+    EXPECT_NEAR(H[e] / (1.0 / (1.0 / Hg + 2.0 * shell)), 1.0, 1e-9) << e;
+  }
 }

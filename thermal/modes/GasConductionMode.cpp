@@ -35,13 +35,7 @@ class GasConductionMode final : public HeatTransferMode {
 
   void update_geometry(const ThermalNetwork& net) override {
     count_neighbours(net);
-    H_edge_.assign(net.edge_count(), 0.0);
-    for (std::size_t e = 0; e < net.edge_count(); ++e) H_edge_[e] = edge_conductance(net, e);
-    H_wall_.assign(net.wall_edge_count(), 0.0);
-    for (std::size_t w = 0; w < net.wall_edge_count(); ++w) H_wall_[w] = wall_conductance(net, w);
-    cached_edge_a_ = net.edge_a;
-    cached_edge_b_ = net.edge_b;
-    cached_wall_node_ = net.wall_node;
+    compute_conductances(net);
   }
 
   bool add_heat_flow(const ThermalNetwork& net, std::span<const double> T,
@@ -90,11 +84,29 @@ class GasConductionMode final : public HeatTransferMode {
   }
 
  private:
+  // A view of the system's network with some wall edges left out (the conductivity study's
+  // per-wall flows) keeps the system's shares, so its flows add up to the system's; any other
+  // network is counted afresh.
   GasConductionMode(const GasConductionMode& settings, const ThermalNetwork& net)
       : k_f_W_per_mK_(settings.k_f_W_per_mK_), model_(settings.model_), share_(settings.share_),
         reach_(settings.reach_),
         min_gap_m_(settings.min_gap_m_), jump_m_(settings.jump_m_) {
-    update_geometry(net);
+    if (net.edge_a == settings.cached_edge_a_ && net.edge_b == settings.cached_edge_b_ &&
+        net.node_count() == settings.neighbours_.size())
+      neighbours_ = settings.neighbours_;
+    else
+      count_neighbours(net);
+    compute_conductances(net);
+  }
+
+  void compute_conductances(const ThermalNetwork& net) {
+    H_edge_.assign(net.edge_count(), 0.0);
+    for (std::size_t e = 0; e < net.edge_count(); ++e) H_edge_[e] = edge_conductance(net, e);
+    H_wall_.assign(net.wall_edge_count(), 0.0);
+    for (std::size_t w = 0; w < net.wall_edge_count(); ++w) H_wall_[w] = wall_conductance(net, w);
+    cached_edge_a_ = net.edge_a;
+    cached_edge_b_ = net.edge_b;
+    cached_wall_node_ = net.wall_node;
   }
 
   bool is_cached(const ThermalNetwork& net) const {

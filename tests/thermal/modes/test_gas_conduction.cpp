@@ -614,3 +614,44 @@ TEST(GasShare, ParticleResistanceTakesTheSharedConductance) {
     EXPECT_NEAR(H[e] / (1.0 / (1.0 / Hg + 2.0 * shell)), 1.0, 1e-9) << e;
   }
 }
+
+TEST(GasShare, AViewWithoutSomeWallEdgesKeepsTheSystemsShares) {
+  // The conductivity study evaluates a mode on copies of the network holding one wall's edges
+  // (its per-wall flows), which must add up to the system's. Particle 1 in a corner: touching
+  // particle 0 and two walls, z = 3 (share 2 sqrt(2) R / 3 = 0.943 R < the wall layer's R at
+  // cutoff 1.0): a copy with one wall alone must not count z = 2 (no clip) afresh.
+  ThermalNetwork net;
+  net.resize_nodes(2);
+  net.heat_capacity_J_per_K = {1e-2, 1e-2};
+  net.radius_m = {kR, kR};
+  net.add_edge(0, 1, 0.0, 0.0, 0.0, true);
+  net.add_wall_edge(1, 400.0, 0.0, -1, 0.0, 0.0, true);
+  net.add_wall_edge(1, 250.0, 0.0, -1, 0.0, 0.0, true);
+  auto sys = make_system(net, {"gas_conduction"}, shared_settings(1.0));
+  const std::vector<double> T{300.0, 310.0};
+  std::vector<double> q(2);
+  double boundary = 0.0;
+  ASSERT_TRUE(sys->heat_flow(T, q, boundary));
+  // Independent value of one wall's conductance: the sphere-plane integral (S = R - u) to
+  // rho_3 = 2 sqrt(2) R / 3, as in the wall test above.
+  const double rho3 = 2.0 * std::sqrt(2.0) * kR / 3.0, u_k = kR - kL;
+  const double r_k = std::sqrt(kR * kR - u_k * u_k);
+  const auto G = [](double r) {
+    const double u = std::sqrt(kR * kR - r * r);
+    return -u - kR * std::log(kR - u);
+  };
+  const double Hw = kPi * r_k * r_k / kL + 2.0 * kPi * (G(r_k) - G(rho3));
+  EXPECT_NEAR(boundary / (Hw * (400.0 - 310.0 + 250.0 - 310.0)), 1.0, 1e-9);
+  double per_wall = 0.0;
+  for (std::size_t keep = 0; keep < 2; ++keep) {
+    ThermalNetwork view = sys->network();
+    view.clear_wall_edges();
+    view.add_wall_edge(1, net.wall_temperature_K[keep], 0.0, -1, 0.0, 0.0, true);
+    std::vector<double> qv(2, 0.0);
+    double b = 0.0;
+    ASSERT_TRUE(sys->modes()[0]->add_heat_flow(view, T, qv, b));
+    EXPECT_NEAR(b / (Hw * (net.wall_temperature_K[keep] - 310.0)), 1.0, 1e-9) << keep;
+    per_wall += b;
+  }
+  EXPECT_NEAR(per_wall, boundary, 1e-12 * std::abs(boundary));
+}

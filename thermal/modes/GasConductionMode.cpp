@@ -3,6 +3,9 @@
 // the geometry of the frozen packing, so it is computed once per edge set (update_geometry) and
 // enters the Laplacian like contact conduction, with the same exact (constant) Jacobian.
 // Models: thermal/modes/GasGapConductance.h; docs/heat-modes.md "Gas in the gaps".
+#include <algorithm>
+#include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -23,6 +26,7 @@ class GasConductionMode final : public HeatTransferMode {
       : k_f_W_per_mK_(p["conductivity"]),
         model_(p.choice("model") == "surrounding_layer" ? GasModel::SurroundingLayer
                                                         : GasModel::VargasMcCarthy),
+        share_(p.choice("layer_share") == "equal_solid_angle"),
         reach_(p["cutoff"]),
         min_gap_m_(p["min_gap"]),
         jump_m_(gas_jump_length_m(p["pressure"], p["mean_free_path"], p["accommodation"])) {}
@@ -30,13 +34,8 @@ class GasConductionMode final : public HeatTransferMode {
   std::string_view name() const override { return "gas_conduction"; }
 
   void update_geometry(const ThermalNetwork& net) override {
-    H_edge_.assign(net.edge_count(), 0.0);
-    for (std::size_t e = 0; e < net.edge_count(); ++e) H_edge_[e] = edge_conductance(net, e);
-    H_wall_.assign(net.wall_edge_count(), 0.0);
-    for (std::size_t w = 0; w < net.wall_edge_count(); ++w) H_wall_[w] = wall_conductance(net, w);
-    cached_edge_a_ = net.edge_a;
-    cached_edge_b_ = net.edge_b;
-    cached_wall_node_ = net.wall_node;
+    count_neighbours(net);
+    compute_conductances(net);
   }
 
   bool add_heat_flow(const ThermalNetwork& net, std::span<const double> T,
@@ -85,10 +84,29 @@ class GasConductionMode final : public HeatTransferMode {
   }
 
  private:
+  // A view of the system's network with some wall edges left out (the conductivity study's
+  // per-wall flows) keeps the system's shares, so its flows add up to the system's; any other
+  // network is counted afresh.
   GasConductionMode(const GasConductionMode& settings, const ThermalNetwork& net)
-      : k_f_W_per_mK_(settings.k_f_W_per_mK_), model_(settings.model_), reach_(settings.reach_),
+      : k_f_W_per_mK_(settings.k_f_W_per_mK_), model_(settings.model_), share_(settings.share_),
+        reach_(settings.reach_),
         min_gap_m_(settings.min_gap_m_), jump_m_(settings.jump_m_) {
-    update_geometry(net);
+    if (net.edge_a == settings.cached_edge_a_ && net.edge_b == settings.cached_edge_b_ &&
+        net.node_count() == settings.neighbours_.size())
+      neighbours_ = settings.neighbours_;
+    else
+      count_neighbours(net);
+    compute_conductances(net);
+  }
+
+  void compute_conductances(const ThermalNetwork& net) {
+    H_edge_.assign(net.edge_count(), 0.0);
+    for (std::size_t e = 0; e < net.edge_count(); ++e) H_edge_[e] = edge_conductance(net, e);
+    H_wall_.assign(net.wall_edge_count(), 0.0);
+    for (std::size_t w = 0; w < net.wall_edge_count(); ++w) H_wall_[w] = wall_conductance(net, w);
+    cached_edge_a_ = net.edge_a;
+    cached_edge_b_ = net.edge_b;
+    cached_wall_node_ = net.wall_node;
   }
 
   bool is_cached(const ThermalNetwork& net) const {
@@ -96,31 +114,65 @@ class GasConductionMode final : public HeatTransferMode {
            net.wall_node == cached_wall_node_;
   }
 
-  double edge_conductance(const ThermalNetwork& net, std::size_t e) const {
-    return conductance({net.radius_m[net.edge_a[e]], net.radius_m[net.edge_b[e]], net.edge_gap_m[e],
-                        net.edge_contact_radius_m[e]},
-                       net.edge_in_contact[e] != 0);
+  GasGap edge_gap(const ThermalNetwork& net, std::size_t e) const {
+    return {net.radius_m[net.edge_a[e]], net.radius_m[net.edge_b[e]], net.edge_gap_m[e],
+            net.edge_contact_radius_m[e]};
   }
 
-  double wall_conductance(const ThermalNetwork& net, std::size_t w) const {
+  GasGap wall_gap(const ThermalNetwork& net, std::size_t w) const {
     GasGap g;
     g.radius_a_m = net.radius_m[net.wall_node[w]];
     g.gap_m = net.wall_gap_m[w];
     g.contact_radius_m = net.wall_contact_radius_m[w];
-    return conductance(g, net.wall_in_contact[w] != 0);
+    return g;
   }
 
-  double conductance(const GasGap& g, bool in_contact) const {
+  // layer_share = "equal_solid_angle": per particle the number z of its pairs (particles and
+  // isothermal walls) inside the layer, whose gas it shares equally (equal_share_disk_radius_m).
+  void count_neighbours(const ThermalNetwork& net) {
+    neighbours_.clear();
+    if (!share_ || model_ != GasModel::SurroundingLayer) return;
+    neighbours_.assign(net.node_count(), 0);
+    for (std::size_t e = 0; e < net.edge_count(); ++e)
+      if (surrounding_layer_reaches(edge_gap(net, e), reach_)) {
+        ++neighbours_[net.edge_a[e]];
+        ++neighbours_[net.edge_b[e]];
+      }
+    for (std::size_t w = 0; w < net.wall_edge_count(); ++w)
+      if (surrounding_layer_reaches(wall_gap(net, w), reach_)) ++neighbours_[net.wall_node[w]];
+  }
+
+  // The pair's disk: the smaller of its particles' equal shares (infinity without sharing).
+  double share_radius_m(const ThermalNetwork& net, std::int32_t node) const {
+    if (neighbours_.empty()) return std::numeric_limits<double>::infinity();
+    return equal_share_disk_radius_m(net.radius_m[node], neighbours_[node]);
+  }
+
+  double edge_conductance(const ThermalNetwork& net, std::size_t e) const {
+    const double disk =
+        std::min(share_radius_m(net, net.edge_a[e]), share_radius_m(net, net.edge_b[e]));
+    return conductance(edge_gap(net, e), net.edge_in_contact[e] != 0, disk);
+  }
+
+  double wall_conductance(const ThermalNetwork& net, std::size_t w) const {
+    return conductance(wall_gap(net, w), net.wall_in_contact[w] != 0,
+                       share_radius_m(net, net.wall_node[w]));
+  }
+
+  double conductance(const GasGap& g, bool in_contact, double disk_radius_m) const {
     if (model_ == GasModel::VargasMcCarthy)
       return in_contact || g.gap_m <= 0.0 ? vargas_mccarthy_conductance_W_per_K(g, k_f_W_per_mK_) : 0.0;
-    return surrounding_layer_conductance_W_per_K(g, k_f_W_per_mK_, reach_, min_gap_m_, jump_m_);
+    return surrounding_layer_conductance_W_per_K(g, k_f_W_per_mK_, reach_, min_gap_m_, jump_m_,
+                                                 disk_radius_m);
   }
 
   double k_f_W_per_mK_;
   GasModel model_;
+  bool share_;        // layer_share = "equal_solid_angle"
   double reach_;      // fraction of the smaller radius
   double min_gap_m_;  // L_min of the surrounding layer
   double jump_m_;     // Smoluchowski jump length of the gap's two surfaces, m (0: continuum)
+  std::vector<std::size_t> neighbours_;  // per node, when sharing: pairs inside the layer
   std::vector<double> H_edge_, H_wall_;  // W/K, per edge of the current geometry
   std::vector<std::int32_t> cached_edge_a_, cached_edge_b_, cached_wall_node_;  // that geometry
 };
@@ -148,6 +200,16 @@ const ModeDescription& gas_conduction_mode() {
                                      "pairs, Vargas & McCarthy 2002) or \"surrounding_layer\" "
                                      "(touching and near pairs, Rong & Horio 1999)",
                       .choices = {"vargas_mccarthy", "surrounding_layer"}},
+                     {.key = "layer_share",
+                      .range = ParameterRange::any(),
+                      .description = "how the surrounding layer's gas is shared between a "
+                                     "particle's neighbours: \"none\" (every pair integrates over "
+                                     "its whole layer, so overlapping layers count gas more than "
+                                     "once) or \"equal_solid_angle\" (each pair's disk is clipped "
+                                     "to the cone of solid angle 4 pi / z around its axis, z the "
+                                     "particle's pairs inside the layer; needs model = "
+                                     "\"surrounding_layer\")",
+                      .choices = {"none", "equal_solid_angle"}},
                      {.key = "cutoff",
                       .unit = "",
                       .default_value = 0.4,
@@ -189,6 +251,11 @@ const ModeDescription& gas_conduction_mode() {
                                   "needs model = \"surrounding_layer\" (\"" +
                                       std::string(p.choice("model")) +
                                       "\" is a touching-pair closed form with no gas gap to rarefy)"};
+        if (p.choice("layer_share") != "none" && p.choice("model") != "surrounding_layer")
+          return ParameterProblem{"layer_share",
+                                  "needs model = \"surrounding_layer\" (\"" +
+                                      std::string(p.choice("model")) +
+                                      "\" is a touching-pair closed form with no layer to share)"};
         return std::nullopt;
       },
       .make = [](const ModeParameters& p) -> std::unique_ptr<HeatTransferMode> {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace tmdem::thermal {
@@ -61,8 +62,21 @@ double gas_jump_length_m(double pressure_Pa, double mean_free_path_at_1atm_m, do
   return 2.0 * (2.0 - accommodation) / accommodation * mean_free_path_m;
 }
 
+bool surrounding_layer_reaches(const GasGap& g, double layer_fraction) {
+  const double r_min =
+      std::isinf(g.radius_b_m) ? g.radius_a_m : std::min(g.radius_a_m, g.radius_b_m);
+  return g.gap_m < layer_fraction * r_min;
+}
+
+double equal_share_disk_radius_m(double radius_m, std::size_t neighbours) {
+  if (neighbours <= 1) return std::numeric_limits<double>::infinity();
+  const double z = static_cast<double>(neighbours);
+  return 2.0 * radius_m * std::sqrt(z - 1.0) / z;
+}
+
 double surrounding_layer_conductance_W_per_K(const GasGap& g, double k_f, double layer_fraction,
-                                             double min_gap_m, double jump_length_m) {
+                                             double min_gap_m, double jump_length_m,
+                                             double max_disk_radius_m) {
   const bool plane = std::isinf(g.radius_b_m);
   const double r_min = plane ? g.radius_a_m : std::min(g.radius_a_m, g.radius_b_m);
   const double r_max = plane ? g.radius_a_m : std::max(g.radius_a_m, g.radius_b_m);
@@ -82,6 +96,7 @@ double surrounding_layer_conductance_W_per_K(const GasGap& g, double k_f, double
       r_out = std::min(r_min, std::sqrt(std::max(P * P - x * x, 0.0)));
     }
   }
+  r_out = std::min(r_out, max_disk_radius_m);  // the pair's share (infinity: no clip)
   const double r_in = std::clamp(g.contact_radius_m, 0.0, r_out);
   if (!(r_out > r_in)) return 0.0;
   // r_k: the gas is thinner than L_min inside it (S grows with r), so conduction there is

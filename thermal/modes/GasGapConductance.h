@@ -2,6 +2,7 @@
 // Conductance of the stagnant gas (or liquid) between two spheres, or between a sphere and a
 // plane wall, W/K: the models of effects.gas_conduction (thermal/modes/GasConductionMode.cpp; docs/heat-modes.md
 // "Gas in the gaps" gives equations, sources and validity).
+#include <cstddef>
 #include <limits>
 
 namespace tmdem::thermal {
@@ -25,9 +26,24 @@ struct GasGap {
 // A rarefied gas (Smoluchowski): the gas meets each surface with a temperature jump, as if the
 // gap were wider by the jump length l (both surfaces together), so 1 / max(L_min, S(r)) becomes
 // 1 / (max(L_min, S(r)) + l); l = 0: continuum (gas_jump_length_m, below).
-double surrounding_layer_conductance_W_per_K(const GasGap& gap, double fluid_conductivity_W_per_mK,
-                                             double layer_fraction, double min_gap_m,
-                                             double jump_length_m = 0.0);
+// max_disk_radius_m clips the integration disk, r_out -> min(r_out, max_disk_radius_m): the
+// pair's share of the gas when neighbouring layers overlap (equal_share_disk_radius_m, below);
+// infinity: the whole layer.
+double surrounding_layer_conductance_W_per_K(
+    const GasGap& gap, double fluid_conductivity_W_per_mK, double layer_fraction, double min_gap_m,
+    double jump_length_m = 0.0,
+    double max_disk_radius_m = std::numeric_limits<double>::infinity());
+
+// True when the pair lies inside the surrounding layer (gap < layer_fraction * r_min), i.e. its
+// layer conducts at all: the neighbours that share a particle's gas.
+bool surrounding_layer_reaches(const GasGap& gap, double layer_fraction);
+
+// Equal share of a particle's surroundings among its z neighbours within the layer
+// (fluid.layer_share = "equal_solid_angle", docs/heat-modes.md "Gas in the gaps"): the cone of
+// solid angle 4 pi / z around a pair's axis, 2 pi (1 - cos t) = 4 pi / z, meets the particle's
+// surface at the distance R sin t = 2 R sqrt(z - 1) / z from the axis. That distance (z >= 2; R
+// itself at z = 2), infinity for z <= 1 (nothing to share). m.
+double equal_share_disk_radius_m(double radius_m, std::size_t neighbours);
 
 // The Smoluchowski jump length of both surfaces of a gap, as the VDI Heat Atlas writes it for
 // the Zehner-Schlunder-Bauer model: l = 2 (2 - gamma) / gamma * Lambda, with the accommodation

@@ -479,7 +479,7 @@ TEST(GasShare, AnIsothermalWallIsANeighbourAndItsDiskIsClippedToo) {
   const double rho6 = kR * std::sqrt(5.0) / 3.0, u_k = kR - kL;
   const double r_k = std::sqrt(kR * kR - u_k * u_k);
   const auto G = [](double r) {
-    const double u = std::sqrt(kR * kR - r * r);
+    const double u = std::sqrt(std::max(kR * kR - r * r, 0.0));  // r = R: 0, not a rounding below it
     return -u - kR * std::log(kR - u);
   };
   const double expected = kPi * r_k * r_k / kL + 2.0 * kPi * (G(r_k) - G(rho6));
@@ -637,7 +637,7 @@ TEST(GasShare, AViewWithoutSomeWallEdgesKeepsTheSystemsShares) {
   const double rho3 = 2.0 * std::sqrt(2.0) * kR / 3.0, u_k = kR - kL;
   const double r_k = std::sqrt(kR * kR - u_k * u_k);
   const auto G = [](double r) {
-    const double u = std::sqrt(kR * kR - r * r);
+    const double u = std::sqrt(std::max(kR * kR - r * r, 0.0));  // r = R: 0, not a rounding below it
     return -u - kR * std::log(kR - u);
   };
   const double Hw = kPi * r_k * r_k / kL + 2.0 * kPi * (G(r_k) - G(rho3));

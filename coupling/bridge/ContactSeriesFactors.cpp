@@ -7,10 +7,10 @@
 
 namespace tmdem::coupling {
 
-void contact_series_factors(const ContactList& contacts, const thermal::ThermalNetwork& network,
-                            std::vector<double>& factor) {
-  factor.clear();
-  if (network.edge_series_factor.empty() && network.wall_series_factor.empty()) return;
+bool contact_conductances_in_series(const ContactList& contacts,
+                                    const thermal::ThermalNetwork& network,
+                                    std::vector<double>& out) {
+  if (network.edge_series_factor.empty() && network.wall_series_factor.empty()) return false;
   auto key = [](std::int64_t a, std::int64_t b) {
     if (a > b) std::swap(a, b);
     return (std::uint64_t(a) << 32) | std::uint64_t(b);
@@ -22,11 +22,11 @@ void contact_series_factors(const ContactList& contacts, const thermal::ThermalN
   std::unordered_map<std::int64_t, std::vector<std::size_t>> wall_edges;
   for (std::size_t w = 0; w < network.wall_edge_count(); ++w)
     wall_edges[network.wall_node[w]].push_back(w);
-  factor.assign(contacts.size(), 1.0);
+  out.assign(contacts.conductance_W_per_K.begin(), contacts.conductance_W_per_K.end());
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     const std::int64_t i = contacts.pair[2 * c], j = contacts.pair[2 * c + 1];
     if (!mechanics::is_wall(j)) {
-      if (const auto it = pair_factor.find(key(i, j)); it != pair_factor.end()) factor[c] = it->second;
+      if (const auto it = pair_factor.find(key(i, j)); it != pair_factor.end()) out[c] *= it->second;
       continue;
     }
     // The network keeps no wall index per edge: the particle's first unused wall edge with this
@@ -37,11 +37,12 @@ void contact_series_factors(const ContactList& contacts, const thermal::ThermalN
     auto& candidates = it->second;
     for (auto k = candidates.begin(); k != candidates.end(); ++k) {
       if (network.wall_conductance_W_per_K[*k] != contacts.conductance_W_per_K[c]) continue;
-      factor[c] = network.wall_factor(*k);
+      out[c] *= network.wall_factor(*k);
       candidates.erase(k);
       break;
     }
   }
+  return true;
 }
 
 }  // namespace tmdem::coupling

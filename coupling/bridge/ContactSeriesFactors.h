@@ -11,12 +11,14 @@
 
 namespace tmdem::coupling {
 
-// factor gets one value per contact, or is left empty when the network has no series factors
-// (the key off). Particle pairs are matched by their two nodes; a contact with an isothermal
-// wall by its particle and its contact conductance (two walls touching one particle with the same
-// conductance, a box corner, are told apart by their order only); heat-flux and adiabatic walls
-// get 1 (no shell: a flux wall imposes its power).
-void contact_series_factors(const ContactList& contacts, const thermal::ThermalNetwork& network,
-                            std::vector<double>& factor);
+// Each contact's conductance in series with its particles' shells, f H, into `out` (one per
+// contact); false, `out` untouched, when the network has no series factors (the key off: the
+// list's own conductances stand). Particle pairs are matched by their two nodes; a contact with
+// an isothermal wall by its particle and its contact conductance (two walls touching one particle
+// with the same conductance, a box corner, are told apart by their order only); heat-flux and
+// adiabatic walls keep H (no shell: a flux wall imposes its power).
+bool contact_conductances_in_series(const ContactList& contacts,
+                                    const thermal::ThermalNetwork& network,
+                                    std::vector<double>& out);
 
 }  // namespace tmdem::coupling

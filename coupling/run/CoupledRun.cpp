@@ -12,19 +12,19 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "coupling/common/ExitCode.h"
-#include "coupling/output/Checkpoint.h"
 #include "coupling/bridge/ContactHeatFlow.h"
-#include "coupling/bridge/ContactSeriesFactors.h"
 #include "coupling/bridge/ContactList.h"
+#include "coupling/bridge/ContactSeriesFactors.h"
 #include "coupling/bridge/DynamicNetwork.h"
 #include "coupling/bridge/RestingContacts.h"
-#include "coupling/output/OutputError.h"
-#include "coupling/output/ProgressReporter.h"
-#include "coupling/output/ResultWriter.h"
 #include "coupling/bridge/SceneToMechanics.h"
 #include "coupling/bridge/ThermalDiagnostics.h"
 #include "coupling/bridge/ThermalNetworkBuilder.h"
+#include "coupling/common/ExitCode.h"
+#include "coupling/output/Checkpoint.h"
+#include "coupling/output/OutputError.h"
+#include "coupling/output/ProgressReporter.h"
+#include "coupling/output/ResultWriter.h"
 #include "coupling/run/CoupledRunLoop.h"
 #include "coupling/run/Interruption.h"
 #include "coupling/run/OutputPaths.h"
@@ -33,8 +33,8 @@
 #include "coupling/scene/HeatModes.h"
 #include "mechanics/integrator/NscdIntegrator.h"
 #include "thermal/integrators/IntegratorRegistry.h"
-#include "thermal/modes/ModeRegistry.h"
 #include "thermal/integrators/ThermalSolverError.h"
+#include "thermal/modes/ModeRegistry.h"
 
 namespace tmdem::coupling {
 
@@ -175,19 +175,10 @@ void CoupledRun::write_frame(double t_s) {
   f.tangential_force_N = contacts_.tangential_force_N;
   // With the particle's own resistance, each contact's conductance and flow are those of the
   // path in series with the two shells (ContactSeriesFactors.h).
-  contact_series_factors(contacts_, system_->network(), series_factor_);
-  if (series_factor_.empty()) {
-    contact_heat_flow_W(contacts_, contacts_.conductance_W_per_K, f.temperature_K, t_s, scene_,
-                        heat_flow_W_);
-    f.conductance_W_per_K = contacts_.conductance_W_per_K;
-  } else {
-    effective_conductance_W_per_K_.resize(contacts_.size());
-    for (std::size_t c = 0; c < contacts_.size(); ++c)
-      effective_conductance_W_per_K_[c] = series_factor_[c] * contacts_.conductance_W_per_K[c];
-    contact_heat_flow_W(contacts_, effective_conductance_W_per_K_, f.temperature_K, t_s, scene_,
-                        heat_flow_W_);
-    f.conductance_W_per_K = effective_conductance_W_per_K_;
-  }
+  const bool in_series =
+      contact_conductances_in_series(contacts_, system_->network(), series_conductance_W_per_K_);
+  f.conductance_W_per_K = in_series ? series_conductance_W_per_K_ : contacts_.conductance_W_per_K;
+  contact_heat_flow_W(contacts_, f.conductance_W_per_K, f.temperature_K, t_s, scene_, heat_flow_W_);
   f.heat_flow_W = heat_flow_W_;
   wall_point_m_.clear();  // where the walls are now: pistons move (move_scene_walls)
   for (const auto& wall : scene_.walls) wall_point_m_.insert(wall_point_m_.end(), wall.point_m.begin(), wall.point_m.end());

@@ -80,8 +80,7 @@ class CoupledRun {
   std::vector<double> zero_velocity_;
   ContactList contacts_;
   std::vector<double> heat_flow_W_;                  // per contact, for the frames
-  std::vector<double> series_factor_;                // per contact, with particle resistance
-  std::vector<double> effective_conductance_W_per_K_;  // per contact, f H, for the frames
+  std::vector<double> series_conductance_W_per_K_;   // per contact, f H: particle resistance
   std::vector<double> wall_point_m_;                 // W*3, the walls' points, for the frames
   std::unique_ptr<DynamicNetwork> dynamic_network_;  // dynamic runs only
   std::unique_ptr<thermal::ThermalSystem> system_;

@@ -66,6 +66,12 @@ struct ContactProblem {
   std::vector<double> rolling_radius;   // m, R_eff (scales m_c to an impulse in stop tests)
   std::vector<double> w_r;              // 1/(kg m^2)
 
+  // Optional (empty: not given): where each particle is (m), and the axis (0-2) across which a
+  // solver may cut the contacts into slabs that threads sweep at once (ContactSlabs.h).
+  // NscdIntegrator gives them: the horizontal axis along which the particles spread widest.
+  std::vector<Eigen::Vector3d> particle_position;
+  int split_axis = 0;
+
   std::size_t size() const { return body_i.size(); }
   std::size_t body_count() const { return inverse_mass.size(); }
   // The body of the wall named by j (is_wall(j)).

@@ -365,6 +365,9 @@ StepReport NscdIntegrator::step(double h) {
   }
   lap();
   setup_contacts(h);
+  // Where the particles are, for a solver that cuts the contacts into slabs (ContactSlabs.h).
+  problem_.particle_position.assign(particles_.position.begin(), particles_.position.end());
+  problem_.split_axis = split_axis();
   report.detection_s += lap();
   report.candidates = problem_.size();
   const SolveReport solved = solve_contacts();
@@ -460,6 +463,23 @@ StepReport NscdIntegrator::step(double h) {
   report.active_contacts = contacts_.size();
   stats_.add(report);
   return report;
+}
+
+int NscdIntegrator::split_axis() const {
+  // Slabs stand upright: a cut across gravity would break every force chain at each slab
+  // boundary, while upright slabs keep a chain inside one slab, swept in one pass.
+  int vertical = -1;
+  if (gravity_.head(dimension_).squaredNorm() > 0.0) gravity_.head(dimension_).cwiseAbs().maxCoeff(&vertical);
+  Eigen::Vector3d low = Eigen::Vector3d::Constant(INFINITY), high = -low;
+  for (const Eigen::Vector3d& x : particles_.position) {
+    low = low.cwiseMin(x);
+    high = high.cwiseMax(x);
+  }
+  int axis = vertical == 0 ? 1 : 0;
+  for (int a = 0; a < dimension_; ++a) {
+    if (a != vertical && high[a] - low[a] > high[axis] - low[axis]) axis = a;
+  }
+  return axis;
 }
 
 void NscdIntegrator::use_tolerance(double tolerance) {

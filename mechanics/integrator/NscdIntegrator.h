@@ -145,6 +145,9 @@ class NscdIntegrator {
   SolveReport solve_contacts();
   // The solver at this tolerance from now on (a no-op when it already is).
   void use_tolerance(double tolerance);
+  // The axis across which a solver may cut the contacts into slabs: the horizontal one (not
+  // along gravity) along which the particles spread widest.
+  int split_axis() const;
 
   ParticleSet particles_;
   std::vector<Material> materials_;

@@ -12,6 +12,11 @@
 //       colour      colour by colour (ContactColouring.h); the contacts of one colour share no
 //                   body, so each colour is one OpenMP loop, and the sweep's sums add fixed
 //                   blocks of visit slots (FixedBlockSums.h): the same bits for any thread count;
+//       slab        slab by slab (ContactSlabs.h; the problem in slab order, so that slab s
+//                   is contacts [slab_start[s], slab_start[s + 1])): the slabs of one phase
+//                   touch disjoint particles, so each phase is one OpenMP loop over its slabs,
+//                   each slab visited in index order by one thread; the sweep's sums add per-slab sums in
+//                   slab order: the same bits for any thread count (full sweeps only);
 //       body_block  index order, except that a contact owned by a body block hands its whole
 //                   block to the solver (Hooks::visit_block) at the first of the block's
 //                   contacts a sweep reaches, once per sweep;
@@ -29,6 +34,7 @@
 
 #include "mechanics/contact/ContactProblem.h"
 #include "mechanics/solvers/ActiveContactSet.h"
+#include "mechanics/solvers/ContactSlabs.h"
 #include "mechanics/solvers/ContactSolver.h"
 #include "mechanics/solvers/FixedBlockSums.h"
 #include "mechanics/solvers/GaussSeidelUpdate.h"
@@ -62,7 +68,7 @@ struct GaussSeidelSweepHooks {
 
 class GaussSeidelSweep {
  public:
-  enum class Order { index, colour, body_block };
+  enum class Order { index, colour, slab, body_block };
   struct Options {
     int full_sweep_every = 1;  // ActiveContactSet::start; 1: every sweep visits every contact
     int stall_sweeps = 500;    // GaussSeidelStopTest's stall window, sweeps
@@ -70,6 +76,8 @@ class GaussSeidelSweep {
     // threads inside each colour.
     const std::vector<std::int32_t>* colour_start = nullptr;
     bool parallel = false;
+    // slab: the cut, the problem in its order (parallel: OpenMP threads share each phase's slabs).
+    const ContactSlabs* slabs = nullptr;
     // body_block: per contact its block (< block_count), -1 for a single visit.
     const std::vector<std::int32_t>* block_of = nullptr;
     std::size_t block_count = 0;
@@ -88,9 +96,14 @@ class GaussSeidelSweep {
   ContactUpdate sweep_colours(const Options& options, double relaxation, bool forward, bool full,
                               bool mark, const GaussSeidelSweepState& state, Hooks& hooks);
 
+  template <class Hooks>
+  ContactUpdate sweep_slabs(const Options& options, double relaxation, bool forward,
+                            const GaussSeidelSweepState& state, Hooks& hooks);
+
   ActiveContactSet active_;             // the contacts partial sweeps visit
   std::vector<double> change_, total_;  // colour order: per visit slot, this sweep, N s
   std::vector<double> block_sums_;      // colour order: per block of slots: change, total
+  std::vector<double> slab_sums_;       // slab order: per slab: change, total
   std::vector<int> visited_;            // body_block order: per block, the sweep that last visited it
 };
 
@@ -103,12 +116,14 @@ SolveReport GaussSeidelSweep::solve(const SolverSettings& settings, const Option
     change_.resize(count);
     total_.resize(count);
     block_sums_.resize(static_cast<std::size_t>(2 * sum_block_count(static_cast<std::ptrdiff_t>(count))));
+  } else if constexpr (order == Order::slab) {
+    slab_sums_.resize(2 * options.slabs->slab_count() + 2);
   } else if constexpr (order == Order::body_block) {
     visited_.assign(options.block_count, 0);
   }
   SolveReport report;
   GaussSeidelStopTest stop(settings.tolerance, options.stall_sweeps);
-  active_.start(count, options.full_sweep_every, settings.max_iterations);
+  active_.start(count, order == Order::slab ? 1 : options.full_sweep_every, settings.max_iterations);
   while (report.sweeps < settings.max_iterations) {
     ++report.sweeps;
     const bool forward = report.sweeps % 2 == 1;
@@ -119,6 +134,8 @@ SolveReport GaussSeidelSweep::solve(const SolverSettings& settings, const Option
     ContactUpdate sums;
     if constexpr (order == Order::colour) {
       sums = sweep_colours(options, settings.relaxation, forward, full, mark, state, hooks);
+    } else if constexpr (order == Order::slab) {
+      sums = sweep_slabs(options, settings.relaxation, forward, state, hooks);
     } else {
       sums = sweep_index<order == Order::body_block>(options, settings.relaxation, report.sweeps,
                                                       forward, full, mark, state, hooks);
@@ -225,6 +242,42 @@ ContactUpdate GaussSeidelSweep::sweep_colours(const Options& options, double rel
   }
   const auto [change, total] = add_block_sums<2>(block_sums_, slot_blocks);
   return {change, total};
+}
+
+template <class Hooks>
+ContactUpdate GaussSeidelSweep::sweep_slabs(const Options& options, double relaxation, bool forward,
+                                            const GaussSeidelSweepState& state, Hooks& hooks) {
+  const ContactSlabs& slabs = *options.slabs;
+  const std::vector<std::int32_t>& start = slabs.slab_start();
+  const std::vector<std::int32_t>& phase = slabs.phase_start();
+#pragma omp parallel if (options.parallel)
+  for (int visit = 0; visit < ContactSlabs::kPhases; ++visit) {
+    const int p = forward ? visit : ContactSlabs::kPhases - 1 - visit;
+    // Slabs differ in size: threads take them one at a time (which thread sweeps a slab
+    // changes nothing in the result).
+#pragma omp for schedule(dynamic, 1)
+    for (std::int32_t s = phase[p]; s < phase[p + 1]; ++s) {
+      double change = 0.0, total = 0.0;
+      const std::int32_t first = start[s], end = start[s + 1];
+      for (std::int32_t k = 0; k < end - first; ++k) {
+        const auto c = static_cast<std::size_t>(forward ? first + k : end - 1 - k);
+        if (!state.problem.solvable(c)) continue;
+        const ContactUpdate u = gauss_seidel_visit(state.problem, c, relaxation, state.r[c], state.m,
+                                                   state.velocity, state.angular_velocity);
+        change += u.change;
+        total += u.total;
+        hooks.after_visit(state, c);
+      }
+      slab_sums_[2 * static_cast<std::size_t>(s)] = change;
+      slab_sums_[2 * static_cast<std::size_t>(s) + 1] = total;
+    }
+  }
+  ContactUpdate sums;
+  for (std::size_t s = 0; s < slabs.slab_count(); ++s) {
+    sums.change += slab_sums_[2 * s];
+    sums.total += slab_sums_[2 * s + 1];
+  }
+  return sums;
 }
 
 }  // namespace tmdem::mechanics

@@ -24,30 +24,67 @@ void NncgSolver::enter(const ContactProblem& problem, std::size_t c,
                        const std::vector<Eigen::Vector3d>& r, const std::vector<Eigen::Vector3d>& m) {
   if (in_support_[c] || (is_zero(r[c]) && (!problem.rolling || is_zero(m[c])))) return;
   in_support_[c] = 1;
-  support_.push_back(static_cast<std::int32_t>(c));
+  if (!sliced_run_) support_.push_back(static_cast<std::int32_t>(c));
+}
+
+template <class Each>
+double NncgSolver::over_support(Each&& each) {
+  if (!sliced_run_) {
+    double sum = 0.0;
+    for (const std::int32_t c : support_) sum += each(static_cast<std::size_t>(c));
+    return sum;
+  }
+  // Slab by slab, as the sweeps go (ContactSlabs.h): the slabs of one phase touch disjoint
+  // particles, so their steps may write velocities at once; per-slab sums added in slab order.
+  const std::vector<std::int32_t>& start = slabs_.slab_start();
+  const std::vector<std::int32_t>& phase = slabs_.phase_start();
+  slab_sums_.resize(slabs_.slab_count());
+#pragma omp parallel
+  for (int p = 0; p < ContactSlabs::kPhases; ++p) {
+#pragma omp for schedule(dynamic, 1)
+    for (std::int32_t s = phase[p]; s < phase[p + 1]; ++s) {
+      double sum = 0.0;
+      for (std::int32_t c = start[s]; c < start[s + 1]; ++c)
+        if (in_support_[c]) sum += each(static_cast<std::size_t>(c));
+      slab_sums_[static_cast<std::size_t>(s)] = sum;
+    }
+  }
+  double sum = 0.0;
+  for (const double slab : slab_sums_) sum += slab;
+  return sum;
+}
+
+void NncgSolver::scan_support(const ContactProblem& problem, const std::vector<Eigen::Vector3d>& r,
+                              const std::vector<Eigen::Vector3d>& m) {
+  const auto count = static_cast<std::ptrdiff_t>(problem.size());
+  if (!sliced_run_) {
+    for (std::ptrdiff_t c = 0; c < count; ++c) enter(problem, static_cast<std::size_t>(c), r, m);
+    return;
+  }
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t c = 0; c < count; ++c) enter(problem, static_cast<std::size_t>(c), r, m);
 }
 
 double NncgSolver::take_change(const ContactProblem& problem, const std::vector<Eigen::Vector3d>& r,
                                const std::vector<Eigen::Vector3d>& m) {
-  double squared = 0.0;
-  for (const std::int32_t c : support_) {
+  return over_support([&](std::size_t c) {
     d_[c] = r[c] - start_[c];
-    squared += d_[c].squaredNorm();
+    double squared = d_[c].squaredNorm();
     if (problem.rolling) {
       d_m_[c] = m[c] - start_m_[c];
       // Divided by R_eff, in N s, as the stop test adds them (GaussSeidelUpdate.h).
       if (problem.w_r[c] > 0.0)
         squared += d_m_[c].squaredNorm() / (problem.rolling_radius[c] * problem.rolling_radius[c]);
     }
-  }
-  return squared;
+    return squared;
+  });
 }
 
 void NncgSolver::conjugate_step(const ContactProblem& problem, double beta,
                                 std::vector<Eigen::Vector3d>& r, std::vector<Eigen::Vector3d>& m,
                                 std::vector<Eigen::Vector3d>& velocity,
                                 std::vector<Eigen::Vector3d>& angular_velocity) {
-  for (const std::int32_t c : support_) {
+  over_support([&](std::size_t c) {
     if (beta > 0.0 && !is_zero(p_[c])) {
       const Eigen::Vector3d step = beta * p_[c];
       r[c] += step;
@@ -55,7 +92,7 @@ void NncgSolver::conjugate_step(const ContactProblem& problem, double beta,
     }
     p_[c] = d_[c] + beta * p_[c];
     start_[c] = r[c];
-    if (!problem.rolling) continue;
+    if (!problem.rolling) return 0.0;
     if (beta > 0.0 && !is_zero(p_m_[c])) {
       const Eigen::Vector3d step = beta * p_m_[c];
       m[c] += step;
@@ -63,18 +100,20 @@ void NncgSolver::conjugate_step(const ContactProblem& problem, double beta,
     }
     p_m_[c] = d_m_[c] + beta * p_m_[c];
     start_m_[c] = m[c];
-  }
+    return 0.0;
+  });
 }
 
 void NncgSolver::restart(const ContactProblem& problem, const std::vector<Eigen::Vector3d>& r,
                          const std::vector<Eigen::Vector3d>& m) {
-  for (const std::int32_t c : support_) {
+  over_support([&](std::size_t c) {
     p_[c].setZero();
     start_[c] = r[c];
-    if (!problem.rolling) continue;
+    if (!problem.rolling) return 0.0;
     p_m_[c].setZero();
     start_m_[c] = m[c];
-  }
+    return 0.0;
+  });
 }
 
 SolveReport NncgSolver::solve_with_rolling(const ContactProblem& given,
@@ -85,9 +124,15 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& given,
   const bool coloured = options_.coloured;
   const bool parallel = coloured && static_cast<std::ptrdiff_t>(given.size()) >= options_.parallel_from;
   if (coloured) ordered_.load(given, given_r, given_m, parallel);
-  const ContactProblem& problem = coloured ? ordered_.problem() : given;
-  std::vector<Eigen::Vector3d>& r = coloured ? ordered_.r() : given_r;
-  std::vector<Eigen::Vector3d>& m = coloured ? ordered_.m() : given_m;
+  const bool sliced = !coloured && options_.slabs > 0 &&
+                      static_cast<std::ptrdiff_t>(given.size()) >= options_.parallel_from &&
+                      slabs_.update(given, options_.slabs);
+  // In slab order the slabs are contiguous: each thread streams through its slab's contacts
+  // (visited through the order instead, 44% more time per sweep on a 10^4 pour's first steps).
+  if (sliced) sliced_.load(given, slabs_.order(), given_r, given_m, true);
+  const ContactProblem& problem = coloured ? ordered_.problem() : sliced ? sliced_.problem() : given;
+  std::vector<Eigen::Vector3d>& r = coloured ? ordered_.r() : sliced ? sliced_.r() : given_r;
+  std::vector<Eigen::Vector3d>& m = coloured ? ordered_.m() : sliced ? sliced_.m() : given_m;
   const std::size_t count = problem.size();
   // assign() keeps the capacity: no allocation once the vectors have seen the largest problem.
   start_.assign(r.begin(), r.end());
@@ -100,19 +145,20 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& given,
   }
   in_support_.assign(count, 0);
   support_.clear();
-  for (std::size_t c = 0; c < count; ++c) enter(problem, c, r, m);
+  sliced_run_ = sliced;
+  scan_support(problem, r, m);
   steps_ = damped_ = drifted_ = 0;
   subspace_.start_solve();
   // The sweeps (GaussSeidelSweep.h) put each visited contact that carries a reaction into the
-  // support and, after each backward sweep, take the conjugate step. Coloured sweeps visit from
-  // several threads, so the support is then brought up to date after the sweep pair instead.
+  // support and, after each backward sweep, take the conjugate step. Coloured and slab sweeps
+  // visit from several threads, so the support is then brought up to date after the pair.
   struct Hooks : GaussSeidelSweepHooks {
     NncgSolver& solver;
-    bool coloured = false;
+    bool scan = false;  // the support by a scan after each pair
     double previous = 0.0;  // |d|^2 of the last sweep pair; 0: no direction yet
 
     void after_visit(const GaussSeidelSweepState& state, std::size_t c) {
-      if (!coloured) solver.enter(state.problem, c, state.r, state.m);
+      if (!scan) solver.enter(state.problem, c, state.r, state.m);
     }
     // A symmetric pair (forward, backward) is one application of the map the conjugate
     // directions are built on. The solve only stops before a step (GaussSeidelSweep stops
@@ -121,9 +167,7 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& given,
       if (forward || report.sweeps >= solver.settings_.max_iterations) return;
       // A contact that opened and closed again within the pair has d = 0: a scan at the pair's
       // end misses nothing.
-      if (coloured)
-        for (std::size_t c = 0; c < state.problem.size(); ++c)
-          solver.enter(state.problem, c, state.r, state.m);
+      if (scan) solver.scan_support(state.problem, state.r, state.m);
       // The subspace step changes only contacts with r_n > 0, all in the support already.
       if (solver.options_.subspace &&
           solver.subspace_.after_pair(state.problem, state.r, state.velocity, state.angular_velocity)) {
@@ -148,7 +192,7 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& given,
       solver.conjugate_step(state.problem, beta, state.r, state.m, state.velocity, state.angular_velocity);
       previous = current;
     }
-  } hooks{{}, *this, coloured};
+  } hooks{{}, *this, coloured || sliced};
   GaussSeidelSweep::Options options;
   options.full_sweep_every = 1;  // a partial sweep's change is not a map of all the reactions
   options.stall_sweeps = stall_window();
@@ -156,11 +200,17 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& given,
     options.colour_start = &ordered_.colour_start();
     options.parallel = parallel;
   }
+  if (sliced) {
+    options.slabs = &slabs_;
+    options.parallel = true;
+  }
   const GaussSeidelSweepState state{problem, r, m, velocity, angular_velocity};
   const SolveReport report =
       coloured ? sweep_.solve<GaussSeidelSweep::Order::colour>(settings_, options, state, hooks)
+      : sliced ? sweep_.solve<GaussSeidelSweep::Order::slab>(settings_, options, state, hooks)
                : sweep_.solve<GaussSeidelSweep::Order::index>(settings_, options, state, hooks);
   if (coloured) ordered_.store(given_r, given_m, parallel);
+  if (sliced) sliced_.store(given_r, given_m, true);
   return report;
 }
 

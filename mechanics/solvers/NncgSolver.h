@@ -38,15 +38,20 @@
 // Rolling impulses (ContactProblem::rolling) are extrapolated with the reactions, divided by
 // R_eff in the norms as in the stop test. Every sweep visits every candidate
 // (SolverSettings::full_sweep_every is not used: a partial sweep's change is not a map of all
-// the reactions). Serial and deterministic; no allocation once warm.
+// the reactions). From Options::parallel_from contacts the sweeps go slab by slab
+// (ContactSlabs.h: OpenMP threads share each phase's slabs) where the problem gives positions;
+// the conjugate steps stay serial. Deterministic, the same bits for any thread count; no
+// allocation once warm.
 
 #include <cstdint>
 #include <vector>
 
 #include "mechanics/solvers/ActiveSetSubspaceStep.h"
 #include "mechanics/solvers/ColourOrderedProblem.h"
+#include "mechanics/solvers/ContactSlabs.h"
 #include "mechanics/solvers/ContactSolver.h"
 #include "mechanics/solvers/GaussSeidelSweep.h"
+#include "mechanics/solvers/ReorderedProblem.h"
 
 namespace tmdem::mechanics {
 
@@ -62,6 +67,9 @@ class NncgSolver final : public ContactSolver {
     // for any thread count, other bits than "nncg" (another visiting order).
     bool coloured = false;
     std::ptrdiff_t parallel_from = 4096;
+    // From parallel_from contacts ("nncg", "nncg_subspace"): the sweeps cut into about this many
+    // slabs (ContactSlabs.h); 0: index order at every size.
+    int slabs = 16;
     // "nncg_subspace": before each conjugate step, the subspace step of ActiveSetSubspaceStep.h
     // (a sparse direct solve of the contacts the pair left closed; its schedule); when it is
     // kept the conjugate direction restarts from the new reactions (beta = 0 for the next pair).
@@ -87,6 +95,9 @@ class NncgSolver final : public ContactSolver {
   int drifted() const { return drifted_; }
   // "nncg_subspace": the subspace steps of the last solve.
   const ActiveSetSubspaceStep& subspace() const { return subspace_; }
+  // Whether the last solve swept slabs (Options::slabs), and their cut.
+  bool sliced() const { return sliced_run_; }
+  const ContactSlabs& slabs() const { return slabs_; }
   // Sweeps without a 10% gain after which a solve is stalled (saturated at INT_MAX).
   int stall_window() const;
 
@@ -94,6 +105,13 @@ class NncgSolver final : public ContactSolver {
   // Puts contact c into the support when its reaction (or rolling impulse) is not zero.
   void enter(const ContactProblem& problem, std::size_t c, const std::vector<Eigen::Vector3d>& r,
              const std::vector<Eigen::Vector3d>& m);
+  // each(c) over the support, returning the sum of its values: in support_ order, or slab by
+  // slab with OpenMP threads in a sliced solve.
+  template <class Each>
+  double over_support(Each&& each);
+  // Every contact with a reaction into the support (OpenMP threads in a sliced solve).
+  void scan_support(const ContactProblem& problem, const std::vector<Eigen::Vector3d>& r,
+                    const std::vector<Eigen::Vector3d>& m);
   // The change d = r - start (and m - start_m) of the last sweep pair into d_, its squared
   // norm returned.
   double take_change(const ContactProblem& problem, const std::vector<Eigen::Vector3d>& r,
@@ -112,15 +130,20 @@ class NncgSolver final : public ContactSolver {
   ActiveSetSubspaceStep subspace_;  // "nncg_subspace"
   GaussSeidelSweep sweep_;  // index (or colour) order, every sweep full
   ColourOrderedProblem ordered_;  // "nncg_coloured": the problem in colour order
+  ContactSlabs slabs_;            // the cut of large problems (Options::slabs)
+  ReorderedProblem sliced_;       // the problem in slab order
   // Per contact: the reactions at the start of the sweep pair, their change over it, the
   // conjugate direction; the same for the rolling impulses (sized only with rolling).
   std::vector<Eigen::Vector3d> start_, d_, p_;
   std::vector<Eigen::Vector3d> start_m_, d_m_, p_m_;
   // The contacts whose reaction or rolling impulse has not been zero during the solve: the only
   // ones with d or p not zero (most candidates of a look-ahead detection stay open), so the
-  // conjugate steps cost a pass over these, not over every candidate.
+  // conjugate steps cost a pass over these, not over every candidate (a sliced solve passes
+  // over every candidate's flag, slab by slab, and leaves the list empty).
   std::vector<std::int32_t> support_;
   std::vector<char> in_support_;
+  bool sliced_run_ = false;           // this solve sweeps slabs: the support is in_support_ only
+  std::vector<double> slab_sums_;     // per slab, a sliced over_support's sums
   int steps_ = 0, damped_ = 0, drifted_ = 0;
 };
 

@@ -94,6 +94,11 @@ void SpatialContactOrder::gather(const ContactProblem& problem, const std::vecto
     q.free_velocity[to] = problem.free_velocity[b];
     q.free_angular_velocity[to] = problem.free_angular_velocity[b];
   }
+  // The positions too, for a solver that cuts the contacts into slabs (ContactSlabs.h).
+  q.split_axis = problem.split_axis;
+  q.particle_position.resize(problem.particle_position.size() == n ? n : 0);
+  for (std::size_t p = 0; p < q.particle_position.size(); ++p)
+    q.particle_position[static_cast<std::size_t>(number_[p])] = problem.particle_position[p];
   const std::size_t contacts = problem.size();
   q.resize_contacts(contacts);
   r_.resize(contacts);

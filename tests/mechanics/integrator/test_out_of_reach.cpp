@@ -41,8 +41,11 @@ TEST(OutOfReach, FallingCandidatesLeaveTheProblemAndThePileLandsAlike) {
     EXPECT_EQ(unsolvable(all.problem()), 0u);
     left_out += unsolvable(skip.problem());
     // A contact with a reaction was never left out.
-    for (std::size_t c = 0; c < skip.problem().size(); ++c)
-      if (!skip.problem().solvable(c)) EXPECT_EQ(skip.reactions()[c].norm(), 0.0);
+    for (std::size_t c = 0; c < skip.problem().size(); ++c) {
+      if (!skip.problem().solvable(c)) {
+        EXPECT_EQ(skip.reactions()[c].norm(), 0.0);
+      }
+    }
     steps_with_forces += a.active_contacts > 0 ? 1 : 0;
     for (std::size_t i = 0; i < all.particles().size(); ++i)
       largest_difference_m = std::max(

@@ -1,0 +1,49 @@
+#pragma once
+// The contacts cut into slabs across one axis, for a Gauss-Seidel sweep that threads share
+// with few barriers ("nncg" from NncgSolver::Options::parallel_from contacts).
+//
+// A contact sits at the midpoint of its two particles (a wall contact: at its particle) along
+// problem.split_axis. Two contacts that share a particle are then at most `span` apart, span
+// being the largest distance along the axis between the two particles of a contact; slabs at
+// least that wide put two such contacts in the same or in neighbouring slabs. So the even
+// slabs touch disjoint particles, and so do the odd ones: a sweep visits phase 0 (the even
+// slabs, several at once, each in index order by one thread), then phase 1 (the odd slabs),
+// then phase 2 (a piston's contacts, which all share its body: one slab, one thread). Two
+// barriers per sweep where the greedy colouring of "nlgs_coloured" needs one per colour
+// (about 30 in a 3D bed), and inside each slab the sweep keeps the problem's own order, so a
+// load still crosses the whole height of a slab in one sweep.
+//
+// The cut depends only on the problem (positions, pairs, axis) and `slabs`, never on the
+// thread count: every thread count sweeps in the same order and gives the same bits.
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "mechanics/contact/ContactProblem.h"
+
+namespace tmdem::mechanics {
+
+class ContactSlabs {
+ public:
+  static constexpr int kPhases = 3;  // even slabs, odd slabs, a piston's contacts
+
+  // Cuts problem's contacts into about `slabs` slabs (fewer where the span allows fewer).
+  // Returns false, and holds no cut, when problem gives no positions or fewer than 3 slabs
+  // fit (no two slabs of one phase to share out).
+  bool update(const ContactProblem& problem, int slabs);
+
+  bool valid() const { return !slab_start_.empty(); }
+  std::size_t slab_count() const { return slab_start_.empty() ? 0 : slab_start_.size() - 1; }
+  // Slab s holds contacts order()[slab_start()[s], slab_start()[s + 1]), in increasing index;
+  // phase p is slabs [phase_start()[p], phase_start()[p + 1]).
+  const std::vector<std::int32_t>& order() const { return order_; }
+  const std::vector<std::int32_t>& slab_start() const { return slab_start_; }
+  const std::vector<std::int32_t>& phase_start() const { return phase_start_; }
+
+ private:
+  std::vector<std::int32_t> slab_of_;  // per contact: its slab in visiting order
+  std::vector<std::int32_t> order_, slab_start_, phase_start_, cursor_;
+};
+
+}  // namespace tmdem::mechanics

@@ -1,0 +1,155 @@
+// Slabs (ContactSlabs.h) and "nncg" sweeping them: no particle touched by two slabs of one
+// phase (the promise that lets threads share a phase), a piston's contacts alone in the last
+// phase, no cut without positions or room for three slabs; the sliced solve reaches the
+// lattice pile's statics and "nlgs"'s reactions, and gives the same bits at 1 and 2 threads.
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <map>
+#include <vector>
+
+#include "mechanics/SameBits.h"
+#include "mechanics/SolverTestPile.h"
+#include "mechanics/solvers/ContactSlabs.h"
+#include "mechanics/solvers/NncgSolver.h"
+
+using namespace tmdem::mechanics;
+using namespace tmdem::mechanics::test;
+
+namespace {
+
+// A poured pile mid-fall (look-ahead candidates of every length) and its problem.
+const NscdIntegrator& falling_pile() {
+  static const NscdIntegrator sim = [] {
+    NscdParameters parameters = nlgs_parameters();
+    parameters.tolerance = 1e-4;
+    parameters.max_iterations = 300;
+    NscdIntegrator s = random_pile(400, 3, 0.3, 5, parameters);
+    for (int step = 0; step < 40; ++step) s.step();
+    return s;
+  }();
+  return sim;
+}
+
+// Checks that slabs hold every contact of problem once, in increasing index inside a slab,
+// and that within each phase no particle (nor piston) is touched by two slabs.
+void expect_phases_touch_disjoint_bodies(const ContactProblem& problem, const ContactSlabs& slabs) {
+  ASSERT_TRUE(slabs.valid());
+  const auto& order = slabs.order();
+  const auto& start = slabs.slab_start();
+  const auto& phase = slabs.phase_start();
+  ASSERT_EQ(phase.size(), static_cast<std::size_t>(ContactSlabs::kPhases) + 1);
+  EXPECT_EQ(phase.front(), 0);
+  EXPECT_EQ(static_cast<std::size_t>(phase.back()), slabs.slab_count());
+  EXPECT_EQ(static_cast<std::size_t>(start.back()), problem.size());
+  std::vector<int> seen(problem.size(), 0);
+  for (int p = 0; p < ContactSlabs::kPhases; ++p) {
+    std::map<std::size_t, std::int32_t> slab_of_body;  // bodies whose velocity a visit writes
+    for (std::int32_t s = phase[p]; s < phase[p + 1]; ++s) {
+      for (std::int32_t k = start[s]; k < start[s + 1]; ++k) {
+        const std::int32_t c = order[k];
+        ++seen[c];
+        if (k > start[s]) {
+          EXPECT_LT(order[k - 1], c);
+        }
+        const std::int32_t j = problem.body_j[c];
+        std::vector<std::size_t> bodies{static_cast<std::size_t>(problem.body_i[c])};
+        if (!is_wall(j)) {
+          bodies.push_back(static_cast<std::size_t>(j));
+        } else if (problem.inverse_mass[problem.wall_body(j)] > 0.0) {
+          bodies.push_back(problem.wall_body(j));
+        }
+        for (const std::size_t b : bodies) {
+          const auto [at, fresh] = slab_of_body.emplace(b, s);
+          EXPECT_TRUE(fresh || at->second == s) << "body " << b << " in slabs " << at->second << " and " << s
+                                                << " of phase " << p;
+        }
+      }
+    }
+  }
+  for (std::size_t c = 0; c < problem.size(); ++c) EXPECT_EQ(seen[c], 1) << "contact " << c;
+}
+
+}  // namespace
+
+TEST(ContactSlabs, NoParticleIsTouchedByTwoSlabsOfOnePhase) {
+  const ContactProblem& problem = falling_pile().problem();
+  ASSERT_GT(problem.size(), 1000u);
+  ContactSlabs slabs;
+  ASSERT_TRUE(slabs.update(problem, 16));
+  // A 16 mm box of spheres of radius 1 and 0.7 mm: room for several slabs, not 16.
+  EXPECT_GE(slabs.slab_count(), 4u);
+  EXPECT_EQ(slabs.phase_start()[3] - slabs.phase_start()[2], 1);  // the piston's slab, empty
+  expect_phases_touch_disjoint_bodies(problem, slabs);
+}
+
+TEST(ContactSlabs, APistonsContactsAreAloneInTheLastPhase) {
+  ContactProblem problem = falling_pile().problem();
+  // The floor (wall 0) made a piston: its velocity is written by every floor contact.
+  problem.inverse_mass[problem.wall_body(-1)] = 0.5;
+  ContactSlabs slabs;
+  ASSERT_TRUE(slabs.update(problem, 16));
+  expect_phases_touch_disjoint_bodies(problem, slabs);
+  const std::int32_t last = slabs.phase_start()[2];
+  int on_floor = 0;
+  for (std::size_t c = 0; c < problem.size(); ++c) on_floor += problem.body_j[c] == -1 ? 1 : 0;
+  ASSERT_GT(on_floor, 0);
+  EXPECT_EQ(slabs.slab_start()[last + 1] - slabs.slab_start()[last], on_floor);
+  for (std::int32_t k = slabs.slab_start()[last]; k < slabs.slab_start()[last + 1]; ++k)
+    EXPECT_EQ(problem.body_j[slabs.order()[k]], -1);
+}
+
+TEST(ContactSlabs, NoCutWithoutPositionsOrRoomForThreeSlabs) {
+  ContactProblem problem = falling_pile().problem();
+  ContactSlabs slabs;
+  EXPECT_FALSE(slabs.update(problem, 2));  // fewer than three asked
+  problem.particle_position.clear();
+  EXPECT_FALSE(slabs.update(problem, 16));
+  EXPECT_FALSE(slabs.valid());
+  // The lattice pile is 5 spheres wide: its contacts span a whole diameter, so at most 4 slabs.
+  ContactSlabs narrow;
+  ASSERT_TRUE(narrow.update(lattice_pile().problem(), 16));
+  EXPECT_LE(narrow.slab_count(), 4u + 1u);
+}
+
+// Sliced from the first contact (parallel_from 0): the statics of the pile, the reactions of
+// "nlgs", to the tolerance a Gauss-Seidel stop test leaves.
+TEST(NncgSlabs, LatticePileMatchesGaussSeidelAndStatics) {
+  constexpr double tolerance = 1e-8;
+  const ContactProblem& problem = lattice_pile().problem();
+  NncgSolver::Options options;
+  options.parallel_from = 0;
+  NncgSolver sliced(tight(tolerance), options);
+  const Solved solved = solve_cold(problem, sliced);
+  ASSERT_TRUE(sliced.sliced());
+  ASSERT_TRUE(solved.report.converged) << solved.report.residual;
+  const double weight = pile_weight_impulse();
+  expect_pile_statics(solved.r, 1e-6 * kPileLayers * weight);
+  const Solved gs = solve_cold(problem, "nlgs", tolerance);
+  EXPECT_LE(largest_difference(gs.r, solved.r), 1e-6 * kPileLayers * weight);
+}
+
+// 60 sweeps of a falling pile's problem (not converged: the bits, not the answer, compared).
+TEST(NncgSlabs, SameBitsForAnyThreadCount) {
+  const ContactProblem& problem = falling_pile().problem();
+  auto run = [&](int threads) {
+    omp_set_num_threads(threads);
+    SolverSettings settings = tight(1e-12);
+    settings.max_iterations = 60;
+    NncgSolver::Options options;
+    options.parallel_from = 0;
+    NncgSolver solver(settings, options);
+    Solved solved = solve_cold(problem, solver);
+    EXPECT_TRUE(solver.sliced());
+    EXPECT_GT(solver.steps(), 0);
+    return solved;
+  };
+  const int threads_before = omp_get_max_threads();
+  const Solved first = run(2), second = run(2), serial = run(1);
+  omp_set_num_threads(threads_before);
+  EXPECT_EQ(first.report.sweeps, 60);
+  EXPECT_TRUE(same_bits(first.r, second.r));
+  EXPECT_TRUE(same_bits(first.r, serial.r));
+  EXPECT_TRUE(same_bits(first.v, serial.v));
+  EXPECT_TRUE(same_bits(first.w, serial.w));
+}

@@ -11,6 +11,9 @@ jobs="$(nproc)"
 # threads that spin at a barrier take the core their partner needs (docs/mechanics.md "Threads"), so
 # idle threads sleep instead, unless the caller chose otherwise.
 export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-passive}"
+# One thread unless the caller chose: two test programs already share the two cores, and the
+# tests that compare thread counts set theirs in-process.
+export OMP_NUM_THREADS="${OMP_NUM_THREADS:-1}"
 # --with-paraview: ParaView's pvbatch and xvfb, so the ParaView tests (label paraview: the XDMF
 # readers, `tmdem render`) run rather than skip.
 "$root/scripts/setup.sh" --with-paraview

@@ -1,15 +1,35 @@
 #include "coupling/app/OpenMpWaitPolicy.h"
 
-#include <cstdlib>
+#include <omp.h>
 #include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
 
 namespace tmdem::coupling {
 
-void prefer_passive_openmp_wait(char** argv) {
-  if (std::getenv("OMP_WAIT_POLICY") != nullptr) return;
-  if (setenv("OMP_WAIT_POLICY", "passive", 1) != 0) return;
-  execv("/proc/self/exe", argv);
-  // Still here: no /proc or no exec. The variable is set for child processes only; go on.
+int idle_cores(int cores, double load) {
+  cores = std::max(1, cores);
+  if (!std::isfinite(load) || load < 0.0) return cores;
+  return static_cast<int>(std::clamp<double>(cores - std::round(load), 1.0, cores));
+}
+
+int idle_cores() {
+  double load = NAN;
+  std::ifstream in("/proc/loadavg");
+  in >> load;
+  return idle_cores(omp_get_num_procs(), load);
+}
+
+void settle_openmp_defaults(char** argv) {
+  if (std::getenv("OMP_WAIT_POLICY") == nullptr && std::getenv("GOMP_SPINCOUNT") == nullptr &&
+      setenv("GOMP_SPINCOUNT", kSpinCount, 1) == 0) {
+    execv("/proc/self/exe", argv);
+    // Still here: no /proc or no exec. The variable is set for child processes only; go on.
+  }
+  if (std::getenv("OMP_NUM_THREADS") == nullptr) omp_set_num_threads(idle_cores());
 }
 
 }  // namespace tmdem::coupling

@@ -112,7 +112,10 @@ nlohmann::json RunSummary::to_json() const {
                             {"contact_solve_s", wall_time_parts->contact_solve_s},
                             {"correction_s", wall_time_parts->correction_s}};
   }
-  if (openmp) j["openmp"] = {{"threads", openmp->threads}, {"wait_policy", openmp->wait_policy}};
+  if (openmp) {
+    j["openmp"] = {{"threads", openmp->threads}, {"wait_policy", openmp->wait_policy},
+                   {"spin_count", openmp->spin_count}};
+  }
   for (const auto& i : imports)
     j["imports"].push_back({{"file", i.file},
                             {"particles", i.particles},
@@ -175,7 +178,8 @@ RunSummary RunSummary::from_json(const nlohmann::json& j) {
 
   if (j.contains("openmp")) {
     const nlohmann::json& o = j.at("openmp");
-    s.openmp = OpenMpSummary{integer(o, "threads", 1), text(o, "wait_policy", "")};
+    s.openmp = OpenMpSummary{integer(o, "threads", 1), text(o, "wait_policy", ""),
+                             text(o, "spin_count", "unset")};
   }
 
   if (j.contains("imports"))

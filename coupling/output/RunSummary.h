@@ -128,12 +128,13 @@ struct ImportSummary {
 };
 
 // The "openmp" block (extra): the threads the run's parallel loops could use and how idle
-// threads waited (OMP_WAIT_POLICY as the run saw it; the program sets "passive" when it was
-// unset, coupling/app/OpenMpWaitPolicy.h). Figures of one run are comparable only at the same
-// thread count.
+// threads waited (OMP_WAIT_POLICY and GOMP_SPINCOUNT as the run saw them; the program bounds
+// the spin when both were unset, coupling/app/OpenMpWaitPolicy.h). Figures of one run are
+// comparable only at the same thread count.
 struct OpenMpSummary {
   std::int64_t threads = 1;   // omp_get_max_threads() during the run
   std::string wait_policy;    // "passive", "active", or "unset" (libgomp's spin-then-sleep)
+  std::string spin_count;     // GOMP_SPINCOUNT, or "unset"
 };
 
 struct RunSummary {

@@ -280,7 +280,9 @@ void CoupledRun::fill_summary() {
   }
   summary_.wall_time_parts = parts;
   const char* wait_policy = std::getenv("OMP_WAIT_POLICY");
-  summary_.openmp = OpenMpSummary{omp_get_max_threads(), wait_policy ? wait_policy : "unset"};
+  const char* spin_count = std::getenv("GOMP_SPINCOUNT");
+  summary_.openmp = OpenMpSummary{omp_get_max_threads(), wait_policy ? wait_policy : "unset",
+                                  spin_count ? spin_count : "unset"};
   summary_.imports.clear();
   for (const auto& i : scene_.imports)
     summary_.imports.push_back({i.file, std::int64_t(i.count), i.largest_overlap, i.overlap_tolerance});

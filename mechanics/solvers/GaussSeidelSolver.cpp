@@ -2,7 +2,9 @@
 
 namespace tmdem::mechanics {
 
-GaussSeidelSolver::GaussSeidelSolver(const SolverSettings& settings) : settings_(settings) {}
+GaussSeidelSolver::GaussSeidelSolver(const SolverSettings& settings, std::ptrdiff_t parallel_from,
+                                     int slabs)
+    : settings_(settings), parallel_from_(parallel_from), slabs_wanted_(slabs) {}
 
 SolveReport GaussSeidelSolver::solve_with_rolling(const ContactProblem& problem,
                                                   std::vector<Eigen::Vector3d>& r,
@@ -13,8 +15,22 @@ SolveReport GaussSeidelSolver::solve_with_rolling(const ContactProblem& problem,
   options.full_sweep_every = settings_.full_sweep_every;
   options.stall_sweeps = settings_.stall_sweeps;
   GaussSeidelSweepHooks hooks;
-  return sweep_.solve<GaussSeidelSweep::Order::index>(settings_, options,
-                                                     {problem, r, m, velocity, angular_velocity}, hooks);
+  // Slab sweeps are full sweeps: the active set's partial sweeps keep the index order.
+  sliced_ = settings_.full_sweep_every == 1 && slabs_wanted_ > 0 &&
+            static_cast<std::ptrdiff_t>(problem.size()) >= parallel_from_ &&
+            slabs_.update(problem, slabs_wanted_);
+  if (!sliced_) {
+    return sweep_.solve<GaussSeidelSweep::Order::index>(settings_, options,
+                                                       {problem, r, m, velocity, angular_velocity}, hooks);
+  }
+  ordered_.load(problem, slabs_.order(), r, m, true);
+  options.slabs = &slabs_;
+  options.parallel = true;
+  const SolveReport report = sweep_.solve<GaussSeidelSweep::Order::slab>(
+      settings_, options, {ordered_.problem(), ordered_.r(), ordered_.m(), velocity, angular_velocity},
+      hooks);
+  ordered_.store(r, m, true);
+  return report;
 }
 
 }  // namespace tmdem::mechanics

@@ -230,12 +230,14 @@ TEST(RunSummary, WallTimePartsAndImportsRoundTrip) {
 TEST(RunSummary, OpenMpBlockOnlyWhenSetAndRoundTrips) {
   RunSummary s = sample_summary();
   EXPECT_FALSE(s.to_json().contains("openmp"));
-  s.openmp = tmdem::coupling::OpenMpSummary{2, "passive"};
+  s.openmp = tmdem::coupling::OpenMpSummary{2, "unset", "10000"};
   const nlohmann::json j = nlohmann::json::parse(s.to_json().dump());
   EXPECT_EQ(j["openmp"]["threads"], 2);
-  EXPECT_EQ(j["openmp"]["wait_policy"], "passive");
+  EXPECT_EQ(j["openmp"]["wait_policy"], "unset");
+  EXPECT_EQ(j["openmp"]["spin_count"], "10000");
   const RunSummary r = RunSummary::from_json(j);
   ASSERT_TRUE(r.openmp.has_value());
   EXPECT_EQ(r.openmp->threads, 2);
-  EXPECT_EQ(r.openmp->wait_policy, "passive");
+  EXPECT_EQ(r.openmp->wait_policy, "unset");
+  EXPECT_EQ(r.openmp->spin_count, "10000");
 }

@@ -1,7 +1,8 @@
 // Slabs (ContactSlabs.h) and "nncg" sweeping them: no particle touched by two slabs of one
 // phase (the promise that lets threads share a phase), a piston's contacts alone in the last
-// phase, no cut without positions or room for three slabs; the sliced solve reaches the
-// lattice pile's statics and "nlgs"'s reactions, and gives the same bits at 1 and 2 threads.
+// phase, no cut without positions or room for three slabs; "nncg" and "nlgs" sweeping slabs
+// reach the lattice pile's statics (and "nncg" the reactions of "nlgs" in index order), and
+// give the same bits at 1 and 2 threads.
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -11,6 +12,7 @@
 #include "mechanics/SameBits.h"
 #include "mechanics/SolverTestPile.h"
 #include "mechanics/solvers/ContactSlabs.h"
+#include "mechanics/solvers/GaussSeidelSolver.h"
 #include "mechanics/solvers/NncgSolver.h"
 
 using namespace tmdem::mechanics;
@@ -149,6 +151,35 @@ TEST(NncgSlabs, SameBitsForAnyThreadCount) {
   omp_set_num_threads(threads_before);
   EXPECT_EQ(first.report.sweeps, 60);
   EXPECT_TRUE(same_bits(first.r, second.r));
+  EXPECT_TRUE(same_bits(first.r, serial.r));
+  EXPECT_TRUE(same_bits(first.v, serial.v));
+  EXPECT_TRUE(same_bits(first.w, serial.w));
+}
+
+// "nlgs" sliced (the penetration correction's solver): the statics, and the same bits at 1 and
+// 2 threads after 60 sweeps of the falling pile.
+TEST(GaussSeidelSlabs, LatticePileStaticsAndSameBitsForAnyThreadCount) {
+  constexpr double tolerance = 1e-8;
+  GaussSeidelSolver sliced(tight(tolerance), 0);
+  const Solved solved = solve_cold(lattice_pile().problem(), sliced);
+  ASSERT_TRUE(sliced.sliced());
+  ASSERT_TRUE(solved.report.converged) << solved.report.residual;
+  expect_pile_statics(solved.r, 1e-6 * kPileLayers * pile_weight_impulse());
+
+  const ContactProblem& problem = falling_pile().problem();
+  auto run = [&](int threads) {
+    omp_set_num_threads(threads);
+    SolverSettings settings = tight(1e-12);
+    settings.max_iterations = 60;
+    GaussSeidelSolver solver(settings, 0);
+    Solved out = solve_cold(problem, solver);
+    EXPECT_TRUE(solver.sliced());
+    return out;
+  };
+  const int threads_before = omp_get_max_threads();
+  const Solved first = run(2), serial = run(1);
+  omp_set_num_threads(threads_before);
+  EXPECT_EQ(first.report.sweeps, 60);
   EXPECT_TRUE(same_bits(first.r, serial.r));
   EXPECT_TRUE(same_bits(first.v, serial.v));
   EXPECT_TRUE(same_bits(first.w, serial.w));

@@ -26,7 +26,13 @@ int idle_cores() {
 void settle_openmp_defaults(char** argv) {
   if (std::getenv("OMP_WAIT_POLICY") == nullptr && std::getenv("GOMP_SPINCOUNT") == nullptr &&
       setenv("GOMP_SPINCOUNT", kSpinCount, 1) == 0) {
-    execv("/proc/self/exe", argv);
+    // The program's own path, not /proc/self/exe, so that ps and top still say "tmdem".
+    char self[4096];
+    const ssize_t length = readlink("/proc/self/exe", self, sizeof self - 1);
+    if (length > 0) {
+      self[length] = '\0';
+      execv(self, argv);
+    }
     // Still here: no /proc or no exec. The variable is set for child processes only; go on.
   }
   if (std::getenv("OMP_NUM_THREADS") == nullptr) omp_set_num_threads(idle_cores());

@@ -20,10 +20,10 @@ namespace tmdem::coupling {
 inline constexpr const char* kSpinCount = "10000";
 
 // When OMP_WAIT_POLICY and GOMP_SPINCOUNT are both unset: sets GOMP_SPINCOUNT to kSpinCount and
-// re-executes this program with the same arguments (/proc/self/exe; same process id); then,
-// when OMP_NUM_THREADS is unset, takes one thread per idle core (idle_cores()). Returns when
-// nothing more is to be done or the re-execution failed (the run goes on with libgomp's
-// defaults, which is only slower). A user's own settings are always kept.
+// re-executes this program with the same arguments (the file /proc/self/exe names; same
+// process id); then, when OMP_NUM_THREADS is unset, takes one thread per idle core
+// (idle_cores()). Returns when nothing more is to be done or the re-execution failed (the run
+// goes on with libgomp's defaults, which is only slower). A user's own settings are kept.
 void settle_openmp_defaults(char** argv);
 
 // The cores less the 1-minute load average (/proc/loadavg), rounded; at least 1.

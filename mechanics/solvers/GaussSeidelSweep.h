@@ -253,6 +253,7 @@ ContactUpdate GaussSeidelSweep::sweep_slabs(const Options& options, double relax
 #pragma omp parallel if (options.parallel)
   for (int visit = 0; visit < ContactSlabs::kPhases; ++visit) {
     const int p = forward ? visit : ContactSlabs::kPhases - 1 - visit;
+    if (phase[p] == phase[p + 1]) continue;  // no piston: no barrier for its empty phase
     // Slabs differ in size: threads take them one at a time (which thread sweeps a slab
     // changes nothing in the result).
 #pragma omp for schedule(dynamic, 1)

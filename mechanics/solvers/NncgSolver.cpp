@@ -27,7 +27,7 @@ void NncgSolver::enter(const ContactProblem& problem, std::size_t c,
   if (!sliced_run_) support_.push_back(static_cast<std::int32_t>(c));
 }
 
-template <class Each>
+template <bool WritesBodies, class Each>
 double NncgSolver::over_support(Each&& each) {
   if (!sliced_run_) {
     double sum = 0.0;
@@ -35,14 +35,19 @@ double NncgSolver::over_support(Each&& each) {
     return sum;
   }
   // Slab by slab, as the sweeps go (ContactSlabs.h): the slabs of one phase touch disjoint
-  // particles, so their steps may write velocities at once; per-slab sums added in slab order.
+  // particles, so their steps may write velocities at once (what only reads takes every slab
+  // in one loop: one barrier); per-slab sums added in slab order.
   const std::vector<std::int32_t>& start = slabs_.slab_start();
   const std::vector<std::int32_t>& phase = slabs_.phase_start();
   slab_sums_.resize(slabs_.slab_count());
+  constexpr int passes = WritesBodies ? ContactSlabs::kPhases : 1;
 #pragma omp parallel
-  for (int p = 0; p < ContactSlabs::kPhases; ++p) {
+  for (int p = 0; p < passes; ++p) {
+    const std::int32_t first = WritesBodies ? phase[p] : 0;
+    const std::int32_t end = WritesBodies ? phase[p + 1] : phase[ContactSlabs::kPhases];
+    if (first == end) continue;  // no piston: no barrier for its empty phase
 #pragma omp for schedule(dynamic, 1)
-    for (std::int32_t s = phase[p]; s < phase[p + 1]; ++s) {
+    for (std::int32_t s = first; s < end; ++s) {
       double sum = 0.0;
       for (std::int32_t c = start[s]; c < start[s + 1]; ++c)
         if (in_support_[c]) sum += each(static_cast<std::size_t>(c));
@@ -67,7 +72,7 @@ void NncgSolver::scan_support(const ContactProblem& problem, const std::vector<E
 
 double NncgSolver::take_change(const ContactProblem& problem, const std::vector<Eigen::Vector3d>& r,
                                const std::vector<Eigen::Vector3d>& m) {
-  return over_support([&](std::size_t c) {
+  return over_support<false>([&](std::size_t c) {
     d_[c] = r[c] - start_[c];
     double squared = d_[c].squaredNorm();
     if (problem.rolling) {
@@ -84,7 +89,7 @@ void NncgSolver::conjugate_step(const ContactProblem& problem, double beta,
                                 std::vector<Eigen::Vector3d>& r, std::vector<Eigen::Vector3d>& m,
                                 std::vector<Eigen::Vector3d>& velocity,
                                 std::vector<Eigen::Vector3d>& angular_velocity) {
-  over_support([&](std::size_t c) {
+  over_support<true>([&](std::size_t c) {
     if (beta > 0.0 && !is_zero(p_[c])) {
       const Eigen::Vector3d step = beta * p_[c];
       r[c] += step;
@@ -106,7 +111,7 @@ void NncgSolver::conjugate_step(const ContactProblem& problem, double beta,
 
 void NncgSolver::restart(const ContactProblem& problem, const std::vector<Eigen::Vector3d>& r,
                          const std::vector<Eigen::Vector3d>& m) {
-  over_support([&](std::size_t c) {
+  over_support<false>([&](std::size_t c) {
     p_[c].setZero();
     start_[c] = r[c];
     if (!problem.rolling) return 0.0;

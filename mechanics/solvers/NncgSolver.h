@@ -106,8 +106,8 @@ class NncgSolver final : public ContactSolver {
   void enter(const ContactProblem& problem, std::size_t c, const std::vector<Eigen::Vector3d>& r,
              const std::vector<Eigen::Vector3d>& m);
   // each(c) over the support, returning the sum of its values: in support_ order, or slab by
-  // slab with OpenMP threads in a sliced solve.
-  template <class Each>
+  // slab with OpenMP threads in a sliced solve (phase by phase where each writes velocities).
+  template <bool WritesBodies, class Each>
   double over_support(Each&& each);
   // Every contact with a reaction into the support (OpenMP threads in a sliced solve).
   void scan_support(const ContactProblem& problem, const std::vector<Eigen::Vector3d>& r,

@@ -31,7 +31,7 @@ template <bool WritesBodies, class Each>
 double NncgSolver::over_support(Each&& each) {
   if (!sliced_run_) {
     double sum = 0.0;
-    for (const std::int32_t c : support_) sum += each(static_cast<std::size_t>(c));
+    for (const std::int32_t c : support_) each(static_cast<std::size_t>(c), sum);
     return sum;
   }
   // Slab by slab, as the sweeps go (ContactSlabs.h): the slabs of one phase touch disjoint
@@ -49,8 +49,12 @@ double NncgSolver::over_support(Each&& each) {
 #pragma omp for schedule(dynamic, 1)
     for (std::int32_t s = first; s < end; ++s) {
       double sum = 0.0;
-      for (std::int32_t c = start[s]; c < start[s + 1]; ++c)
-        if (in_support_[c]) sum += each(static_cast<std::size_t>(c));
+      for (std::int32_t c = start[s]; c < start[s + 1]; ++c) {
+        if (!in_support_[c]) continue;
+        double value = 0.0;  // each contact's sum apart, then added to its slab's
+        each(static_cast<std::size_t>(c), value);
+        sum += value;
+      }
       slab_sums_[static_cast<std::size_t>(s)] = sum;
     }
   }
@@ -72,16 +76,15 @@ void NncgSolver::scan_support(const ContactProblem& problem, const std::vector<E
 
 double NncgSolver::take_change(const ContactProblem& problem, const std::vector<Eigen::Vector3d>& r,
                                const std::vector<Eigen::Vector3d>& m) {
-  return over_support<false>([&](std::size_t c) {
+  return over_support<false>([&](std::size_t c, double& squared) {
     d_[c] = r[c] - start_[c];
-    double squared = d_[c].squaredNorm();
+    squared += d_[c].squaredNorm();
     if (problem.rolling) {
       d_m_[c] = m[c] - start_m_[c];
       // Divided by R_eff, in N s, as the stop test adds them (GaussSeidelUpdate.h).
       if (problem.w_r[c] > 0.0)
         squared += d_m_[c].squaredNorm() / (problem.rolling_radius[c] * problem.rolling_radius[c]);
     }
-    return squared;
   });
 }
 
@@ -89,7 +92,7 @@ void NncgSolver::conjugate_step(const ContactProblem& problem, double beta,
                                 std::vector<Eigen::Vector3d>& r, std::vector<Eigen::Vector3d>& m,
                                 std::vector<Eigen::Vector3d>& velocity,
                                 std::vector<Eigen::Vector3d>& angular_velocity) {
-  over_support<true>([&](std::size_t c) {
+  over_support<true>([&](std::size_t c, double&) {
     if (beta > 0.0 && !is_zero(p_[c])) {
       const Eigen::Vector3d step = beta * p_[c];
       r[c] += step;
@@ -97,7 +100,7 @@ void NncgSolver::conjugate_step(const ContactProblem& problem, double beta,
     }
     p_[c] = d_[c] + beta * p_[c];
     start_[c] = r[c];
-    if (!problem.rolling) return 0.0;
+    if (!problem.rolling) return;
     if (beta > 0.0 && !is_zero(p_m_[c])) {
       const Eigen::Vector3d step = beta * p_m_[c];
       m[c] += step;
@@ -105,19 +108,17 @@ void NncgSolver::conjugate_step(const ContactProblem& problem, double beta,
     }
     p_m_[c] = d_m_[c] + beta * p_m_[c];
     start_m_[c] = m[c];
-    return 0.0;
   });
 }
 
 void NncgSolver::restart(const ContactProblem& problem, const std::vector<Eigen::Vector3d>& r,
                          const std::vector<Eigen::Vector3d>& m) {
-  over_support<false>([&](std::size_t c) {
+  over_support<false>([&](std::size_t c, double&) {
     p_[c].setZero();
     start_[c] = r[c];
-    if (!problem.rolling) return 0.0;
+    if (!problem.rolling) return;
     p_m_[c].setZero();
     start_m_[c] = m[c];
-    return 0.0;
   });
 }
 

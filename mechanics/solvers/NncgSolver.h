@@ -105,8 +105,9 @@ class NncgSolver final : public ContactSolver {
   // Puts contact c into the support when its reaction (or rolling impulse) is not zero.
   void enter(const ContactProblem& problem, std::size_t c, const std::vector<Eigen::Vector3d>& r,
              const std::vector<Eigen::Vector3d>& m);
-  // each(c) over the support, returning the sum of its values: in support_ order, or slab by
-  // slab with OpenMP threads in a sliced solve (phase by phase where each writes velocities).
+  // each(c, sum) over the support, each adding what it sums to `sum`; returns the total: in
+  // support_ order, or slab by slab with OpenMP threads in a sliced solve (a sum per slab, added
+  // in slab order; phase by phase where each writes velocities).
   template <bool WritesBodies, class Each>
   double over_support(Each&& each);
   // Every contact with a reaction into the support (OpenMP threads in a sliced solve).

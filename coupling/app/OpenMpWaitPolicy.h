@@ -11,7 +11,8 @@ namespace tmdem::coupling {
 // When OMP_WAIT_POLICY is unset: sets it to "passive" and re-executes this program with the same
 // arguments (/proc/self/exe; same process id). Returns only when nothing was to be done or the
 // re-execution failed (the run then goes on with libgomp's default, which is only slower).
-// A user's own OMP_WAIT_POLICY is always kept.
+// A user's own OMP_WAIT_POLICY is always kept. Not under mpirun (the re-executed process cannot
+// join the MPI job): there mpirun's -x OMP_WAIT_POLICY=passive does it.
 void prefer_passive_openmp_wait(char** argv);
 
 }  // namespace tmdem::coupling

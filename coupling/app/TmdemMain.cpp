@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <iostream>
+#include <sstream>
 
 #include "coupling/app/AccuracyCommand.h"
 #include "coupling/app/ConductivityCommand.h"
@@ -21,6 +22,7 @@
 #include "coupling/scene/SceneError.h"
 #include "coupling/scene/SceneLoader.h"
 #include "coupling/scene/SceneReference.h"
+#include "thermal/integrators/MpiWorld.h"
 
 namespace tmdem::coupling {
 
@@ -187,16 +189,21 @@ int tmdem_main(int argc, char** argv) {
                                 : output;
       options.scene_path = scene_path;
       options.overwrite = overwrite;
-      options.handle_signals = true;
+      // Over MPI the processes would see a signal at different steps and part ways: mpirun's
+      // own handling (it ends them all) applies, without a last frame or checkpoint.
+      options.handle_signals = !thermal::MpiWorld::distributed();
       options.resume_command = "tmdem run" + (scene_path.empty() ? "" : " " + shell_quoted(scene_path));
       for (const auto& set : sets) options.resume_command += " --set " + shell_quoted(set);
       options.resume_command += " -o " + shell_quoted(options.output_path);
       options.summary_path = summary;
       options.restart_path = restart;
-      options.quiet = quiet;
+      // Over MPI rank 0 speaks for all: the failures the others meet are the same ones.
+      const bool speaks = thermal::MpiWorld::rank() == 0;
+      options.quiet = quiet || !speaks;
       options.terminal = isatty(STDERR_FILENO);
-      const auto outcome = run_scene(scene, options, std::cerr);
-      if (outcome.exit_code != kExitInvalid)  // a run refused at start did nothing to report
+      std::ostringstream silenced;
+      const auto outcome = run_scene(scene, options, speaks ? std::cerr : silenced);
+      if (outcome.exit_code != kExitInvalid && speaks)  // a run refused at start did nothing to report
         print_run_end(outcome.summary, scene,
                       outcome.exit_code == kExitOk ? options.output_path : "", quiet, std::cerr);
       return outcome.exit_code;

@@ -2,8 +2,11 @@
 // after the OpenMP wait policy is settled (OpenMpWaitPolicy.h).
 #include "coupling/app/OpenMpWaitPolicy.h"
 #include "coupling/app/TmdemMain.h"
+#include "thermal/integrators/MpiWorld.h"
 
 int main(int argc, char** argv) {
+  // Under `mpirun -np N` (N > 1) MPI starts here; a serial run never starts it (MpiWorld.h).
+  tmdem::thermal::MpiWorld::start_if_launched(&argc, &argv);
   tmdem::coupling::prefer_passive_openmp_wait(argv);
   return tmdem::coupling::tmdem_main(argc, argv);
 }

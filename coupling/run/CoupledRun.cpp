@@ -33,6 +33,7 @@
 #include "coupling/scene/HeatModes.h"
 #include "mechanics/integrator/NscdIntegrator.h"
 #include "thermal/integrators/IntegratorRegistry.h"
+#include "thermal/integrators/MpiWorld.h"
 #include "thermal/integrators/ThermalSolverError.h"
 #include "thermal/modes/ModeRegistry.h"
 
@@ -127,7 +128,10 @@ void CoupledRun::prepare_thermal() {
   auto s = integrator_settings(scene_);
   s.max_temperature_K = max_temperature_K();
   try {
-    integrator_ = thermal::make_thermal_integrator(scene_.thermal.integrator, *system_, s);
+    if (thermal::MpiWorld::distributed())
+      prepare_distributed_thermal(s);
+    else
+      integrator_ = thermal::make_thermal_integrator(scene_.thermal.integrator, *system_, s);
     if (T0_.empty())
       for (const auto& p : scene_.particles) T0_.push_back(p.temperature_K);
     if (restart_)
@@ -147,6 +151,32 @@ void CoupledRun::prepare_thermal() {
     report << "\n";
     print_diagnostics(report, diagnose(scene_, contacts_, *system_, s.max_temperature_K));
     progress_.message(report.str().substr(0, report.str().size() - 1));
+  }
+}
+
+void CoupledRun::prepare_distributed_thermal(const thermal::IntegratorSettings& settings) {
+  // Every process settled on its own: the packings must be the same bits, or the processes
+  // would split different networks.
+  if (scene_.effects.mechanics == MechanicsMode::Settle) {
+    double fingerprint = 0.0;
+    for (std::size_t k = 0; k < contacts_.normal_force_N.size(); ++k)
+      fingerprint += double(k + 1) * (contacts_.normal_force_N[k] + double(contacts_.pair[2 * k]) +
+                                      0.5 * double(contacts_.pair[2 * k + 1]));
+    for (const double x : positions()) fingerprint += x;
+    if (!thermal::MpiWorld::same_everywhere(fingerprint))
+      throw StartError("heating over MPI: the processes settled different packings (the settling "
+                       "is repeated in every process and must give the same bits; are their "
+                       "OpenMP thread counts equal?)");
+  }
+  distributed_ = std::make_unique<DistributedHeating>(scene_, *system_, positions());
+  integrator_ = distributed_->make_integrator(settings);
+  if (!options_.quiet) {
+    const auto& local = distributed_->local();
+    std::ostringstream report;
+    report << "thermal: heating over " << thermal::MpiWorld::size()
+           << " MPI processes, slabs across the bed; rank 0 integrates " << local.owned
+           << " particles with " << local.node.size() - local.owned << " ghosts";
+    progress_.message(report.str());
   }
 }
 
@@ -183,7 +213,7 @@ void CoupledRun::write_frame(double t_s) {
   wall_point_m_.clear();  // where the walls are now: pistons move (move_scene_walls)
   for (const auto& wall : scene_.walls) wall_point_m_.insert(wall_point_m_.end(), wall.point_m.begin(), wall.point_m.end());
   f.wall_point_m = wall_point_m_;
-  writer_->write_frame(f);
+  if (writer_) writer_->write_frame(f);  // none on the other processes of an MPI run
   output_seconds_ += seconds_since(output_start);
 }
 
@@ -347,6 +377,43 @@ void CoupledRun::fill_summary() {
   }
 }
 
+void CoupledRun::open_result_file() {
+  if (restart_) {
+    RestartMatch match;
+    match.particles = scene_.particles.size();
+    match.scene_toml = restart_->scene_toml;
+    match.checkpoint_time_s = restart_->time_s;
+    match.next_scene_toml = scene_.resolved_toml;
+    writer_.emplace(ResultWriter::reopen(options_.output_path,
+                                         std::size_t(restart_->frames_written), &match));
+  } else {
+    ResultHeader header;
+    header.scene_toml = scene_.resolved_toml;
+    for (std::size_t i = 0; i < scene_.particles.size(); ++i) {
+      const auto& p = scene_.particles[i];
+      header.radius_m.push_back(p.radius_m);
+      header.mass_kg.push_back(particle_mass_kg(scene_, i));
+      header.heat_capacity_J_per_K.push_back(system_->network().heat_capacity_J_per_K[i]);
+      header.material.push_back(p.material);
+    }
+    for (const auto& m : scene_.materials) header.material_names.push_back(m.name);
+    for (const auto& wall : scene_.walls) {
+      WallPlane plane;
+      for (int k = 0; k < 3; ++k) {
+        plane.point_m[k] = wall.point_m[k];
+        plane.normal[k] = wall.normal[k];
+      }
+      if (wall.cylinder) plane.radius_m = wall.radius_m;
+      if (wall.temperature_K) plane.temperature_K = *wall.temperature_K;
+      header.walls.push_back(plane);
+    }
+    header.frozen = frozen_;  // the contacts too: fixed after settling (or from the start)
+    header.frozen_contacts = contacts_.size();
+    writer_.emplace(options_.output_path, header, scene_.output.contacts,
+                    options_.overwrite ? ExistingResult::Overwrite : ExistingResult::Refuse);
+  }
+}
+
 RunOutcome CoupledRun::run() {
   RunOutcome outcome;
   // status: "ok", "failed" or "interrupted"; `message` is printed once as the error line, a
@@ -372,14 +439,17 @@ RunOutcome CoupledRun::run() {
       }
     }
     summary_.status = status;
-    // A run refused at start writes nothing, not even a summary.
-    if (!options_.summary_path.empty() && code != kExitInvalid) {
+    // A run refused at start writes nothing, not even a summary; over MPI rank 0 writes it.
+    if (!options_.summary_path.empty() && code != kExitInvalid && thermal::MpiWorld::rank() == 0) {
       try {
         summary_.write(options_.summary_path);
       } catch (const OutputError& e) {
         report(e);
       }
     }
+    // Over MPI a failure of rank 0's files is rank 0's alone: the other processes would wait in
+    // the next collective call for ever, so all end here.
+    if (thermal::MpiWorld::distributed() && code == kExitIo) thermal::MpiWorld::abort(code);
     outcome.exit_code = code;
     outcome.summary = summary_;
     if (integrator_) {
@@ -400,8 +470,16 @@ RunOutcome CoupledRun::run() {
   paths.checkpoints = true;  // an interruption writes one even without checkpoint_interval
   paths.overwrite = options_.overwrite;
   paths.restart = !options_.restart_path.empty();
-  if (const auto problem = check_output_paths(paths); problem.exit_code != 0)
-    return failed(problem.exit_code, problem.message);
+  // Over MPI rank 0 writes every file; the others learn whether it may.
+  const bool writes = thermal::MpiWorld::rank() == 0;
+  if (thermal::MpiWorld::distributed()) {
+    if (const auto why = distributed_heating_refusal(scene_, options_, thermal::MpiWorld::size());
+        !why.empty())
+      return failed(kExitInvalid, why);
+  }
+  const auto problem = writes ? check_output_paths(paths) : OutputPathProblem{};
+  if (!thermal::MpiWorld::all(problem.exit_code == 0))
+    return failed(writes ? problem.exit_code : kExitInvalid, problem.message);
 
   std::optional<Interruption> interruption;
   if (options_.handle_signals) interruption.emplace(options_.quiet);
@@ -428,40 +506,7 @@ RunOutcome CoupledRun::run() {
   }
 
   try {
-    if (restart_) {
-      RestartMatch match;
-      match.particles = scene_.particles.size();
-      match.scene_toml = restart_->scene_toml;
-      match.checkpoint_time_s = restart_->time_s;
-      match.next_scene_toml = scene_.resolved_toml;
-      writer_.emplace(ResultWriter::reopen(options_.output_path,
-                                           std::size_t(restart_->frames_written), &match));
-    } else {
-      ResultHeader header;
-      header.scene_toml = scene_.resolved_toml;
-      for (std::size_t i = 0; i < scene_.particles.size(); ++i) {
-        const auto& p = scene_.particles[i];
-        header.radius_m.push_back(p.radius_m);
-        header.mass_kg.push_back(particle_mass_kg(scene_, i));
-        header.heat_capacity_J_per_K.push_back(system_->network().heat_capacity_J_per_K[i]);
-        header.material.push_back(p.material);
-      }
-      for (const auto& m : scene_.materials) header.material_names.push_back(m.name);
-      for (const auto& wall : scene_.walls) {
-        WallPlane plane;
-        for (int k = 0; k < 3; ++k) {
-          plane.point_m[k] = wall.point_m[k];
-          plane.normal[k] = wall.normal[k];
-        }
-        if (wall.cylinder) plane.radius_m = wall.radius_m;
-        if (wall.temperature_K) plane.temperature_K = *wall.temperature_K;
-        header.walls.push_back(plane);
-      }
-      header.frozen = frozen_;  // the contacts too: fixed after settling (or from the start)
-      header.frozen_contacts = contacts_.size();
-      writer_.emplace(options_.output_path, header, scene_.output.contacts,
-                      options_.overwrite ? ExistingResult::Overwrite : ExistingResult::Refuse);
-    }
+    if (writes) open_result_file();
     next_checkpoint_s_ = scene_.output.checkpoint_interval_s > 0.0
                              ? next_checkpoint_time_s(t0_, scene_.output.checkpoint_interval_s)
                              : 0.0;

@@ -110,21 +110,23 @@ void CvodeIntegrator::advance_to(double t_s) {
   check(CVodeGetQuad(mem_.get(), &tq, yQ_.get()), "CVodeGetQuad");
 }
 
-IntegratorStats CvodeIntegrator::stats() const {
+IntegratorStats cvode_stats(void* mem, bool preconditioned) {
   IntegratorStats s;
-  if (mem_) {
-    long v = 0;
-    CVodeGetNumSteps(mem_.get(), &v);               s.steps = v;
-    CVodeGetNumRhsEvals(mem_.get(), &v);            s.rhs_evals = v;
-    CVodeGetNumLinRhsEvals(mem_.get(), &v);         s.rhs_evals += v;
-    if (cg_) { CVodeGetNumPrecEvals(mem_.get(), &v); } else { CVodeGetNumJacEvals(mem_.get(), &v); }
-    s.jacobian_evals = v;
-    CVodeGetNumLinSolvSetups(mem_.get(), &v);       s.linear_setups = v;
-    CVodeGetNumLinIters(mem_.get(), &v);            s.linear_iterations = v;
-    CVodeGetNumErrTestFails(mem_.get(), &v);        s.error_test_failures = v;
-    CVodeGetNumNonlinSolvConvFails(mem_.get(), &v); s.convergence_failures = v;
-  }
-  return with_history(s);
+  long v = 0;
+  CVodeGetNumSteps(mem, &v);               s.steps = v;
+  CVodeGetNumRhsEvals(mem, &v);            s.rhs_evals = v;
+  CVodeGetNumLinRhsEvals(mem, &v);         s.rhs_evals += v;
+  if (preconditioned) { CVodeGetNumPrecEvals(mem, &v); } else { CVodeGetNumJacEvals(mem, &v); }
+  s.jacobian_evals = v;
+  CVodeGetNumLinSolvSetups(mem, &v);       s.linear_setups = v;
+  CVodeGetNumLinIters(mem, &v);            s.linear_iterations = v;
+  CVodeGetNumErrTestFails(mem, &v);        s.error_test_failures = v;
+  CVodeGetNumNonlinSolvConvFails(mem, &v); s.convergence_failures = v;
+  return s;
+}
+
+IntegratorStats CvodeIntegrator::stats() const {
+  return with_history(mem_ ? cvode_stats(mem_.get(), cg_) : IntegratorStats{});
 }
 
 // ---- trampolines -------------------------------------------------------------------------

@@ -12,6 +12,10 @@
 
 namespace tmdem::thermal {
 
+// The counters of a CVODES memory (preconditioned: the conjugate-gradient solvers, whose
+// "Jacobian evaluations" are preconditioner setups), without earlier segments.
+IntegratorStats cvode_stats(void* cvode_mem, bool preconditioned);
+
 class CvodeIntegrator final : public SundialsIntegratorBase {
  public:
   CvodeIntegrator(ThermalSystem& system, const IntegratorSettings& settings);

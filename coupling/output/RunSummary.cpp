@@ -113,6 +113,7 @@ nlohmann::json RunSummary::to_json() const {
                             {"correction_s", wall_time_parts->correction_s}};
   }
   if (openmp) j["openmp"] = {{"threads", openmp->threads}, {"wait_policy", openmp->wait_policy}};
+  if (mpi) j["mpi"] = {{"processes", mpi->processes}, {"ghosts", mpi->ghosts}};
   for (const auto& i : imports)
     j["imports"].push_back({{"file", i.file},
                             {"particles", i.particles},
@@ -176,6 +177,11 @@ RunSummary RunSummary::from_json(const nlohmann::json& j) {
   if (j.contains("openmp")) {
     const nlohmann::json& o = j.at("openmp");
     s.openmp = OpenMpSummary{integer(o, "threads", 1), text(o, "wait_policy", "")};
+  }
+
+  if (j.contains("mpi")) {
+    const nlohmann::json& m = j.at("mpi");
+    s.mpi = MpiSummary{integer(m, "processes", 1), integer(m, "ghosts", 0)};
   }
 
   if (j.contains("imports"))

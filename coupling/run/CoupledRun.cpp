@@ -170,8 +170,10 @@ void CoupledRun::prepare_distributed_thermal(const thermal::IntegratorSettings& 
   }
   distributed_ = std::make_unique<DistributedHeating>(scene_, *system_, positions());
   integrator_ = distributed_->make_integrator(settings);
+  const auto& local = distributed_->local();
+  summary_.mpi = MpiSummary{thermal::MpiWorld::size(),
+                            std::int64_t(thermal::MpiWorld::sum(double(local.node.size() - local.owned)))};
   if (!options_.quiet) {
-    const auto& local = distributed_->local();
     std::ostringstream report;
     report << "thermal: heating over " << thermal::MpiWorld::size()
            << " MPI processes, slabs across the bed; rank 0 integrates " << local.owned

@@ -28,6 +28,10 @@ std::string distributed_heating_refusal(const Scene& scene, const RunOptions& op
   if (thermal::parse_integrator_kind(scene.thermal.integrator) != thermal::IntegratorKind::Cvode)
     return over + "thermal.integrator = \"" + scene.thermal.integrator +
            "\" runs in one process only; use \"cvode\"";
+  if (thermal::parse_linear_solver_kind(scene.thermal.linear_solver) != thermal::LinearSolverKind::Amg)
+    return over + "thermal.linear_solver = \"" + scene.thermal.linear_solver +
+           "\" runs in one process only; use \"amg\" (conjugate gradients with BoomerAMG across "
+           "the processes)";
   if (!options.restart_path.empty() || scene.output.checkpoint_interval_s > 0.0)
     return over + "checkpoints and --restart are not supported; run with one process";
   if (scene.particles.size() < std::size_t(processes))

@@ -21,8 +21,9 @@ namespace tmdem::coupling {
 
 // Why this scene and these options cannot be heated over `processes` processes, or empty when
 // they can: frozen beds only (mechanics "off", or "settle": every process settles the same
-// packing), integrator "cvode", no checkpoints or restarts, no gas layer shared by neighbour
-// count, at least one particle per process. (The linear solver is checked by the integrator.)
+// packing), integrator "cvode" with linear_solver "amg", no checkpoints or restarts, no gas
+// layer shared by neighbour count, at least one particle per process. (A symmetric Jacobian is
+// checked by the integrator, which sees the modes.)
 std::string distributed_heating_refusal(const Scene& scene, const RunOptions& options,
                                         int processes);
 

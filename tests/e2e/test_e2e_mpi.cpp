@@ -134,6 +134,9 @@ TEST(E2eMpi, TwoProcessesHeatAsOneToTheIntegratorTolerance) {
   const auto s2 = read_summary(dir + "/two.json");
   EXPECT_EQ(s2["status"], "ok");
   EXPECT_EQ(s2["particles"], 360);
+  EXPECT_EQ(s2["mpi"]["processes"], 2);
+  EXPECT_EQ(s2["mpi"]["ghosts"], 72);  // the cut at x = 10 mm: 6 x 6 particles on each side
+  EXPECT_FALSE(s1.contains("mpi"));
   // Energy: with conjugate gradients each Newton solve stops at the linear tolerance, which
   // leaves the balance at ~1e-11 in one process too (2.6e-11 here); two processes do no worse.
   EXPECT_LT(std::abs(s2["energy"]["balance_error_rel"].get<double>()), 1e-10);

@@ -76,21 +76,12 @@ interval = 2.0
 bool have_mpirun() { return std::system("command -v mpirun > /dev/null 2>&1") == 0; }
 
 // mpirun -np 2 tmdem ARGS in workdir (OpenMPI as root needs the two variables; --oversubscribe:
-// the machine may have fewer free cores than processes).
+// the machine may have fewer free cores than processes; yield: waiting processes give way).
 ProgramResult run_tmdem_mpi(const std::string& args, const std::string& workdir) {
-  const std::string log = workdir + "/mpirun.log";
-  const std::string cmd = "cd '" + workdir + "' && env OMPI_ALLOW_RUN_AS_ROOT=1 "
-                          "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_mpi_yield_when_idle=1 "
-                          "mpirun -np 2 --oversubscribe '" TMDEM_BINARY "' " + args + " > '" +
-                          log + "' 2>&1";
-  const int status = std::system(cmd.c_str());
-  ProgramResult r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(log);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  r.output = ss.str();
-  return r;
+  return run_tmdem(args, workdir,
+                   "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
+                   "OMPI_MCA_mpi_yield_when_idle=1",
+                   "mpirun -np 2 --oversubscribe");
 }
 
 std::vector<double> final_temperatures(const std::string& path, std::size_t& frames) {

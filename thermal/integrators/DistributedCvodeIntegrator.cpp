@@ -7,8 +7,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
-#include <sstream>
 #include <stdexcept>
 
 #include "thermal/integrators/CvodeIntegrator.h"
@@ -83,20 +81,8 @@ void DistributedCvodeIntegrator::check(int flag, const char* call) const {
 }
 
 void DistributedCvodeIntegrator::fail(int flag, const char* call) const {
-  sunrealtype h = 0.0;
-  long steps = -1;
-  if (mem_) {
-    CVodeGetCurrentStep(mem_.get(), &h);
-    CVodeGetNumSteps(mem_.get(), &steps);
-  }
-  char* flag_name = CVodeGetReturnFlagName(flag);
-  std::ostringstream msg;
-  msg << "CVODE (over " << MpiWorld::size() << " MPI processes) failed in " << call << " with "
-      << (flag_name ? flag_name : "?") << " (" << flag << ") at t = " << t_ << " s";
-  std::free(flag_name);
-  if (steps >= 0) msg << ", step size " << h << " s after " << steps << " steps";
-  if (!last_error_.empty()) msg << ": " << last_error_;
-  throw ThermalSolverError(msg.str(), flag, t_);
+  throw cvode_failure(mem_.get(), "CVODE (over " + std::to_string(MpiWorld::size()) + " MPI processes)",
+                      flag, call, t_, last_error_);
 }
 
 void DistributedCvodeIntegrator::error_handler(int code, const char* module, const char* function,
@@ -170,16 +156,8 @@ void DistributedCvodeIntegrator::restart() {
 void DistributedCvodeIntegrator::advance_to(double t_s) {
   if (!mem_ || t_s <= t_) return;
   if (settings_.stop_at_each_time) check(CVodeSetStopTime(mem_.get(), t_s), "CVodeSetStopTime");
-  sunrealtype t_reached = t_;
   last_error_.clear();
-  const int flag = CVode(mem_.get(), t_s, y_.get(), &t_reached, CV_NORMAL);
-  if (flag < 0) {
-    sunrealtype t_internal = t_;
-    CVodeGetCurrentTime(mem_.get(), &t_internal);
-    t_ = t_internal;
-    fail(flag, "CVode");
-  }
-  t_ = t_reached;
+  if (const int flag = cvode_advance(mem_.get(), y_.get(), t_s, t_); flag < 0) fail(flag, "CVode");
   gather();
   sunrealtype tq = t_;
   check(CVodeGetQuad(mem_.get(), &tq, yQ_.get()), "CVodeGetQuad");
@@ -191,13 +169,7 @@ double DistributedCvodeIntegrator::boundary_heat_J() const {
 
 IntegratorStats DistributedCvodeIntegrator::stats() const {
   IntegratorStats s = mem_ ? cvode_stats(mem_.get(), true) : IntegratorStats{};
-  s.steps += history_.steps;
-  s.rhs_evals += history_.rhs_evals;
-  s.jacobian_evals += history_.jacobian_evals;
-  s.linear_setups += history_.linear_setups;
-  s.linear_iterations += history_.linear_iterations;
-  s.error_test_failures += history_.error_test_failures;
-  s.convergence_failures += history_.convergence_failures;
+  s.add_counters(history_);
   return s;
 }
 

@@ -179,8 +179,10 @@ int tmdem_main(int argc, char** argv) {
         std::cerr << "error: -o needs a file name (got an empty one)" << std::endl;
         return kExitInvalid;
       }
+      // Over MPI rank 0 speaks for all: the failures the others meet are the same ones.
+      const bool speaks = thermal::MpiWorld::rank() == 0;
       const Scene scene = load(scene_path, sets);
-      if (!quiet)
+      if (!quiet && speaks)
         for (const auto& report : scene.imports) std::cerr << describe_import(report) << std::endl;
       RunOptions options;
       options.output_path = output.empty()
@@ -197,8 +199,6 @@ int tmdem_main(int argc, char** argv) {
       options.resume_command += " -o " + shell_quoted(options.output_path);
       options.summary_path = summary;
       options.restart_path = restart;
-      // Over MPI rank 0 speaks for all: the failures the others meet are the same ones.
-      const bool speaks = thermal::MpiWorld::rank() == 0;
       options.quiet = quiet || !speaks;
       options.terminal = isatty(STDERR_FILENO);
       std::ostringstream silenced;

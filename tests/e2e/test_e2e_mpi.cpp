@@ -12,19 +12,28 @@
 namespace tmdem::e2e {
 namespace {
 
-// 10 x 6 x 6 steel spheres touching in a lattice (x the longest: the slabs cut across x, so each
-// process has particles on the hot floor and under the cooled lid), convection, a source, a
-// held particle; contacts from geometry (mechanics off).
 constexpr double kRelativeTolerance = 1e-6;
 constexpr double kAbsoluteTolerance_K = 1e-6;
 
-std::string frozen_bed_scene(const std::string& mechanics) {
+struct BedShape {
+  std::string mechanics = "off";
+  std::string counts = "[10, 6, 6]";
+  double lid_z_m = 0.012;   // on the top layer
+  int held_id = 300;
+  std::string gravity = "[0.0, 0.0, 0.0]";
+};
+
+// Steel spheres touching in a lattice on a hot floor under a cooled flux lid, convection, a
+// source, a held particle. The slabs cut across the longest extent: a 10 x 6 x 6 bed across x
+// (each process has particles on the floor and under the lid), a 4 x 4 x 20 column across z.
+std::string lattice_bed_scene(const BedShape& shape) {
   return R"(format = "tmdem-scene-1"
 [simulation]
 duration = 20.0
 dimension = 3
+gravity = )" + shape.gravity + R"(
 [effects]
-mechanics = ")" + mechanics + R"("
+mechanics = ")" + shape.mechanics + R"("
 convection = true
 [[material]]
 name = "steel"
@@ -35,7 +44,7 @@ conductivity = 50.0
 heat_capacity = 460.0
 [[generate]]
 kind = "lattice"
-counts = [10, 6, 6]
+counts = )" + shape.counts + R"(
 spacing = 0.002
 radius = 0.001
 origin = [0.001, 0.001, 0.001]
@@ -45,7 +54,7 @@ temperature = 293.15
 ids = [17]
 heat_source = 0.05
 [[assign]]
-ids = [300]
+ids = [)" + std::to_string(shape.held_id) + R"(]
 temperature = 330.0
 fixed_temperature = true
 [[wall]]
@@ -54,7 +63,7 @@ normal = [0.0, 0.0, 1.0]
 material = "steel"
 temperature = 400.0
 [[wall]]
-point = [0.0, 0.0, 0.012]
+point = [0.0, 0.0, )" + std::to_string(shape.lid_z_m) + R"(]
 normal = [0.0, 0.0, -1.0]
 material = "steel"
 heat_flux = -2000.0
@@ -92,56 +101,90 @@ std::vector<double> final_temperatures(const std::string& path, std::size_t& fra
   return {T.end() - std::ptrdiff_t(dims.at(1)), T.end()};
 }
 
-TEST(E2eMpi, TwoProcessesHeatAsOneToTheIntegratorTolerance) {
-  if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed (Debian openmpi-bin)";
-  const auto dir = scratch_dir("mpi_two");
-  write_file(dir + "/bed.toml", frozen_bed_scene("off"));
-  const auto one = run_tmdem("run bed.toml -o one.h5 --summary one.json", dir);
-  ASSERT_EQ(one.exit_code, 0) << one.output;
-  const auto two = run_tmdem_mpi("run bed.toml -o two.h5 --summary two.json", dir);
-  ASSERT_EQ(two.exit_code, 0) << two.output;
-  EXPECT_NE(two.output.find("heating over 2 MPI processes"), std::string::npos) << two.output;
+// The scene run by one process and by two: final temperatures and summaries.
+struct OneAndTwo {
+  std::vector<double> T1, T2;
+  nlohmann::json s1, s2;
+};
 
+OneAndTwo heat_with_one_and_two(const std::string& name, const BedShape& shape) {
+  const auto dir = scratch_dir(name);
+  write_file(dir + "/bed.toml", lattice_bed_scene(shape));
+  OneAndTwo out;
+  const auto one = run_tmdem("run bed.toml -o one.h5 --summary one.json", dir);
+  EXPECT_EQ(one.exit_code, 0) << one.output;
+  const auto two = run_tmdem_mpi("run bed.toml -o two.h5 --summary two.json", dir);
+  EXPECT_EQ(two.exit_code, 0) << two.output;
+  EXPECT_NE(two.output.find("heating over 2 MPI processes"), std::string::npos) << two.output;
+  if (one.exit_code != 0 || two.exit_code != 0) return out;
   std::size_t frames_one = 0, frames_two = 0;
-  const auto T1 = final_temperatures(dir + "/one.h5", frames_one);
-  const auto T2 = final_temperatures(dir + "/two.h5", frames_two);
-  ASSERT_EQ(frames_one, 11u);
-  ASSERT_EQ(frames_two, frames_one);
-  ASSERT_EQ(T1.size(), 360u);
-  ASSERT_EQ(T2.size(), T1.size());
+  out.T1 = final_temperatures(dir + "/one.h5", frames_one);
+  out.T2 = final_temperatures(dir + "/two.h5", frames_two);
+  EXPECT_EQ(frames_one, 11u);
+  EXPECT_EQ(frames_two, frames_one);
+  out.s1 = read_summary(dir + "/one.json");
+  out.s2 = read_summary(dir + "/two.json");
+  return out;
+}
+
+// The two runs differ only in the preconditioner (one V-cycle over one or two processes), which
+// moves each step's Newton solution within the linear tolerance: the final temperatures agree to
+// the tolerance the integrator keeps on each step, rtol |T| + atol (the hottest is 400 K).
+void expect_equal_to_the_tolerance(const OneAndTwo& r, std::size_t particles) {
+  ASSERT_EQ(r.T1.size(), particles);
+  ASSERT_EQ(r.T2.size(), particles);
   double difference_K = 0.0, rise_K = 0.0;
-  for (std::size_t i = 0; i < T1.size(); ++i) {
-    difference_K = std::max(difference_K, std::abs(T2[i] - T1[i]));
-    rise_K = std::max(rise_K, std::abs(T1[i] - 293.15));
+  for (std::size_t i = 0; i < particles; ++i) {
+    difference_K = std::max(difference_K, std::abs(r.T2[i] - r.T1[i]));
+    rise_K = std::max(rise_K, std::abs(r.T1[i] - 293.15));
   }
   EXPECT_GT(rise_K, 10.0);  // the bed did heat: the comparison means something
-  // The two runs differ only in the preconditioner (one V-cycle over one or two processes), which
-  // moves each step's Newton solution within the linear tolerance: the final temperatures agree
-  // to the tolerance the integrator keeps on each step, rtol |T| + atol.
   EXPECT_LE(difference_K, kRelativeTolerance * 400.0 + kAbsoluteTolerance_K) << difference_K;
-  EXPECT_DOUBLE_EQ(T2[300], 330.0);  // held
-
-  const auto s1 = read_summary(dir + "/one.json");
-  const auto s2 = read_summary(dir + "/two.json");
-  EXPECT_EQ(s2["status"], "ok");
-  EXPECT_EQ(s2["particles"], 360);
-  EXPECT_EQ(s2["mpi"]["processes"], 2);
-  EXPECT_EQ(s2["mpi"]["ghosts"], 72);  // the cut at x = 10 mm: 6 x 6 particles on each side
-  EXPECT_FALSE(s1.contains("mpi"));
+  EXPECT_EQ(r.s2["status"], "ok");
+  EXPECT_EQ(r.s2["particles"], std::int64_t(particles));
+  EXPECT_EQ(r.s2["mpi"]["processes"], 2);
+  EXPECT_FALSE(r.s1.contains("mpi"));
   // Energy: with conjugate gradients each Newton solve stops at the linear tolerance, which
-  // leaves the balance at ~1e-11 in one process too (2.6e-11 here); two processes do no worse.
-  EXPECT_LT(std::abs(s2["energy"]["balance_error_rel"].get<double>()), 1e-10);
-  EXPECT_NEAR(s2["energy"]["boundary_heat_J"].get<double>(),
-              s1["energy"]["boundary_heat_J"].get<double>(),
-              kRelativeTolerance * std::abs(s1["energy"]["boundary_heat_J"].get<double>()));
-  EXPECT_NEAR(s2["energy"]["final_J"].get<double>(), s1["energy"]["final_J"].get<double>(),
-              kRelativeTolerance * s1["energy"]["final_J"].get<double>());
+  // leaves the balance at ~1e-11 in one process too (2.6e-11 for the frozen bed); two processes
+  // do no worse.
+  EXPECT_LT(std::abs(r.s2["energy"]["balance_error_rel"].get<double>()), 1e-10);
+  for (const char* key : {"final_J", "boundary_heat_J"})
+    EXPECT_NEAR(r.s2["energy"][key].get<double>(), r.s1["energy"][key].get<double>(),
+                kRelativeTolerance * std::abs(r.s1["energy"][key].get<double>()))
+        << key;
+}
+
+TEST(E2eMpi, TwoProcessesHeatAFrozenBedAsOneToTheIntegratorTolerance) {
+  if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed (Debian openmpi-bin)";
+  const auto r = heat_with_one_and_two("mpi_frozen", BedShape{});
+  expect_equal_to_the_tolerance(r, 360);
+  if (r.T2.empty()) return;
+  EXPECT_DOUBLE_EQ(r.T2[300], 330.0);  // held
+  EXPECT_EQ(r.s2["mpi"]["ghosts"], 72);  // the cut at x = 10 mm: 6 x 6 particles on each side
+}
+
+// Settled first (every process settles the same column and checks that they agree), then
+// frozen and split across z: the vertical contacts are cut.
+TEST(E2eMpi, TwoProcessesHeatASettledColumnAsOne) {
+  if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed (Debian openmpi-bin)";
+  BedShape column;
+  column.mechanics = "settle";
+  column.counts = "[4, 4, 20]";
+  column.lid_z_m = 0.040;
+  column.held_id = 200;
+  column.gravity = "[0.0, 0.0, -9.81]";
+  const auto r = heat_with_one_and_two("mpi_settled", column);
+  expect_equal_to_the_tolerance(r, 320);
+  EXPECT_EQ(r.s2["mpi"]["ghosts"], 32);  // 4 x 4 on each side of the cut
+  EXPECT_TRUE(r.s2["settle"]["at_rest"].get<bool>());
 }
 
 TEST(E2eMpi, RefusesAMovingBed) {
   if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed (Debian openmpi-bin)";
   const auto dir = scratch_dir("mpi_dynamic");
-  write_file(dir + "/bed.toml", frozen_bed_scene("dynamic"));
+  BedShape moving;
+  moving.mechanics = "dynamic";
+  write_file(dir + "/bed.toml", lattice_bed_scene(moving));
   const auto two = run_tmdem_mpi("run bed.toml -o two.h5", dir);
   EXPECT_EQ(two.exit_code, 2) << two.output;
   EXPECT_NE(two.output.find("heating over MPI (2 processes): effects.mechanics = \"dynamic\""),

@@ -4,14 +4,16 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <string>
 
 namespace tmdem::thermal {
 namespace {
 
-bool launched_with_several() {
+// The process count the launcher announced, 0 when not launched by one.
+int launched_size() {
   for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
-    if (const char* value = std::getenv(name); value && std::atoi(value) > 1) return true;
-  return false;
+    if (const char* value = std::getenv(name)) return std::atoi(value);
+  return 0;
 }
 
 // MPI_Finalize at exit, after hypre's own finaliser (constructed later, so destroyed first).
@@ -27,16 +29,22 @@ int g_rank = 0, g_size = 1;
 
 }  // namespace
 
-void MpiWorld::start_if_launched(int* argc, char*** argv) {
-  if (!launched_with_several()) return;
+std::string MpiWorld::start_if_launched(int* argc, char*** argv) {
+  const int launched = launched_size();
+  if (launched <= 1) return "";
   int initialised = 0;
   MPI_Initialized(&initialised);
   if (!initialised) {
-    MPI_Init(argc, argv);
+    if (MPI_Init(argc, argv) != MPI_SUCCESS) return "MPI_Init failed";
     static Finalizer finalizer;
   }
   MPI_Comm_rank(MPI_COMM_WORLD, &g_rank);
   MPI_Comm_size(MPI_COMM_WORLD, &g_size);
+  if (g_size != launched)
+    return "started as one of " + std::to_string(launched) + " processes, but MPI sees " +
+           std::to_string(g_size) + ": launch tmdem with the mpirun of the MPI it links "
+           "(Debian: OpenMPI, package openmpi-bin)";
+  return "";
 }
 
 int MpiWorld::rank() { return g_rank; }

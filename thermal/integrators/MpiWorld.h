@@ -6,6 +6,7 @@
 // MPI headers.
 #include <cstdint>
 #include <span>
+#include <string>
 
 namespace tmdem::thermal {
 
@@ -13,7 +14,10 @@ class MpiWorld {
  public:
   // Call first thing in main: MPI_Init when mpirun (OpenMPI: OMPI_COMM_WORLD_SIZE; MPICH and
   // others: PMI_SIZE) started more than one process, else nothing. MPI_Finalize runs at exit.
-  static void start_if_launched(int* argc, char*** argv);
+  // Returns why the processes cannot work together (empty: they can), e.g. a launcher of
+  // another MPI than the one tmdem links (OpenMPI on Debian), whose processes each see a world
+  // of one and would each run the whole scene.
+  static std::string start_if_launched(int* argc, char*** argv);
   // 0 and 1 unless start_if_launched started MPI.
   static int rank();
   static int size();

@@ -215,7 +215,7 @@ void CoupledRun::write_frame(double t_s) {
   wall_point_m_.clear();  // where the walls are now: pistons move (move_scene_walls)
   for (const auto& wall : scene_.walls) wall_point_m_.insert(wall_point_m_.end(), wall.point_m.begin(), wall.point_m.end());
   f.wall_point_m = wall_point_m_;
-  if (writer_) writer_->write_frame(f);  // none on the other processes of an MPI run
+  if (writes_files_) writer_->write_frame(f);
   output_seconds_ += seconds_since(output_start);
 }
 
@@ -442,7 +442,7 @@ RunOutcome CoupledRun::run() {
     }
     summary_.status = status;
     // A run refused at start writes nothing, not even a summary; over MPI rank 0 writes it.
-    if (!options_.summary_path.empty() && code != kExitInvalid && thermal::MpiWorld::rank() == 0) {
+    if (!options_.summary_path.empty() && code != kExitInvalid && writes_files_) {
       try {
         summary_.write(options_.summary_path);
       } catch (const OutputError& e) {
@@ -473,15 +473,14 @@ RunOutcome CoupledRun::run() {
   paths.overwrite = options_.overwrite;
   paths.restart = !options_.restart_path.empty();
   // Over MPI rank 0 writes every file; the others learn whether it may.
-  const bool writes = thermal::MpiWorld::rank() == 0;
   if (thermal::MpiWorld::distributed()) {
-    if (const auto why = distributed_heating_refusal(scene_, options_, thermal::MpiWorld::size());
+    if (const auto why = distributed_heating_refusal(scene_, thermal::MpiWorld::size());
         !why.empty())
       return failed(kExitInvalid, why);
   }
-  const auto problem = writes ? check_output_paths(paths) : OutputPathProblem{};
-  if (!thermal::MpiWorld::all(problem.exit_code == 0))
-    return failed(writes ? problem.exit_code : kExitInvalid, problem.message);
+  const auto problem = writes_files_ ? check_output_paths(paths) : OutputPathProblem{};
+  if (const int code = thermal::MpiWorld::from_root(problem.exit_code); code != kExitOk)
+    return failed(code, problem.message);
 
   std::optional<Interruption> interruption;
   if (options_.handle_signals) interruption.emplace(options_.quiet);
@@ -507,8 +506,23 @@ RunOutcome CoupledRun::run() {
     return failed(kExitSolverFailed, std::string("setting up the run failed: ") + e.what());
   }
 
+  // Rank 0 opens the result file; over MPI the others must learn whether it could, or they
+  // would wait for it for ever in the first step.
+  int open_code = kExitOk;
+  std::string open_message;
   try {
-    if (writes) open_result_file();
+    if (writes_files_) open_result_file();
+  } catch (const ResultMismatch& e) {
+    open_code = kExitInvalid, open_message = e.what();
+  } catch (const OutputError& e) {
+    open_code = kExitIo, open_message = e.what();
+  } catch (const std::exception& e) {
+    open_code = kExitSolverFailed, open_message = e.what();
+  }
+  if (const int code = thermal::MpiWorld::from_root(open_code); code != kExitOk)
+    return failed(code, open_message);
+
+  try {
     next_checkpoint_s_ = scene_.output.checkpoint_interval_s > 0.0
                              ? next_checkpoint_time_s(t0_, scene_.output.checkpoint_interval_s)
                              : 0.0;

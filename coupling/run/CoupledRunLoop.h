@@ -20,6 +20,7 @@
 #include "coupling/run/CoupledRun.h"
 #include "coupling/run/DistributedHeating.h"
 #include "mechanics/integrator/NscdIntegrator.h"
+#include "thermal/integrators/MpiWorld.h"
 #include "thermal/integrators/ThermalIntegrator.h"
 #include "thermal/system/ThermalSystem.h"
 
@@ -74,6 +75,9 @@ class CoupledRun {
 
   Scene scene_;  // a copy: its pistons' points follow the mechanics (move_scene_walls)
   RunOptions options_;
+  // Rank 0 writes the result, checkpoint and summary files; the other processes of a run over
+  // MPI compute the same frames and checkpoints but write nothing.
+  bool writes_files_ = thermal::MpiWorld::rank() == 0;
   std::ostream& log_;
   ProgressReporter progress_;
   CouplingStrategy coupling_;  // thermal.coupling, parsed once

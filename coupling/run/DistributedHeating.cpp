@@ -19,8 +19,7 @@ bool gas_layer_shared(const Scene& scene) {
 
 }  // namespace
 
-std::string distributed_heating_refusal(const Scene& scene, const RunOptions& options,
-                                        int processes) {
+std::string distributed_heating_refusal(const Scene& scene, int processes) {
   const std::string over = "heating over MPI (" + std::to_string(processes) + " processes): ";
   if (scene.effects.mechanics == MechanicsMode::Dynamic)
     return over + "effects.mechanics = \"dynamic\" changes the contact graph every step; only "
@@ -32,8 +31,6 @@ std::string distributed_heating_refusal(const Scene& scene, const RunOptions& op
     return over + "thermal.linear_solver = \"" + scene.thermal.linear_solver +
            "\" runs in one process only; use \"amg\" (conjugate gradients with BoomerAMG across "
            "the processes)";
-  if (!options.restart_path.empty() || scene.output.checkpoint_interval_s > 0.0)
-    return over + "checkpoints and --restart are not supported; run with one process";
   if (scene.particles.size() < std::size_t(processes))
     return over + "fewer particles (" + std::to_string(scene.particles.size()) + ") than processes";
   if (gas_layer_shared(scene))

@@ -10,7 +10,6 @@
 #include <span>
 #include <string>
 
-#include "coupling/run/CoupledRun.h"
 #include "coupling/scene/Scene.h"
 #include "thermal/integrators/ThermalIntegrator.h"
 #include "thermal/network/LocalNetwork.h"
@@ -19,13 +18,13 @@
 
 namespace tmdem::coupling {
 
-// Why this scene and these options cannot be heated over `processes` processes, or empty when
-// they can: frozen beds only (mechanics "off", or "settle": every process settles the same
-// packing), integrator "cvode" with linear_solver "amg", no checkpoints or restarts, no gas
-// layer shared by neighbour count, at least one particle per process. (A symmetric Jacobian is
-// checked by the integrator, which sees the modes.)
-std::string distributed_heating_refusal(const Scene& scene, const RunOptions& options,
-                                        int processes);
+// Why this scene cannot be heated over `processes` processes, or empty when it can: frozen beds
+// only (mechanics "off", or "settle": every process settles the same packing), integrator
+// "cvode" with linear_solver "amg", no gas layer shared by neighbour count, at least one
+// particle per process. (A symmetric Jacobian is checked by the integrator, which sees the
+// modes.) Checkpoints and restarts work as in one process: rank 0 writes them, every process
+// reads them.
+std::string distributed_heating_refusal(const Scene& scene, int processes);
 
 class DistributedHeating {
  public:

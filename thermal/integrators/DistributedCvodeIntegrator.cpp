@@ -148,7 +148,8 @@ void DistributedCvodeIntegrator::initialize(double t0_s, std::span<const double>
 
 void DistributedCvodeIntegrator::restart() {
   if (!mem_) return;
-  history_ = stats();
+  history_ = stats();  // CVodeReInit sets the solver's counters to 0
+  ++history_.reinitializations;
   check(CVodeReInit(mem_.get(), t_, y_.get()), "CVodeReInit");
   check(CVodeQuadReInit(mem_.get(), yQ_.get()), "CVodeQuadReInit");
 }
@@ -170,6 +171,7 @@ double DistributedCvodeIntegrator::boundary_heat_J() const {
 IntegratorStats DistributedCvodeIntegrator::stats() const {
   IntegratorStats s = mem_ ? cvode_stats(mem_.get(), true) : IntegratorStats{};
   s.add_counters(history_);
+  s.reinitializations = history_.reinitializations;
   return s;
 }
 

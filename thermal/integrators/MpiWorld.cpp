@@ -64,6 +64,11 @@ bool MpiWorld::all(bool value) {
   return every != 0;
 }
 
+int MpiWorld::from_root(int value) {
+  if (g_size > 1) MPI_Bcast(&value, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  return value;
+}
+
 bool MpiWorld::same_everywhere(double value) {
   if (g_size == 1) return true;
   double low = 0.0, high = 0.0;

@@ -26,6 +26,8 @@ class MpiWorld {
   // Collective over MPI_COMM_WORLD (identity with one process).
   static double sum(double value);
   static bool all(bool value);
+  // Rank 0's value, on every process.
+  static int from_root(int value);
   // True when every process passed the same value.
   static bool same_everywhere(double value);
   // Every process's `mine` in rank order, into `all` (sized to the total; counts per rank).

@@ -173,6 +173,15 @@ int tmdem_main(int argc, char** argv) {
     return code == 0 ? kExitOk : kExitInvalid;
   }
 
+  // Every other command would run whole in each process, all writing the same files.
+  if (thermal::MpiWorld::distributed() && !*run) {
+    if (thermal::MpiWorld::rank() == 0)
+      std::cerr << "error: only `tmdem run` runs over MPI (started as one of "
+                << thermal::MpiWorld::size() << " processes); run this command without mpirun"
+                << std::endl;
+    return kExitInvalid;
+  }
+
   try {
     if (*run) {
       if (output_option->count() > 0 && output.empty()) {

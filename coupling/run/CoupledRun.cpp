@@ -194,6 +194,7 @@ std::span<const double> CoupledRun::velocities() const {
 }
 
 void CoupledRun::write_frame(double t_s) {
+  if (!writes_files_) return;  // over MPI rank 0 alone builds and writes the frames
   const auto output_start = std::chrono::steady_clock::now();
   FrameView f;
   f.time_s = t_s;
@@ -215,7 +216,7 @@ void CoupledRun::write_frame(double t_s) {
   wall_point_m_.clear();  // where the walls are now: pistons move (move_scene_walls)
   for (const auto& wall : scene_.walls) wall_point_m_.insert(wall_point_m_.end(), wall.point_m.begin(), wall.point_m.end());
   f.wall_point_m = wall_point_m_;
-  if (writes_files_) writer_->write_frame(f);
+  writer_->write_frame(f);
   output_seconds_ += seconds_since(output_start);
 }
 

@@ -203,6 +203,15 @@ TEST(E2eMpi, RestartFromACheckpointIsBitForBit) {
             summary_without_wall_times(dir + "/part.json"));
 }
 
+TEST(E2eMpi, OnlyRunRunsOverMpi) {
+  if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed (Debian openmpi-bin)";
+  const auto dir = scratch_dir("mpi_check");
+  write_file(dir + "/bed.toml", lattice_bed_scene(BedShape{}));
+  const auto check = run_tmdem_mpi("check bed.toml", dir);
+  EXPECT_EQ(check.exit_code, 2) << check.output;
+  EXPECT_NE(check.output.find("only `tmdem run` runs over MPI"), std::string::npos) << check.output;
+}
+
 TEST(E2eMpi, RefusesAMovingBed) {
   if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed (Debian openmpi-bin)";
   const auto dir = scratch_dir("mpi_dynamic");

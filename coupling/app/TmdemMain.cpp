@@ -200,8 +200,9 @@ int tmdem_main(int argc, char** argv) {
                                 : output;
       options.scene_path = scene_path;
       options.overwrite = overwrite;
-      // Over MPI the processes would see a signal at different steps and part ways: mpirun's
-      // own handling (it ends them all) applies, without a last frame or checkpoint.
+      // Over MPI, mpirun (OpenMPI 4.1) passes SIGINT on as SIGTERM and kills every process
+      // within a second or two, before a frame could be finished: its handling applies, and the
+      // run resumes from its last output.checkpoint_interval checkpoint.
       options.handle_signals = !thermal::MpiWorld::distributed();
       options.resume_command = "tmdem run" + (scene_path.empty() ? "" : " " + shell_quoted(scene_path));
       for (const auto& set : sets) options.resume_command += " --set " + shell_quoted(set);

@@ -473,12 +473,12 @@ RunOutcome CoupledRun::run() {
   paths.checkpoints = true;  // an interruption writes one even without checkpoint_interval
   paths.overwrite = options_.overwrite;
   paths.restart = !options_.restart_path.empty();
-  // Over MPI rank 0 writes every file; the others learn whether it may.
   if (thermal::MpiWorld::distributed()) {
     if (const auto why = distributed_heating_refusal(scene_, thermal::MpiWorld::size());
         !why.empty())
       return failed(kExitInvalid, why);
   }
+  // Over MPI rank 0 writes every file; the others learn whether it may.
   const auto problem = writes_files_ ? check_output_paths(paths) : OutputPathProblem{};
   if (const int code = thermal::MpiWorld::from_root(problem.exit_code); code != kExitOk)
     return failed(code, problem.message);

@@ -12,11 +12,12 @@
 // processes: the energy the state gains, so the balance closes as in one process.
 // temperatures_K() is every particle's temperature, gathered to every process after each
 // advance (the coupling writes frames from it on rank 0).
-#include <sundials/sundials_nvector.h>
+#include <cvodes/cvodes.h>
 
 #include <memory>
 #include <span>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "thermal/integrators/BoomerAmgPreconditioner.h"
@@ -54,17 +55,15 @@ class DistributedCvodeIntegrator final : public ThermalIntegrator {
   void restore_stats(const IntegratorStats& earlier) override { history_ = earlier; }
 
  private:
-  static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* self);
-  static int boundary_rhs(sunrealtype t, N_Vector y, N_Vector qdot, void* self);
-  static int jtimes_setup(sunrealtype t, N_Vector y, N_Vector fy, void* self);
-  static int jtimes(N_Vector v, N_Vector Jv, sunrealtype t, N_Vector y, N_Vector fy, void* self,
-                    N_Vector tmp);
-  static int precond_setup(sunrealtype t, N_Vector y, N_Vector fy, sunbooleantype jok,
-                           sunbooleantype* jcur, sunrealtype gamma, void* self);
-  static int precond_solve(sunrealtype t, N_Vector y, N_Vector fy, N_Vector r, N_Vector z,
-                           sunrealtype gamma, sunrealtype delta, int lr, void* self);
-  static void error_handler(int code, const char* module, const char* function, char* msg,
-                            void* self);
+  // CVODES' callbacks (their signatures are SUNDIALS' function types), with the integrator as
+  // user data.
+  static std::remove_pointer_t<CVRhsFn> rhs;
+  static std::remove_pointer_t<CVQuadRhsFn> boundary_rhs;
+  static std::remove_pointer_t<CVLsJacTimesSetupFn> jtimes_setup;
+  static std::remove_pointer_t<CVLsJacTimesVecFn> jtimes;
+  static std::remove_pointer_t<CVLsPrecSetupFn> precond_setup;
+  static std::remove_pointer_t<CVLsPrecSolveFn> precond_solve;
+  static std::remove_pointer_t<CVErrHandlerFn> error_handler;  // keeps the message
 
   // T_local_: owned entries y / s, ghosts from their owners.
   void to_local(N_Vector y);

@@ -85,13 +85,14 @@ interval = 2.0
 
 bool have_mpirun() { return std::system("command -v mpirun > /dev/null 2>&1") == 0; }
 
-// mpirun -np 2 tmdem ARGS in workdir (OpenMPI as root needs the two variables; --oversubscribe:
+// mpirun -np N tmdem ARGS in workdir (OpenMPI as root needs the two variables; --oversubscribe:
 // the machine may have fewer free cores than processes; yield: waiting processes give way).
-ProgramResult run_tmdem_mpi(const std::string& args, const std::string& workdir) {
+ProgramResult run_tmdem_mpi(const std::string& args, const std::string& workdir,
+                            int processes = 2) {
   return run_tmdem(args, workdir,
                    "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
                    "OMPI_MCA_mpi_yield_when_idle=1",
-                   "mpirun -np 2 --oversubscribe");
+                   "mpirun -np " + std::to_string(processes) + " --oversubscribe");
 }
 
 std::vector<double> final_temperatures(const std::string& path, std::size_t& frames) {
@@ -102,21 +103,26 @@ std::vector<double> final_temperatures(const std::string& path, std::size_t& fra
   return {T.end() - std::ptrdiff_t(dims.at(1)), T.end()};
 }
 
-// The scene run by one process and by two: final temperatures and summaries.
-struct OneAndTwo {
+// The scene run by one process and by `processes` (T2, s2): final temperatures and summaries.
+struct OneAndMany {
+  int processes = 2;
   std::vector<double> T1, T2;
   nlohmann::json s1, s2;
 };
 
-OneAndTwo heat_with_one_and_two(const std::string& name, const BedShape& shape) {
+OneAndMany heat_with_one_and_many(const std::string& name, const BedShape& shape,
+                                  int processes = 2) {
   const auto dir = scratch_dir(name);
   write_file(dir + "/bed.toml", lattice_bed_scene(shape));
-  OneAndTwo out;
+  OneAndMany out;
+  out.processes = processes;
   const auto one = run_tmdem("run bed.toml -o one.h5 --summary one.json", dir);
   EXPECT_EQ(one.exit_code, 0) << one.output;
-  const auto two = run_tmdem_mpi("run bed.toml -o two.h5 --summary two.json", dir);
+  const auto two = run_tmdem_mpi("run bed.toml -o two.h5 --summary two.json", dir, processes);
   EXPECT_EQ(two.exit_code, 0) << two.output;
-  EXPECT_NE(two.output.find("heating over 2 MPI processes"), std::string::npos) << two.output;
+  EXPECT_NE(two.output.find("heating over " + std::to_string(processes) + " MPI processes"),
+            std::string::npos)
+      << two.output;
   if (one.exit_code != 0 || two.exit_code != 0) return out;
   std::size_t frames_one = 0, frames_two = 0;
   out.T1 = final_temperatures(dir + "/one.h5", frames_one);
@@ -128,10 +134,10 @@ OneAndTwo heat_with_one_and_two(const std::string& name, const BedShape& shape) 
   return out;
 }
 
-// The two runs differ only in the preconditioner (one V-cycle over one or two processes), which
+// The two runs differ only in the preconditioner (one V-cycle over one or more processes), which
 // moves each step's Newton solution within the linear tolerance: the final temperatures agree to
 // the tolerance the integrator keeps on each step, rtol |T| + atol (the hottest is 400 K).
-void expect_equal_to_the_tolerance(const OneAndTwo& r, std::size_t particles) {
+void expect_equal_to_the_tolerance(const OneAndMany& r, std::size_t particles) {
   ASSERT_EQ(r.T1.size(), particles);
   ASSERT_EQ(r.T2.size(), particles);
   double difference_K = 0.0, rise_K = 0.0;
@@ -143,7 +149,7 @@ void expect_equal_to_the_tolerance(const OneAndTwo& r, std::size_t particles) {
   EXPECT_LE(difference_K, kRelativeTolerance * 400.0 + kAbsoluteTolerance_K) << difference_K;
   EXPECT_EQ(r.s2["status"], "ok");
   EXPECT_EQ(r.s2["particles"], std::int64_t(particles));
-  EXPECT_EQ(r.s2["mpi"]["processes"], 2);
+  EXPECT_EQ(r.s2["mpi"]["processes"], r.processes);
   EXPECT_FALSE(r.s1.contains("mpi"));
   // Energy: with conjugate gradients each Newton solve stops at the linear tolerance, which
   // leaves the balance at ~1e-11 in one process too (2.6e-11 for the frozen bed); two processes
@@ -157,11 +163,17 @@ void expect_equal_to_the_tolerance(const OneAndTwo& r, std::size_t particles) {
 
 TEST(E2eMpi, TwoProcessesHeatAFrozenBedAsOneToTheIntegratorTolerance) {
   if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed (Debian openmpi-bin)";
-  const auto r = heat_with_one_and_two("mpi_frozen", BedShape{});
+  const auto r = heat_with_one_and_many("mpi_frozen", BedShape{});
   expect_equal_to_the_tolerance(r, 360);
   if (r.T2.empty()) return;
   EXPECT_DOUBLE_EQ(r.T2[300], 330.0);  // held
   EXPECT_EQ(r.s2["mpi"]["ghosts"], 72);  // the cut at x = 10 mm: 6 x 6 particles on each side
+}
+
+// Three slabs: the middle process exchanges ghosts with two neighbours.
+TEST(E2eMpi, ThreeProcessesHeatAFrozenBedAsOne) {
+  if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed (Debian openmpi-bin)";
+  expect_equal_to_the_tolerance(heat_with_one_and_many("mpi_three", BedShape{}, 3), 360);
 }
 
 // Settled first (every process settles the same column and checks that they agree), then
@@ -174,7 +186,7 @@ TEST(E2eMpi, TwoProcessesHeatASettledColumnAsOne) {
   column.lid_z_m = 0.040;
   column.held_id = 200;
   column.gravity = "[0.0, 0.0, -9.81]";
-  const auto r = heat_with_one_and_two("mpi_settled", column);
+  const auto r = heat_with_one_and_many("mpi_settled", column);
   expect_equal_to_the_tolerance(r, 320);
   EXPECT_EQ(r.s2["mpi"]["ghosts"], 32);  // 4 x 4 on each side of the cut
   EXPECT_TRUE(r.s2["settle"]["at_rest"].get<bool>());

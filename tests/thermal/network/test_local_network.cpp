@@ -18,15 +18,17 @@ namespace tmdem::thermal {
 namespace {
 
 const std::vector<std::string> kModes = {"contact_conduction", "wall_conduction", "convection",
-                                         "heat_source", "wall_flux", "radiation"};
+                                         "heat_source", "wall_flux", "radiation",
+                                         "gas_conduction"};
 
 struct RandomBed {
   ThermalNetwork network;
   std::vector<double> xyz_m;
 };
 
-// 60 particles in a 6 x 2 x 2 mm box (x the longest), edges between centres closer than 0.9 mm,
-// an isothermal floor under the lowest, a flux wall over the highest, sources, one held particle.
+// 60 particles of radius 0.4 mm in a 6 x 2 x 2 mm box (x the longest), edges between centres
+// closer than 0.9 mm (touching or a gap for the gas), an isothermal floor under the lowest, a
+// flux wall over the highest, sources, one held particle, the particles' own resistance.
 RandomBed random_bed() {
   std::mt19937 rng(25);
   std::uniform_real_distribution<double> u(0.0, 1.0);
@@ -43,11 +45,14 @@ RandomBed random_bed() {
     net.heat_source_W[i] = i % 7 == 0 ? 0.01 : 0.0;
   }
   net.held[5] = 1;
+  net.shell_resistance_K_sr_per_W.assign(n, 20.0);
   for (std::size_t a = 0; a < n; ++a)
     for (std::size_t b = a + 1; b < n; ++b) {
       double d2 = 0.0;
       for (int k = 0; k < 3; ++k) d2 += std::pow(bed.xyz_m[3 * a + k] - bed.xyz_m[3 * b + k], 2);
-      if (d2 < 0.9e-3 * 0.9e-3) net.add_edge(std::int32_t(a), std::int32_t(b), 1e-3 * (1.0 + u(rng)));
+      if (d2 < 0.9e-3 * 0.9e-3)
+        net.add_edge(std::int32_t(a), std::int32_t(b), 1e-3 * (1.0 + u(rng)),
+                     std::sqrt(d2) - 8e-4, 5e-5 * u(rng));
     }
   net.isothermal_walls = 1;
   net.flux_wall_power_W = {0.05};
@@ -105,6 +110,7 @@ TEST(LocalNetwork, OwnedHeatFlowAndJacobianProductAreTheWholeSystems) {
   const auto bed = random_bed();
   const auto whole = testing::make_system(bed.network, kModes);
   ASSERT_EQ(whole->modes().size(), kModes.size());
+  ASSERT_LT(whole->network().edge_factor(0), 0.99);  // the shells in series with the pair paths
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(280.0, 400.0);
   std::vector<double> T(60), v(60), q(60), Jv(60), scale(60);

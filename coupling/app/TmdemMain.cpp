@@ -4,7 +4,6 @@
 
 #include <CLI/CLI.hpp>
 #include <iostream>
-#include <sstream>
 
 #include "coupling/app/AccuracyCommand.h"
 #include "coupling/app/ConductivityCommand.h"
@@ -173,6 +172,10 @@ int tmdem_main(int argc, char** argv) {
     return code == 0 ? kExitOk : kExitInvalid;
   }
 
+  // Over MPI every process reads the same scene and meets the same error in it: rank 0 says it.
+  const auto say_error = [](const std::exception& e) {
+    if (thermal::MpiWorld::rank() == 0) std::cerr << "error: " << e.what() << std::endl;
+  };
   // Every other command would run whole in each process, all writing the same files.
   if (thermal::MpiWorld::distributed() && !*run) {
     if (thermal::MpiWorld::rank() == 0)
@@ -188,7 +191,7 @@ int tmdem_main(int argc, char** argv) {
         std::cerr << "error: -o needs a file name (got an empty one)" << std::endl;
         return kExitInvalid;
       }
-      // Over MPI rank 0 speaks for all: the failures the others meet are the same ones.
+      // Over MPI rank 0 speaks for all (the others only of a failure of their own, CoupledRun).
       const bool speaks = thermal::MpiWorld::rank() == 0;
       const Scene scene = load(scene_path, sets);
       if (!quiet && speaks)
@@ -211,8 +214,7 @@ int tmdem_main(int argc, char** argv) {
       options.restart_path = restart;
       options.quiet = quiet || !speaks;
       options.terminal = isatty(STDERR_FILENO);
-      std::ostringstream silenced;
-      const auto outcome = run_scene(scene, options, speaks ? std::cerr : silenced);
+      const auto outcome = run_scene(scene, options, std::cerr);
       if (outcome.exit_code != kExitInvalid && speaks)  // a run refused at start did nothing to report
         print_run_end(outcome.summary, scene,
                       outcome.exit_code == kExitOk ? options.output_path : "", quiet, std::cerr);
@@ -256,13 +258,13 @@ int tmdem_main(int argc, char** argv) {
       return run_accuracy_command(scene, study_options, std::cout, std::cerr);
     }
   } catch (const SceneError& e) {
-    std::cerr << "error: " << e.what() << std::endl;
+    say_error(e);
     return kExitInvalid;
   } catch (const OutputError& e) {
-    std::cerr << "error: " << e.what() << std::endl;
+    say_error(e);
     return kExitIo;
   } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << std::endl;
+    say_error(e);
     return kExitSolverFailed;
   }
   return kExitOk;

@@ -423,7 +423,11 @@ RunOutcome CoupledRun::run() {
   // later failure while closing the files only when it says something new.
   auto finish = [&](int code, const std::string& message, std::string status) {
     progress_.done();
-    if (!message.empty()) log_ << "error: " << message << std::endl;
+    // Over MPI rank 0 reports what every process met; another process speaks only for a failure
+    // of its own.
+    if (!message.empty() && (writes_files_ || local_failure_))
+      log_ << (writes_files_ ? "" : "rank " + std::to_string(thermal::MpiWorld::rank()) + ": ")
+           << "error: " << message << std::endl;
     auto report = [&](const OutputError& e) {
       // After a failure of the result file, closing it fails for the same reason: one line.
       const bool same_file = code != kExitOk && std::string(e.what()).find(
@@ -450,9 +454,10 @@ RunOutcome CoupledRun::run() {
         report(e);
       }
     }
-    // Over MPI a failure of rank 0's files is rank 0's alone: the other processes would wait in
-    // the next collective call for ever, so all end here.
-    if (thermal::MpiWorld::distributed() && code == kExitIo) thermal::MpiWorld::abort(code);
+    // Over MPI a failure one process may meet alone (rank 0's files, an unexpected exception)
+    // would leave the others waiting in their next collective call for ever: all end here.
+    if (thermal::MpiWorld::distributed() && (code == kExitIo || local_failure_))
+      thermal::MpiWorld::abort(code);
     outcome.exit_code = code;
     outcome.summary = summary_;
     if (integrator_) {
@@ -504,6 +509,7 @@ RunOutcome CoupledRun::run() {
   } catch (const thermal::ThermalSolverError& e) {
     return failed(kExitSolverFailed, e.what());
   } catch (const std::exception& e) {
+    local_failure_ = true;
     return failed(kExitSolverFailed, std::string("setting up the run failed: ") + e.what());
   }
 
@@ -551,6 +557,7 @@ RunOutcome CoupledRun::run() {
   } catch (const OutputError& e) {
     return failed(kExitIo, e.what());
   } catch (const std::exception& e) {
+    local_failure_ = true;
     return failed(kExitSolverFailed, e.what());
   }
   return failed(kExitOk, "");

@@ -78,6 +78,8 @@ class CoupledRun {
   // Rank 0 writes the result, checkpoint and summary files; the other processes of a run over
   // MPI compute the same frames and checkpoints but write nothing.
   bool writes_files_ = thermal::MpiWorld::rank() == 0;
+  // The run failed by an unexpected exception, which (over MPI) this process may have met alone.
+  bool local_failure_ = false;
   std::ostream& log_;
   ProgressReporter progress_;
   CouplingStrategy coupling_;  // thermal.coupling, parsed once

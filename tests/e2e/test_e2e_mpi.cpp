@@ -83,7 +83,14 @@ interval = 2.0
 )";
 }
 
-bool have_mpirun() { return std::system("command -v mpirun > /dev/null 2>&1") == 0; }
+// mpirun is installed and can start two processes here (asked once per test program).
+bool have_mpirun() {
+  static const bool works =
+      std::system("command -v mpirun > /dev/null 2>&1 && env OMPI_ALLOW_RUN_AS_ROOT=1 "
+                  "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 mpirun -np 2 --oversubscribe true "
+                  "> /dev/null 2>&1") == 0;
+  return works;
+}
 
 // mpirun -np N tmdem ARGS in workdir (OpenMPI as root needs the two variables; --oversubscribe:
 // the machine may have fewer free cores than processes; yield: waiting processes give way).
@@ -162,7 +169,7 @@ void expect_equal_to_the_tolerance(const OneAndMany& r, std::size_t particles) {
 }
 
 TEST(E2eMpi, TwoProcessesHeatAFrozenBedAsOneToTheIntegratorTolerance) {
-  if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed (Debian openmpi-bin)";
+  if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed (Debian openmpi-bin) or cannot start 2 processes";
   const auto r = heat_with_one_and_many("mpi_frozen", BedShape{});
   expect_equal_to_the_tolerance(r, 360);
   if (r.T2.empty()) return;
@@ -172,14 +179,14 @@ TEST(E2eMpi, TwoProcessesHeatAFrozenBedAsOneToTheIntegratorTolerance) {
 
 // Three slabs: the middle process exchanges ghosts with two neighbours.
 TEST(E2eMpi, ThreeProcessesHeatAFrozenBedAsOne) {
-  if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed (Debian openmpi-bin)";
+  if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed (Debian openmpi-bin) or cannot start 2 processes";
   expect_equal_to_the_tolerance(heat_with_one_and_many("mpi_three", BedShape{}, 3), 360);
 }
 
 // Settled first (every process settles the same column and checks that they agree), then
 // frozen and split across z: the vertical contacts are cut.
 TEST(E2eMpi, TwoProcessesHeatASettledColumnAsOne) {
-  if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed (Debian openmpi-bin)";
+  if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed (Debian openmpi-bin) or cannot start 2 processes";
   BedShape column;
   column.mechanics = "settle";
   column.counts = "[4, 4, 20]";
@@ -196,7 +203,7 @@ TEST(E2eMpi, TwoProcessesHeatASettledColumnAsOne) {
 // one. A run stopped at 8 s and restarted to 20 s gives the uninterrupted run's file and summary
 // bit for bit (each checkpoint is an integration boundary in both).
 TEST(E2eMpi, RestartFromACheckpointIsBitForBit) {
-  if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed (Debian openmpi-bin)";
+  if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed (Debian openmpi-bin) or cannot start 2 processes";
   const auto dir = scratch_dir("mpi_restart");
   write_file(dir + "/bed.toml", lattice_bed_scene(BedShape{}));
   const std::string every_4_s = "run bed.toml --set output.checkpoint_interval=4 ";
@@ -216,7 +223,7 @@ TEST(E2eMpi, RestartFromACheckpointIsBitForBit) {
 }
 
 TEST(E2eMpi, OnlyRunRunsOverMpi) {
-  if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed (Debian openmpi-bin)";
+  if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed (Debian openmpi-bin) or cannot start 2 processes";
   const auto dir = scratch_dir("mpi_check");
   write_file(dir + "/bed.toml", lattice_bed_scene(BedShape{}));
   const auto check = run_tmdem_mpi("check bed.toml", dir);
@@ -225,7 +232,7 @@ TEST(E2eMpi, OnlyRunRunsOverMpi) {
 }
 
 TEST(E2eMpi, RefusesAMovingBed) {
-  if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed (Debian openmpi-bin)";
+  if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed (Debian openmpi-bin) or cannot start 2 processes";
   const auto dir = scratch_dir("mpi_dynamic");
   BedShape moving;
   moving.mechanics = "dynamic";

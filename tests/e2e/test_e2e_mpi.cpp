@@ -1,6 +1,7 @@
 // Heating over MPI (docs/scale-out.md): `mpirun -np 2 tmdem run` on a frozen bed gives the
 // temperatures of the one-process run to the integrator's tolerance, closes its energy balance
-// to round-off, and refuses what it cannot split. Skipped when mpirun is not installed.
+// to round-off, and refuses what it cannot split. Skipped when mpirun is not installed or cannot
+// start two processes here.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -19,6 +19,7 @@ done
 packages=(build-essential cmake pkg-config libsundials-dev libsuitesparse-dev libeigen3-dev
           libhdf5-dev libgtest-dev libbenchmark-dev libtomlplusplus-dev libcli11-dev
           nlohmann-json3-dev libfclib-dev libhypre-dev python3-matplotlib python3-h5py python3-siconos
+          openmpi-bin  # mpirun: heating over MPI (docs/scale-out.md) and its test, skipped without it
           python3-pybind11 python3-pytest
           liggghts lammps  # real DEM codes whose packings and forces the suite imports (docs/import-dem.md)
           clang-14 libclang-rt-14-dev)  # clang: the sanitizer build and libFuzzer (build-asan/)

@@ -9,6 +9,13 @@
 #include <fstream>
 
 namespace tmdem::coupling {
+namespace {
+
+bool launched_by_mpirun() {
+  return std::getenv("OMPI_COMM_WORLD_SIZE") != nullptr || std::getenv("PMI_SIZE") != nullptr;
+}
+
+}  // namespace
 
 int idle_cores(int cores, double load) {
   cores = std::max(1, cores);
@@ -24,6 +31,13 @@ int idle_cores() {
 }
 
 void settle_openmp_defaults(char** argv) {
+  // Started by mpirun (OpenMPI 4.1): MPI_Init fails in a re-executed process ("getting local
+  // rank failed"), so no re-execution (`mpirun -x GOMP_SPINCOUNT=10000` sets the spin), and one
+  // thread per process: the processes already share the cores.
+  if (launched_by_mpirun()) {
+    if (std::getenv("OMP_NUM_THREADS") == nullptr) omp_set_num_threads(1);
+    return;
+  }
   if (std::getenv("OMP_WAIT_POLICY") == nullptr && std::getenv("GOMP_SPINCOUNT") == nullptr &&
       setenv("GOMP_SPINCOUNT", kSpinCount, 1) == 0) {
     // The program's own path, not /proc/self/exe, so that ps and top still say "tmdem".

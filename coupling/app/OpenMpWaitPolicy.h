@@ -24,6 +24,8 @@ inline constexpr const char* kSpinCount = "10000";
 // process id); then, when OMP_NUM_THREADS is unset, takes one thread per idle core
 // (idle_cores()). Returns when nothing more is to be done or the re-execution failed (the run
 // goes on with libgomp's defaults, which is only slower). A user's own settings are kept.
+// Under mpirun: no re-execution (the re-executed process could not join the MPI job; mpirun's
+// -x GOMP_SPINCOUNT=10000 sets the spin) and one thread per process unless OMP_NUM_THREADS.
 void settle_openmp_defaults(char** argv);
 
 // The cores less the 1-minute load average (/proc/loadavg), rounded; at least 1.

@@ -21,6 +21,7 @@
 #include "coupling/scene/SceneError.h"
 #include "coupling/scene/SceneLoader.h"
 #include "coupling/scene/SceneReference.h"
+#include "thermal/integrators/MpiWorld.h"
 
 namespace tmdem::coupling {
 
@@ -171,14 +172,29 @@ int tmdem_main(int argc, char** argv) {
     return code == 0 ? kExitOk : kExitInvalid;
   }
 
+  // Over MPI every process reads the same scene and meets the same error in it: rank 0 says it.
+  const auto say_error = [](const std::exception& e) {
+    if (thermal::MpiWorld::rank() == 0) std::cerr << "error: " << e.what() << std::endl;
+  };
+  // Every other command would run whole in each process, all writing the same files.
+  if (thermal::MpiWorld::distributed() && !*run) {
+    if (thermal::MpiWorld::rank() == 0)
+      std::cerr << "error: only `tmdem run` runs over MPI (started as one of "
+                << thermal::MpiWorld::size() << " processes); run this command without mpirun"
+                << std::endl;
+    return kExitInvalid;
+  }
+
   try {
     if (*run) {
       if (output_option->count() > 0 && output.empty()) {
         std::cerr << "error: -o needs a file name (got an empty one)" << std::endl;
         return kExitInvalid;
       }
+      // Over MPI rank 0 speaks for all (the others only of a failure of their own, CoupledRun).
+      const bool speaks = thermal::MpiWorld::rank() == 0;
       const Scene scene = load(scene_path, sets);
-      if (!quiet)
+      if (!quiet && speaks)
         for (const auto& report : scene.imports) std::cerr << describe_import(report) << std::endl;
       RunOptions options;
       options.output_path = output.empty()
@@ -187,16 +203,19 @@ int tmdem_main(int argc, char** argv) {
                                 : output;
       options.scene_path = scene_path;
       options.overwrite = overwrite;
-      options.handle_signals = true;
+      // Over MPI, mpirun (OpenMPI 4.1) passes SIGINT on as SIGTERM and kills every process
+      // within a second or two, before a frame could be finished: its handling applies, and the
+      // run resumes from its last output.checkpoint_interval checkpoint.
+      options.handle_signals = !thermal::MpiWorld::distributed();
       options.resume_command = "tmdem run" + (scene_path.empty() ? "" : " " + shell_quoted(scene_path));
       for (const auto& set : sets) options.resume_command += " --set " + shell_quoted(set);
       options.resume_command += " -o " + shell_quoted(options.output_path);
       options.summary_path = summary;
       options.restart_path = restart;
-      options.quiet = quiet;
+      options.quiet = quiet || !speaks;
       options.terminal = isatty(STDERR_FILENO);
       const auto outcome = run_scene(scene, options, std::cerr);
-      if (outcome.exit_code != kExitInvalid)  // a run refused at start did nothing to report
+      if (outcome.exit_code != kExitInvalid && speaks)  // a run refused at start did nothing to report
         print_run_end(outcome.summary, scene,
                       outcome.exit_code == kExitOk ? options.output_path : "", quiet, std::cerr);
       return outcome.exit_code;
@@ -239,13 +258,13 @@ int tmdem_main(int argc, char** argv) {
       return run_accuracy_command(scene, study_options, std::cout, std::cerr);
     }
   } catch (const SceneError& e) {
-    std::cerr << "error: " << e.what() << std::endl;
+    say_error(e);
     return kExitInvalid;
   } catch (const OutputError& e) {
-    std::cerr << "error: " << e.what() << std::endl;
+    say_error(e);
     return kExitIo;
   } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << std::endl;
+    say_error(e);
     return kExitSolverFailed;
   }
   return kExitOk;

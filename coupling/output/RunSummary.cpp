@@ -116,6 +116,7 @@ nlohmann::json RunSummary::to_json() const {
     j["openmp"] = {{"threads", openmp->threads}, {"wait_policy", openmp->wait_policy},
                    {"spin_count", openmp->spin_count}};
   }
+  if (mpi) j["mpi"] = {{"processes", mpi->processes}, {"ghosts", mpi->ghosts}};
   for (const auto& i : imports)
     j["imports"].push_back({{"file", i.file},
                             {"particles", i.particles},
@@ -180,6 +181,11 @@ RunSummary RunSummary::from_json(const nlohmann::json& j) {
     const nlohmann::json& o = j.at("openmp");
     s.openmp = OpenMpSummary{integer(o, "threads", 1), text(o, "wait_policy", ""),
                              text(o, "spin_count", "unset")};
+  }
+
+  if (j.contains("mpi")) {
+    const nlohmann::json& m = j.at("mpi");
+    s.mpi = MpiSummary{integer(m, "processes", 1), integer(m, "ghosts", 0)};
   }
 
   if (j.contains("imports"))

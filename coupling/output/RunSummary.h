@@ -137,6 +137,13 @@ struct OpenMpSummary {
   std::string spin_count;     // GOMP_SPINCOUNT, or "unset"
 };
 
+// The "mpi" block (extra): present for a run heated over MPI (`mpirun -np N tmdem run`,
+// docs/scale-out.md). Wall times in the summary are rank 0's.
+struct MpiSummary {
+  std::int64_t processes = 1;
+  std::int64_t ghosts = 0;  // ghost copies of other processes' particles, summed over processes
+};
+
 struct RunSummary {
   std::string status = "ok";         // "ok", "failed" or "interrupted"
   std::string message;               // extra: what failed; omitted when empty
@@ -150,6 +157,7 @@ struct RunSummary {
   std::optional<WallTimeParts> wall_time_parts;  // extra: present for runs that got going
   std::vector<ImportSummary> imports;            // extra: written only when not empty
   std::optional<OpenMpSummary> openmp;           // extra: present for runs that got going
+  std::optional<MpiSummary> mpi;                 // extra: runs heated over MPI only
 
   nlohmann::json to_json() const;
   // Inverse of to_json (missing keys keep their defaults). Throws nlohmann::json::exception on

@@ -33,6 +33,7 @@
 #include "coupling/scene/HeatModes.h"
 #include "mechanics/integrator/NscdIntegrator.h"
 #include "thermal/integrators/IntegratorRegistry.h"
+#include "thermal/integrators/MpiWorld.h"
 #include "thermal/integrators/ThermalSolverError.h"
 #include "thermal/modes/ModeRegistry.h"
 
@@ -127,7 +128,10 @@ void CoupledRun::prepare_thermal() {
   auto s = integrator_settings(scene_);
   s.max_temperature_K = max_temperature_K();
   try {
-    integrator_ = thermal::make_thermal_integrator(scene_.thermal.integrator, *system_, s);
+    if (thermal::MpiWorld::distributed())
+      prepare_distributed_thermal(s);
+    else
+      integrator_ = thermal::make_thermal_integrator(scene_.thermal.integrator, *system_, s);
     if (T0_.empty())
       for (const auto& p : scene_.particles) T0_.push_back(p.temperature_K);
     if (restart_)
@@ -150,6 +154,34 @@ void CoupledRun::prepare_thermal() {
   }
 }
 
+void CoupledRun::prepare_distributed_thermal(const thermal::IntegratorSettings& settings) {
+  // Every process settled on its own: the packings must be the same bits, or the processes
+  // would split different networks.
+  if (scene_.effects.mechanics == MechanicsMode::Settle) {
+    double fingerprint = 0.0;
+    for (std::size_t k = 0; k < contacts_.normal_force_N.size(); ++k)
+      fingerprint += double(k + 1) * (contacts_.normal_force_N[k] + double(contacts_.pair[2 * k]) +
+                                      0.5 * double(contacts_.pair[2 * k + 1]));
+    for (const double x : positions()) fingerprint += x;
+    if (!thermal::MpiWorld::same_everywhere(fingerprint))
+      throw StartError("heating over MPI: the processes settled different packings (the settling "
+                       "is repeated in every process and must give the same bits; are their "
+                       "OpenMP thread counts equal?)");
+  }
+  distributed_ = std::make_unique<DistributedHeating>(scene_, *system_, positions());
+  integrator_ = distributed_->make_integrator(settings);
+  const auto& local = distributed_->local();
+  summary_.mpi = MpiSummary{thermal::MpiWorld::size(),
+                            std::int64_t(thermal::MpiWorld::sum(double(local.node.size() - local.owned)))};
+  if (!options_.quiet) {
+    std::ostringstream report;
+    report << "thermal: heating over " << thermal::MpiWorld::size()
+           << " MPI processes, slabs across the bed; rank 0 integrates " << local.owned
+           << " particles with " << local.node.size() - local.owned << " ghosts";
+    progress_.message(report.str());
+  }
+}
+
 std::span<const double> CoupledRun::positions() const {
   const auto& p = nscd_ && !frozen_ ? nscd_->particles().position : particles_.position;
   return {p.empty() ? nullptr : p.front().data(), 3 * p.size()};
@@ -162,6 +194,7 @@ std::span<const double> CoupledRun::velocities() const {
 }
 
 void CoupledRun::write_frame(double t_s) {
+  if (!writes_files_) return;  // over MPI rank 0 alone builds and writes the frames
   const auto output_start = std::chrono::steady_clock::now();
   FrameView f;
   f.time_s = t_s;
@@ -349,13 +382,54 @@ void CoupledRun::fill_summary() {
   }
 }
 
+void CoupledRun::open_result_file() {
+  if (restart_) {
+    RestartMatch match;
+    match.particles = scene_.particles.size();
+    match.scene_toml = restart_->scene_toml;
+    match.checkpoint_time_s = restart_->time_s;
+    match.next_scene_toml = scene_.resolved_toml;
+    writer_.emplace(ResultWriter::reopen(options_.output_path,
+                                         std::size_t(restart_->frames_written), &match));
+  } else {
+    ResultHeader header;
+    header.scene_toml = scene_.resolved_toml;
+    for (std::size_t i = 0; i < scene_.particles.size(); ++i) {
+      const auto& p = scene_.particles[i];
+      header.radius_m.push_back(p.radius_m);
+      header.mass_kg.push_back(particle_mass_kg(scene_, i));
+      header.heat_capacity_J_per_K.push_back(system_->network().heat_capacity_J_per_K[i]);
+      header.material.push_back(p.material);
+    }
+    for (const auto& m : scene_.materials) header.material_names.push_back(m.name);
+    for (const auto& wall : scene_.walls) {
+      WallPlane plane;
+      for (int k = 0; k < 3; ++k) {
+        plane.point_m[k] = wall.point_m[k];
+        plane.normal[k] = wall.normal[k];
+      }
+      if (wall.cylinder) plane.radius_m = wall.radius_m;
+      if (wall.temperature_K) plane.temperature_K = *wall.temperature_K;
+      header.walls.push_back(plane);
+    }
+    header.frozen = frozen_;  // the contacts too: fixed after settling (or from the start)
+    header.frozen_contacts = contacts_.size();
+    writer_.emplace(options_.output_path, header, scene_.output.contacts,
+                    options_.overwrite ? ExistingResult::Overwrite : ExistingResult::Refuse);
+  }
+}
+
 RunOutcome CoupledRun::run() {
   RunOutcome outcome;
   // status: "ok", "failed" or "interrupted"; `message` is printed once as the error line, a
   // later failure while closing the files only when it says something new.
   auto finish = [&](int code, const std::string& message, std::string status) {
     progress_.done();
-    if (!message.empty()) log_ << "error: " << message << std::endl;
+    // Over MPI rank 0 reports what every process met; another process speaks only for a failure
+    // of its own.
+    if (!message.empty() && (writes_files_ || local_failure_))
+      log_ << (writes_files_ ? "" : "rank " + std::to_string(thermal::MpiWorld::rank()) + ": ")
+           << "error: " << message << std::endl;
     auto report = [&](const OutputError& e) {
       // After a failure of the result file, closing it fails for the same reason: one line.
       const bool same_file = code != kExitOk && std::string(e.what()).find(
@@ -374,14 +448,18 @@ RunOutcome CoupledRun::run() {
       }
     }
     summary_.status = status;
-    // A run refused at start writes nothing, not even a summary.
-    if (!options_.summary_path.empty() && code != kExitInvalid) {
+    // A run refused at start writes nothing, not even a summary; over MPI rank 0 writes it.
+    if (!options_.summary_path.empty() && code != kExitInvalid && writes_files_) {
       try {
         summary_.write(options_.summary_path);
       } catch (const OutputError& e) {
         report(e);
       }
     }
+    // Over MPI a failure one process may meet alone (rank 0's files, an unexpected exception)
+    // would leave the others waiting in their next collective call for ever: all end here.
+    if (thermal::MpiWorld::distributed() && (code == kExitIo || local_failure_))
+      thermal::MpiWorld::abort(code);
     outcome.exit_code = code;
     outcome.summary = summary_;
     if (integrator_) {
@@ -402,8 +480,15 @@ RunOutcome CoupledRun::run() {
   paths.checkpoints = true;  // an interruption writes one even without checkpoint_interval
   paths.overwrite = options_.overwrite;
   paths.restart = !options_.restart_path.empty();
-  if (const auto problem = check_output_paths(paths); problem.exit_code != 0)
-    return failed(problem.exit_code, problem.message);
+  if (thermal::MpiWorld::distributed()) {
+    if (const auto why = distributed_heating_refusal(scene_, thermal::MpiWorld::size());
+        !why.empty())
+      return failed(kExitInvalid, why);
+  }
+  // Over MPI rank 0 writes every file; the others learn whether it may.
+  const auto problem = writes_files_ ? check_output_paths(paths) : OutputPathProblem{};
+  if (const int code = thermal::MpiWorld::from_root(problem.exit_code); code != kExitOk)
+    return failed(code, problem.message);
 
   std::optional<Interruption> interruption;
   if (options_.handle_signals) interruption.emplace(options_.quiet);
@@ -426,44 +511,27 @@ RunOutcome CoupledRun::run() {
   } catch (const thermal::ThermalSolverError& e) {
     return failed(kExitSolverFailed, e.what());
   } catch (const std::exception& e) {
+    local_failure_ = true;
     return failed(kExitSolverFailed, std::string("setting up the run failed: ") + e.what());
   }
 
+  // Rank 0 opens the result file; over MPI the others must learn whether it could, or they
+  // would wait for it for ever in the first step.
+  int open_code = kExitOk;
+  std::string open_message;
   try {
-    if (restart_) {
-      RestartMatch match;
-      match.particles = scene_.particles.size();
-      match.scene_toml = restart_->scene_toml;
-      match.checkpoint_time_s = restart_->time_s;
-      match.next_scene_toml = scene_.resolved_toml;
-      writer_.emplace(ResultWriter::reopen(options_.output_path,
-                                           std::size_t(restart_->frames_written), &match));
-    } else {
-      ResultHeader header;
-      header.scene_toml = scene_.resolved_toml;
-      for (std::size_t i = 0; i < scene_.particles.size(); ++i) {
-        const auto& p = scene_.particles[i];
-        header.radius_m.push_back(p.radius_m);
-        header.mass_kg.push_back(particle_mass_kg(scene_, i));
-        header.heat_capacity_J_per_K.push_back(system_->network().heat_capacity_J_per_K[i]);
-        header.material.push_back(p.material);
-      }
-      for (const auto& m : scene_.materials) header.material_names.push_back(m.name);
-      for (const auto& wall : scene_.walls) {
-        WallPlane plane;
-        for (int k = 0; k < 3; ++k) {
-          plane.point_m[k] = wall.point_m[k];
-          plane.normal[k] = wall.normal[k];
-        }
-        if (wall.cylinder) plane.radius_m = wall.radius_m;
-        if (wall.temperature_K) plane.temperature_K = *wall.temperature_K;
-        header.walls.push_back(plane);
-      }
-      header.frozen = frozen_;  // the contacts too: fixed after settling (or from the start)
-      header.frozen_contacts = contacts_.size();
-      writer_.emplace(options_.output_path, header, scene_.output.contacts,
-                      options_.overwrite ? ExistingResult::Overwrite : ExistingResult::Refuse);
-    }
+    if (writes_files_) open_result_file();
+  } catch (const ResultMismatch& e) {
+    open_code = kExitInvalid, open_message = e.what();
+  } catch (const OutputError& e) {
+    open_code = kExitIo, open_message = e.what();
+  } catch (const std::exception& e) {
+    open_code = kExitSolverFailed, open_message = e.what();
+  }
+  if (const int code = thermal::MpiWorld::from_root(open_code); code != kExitOk)
+    return failed(code, open_message);
+
+  try {
     next_checkpoint_s_ = scene_.output.checkpoint_interval_s > 0.0
                              ? next_checkpoint_time_s(t0_, scene_.output.checkpoint_interval_s)
                              : 0.0;
@@ -491,6 +559,7 @@ RunOutcome CoupledRun::run() {
   } catch (const OutputError& e) {
     return failed(kExitIo, e.what());
   } catch (const std::exception& e) {
+    local_failure_ = true;
     return failed(kExitSolverFailed, e.what());
   }
   return failed(kExitOk, "");

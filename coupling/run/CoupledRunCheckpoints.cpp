@@ -91,8 +91,10 @@ void CoupledRun::checkpoint(double t_s) {
   cs.temperature_K.assign(T.begin(), T.end());
   cs.boundary_heat_J = integrator_->boundary_heat_J();
   cs.scene_toml = scene_.resolved_toml;
-  writer_->flush();  // the checkpoint counts frames the .h5 holds
-  cs.frames_written = std::int64_t(writer_->stored_frames());
+  if (writes_files_) {
+    writer_->flush();  // the checkpoint counts frames the .h5 holds
+    cs.frames_written = std::int64_t(writer_->stored_frames());
+  }
   store_contacts(contacts_, scene_.mechanics.time_step_s, cs);
   if (dynamic_network_) cs.thermal_pattern_pair = dynamic_network_->pattern_pairs();
   store_thermal_stats(integrator_->stats(), cs);
@@ -112,9 +114,11 @@ void CoupledRun::checkpoint(double t_s) {
                                   : summary_.settle->ended_by == "velocity" ? 2.0
                                                                             : 0.0;
   }
-  const auto output_start = std::chrono::steady_clock::now();
-  write_checkpoint(checkpoint_path_for(options_.output_path), cs);
-  output_seconds_ += seconds_since(output_start);
+  if (writes_files_) {
+    const auto output_start = std::chrono::steady_clock::now();
+    write_checkpoint(checkpoint_path_for(options_.output_path), cs);
+    output_seconds_ += seconds_since(output_start);
+  }
   last_checkpoint_s_ = t_s;
   begin_thermal_segment(cs);
 }

@@ -18,7 +18,9 @@
 #include "coupling/output/ResultWriter.h"
 #include "coupling/output/RunSummary.h"
 #include "coupling/run/CoupledRun.h"
+#include "coupling/run/DistributedHeating.h"
 #include "mechanics/integrator/NscdIntegrator.h"
+#include "thermal/integrators/MpiWorld.h"
 #include "thermal/integrators/ThermalIntegrator.h"
 #include "thermal/system/ThermalSystem.h"
 
@@ -54,8 +56,12 @@ class CoupledRun {
   void prepare_mechanics();
   void settle();
   void prepare_thermal();
+  // Over MPI: this process's share of the heating (DistributedHeating.h) as the integrator.
+  void prepare_distributed_thermal(const thermal::IntegratorSettings& settings);
   void run_static();
   void run_dynamic();
+  // The result file: created, or reopened to resume (rank 0 only over MPI).
+  void open_result_file();
   void write_frame(double t_s);
   void maybe_checkpoint(double t_s);
   void checkpoint(double t_s);
@@ -69,6 +75,11 @@ class CoupledRun {
 
   Scene scene_;  // a copy: its pistons' points follow the mechanics (move_scene_walls)
   RunOptions options_;
+  // Rank 0 writes the result, checkpoint and summary files; the other processes of a run over
+  // MPI compute the same frames and checkpoints but write nothing.
+  bool writes_files_ = thermal::MpiWorld::rank() == 0;
+  // The run failed by an unexpected exception, which (over MPI) this process may have met alone.
+  bool local_failure_ = false;
   std::ostream& log_;
   ProgressReporter progress_;
   CouplingStrategy coupling_;  // thermal.coupling, parsed once
@@ -84,6 +95,7 @@ class CoupledRun {
   std::vector<double> wall_point_m_;                 // W*3, the walls' points, for the frames
   std::unique_ptr<DynamicNetwork> dynamic_network_;  // dynamic runs only
   std::unique_ptr<thermal::ThermalSystem> system_;
+  std::unique_ptr<DistributedHeating> distributed_;  // over MPI only; the integrator refers to it
   std::unique_ptr<thermal::ThermalIntegrator> integrator_;
   std::optional<ResultWriter> writer_;
 

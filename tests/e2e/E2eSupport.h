@@ -23,11 +23,13 @@ struct ProgramResult {
 };
 
 // `environment`: "VAR=value ..." for env(1) (e.g. "-u DISPLAY"), empty for the test's own.
+// `launcher`: a command that starts the program (e.g. "mpirun -np 2"), empty for none.
 inline ProgramResult run_tmdem(const std::string& args, const std::string& workdir,
-                               const std::string& environment = "") {
+                               const std::string& environment = "",
+                               const std::string& launcher = "") {
   const std::string log = workdir + "/tmdem.log";
-  const std::string program = (environment.empty() ? "" : "env " + environment + " ") + "'" +
-                              TMDEM_BINARY + "'";
+  const std::string program = (environment.empty() ? "" : "env " + environment + " ") +
+                              (launcher.empty() ? "" : launcher + " ") + "'" + TMDEM_BINARY + "'";
   const std::string cmd = "cd '" + workdir + "' && " + program + " " + args + " > '" + log + "' 2>&1";
   const int status = std::system(cmd.c_str());
   ProgramResult r;

@@ -55,9 +55,9 @@ HYPRE_ParVector parvector(void* vector) {
   return static_cast<HYPRE_ParVector>(object);
 }
 
-void* new_vector(HYPRE_Int n) {
+void* new_vector(MPI_Comm comm, HYPRE_Int first, HYPRE_Int n) {
   HYPRE_IJVector v = nullptr;
-  HYPRE_IJVectorCreate(MPI_COMM_SELF, 0, n - 1, &v);
+  HYPRE_IJVectorCreate(comm, first, first + n - 1, &v);
   HYPRE_IJVectorSetObjectType(v, HYPRE_PARCSR);
   HYPRE_IJVectorInitialize(v);
   HYPRE_IJVectorAssemble(v);
@@ -84,6 +84,13 @@ void BoomerAmgPreconditioner::release_matrix() {
   matrix_ = nullptr;
 }
 
+void BoomerAmgPreconditioner::set_distribution(std::size_t owned,
+                                               std::span<const std::int32_t> global_row) {
+  distributed_ = true;
+  owned_ = owned;
+  global_row_.assign(global_row.begin(), global_row.end());
+}
+
 void BoomerAmgPreconditioner::analyse(const JacobianPattern& pattern) {
   if (pattern.size() > std::size_t(std::numeric_limits<std::int32_t>::max()) ||
       pattern.nonzeros() > std::size_t(std::numeric_limits<std::int32_t>::max()))
@@ -92,25 +99,35 @@ void BoomerAmgPreconditioner::analyse(const JacobianPattern& pattern) {
   release_matrix();
   if (b_) HYPRE_IJVectorDestroy(as_vector(b_));
   if (x_) HYPRE_IJVectorDestroy(as_vector(x_));
-  n_ = std::int32_t(pattern.size());
+  n_ = std::int32_t(distributed_ ? owned_ : pattern.size());
+  if (distributed_ && global_row_.size() != pattern.size())
+    throw ThermalSolverError("linear_solver \"amg\": " + std::to_string(global_row_.size()) +
+                             " global rows for " + std::to_string(pattern.size()) + " local nodes");
+  first_row_ = distributed_ && n_ > 0 ? global_row_[0] : 0;
   row_size_.resize(std::size_t(n_));
   rows_.resize(std::size_t(n_));
-  std::iota(rows_.begin(), rows_.end(), 0);
+  std::iota(rows_.begin(), rows_.end(), first_row_);
   for (std::int32_t j = 0; j < n_; ++j)
     row_size_[std::size_t(j)] =
         std::int32_t(pattern.column_start[std::size_t(j) + 1] - pattern.column_start[std::size_t(j)]);
-  columns_.assign(pattern.row_index.begin(), pattern.row_index.end());
-  row_of_slot_.resize(columns_.size());
+  // Column j of the symmetric CSC pattern is row j of M; the owned nodes' columns come first.
+  row_slots_ = std::size_t(pattern.column_start[std::size_t(n_)]);
+  local_column_.assign(pattern.row_index.begin(), pattern.row_index.begin() + std::ptrdiff_t(row_slots_));
+  columns_ = local_column_;
+  if (distributed_)
+    for (auto& c : columns_) c = global_row_[std::size_t(c)];
+  row_of_slot_.resize(row_slots_);
   for (std::int32_t j = 0; j < n_; ++j)
     for (auto k = pattern.column_start[std::size_t(j)]; k < pattern.column_start[std::size_t(j) + 1]; ++k)
       row_of_slot_[std::size_t(k)] = j;
-  if (!scale_.empty() && scale_.size() != std::size_t(n_))
+  if (!scale_.empty() && scale_.size() != pattern.size())
     throw ThermalSolverError("linear_solver \"amg\": " + std::to_string(scale_.size()) +
-                             " state scales for " + std::to_string(n_) + " particles");
+                             " state scales for " + std::to_string(pattern.size()) + " particles");
   diagonal_ = pattern.diagonal_slot;
-  values_.assign(pattern.nonzeros(), 0.0);
-  b_ = new_vector(n_);
-  x_ = new_vector(n_);
+  values_.assign(row_slots_, 0.0);
+  const MPI_Comm comm = distributed_ ? MPI_COMM_WORLD : MPI_COMM_SELF;
+  b_ = new_vector(comm, first_row_, n_);
+  x_ = new_vector(comm, first_row_, n_);
 }
 
 bool BoomerAmgPreconditioner::factor(std::span<const double> J_values, double scale,
@@ -121,15 +138,16 @@ bool BoomerAmgPreconditioner::factor(std::span<const double> J_values, double sc
   for (std::size_t i = 0; i < std::size_t(n_); ++i) values_[std::size_t(diagonal_[i])] += shift[i];
   if (!scale_.empty())  // S M S (set_state_scale)
     for (std::size_t s = 0; s < values_.size(); ++s)
-      values_[s] *= scale_[std::size_t(row_of_slot_[s])] * scale_[std::size_t(columns_[s])];
+      values_[s] *= scale_[std::size_t(row_of_slot_[s])] * scale_[std::size_t(local_column_[s])];
 
   HYPRE_IJMatrix A = nullptr;
-  HYPRE_IJMatrixCreate(MPI_COMM_SELF, 0, n_ - 1, 0, n_ - 1, &A);
+  const HYPRE_Int last = first_row_ + n_ - 1;
+  HYPRE_IJMatrixCreate(distributed_ ? MPI_COMM_WORLD : MPI_COMM_SELF, first_row_, last,
+                       first_row_, last, &A);
   matrix_ = A;
   HYPRE_IJMatrixSetObjectType(A, HYPRE_PARCSR);
   HYPRE_IJMatrixSetRowSizes(A, row_size_.data());
   HYPRE_IJMatrixInitialize(A);
-  // Column j of the symmetric CSC pattern is row j of M.
   HYPRE_IJMatrixSetValues(A, n_, row_size_.data(), rows_.data(), columns_.data(), values_.data());
   HYPRE_IJMatrixAssemble(A);
 
@@ -193,8 +211,8 @@ BoomerAmgPreconditioner::CgResult BoomerAmgPreconditioner::solve_cg(std::span<co
                                                                     int max_iterations) {
   CgResult out;
   if (n_ == 0) return out.converged = true, out;
-  if (!scale_.empty())
-    throw ThermalSolverError("BoomerAmgPreconditioner::solve_cg: not with a state scale");
+  if (!scale_.empty() || distributed_)
+    throw ThermalSolverError("BoomerAmgPreconditioner::solve_cg: serial, without a state scale");
   set_vector(b_, b);
   set_vector(x_, x);
   HYPRE_Solver cg = nullptr;

@@ -8,7 +8,9 @@
 //
 // hypre as packaged by Debian is built with MPI: the first preconditioner initialises MPI in
 // singleton mode (no mpirun needed) unless the program already did, and hypre; both are
-// finalised at exit. Everything runs on MPI_COMM_SELF: one process, serial.
+// finalised at exit. Everything runs on MPI_COMM_SELF (one process, serial) unless
+// set_distribution makes the matrix one process's rows of a matrix over MPI_COMM_WORLD (the
+// heating over MPI: the V-cycle then spans all processes, not one block per process).
 // Allocation: the hierarchy is rebuilt by hypre at every factor (a preconditioner setup, which
 // CVODE/IDA do every few tens of steps), not per CG iteration.
 #include <cstdint>
@@ -33,6 +35,12 @@ class BoomerAmgPreconditioner final : public NewtonPreconditioner {
   // of M (there it is sqrt(C)); with M itself, capacities one decade apart doubled the CG
   // iterations per 4x lattice width (test_boomer_amg.cpp). Empty (the default): s = 1.
   void set_state_scale(std::span<const double> s) { scale_.assign(s.begin(), s.end()); }
+  // Distributed over MPI_COMM_WORLD: the pattern given to analyse is a LocalNetwork's, whose
+  // first `owned` nodes are this process's rows (consecutive global rows); global_row gives the
+  // row of every local node, ghosts included, i.e. the global column of each pattern entry. The
+  // ghosts' own rows are left out. Call before analyse; every process calls analyse, factor and
+  // solve together. solve_cg stays serial.
+  void set_distribution(std::size_t owned, std::span<const std::int32_t> global_row);
   void analyse(const JacobianPattern& pattern) override;
   // Builds M in hypre and its multigrid hierarchy. Returns false if hypre reports an error.
   bool factor(std::span<const double> J_values, double scale,
@@ -55,10 +63,16 @@ class BoomerAmgPreconditioner final : public NewtonPreconditioner {
   void set_vector(void* ij_vector, std::span<const double> values);
   void get_vector(void* ij_vector, std::span<double> values);
 
-  std::int32_t n_ = 0;
+  std::int32_t n_ = 0;                  // rows of this process
+  std::int32_t first_row_ = 0;          // its first global row (0 unless distributed)
+  bool distributed_ = false;
+  std::size_t owned_ = 0;               // distributed: owned nodes of the local pattern
+  std::vector<std::int32_t> global_row_;  // distributed: local node -> global row
+  std::size_t row_slots_ = 0;           // the slots of this process's rows: [0, row_slots_)
   std::vector<std::int32_t> row_size_;  // entries per row (rows = columns: M is symmetric)
-  std::vector<std::int32_t> rows_;      // 0..n-1
-  std::vector<std::int32_t> columns_;   // CSR column indices = the pattern's row indices
+  std::vector<std::int32_t> rows_;      // global rows first_row_ .. first_row_ + n - 1
+  std::vector<std::int32_t> columns_;   // CSR global column indices (the pattern's row indices)
+  std::vector<std::int32_t> local_column_;  // the pattern's row index of each slot
   std::vector<std::int32_t> row_of_slot_;  // the CSR row (pattern column) of each slot
   std::vector<double> scale_;           // s, or empty: 1
   std::vector<double> scaled_rhs_;      // s r

@@ -18,14 +18,20 @@ void CvodeIntegrator::check(int flag, const char* call) const {
   if (flag < 0) fail(flag, call);
 }
 
-void CvodeIntegrator::fail(int flag, const char* call) const {
+ThermalSolverError cvode_failure(void* mem, const std::string& solver, int flag,
+                                 const char* call, double t_s, const std::string& detail) {
   sunrealtype h = 0.0;
   long steps = -1;
-  if (mem_) {
-    CVodeGetCurrentStep(mem_.get(), &h);
-    CVodeGetNumSteps(mem_.get(), &steps);
+  if (mem) {
+    CVodeGetCurrentStep(mem, &h);
+    CVodeGetNumSteps(mem, &steps);
   }
-  throw_failure("CVODE", CVodeGetReturnFlagName(flag), flag, call, h, steps);
+  return ThermalSolverError::from_solver(solver, CVodeGetReturnFlagName(flag), flag, call, t_s, h,
+                                         steps, detail);
+}
+
+void CvodeIntegrator::fail(int flag, const char* call) const {
+  throw cvode_failure(mem_.get(), "CVODE", flag, call, t_, last_error_);
 }
 
 void CvodeIntegrator::initialize(double t0_s, std::span<const double> T0_K, double boundary_heat0_J) {
@@ -94,37 +100,39 @@ void CvodeIntegrator::advance_to(double t_s) {
   if (t_s <= t_) return;
   if (pattern_changed()) reinit_at_current_state();
   if (settings_.stop_at_each_time) check(CVodeSetStopTime(mem_.get(), t_s), "CVodeSetStopTime");
-  sunrealtype t_reached = t_;
   last_error_.clear();
-  const int flag = CVode(mem_.get(), t_s, y_.get(), &t_reached, CV_NORMAL);
-  if (flag < 0) {
-    sunrealtype t_internal = t_;
-    CVodeGetCurrentTime(mem_.get(), &t_internal);
-    t_ = t_internal;
-    fail(flag, "CVode");
-  }
-  t_ = t_reached;
+  if (const int flag = cvode_advance(mem_.get(), y_.get(), t_s, t_); flag < 0) fail(flag, "CVode");
   unscale(y_.get());
   T_out_ = T_work_;
   sunrealtype tq = t_;
   check(CVodeGetQuad(mem_.get(), &tq, yQ_.get()), "CVodeGetQuad");
 }
 
-IntegratorStats CvodeIntegrator::stats() const {
+int cvode_advance(void* mem, N_Vector y, double target_s, double& t_s) {
+  sunrealtype t = t_s;
+  const int flag = CVode(mem, target_s, y, &t, CV_NORMAL);
+  if (flag < 0) CVodeGetCurrentTime(mem, &t);
+  t_s = t;
+  return flag;
+}
+
+IntegratorStats cvode_stats(void* mem, bool preconditioned) {
   IntegratorStats s;
-  if (mem_) {
-    long v = 0;
-    CVodeGetNumSteps(mem_.get(), &v);               s.steps = v;
-    CVodeGetNumRhsEvals(mem_.get(), &v);            s.rhs_evals = v;
-    CVodeGetNumLinRhsEvals(mem_.get(), &v);         s.rhs_evals += v;
-    if (cg_) { CVodeGetNumPrecEvals(mem_.get(), &v); } else { CVodeGetNumJacEvals(mem_.get(), &v); }
-    s.jacobian_evals = v;
-    CVodeGetNumLinSolvSetups(mem_.get(), &v);       s.linear_setups = v;
-    CVodeGetNumLinIters(mem_.get(), &v);            s.linear_iterations = v;
-    CVodeGetNumErrTestFails(mem_.get(), &v);        s.error_test_failures = v;
-    CVodeGetNumNonlinSolvConvFails(mem_.get(), &v); s.convergence_failures = v;
-  }
-  return with_history(s);
+  long v = 0;
+  CVodeGetNumSteps(mem, &v);               s.steps = v;
+  CVodeGetNumRhsEvals(mem, &v);            s.rhs_evals = v;
+  CVodeGetNumLinRhsEvals(mem, &v);         s.rhs_evals += v;
+  if (preconditioned) { CVodeGetNumPrecEvals(mem, &v); } else { CVodeGetNumJacEvals(mem, &v); }
+  s.jacobian_evals = v;
+  CVodeGetNumLinSolvSetups(mem, &v);       s.linear_setups = v;
+  CVodeGetNumLinIters(mem, &v);            s.linear_iterations = v;
+  CVodeGetNumErrTestFails(mem, &v);        s.error_test_failures = v;
+  CVodeGetNumNonlinSolvConvFails(mem, &v); s.convergence_failures = v;
+  return s;
+}
+
+IntegratorStats CvodeIntegrator::stats() const {
+  return with_history(mem_ ? cvode_stats(mem_.get(), cg_) : IntegratorStats{});
 }
 
 // ---- trampolines -------------------------------------------------------------------------

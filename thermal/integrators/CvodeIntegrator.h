@@ -7,10 +7,23 @@
 // CG needs a symmetric Newton matrix; I - gamma C^-1 K is not (C varies), but its similarity
 // transform in y = sqrt(C) T is. So with "pcg" the state is y = sqrt(C) T, with "klu" y = T.
 #include <memory>
+#include <string>
 
 #include "thermal/integrators/SundialsIntegratorBase.h"
+#include "thermal/integrators/ThermalSolverError.h"
 
 namespace tmdem::thermal {
+
+// The counters of a CVODES memory (preconditioned: the conjugate-gradient solvers, whose
+// "Jacobian evaluations" are preconditioner setups), without earlier segments.
+IntegratorStats cvode_stats(void* cvode_mem, bool preconditioned);
+// CVode (CV_NORMAL) from t_s to target_s; t_s becomes the time reached, or after a failure
+// CVODES' internal time. Returns CVode's flag (< 0: failed).
+int cvode_advance(void* cvode_mem, N_Vector y, double target_s, double& t_s);
+// The error of a CVODES call that returned `flag`, with the step figures of cvode_mem (null:
+// none) and `detail` (the last SUNDIALS message).
+ThermalSolverError cvode_failure(void* cvode_mem, const std::string& solver, int flag,
+                                 const char* call, double t_s, const std::string& detail);
 
 class CvodeIntegrator final : public SundialsIntegratorBase {
  public:

@@ -6,8 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -191,26 +189,15 @@ void SundialsIntegratorBase::restore_stats(const IntegratorStats& earlier) {
 }
 
 IntegratorStats SundialsIntegratorBase::with_history(IntegratorStats current) const {
-  current.steps += before_reinit_.steps;
-  current.rhs_evals += before_reinit_.rhs_evals;
-  current.jacobian_evals += before_reinit_.jacobian_evals;
-  current.linear_setups += before_reinit_.linear_setups;
-  current.linear_iterations += before_reinit_.linear_iterations;
-  current.error_test_failures += before_reinit_.error_test_failures;
-  current.convergence_failures += before_reinit_.convergence_failures;
+  current.add_counters(before_reinit_);
   current.reinitializations = reinitializations_;
   return current;
 }
 
 void SundialsIntegratorBase::throw_failure(const char* solver, char* flag_name, int flag,
                                            const char* call, double step_s, long steps) const {
-  std::ostringstream msg;
-  msg << solver << " failed in " << call << " with " << (flag_name ? flag_name : "?") << " ("
-      << flag << ") at t = " << t_ << " s";
-  std::free(flag_name);
-  if (steps >= 0) msg << ", step size " << step_s << " s after " << steps << " steps";
-  if (!last_error_.empty()) msg << ": " << last_error_;
-  throw ThermalSolverError(msg.str(), flag, t_);
+  throw ThermalSolverError::from_solver(solver, flag_name, flag, call, t_, step_s, steps,
+                                        last_error_);
 }
 
 void SundialsIntegratorBase::error_handler(int code, const char* module, const char* function,

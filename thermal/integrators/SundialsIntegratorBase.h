@@ -26,6 +26,15 @@ inline std::span<double> nvector_view(N_Vector v) {
 
 class SundialsIntegratorBase : public ThermalIntegrator {
  public:
+  // Shared with DistributedCvodeIntegrator.
+  static constexpr int kMaxPcgIterations = 200;
+  // CG stops on an absolute residual; at SUNDIALS' default (0.05) a near-equilibrium state
+  // drifts by ~1e-8 relative (measured), so the linear tolerance factor is tighter.
+  static constexpr double kPcgEpsLin = 1e-4;
+  // Absolute tolerance of the boundary-heat quadrature, J: with error control on (so the solver
+  // keeps its history consistent with the state's, CvodeIntegrator::initialize) but never binding.
+  static constexpr double kQuadratureTolerance = 1e300;
+
   double time_s() const override { return t_; }
   std::span<const double> temperatures_K() const override { return T_out_; }
   double boundary_heat_J() const override;
@@ -78,14 +87,6 @@ class SundialsIntegratorBase : public ThermalIntegrator {
   // exception instead of printing it.
   static void error_handler(int code, const char* module, const char* function, char* msg,
                             void* self);
-
-  static constexpr int kMaxPcgIterations = 200;
-  // CG stops on an absolute residual; at SUNDIALS' default (0.05) a near-equilibrium state
-  // drifts by ~1e-8 relative (measured), so the linear tolerance factor is tighter.
-  static constexpr double kPcgEpsLin = 1e-4;
-  // Absolute tolerance of the boundary-heat quadrature, J: with error control on (so the solver
-  // keeps its history consistent with the state's, CvodeIntegrator::initialize) but never binding.
-  static constexpr double kQuadratureTolerance = 1e300;
 
   ThermalSystem& system_;
   IntegratorSettings settings_;

@@ -18,6 +18,17 @@ struct IntegratorStats {
   long error_test_failures = 0;
   long convergence_failures = 0;
   long reinitializations = 0;     // restarts after the contact graph changed shape, or on demand
+
+  // Adds an earlier segment's counters (all but reinitializations).
+  void add_counters(const IntegratorStats& earlier) {
+    steps += earlier.steps;
+    rhs_evals += earlier.rhs_evals;
+    jacobian_evals += earlier.jacobian_evals;
+    linear_setups += earlier.linear_setups;
+    linear_iterations += earlier.linear_iterations;
+    error_test_failures += earlier.error_test_failures;
+    convergence_failures += earlier.convergence_failures;
+  }
 };
 
 struct IntegratorSettings {

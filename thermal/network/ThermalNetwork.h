@@ -10,7 +10,8 @@
 namespace tmdem::thermal {
 
 struct ThermalNetwork {
-  // Nodes.
+  // Nodes. (A new per-node array must also be picked for a process's piece in
+  // extract_local_network, LocalNetwork.cpp, the heating over MPI.)
   std::vector<double> heat_capacity_J_per_K;   // C_i = m_i c_i
   std::vector<double> surface_area_m2;         // 4 pi r^2, for convection and radiation
   std::vector<double> radius_m;                // r_i, for the gap-dependent modes (gas, pair radiation)

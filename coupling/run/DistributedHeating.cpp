@@ -1,0 +1,63 @@
+#include "coupling/run/DistributedHeating.h"
+
+#include "coupling/bridge/ThermalNetworkBuilder.h"
+#include "thermal/integrators/DistributedCvodeIntegrator.h"
+#include "thermal/integrators/IntegratorKind.h"
+#include "thermal/integrators/MpiWorld.h"
+#include "thermal/modes/ModeRegistry.h"
+
+namespace tmdem::coupling {
+namespace {
+
+bool gas_layer_shared(const Scene& scene) {
+  const auto* gas = thermal::find_heat_transfer_mode("gas_conduction");
+  if (!gas) return false;
+  ThermalNetworkBuilder builder(scene);
+  return thermal::resolve_mode_parameters(*gas, builder.mode_settings()).choice("layer_share") ==
+         "equal_solid_angle";
+}
+
+}  // namespace
+
+std::string distributed_heating_refusal(const Scene& scene, int processes) {
+  const std::string over = "heating over MPI (" + std::to_string(processes) + " processes): ";
+  if (scene.effects.mechanics == MechanicsMode::Dynamic)
+    return over + "effects.mechanics = \"dynamic\" changes the contact graph every step; only "
+                  "frozen beds are split (\"off\", or \"settle\"), or run with one process";
+  if (thermal::parse_integrator_kind(scene.thermal.integrator) != thermal::IntegratorKind::Cvode)
+    return over + "thermal.integrator = \"" + scene.thermal.integrator +
+           "\" runs in one process only; use \"cvode\"";
+  if (thermal::parse_linear_solver_kind(scene.thermal.linear_solver) != thermal::LinearSolverKind::Amg)
+    return over + "thermal.linear_solver = \"" + scene.thermal.linear_solver +
+           "\" runs in one process only; use \"amg\" (conjugate gradients with BoomerAMG across "
+           "the processes)";
+  if (scene.particles.size() < std::size_t(processes))
+    return over + "fewer particles (" + std::to_string(scene.particles.size()) + ") than processes";
+  if (gas_layer_shared(scene))
+    return over + "gas.layer_share = \"equal_solid_angle\" needs each particle's whole "
+                  "neighbourhood, which a process does not hold for another's particles";
+  return "";
+}
+
+DistributedHeating::DistributedHeating(const Scene& scene, const thermal::ThermalSystem& global,
+                                       std::span<const double> position_m)
+    : partition_(thermal::NetworkPartition::slabs(position_m, thermal::MpiWorld::size())),
+      local_(thermal::extract_local_network(global.network(), partition_,
+                                            thermal::MpiWorld::rank())) {
+  // The same modes as the global system, built afresh for the local network (a mode prepares
+  // per-edge data for the network it is given).
+  ThermalNetworkBuilder builder(scene);
+  std::vector<std::unique_ptr<thermal::HeatTransferMode>> modes;
+  for (const auto& mode : global.modes())
+    modes.push_back(thermal::make_heat_transfer_mode(std::string(mode->name()),
+                                                     builder.mode_settings()));
+  system_ = std::make_unique<thermal::ThermalSystem>(local_.network, std::move(modes));
+}
+
+std::unique_ptr<thermal::ThermalIntegrator> DistributedHeating::make_integrator(
+    const thermal::IntegratorSettings& settings) {
+  return std::make_unique<thermal::DistributedCvodeIntegrator>(*system_, local_, partition_,
+                                                               settings);
+}
+
+}  // namespace tmdem::coupling

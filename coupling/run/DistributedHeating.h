@@ -1,0 +1,46 @@
+#pragma once
+// Heating over MPI (`mpirun -np N tmdem run SCENE`, docs/scale-out.md): every process builds
+// the scene and the whole thermal network (the set-up is replicated: each holds all particles),
+// then integrates only its own slab of particles (thermal::NetworkPartition::slabs across the
+// bed's longest extent) on its thermal::LocalNetwork with ghost temperatures, by
+// thermal::DistributedCvodeIntegrator (CG, BoomerAMG across the processes). The integrator
+// gathers every temperature to every process after each advance, so the coupled run writes
+// frames and the summary from rank 0 as in one process.
+#include <memory>
+#include <span>
+#include <string>
+
+#include "coupling/scene/Scene.h"
+#include "thermal/integrators/ThermalIntegrator.h"
+#include "thermal/network/LocalNetwork.h"
+#include "thermal/network/NetworkPartition.h"
+#include "thermal/system/ThermalSystem.h"
+
+namespace tmdem::coupling {
+
+// Why this scene cannot be heated over `processes` processes, or empty when it can: frozen beds
+// only (mechanics "off", or "settle": every process settles the same packing), integrator
+// "cvode" with linear_solver "amg", no gas layer shared by neighbour count, at least one
+// particle per process. (A symmetric Jacobian is checked by the integrator, which sees the
+// modes.) Checkpoints and restarts work as in one process: rank 0 writes them, every process
+// reads them.
+std::string distributed_heating_refusal(const Scene& scene, int processes);
+
+class DistributedHeating {
+ public:
+  // Splits `global` (the run's whole system) over MPI_COMM_WORLD by the particle centres
+  // (3 per particle) and builds this process's local system with the scene's modes.
+  DistributedHeating(const Scene& scene, const thermal::ThermalSystem& global,
+                     std::span<const double> position_m);
+  // Refers to the local system: keep this object alive as long as the integrator.
+  std::unique_ptr<thermal::ThermalIntegrator> make_integrator(
+      const thermal::IntegratorSettings& settings);
+  const thermal::LocalNetwork& local() const { return local_; }
+
+ private:
+  thermal::NetworkPartition partition_;
+  thermal::LocalNetwork local_;
+  std::unique_ptr<thermal::ThermalSystem> system_;
+};
+
+}  // namespace tmdem::coupling

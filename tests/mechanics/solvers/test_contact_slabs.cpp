@@ -27,7 +27,7 @@ const NscdIntegrator& falling_pile() {
     parameters.tolerance = 1e-4;
     parameters.max_iterations = 300;
     NscdIntegrator s = random_pile(400, 3, 0.3, 5, parameters);
-    for (int step = 0; step < 40; ++step) s.step();
+    for (int step = 0; step < 12; ++step) s.step();
     return s;
   }();
   return sim;

@@ -65,12 +65,9 @@ double NncgSolver::over_support(Each&& each) {
 
 void NncgSolver::scan_support(const ContactProblem& problem, const std::vector<Eigen::Vector3d>& r,
                               const std::vector<Eigen::Vector3d>& m) {
+  // Sliced, enter() only flags each contact in its own slot: threads may share the scan.
   const auto count = static_cast<std::ptrdiff_t>(problem.size());
-  if (!sliced_run_) {
-    for (std::ptrdiff_t c = 0; c < count; ++c) enter(problem, static_cast<std::size_t>(c), r, m);
-    return;
-  }
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (sliced_run_)
   for (std::ptrdiff_t c = 0; c < count; ++c) enter(problem, static_cast<std::size_t>(c), r, m);
 }
 

@@ -1,4 +1,6 @@
-// Pour and settle: examples/pour_3d.toml scaled to N spheres (issue 10 item 7). Not in ctest.
+// Pour and settle: examples/pour_3d.toml scaled to N spheres. Not in ctest. BM_Deposit: the
+// same bed laid by sequential deposition, then settled; BM_PourLiggghts: the same pour in
+// LIGGGHTS (soft spheres), where it is installed.
 //
 // The scene is examples/pour_3d.toml itself (materials, radii 0.5 and 1 mm, half steel and
 // half glass, [mechanics] settings) with three changes: N/2 spheres per material, and the
@@ -90,9 +92,12 @@ void replace_all(std::string& text, const std::string& from, const std::string& 
   }
 }
 
-// examples/pour_3d.toml with `count` spheres in a box `width` m wide in x and z.
-coupling::Scene pour_scene(std::int64_t count, double width) {
+// examples/pour_3d.toml with `count` spheres in a box `width` m wide in x and z; deposit: the
+// generators of kind "deposit" instead of "random" (a bed laid by sequential deposition, then
+// settled, instead of a pour).
+coupling::Scene pour_scene(std::int64_t count, double width, bool deposit) {
   std::string text = read_file(std::string(TMDEM_SOURCE_DIR) + "/examples/pour_3d.toml");
+  if (deposit) replace_all(text, "kind = \"random\"", "kind = \"deposit\"", 2);
   std::ostringstream w;
   w.precision(17);
   w << width;
@@ -115,7 +120,7 @@ double env_number(const char* name, double fallback) {
   return value ? std::stod(value) : fallback;
 }
 
-void BM_Pour(benchmark::State& state) {
+void run_pour(benchmark::State& state, bool deposit) {
   const std::int64_t count = state.range(0);
   const int threads = static_cast<int>(state.range(1));
   const double width = 0.02 * std::sqrt(static_cast<double>(count) / 2000.0);
@@ -124,7 +129,10 @@ void BM_Pour(benchmark::State& state) {
   const int threads_before = omp_get_max_threads();
   omp_set_num_threads(threads);
   for (auto _ : state) {
-    const coupling::Scene scene = pour_scene(count, width);
+    const auto build_start = std::chrono::steady_clock::now();
+    const coupling::Scene scene = pour_scene(count, width, deposit);
+    const double build_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count();
     // The scene's integrator (coupling::make_nscd_integrator), TMDEM_POUR_FULL_SWEEP_EVERY
     // overriding the scene's mechanics.full_sweep_every.
     mechanics::NscdParameters parameters = coupling::make_nscd_parameters(scene);
@@ -225,7 +233,8 @@ void BM_Pour(benchmark::State& state) {
     const double solve_cpu_s = static_cast<double>(std::clock() - solve_cpu_start) / CLOCKS_PER_SEC;
 
     state.SetIterationTime(wall);
-    state.SetLabel(scene.mechanics.solver);
+    state.SetLabel(scene.mechanics.solver + (deposit ? " (deposit)" : ""));
+    state.counters["build_s"] = build_s;  // reading the scene: the deposition for BM_Deposit
     state.counters["particles"] = static_cast<double>(sim->particles().size());
     state.counters["contacts"] = static_cast<double>(sim->contacts().size());
     state.counters["candidates"] = static_cast<double>(problem.size());
@@ -276,8 +285,110 @@ void BM_Pour(benchmark::State& state) {
   }
   omp_set_num_threads(threads_before);
 }
+
+void BM_Pour(benchmark::State& state) { run_pour(state, false); }
 BENCHMARK(BM_Pour)
     ->ArgsProduct({{2000, 10000, 20000, 100000}, {1, 2}})
+    ->UseManualTime()
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond);
+
+// The same bed laid by sequential deposition ([[generate]] kind = "deposit"), then settled.
+void BM_Deposit(benchmark::State& state) { run_pour(state, true); }
+BENCHMARK(BM_Deposit)
+    ->ArgsProduct({{2000, 10000, 20000, 100000}, {1, 2}})
+    ->UseManualTime()
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond);
+
+// The same pour in LIGGGHTS 3.8 (Debian `liggghts`), the soft-sphere peer: pour_3d's spheres
+// (radii 0.5 and 1 mm, a quarter each of steel and glass at each radius, by number; LIGGGHTS
+// takes the classes' mass fractions), friction 0.3 and rolling friction 0.05 (its "cdt" model),
+// restitution 0.3 (LIGGGHTS needs one above 0; tmdem's contacts are perfectly inelastic), in
+// the same box. Young's moduli softened 21,000x (1e7 and 3e6 Pa) for a time step of 1e-5 s, as
+// soft-sphere users do (at the real moduli the stable step is about 100x smaller). Inserted at
+// once at random in the fill region (insert/pack, as the random generators), 0.5 s simulated.
+// Counters: liggghts_s (its loop time, wall), ke_end_J, rest_time_s (the first thermo output,
+// every 0.01 s, with kinetic energy below 5e-11 J; -1: none), threads (1: serial LIGGGHTS).
+// Skipped when `liggghts` is not on the PATH.
+std::string liggghts_input(std::int64_t count, double width) {
+  const double volume[2] = {0.0005 * 0.0005 * 0.0005, 0.001 * 0.001 * 0.001};
+  const double density[2] = {7800.0, 2500.0};
+  double mass[4], total = 0.0;
+  for (int k = 0; k < 4; ++k) total += mass[k] = density[k / 2] * volume[k % 2];
+  std::ostringstream in;
+  in.precision(10);
+  in << "atom_style granular\natom_modify map array\nboundary f f f\nnewton off\n"
+     << "communicate single vel yes\nunits si\nsoft_particles yes\n"
+     << "region box block 0 " << width << " 0 0.062 0 " << width << " units box\n"
+     << "create_box 2 box\nneighbor 0.0005 bin\nneigh_modify delay 0\n"
+     << "fix m1 all property/global youngsModulus peratomtype 1.0e7 3.0e6\n"
+     << "fix m2 all property/global poissonsRatio peratomtype 0.3 0.22\n"
+     << "fix m3 all property/global coefficientRestitution peratomtypepair 2 0.3 0.3 0.3 0.3\n"
+     << "fix m4 all property/global coefficientFriction peratomtypepair 2 0.3 0.3 0.3 0.3\n"
+     << "fix m5 all property/global coefficientRollingFriction peratomtypepair 2 0.05 0.05 0.05 0.05\n"
+     << "pair_style gran model hertz tangential history rolling_friction cdt\npair_coeff * *\n"
+     << "timestep 1.e-5\nfix gravity all gravity 9.81 vector 0 -1 0\n";
+  const char* planes[5][2] = {{"yplane", "0.0"}, {"xplane", "0.0"}, {"xplane", "W"}, {"zplane", "0.0"}, {"zplane", "W"}};
+  for (int k = 0; k < 5; ++k)
+    in << "fix wall" << k << " all wall/gran model hertz tangential history rolling_friction cdt "
+       << "primitive type 1 " << planes[k][0] << " " << (planes[k][1][0] == 'W' ? width : 0.0) << "\n";
+  const char* seeds[4] = {"15485863", "15485867", "32452843", "32452867"};
+  for (int k = 0; k < 4; ++k)
+    in << "fix t" << k << " all particletemplate/sphere " << seeds[k] << " atom_type " << k / 2 + 1
+       << " density constant " << density[k / 2] << " radius constant " << (k % 2 ? 0.001 : 0.0005) << "\n";
+  in << "fix pdd all particledistribution/discrete 49979687 4";
+  for (int k = 0; k < 4; ++k) in << " t" << k << " " << mass[k] / total;
+  in << "\nregion fill block 0 " << width << " 0 0.06 0 " << width << " units box\n"
+     << "fix ins all insert/pack seed 67867967 distributiontemplate pdd maxattempt 1000 "
+     << "insert_every once overlapcheck yes all_in yes particles_in_region " << count << " region fill\n"
+     << "fix integr all nve/sphere\ncompute ke all ke\nthermo_style custom step atoms c_ke\n"
+     << "thermo 1000\nthermo_modify lost ignore norm no\nrun 50000\n";
+  return in.str();
+}
+
+void BM_PourLiggghts(benchmark::State& state) {
+  const std::int64_t count = state.range(0);
+  const double width = 0.02 * std::sqrt(static_cast<double>(count) / 2000.0);
+  if (std::system("command -v liggghts > /dev/null 2>&1") != 0) {
+    state.SkipWithError("liggghts is not installed (Debian: apt-get install liggghts)");
+    return;
+  }
+  for (auto _ : state) {
+    char folder[] = "/tmp/bench_pour_liggghtsXXXXXX";
+    if (!mkdtemp(folder)) throw std::runtime_error("bench_pour: cannot make a temporary folder");
+    const std::string dir = folder;
+    std::ofstream(dir + "/pour.in") << liggghts_input(count, width);
+    const std::string command = "cd " + dir + " && liggghts -in pour.in -log log.lammps -echo none > out.txt 2>&1";
+    if (std::system(command.c_str()) != 0) {
+      state.SkipWithError(("liggghts failed; see " + dir + "/out.txt").c_str());
+      return;
+    }
+    std::ifstream log(dir + "/log.lammps");
+    double loop_s = -1.0, ke_end = -1.0, rest_time = -1.0;
+    for (std::string line; std::getline(log, line);) {
+      if (line.rfind("Loop time of ", 0) == 0) loop_s = std::stod(line.substr(13));
+      std::istringstream fields(line);
+      long step = 0, atoms = 0;
+      double ke = 0.0;
+      if (fields >> step >> atoms >> ke && atoms == count) {
+        ke_end = ke;
+        if (rest_time < 0.0 && ke < 5e-11) rest_time = static_cast<double>(step) * 1e-5;
+      }
+    }
+    std::system(("rm -rf " + dir).c_str());
+    state.SetIterationTime(loop_s);
+    state.SetLabel("liggghts");
+    state.counters["particles"] = static_cast<double>(count);
+    state.counters["liggghts_s"] = loop_s;
+    state.counters["ke_end_J"] = ke_end;
+    state.counters["rest_time_s"] = rest_time;
+    state.counters["threads"] = 1;
+  }
+}
+BENCHMARK(BM_PourLiggghts)
+    ->Arg(2000)
+    ->Arg(10000)
     ->UseManualTime()
     ->Iterations(1)
     ->Unit(benchmark::kSecond);

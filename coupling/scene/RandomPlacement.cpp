@@ -13,6 +13,26 @@ double uniform_unit(std::uint64_t bits) {
   return static_cast<double>(bits >> 11) * 0x1.0p-53;
 }
 
+std::vector<double> class_radii(std::size_t count, const std::vector<double>& radii,
+                                const std::vector<double>& fractions) {
+  const double fraction_sum = std::accumulate(fractions.begin(), fractions.end(), 0.0);
+  std::vector<double> cumulative(radii.size());
+  double running = 0.0;
+  for (std::size_t c = 0; c < radii.size(); ++c) {
+    running += fractions[c] / fraction_sum;
+    cumulative[c] = running;
+  }
+  cumulative.back() = 1.0;  // guard against round-off leaving the last class unreachable
+  std::vector<double> out(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    const double position_in_order = (static_cast<double>(k) + 0.5) / static_cast<double>(count);
+    std::size_t c = 0;
+    while (c + 1 < radii.size() && !(position_in_order < cumulative[c])) ++c;
+    out[k] = radii[c];
+  }
+  return out;
+}
+
 RandomPlacement place_random(std::size_t count, const Eigen::Vector3d& box_min,
                              const Eigen::Vector3d& box_max, const std::vector<double>& radii,
                              const std::vector<double>& fractions, std::uint64_t seed,
@@ -52,25 +72,9 @@ RandomPlacement place_random(std::size_t count, const Eigen::Vector3d& box_min,
   }
   const int axes = dimension;  // axes that must contain the sphere: x, y (and z in 3D)
 
-  // Radius per id, by cumulative fractions.
   RandomPlacement out;
-  out.radii.resize(count);
+  out.radii = class_radii(count, radii, fractions);
   out.positions.resize(count, Eigen::Vector3d::Zero());
-  {
-    std::vector<double> cumulative(radii.size());
-    double running = 0.0;
-    for (std::size_t c = 0; c < radii.size(); ++c) {
-      running += fractions[c] / fraction_sum;
-      cumulative[c] = running;
-    }
-    cumulative.back() = 1.0;  // guard against round-off leaving the last class unreachable
-    for (std::size_t k = 0; k < count; ++k) {
-      const double position_in_order = (static_cast<double>(k) + 0.5) / static_cast<double>(count);
-      std::size_t c = 0;
-      while (c + 1 < radii.size() && !(position_in_order < cumulative[c])) ++c;
-      out.radii[k] = radii[c];
-    }
-  }
   if (count == 0) return out;
   const double r_max = *std::max_element(out.radii.begin(), out.radii.end());
   for (int a = 0; a < axes; ++a) {

@@ -38,6 +38,13 @@ RandomPlacement place_random(std::size_t count, const Eigen::Vector3d& box_min,
                              int dimension, const RandomPlacement& avoid,
                              std::size_t max_attempts_per_particle = 100000);
 
+// The radius of each of `count` ids by class (as place_random gives them): id k gets radii[c],
+// c the first class whose cumulative fraction (normalised by their sum) exceeds (k + 0.5) /
+// count. Assumes radii and fractions already checked (same length, radii > 0, fractions >= 0
+// with a positive sum).
+std::vector<double> class_radii(std::size_t count, const std::vector<double>& radii,
+                                const std::vector<double>& fractions);
+
 // Uniform double in [0, 1) from the top 53 bits of one 64-bit draw; identical everywhere.
 double uniform_unit(std::uint64_t bits);
 

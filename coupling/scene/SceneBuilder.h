@@ -16,6 +16,7 @@
 #include <toml++/toml.h>
 
 #include "coupling/scene/PackingFile.h"
+#include "coupling/scene/RandomPlacement.h"
 #include "coupling/scene/Scene.h"
 #include "coupling/scene/SceneError.h"
 #include "coupling/scene/SceneTable.h"
@@ -77,8 +78,10 @@ class SceneBuilder {
   // SceneBuilderGenerators.cpp
   void read_generators();
   void check_total(const SceneTable& t, std::string_view key, std::int64_t count) const;
-  void read_random(const SceneTable& t, std::size_t index, std::vector<Vec3>& positions,
-                   std::vector<double>& radii);
+  // kind = "random" or "deposit": spheres filling a box (tables[index]).
+  void read_box_filling(const std::vector<SceneTable>& tables, std::size_t index,
+                        const std::string& kind, std::vector<Vec3>& positions,
+                        std::vector<double>& radii);
   // ParticleImport.cpp
   void read_imports();
   // ContactImport.cpp: an [[import]]'s contacts = "local dump" (its particles are scene ids
@@ -88,6 +91,8 @@ class SceneBuilder {
 
   SceneTable root_;
   std::string source_;
+  // Positions laid by a joint deposit for the later [[generate]] entries of its group, by index.
+  std::map<std::size_t, RandomPlacement> deposited_;
   Scene scene_;
   std::vector<std::string> origins_;  // per particle: "particle[3]" or "generate[0]"
   std::vector<int> import_of_;        // per particle: index of its [[import]], or -1

@@ -212,23 +212,30 @@ std::vector<Section> build_sections() {
                material_reference()},
               particle_settings(true))},
       {"generate", "many particles of one kind",
-       concat({choice("kind", "", {"triangular", "column", "lattice", "random"},
-                      "arrangement; each kind takes only its own keys below"),
+       concat({choice("kind", "", {"triangular", "column", "lattice", "random", "deposit"},
+                      "arrangement; each kind takes only its own keys below. \"random\": "
+                      "uniform positions in the box without overlap; \"deposit\": dropped one "
+                      "by one along gravity (which must be along an axis) onto the box's floor "
+                      "and rolled to rest, a packed bed ready to settle (docs/mechanics.md)"),
                value("rows", "", "", "integers >= 1",
                      "triangular: particles per row, bottom row first, each row centred on the "
                      "one below"),
-               value("count", "", "", "integer >= 1", "column, random: number of particles"),
+               value("count", "", "", "integer >= 1", "column, random, deposit: number of particles"),
                value("counts", "", "", "3 integers >= 1 (nz = 1 in 2D)", "lattice: [nx, ny, nz]"),
                number("spacing", "m", std::nullopt, Range::greater(0.0),
                       "lattice: centre distance (>= 2 radius)"),
                number("radius", "m", std::nullopt, Range::greater(0.0),
-                      "triangular, column, lattice, random: radius of every particle"),
-               value("radii", "m", "", "numbers > 0", "random: radius classes (with fractions)"),
+                      "triangular, column, lattice, random, deposit: radius of every particle"),
+               value("radii", "m", "", "numbers > 0",
+                     "random, deposit: radius classes (with fractions)"),
                value("fractions", "", "", "numbers in [0, 1], summing to 1",
-                     "random: share of the particles in each radius class"),
+                     "random, deposit: share of the particles in each radius class"),
                vector3("origin", "m", "",
                        "triangular, column, lattice: centre of the first particle", false),
-               table("box", Kind::Table, "random: box = { min, max } the particles lie in"),
+               table("box", Kind::Table,
+                     "random, deposit: box = { min, max } the particles lie in (deposit: its face "
+                     "against gravity is the floor, its sides confine the bed, its top bounds "
+                     "the bed's height)"),
                material_reference()},
               particle_settings(true))},
       {"box", "a box { min, max } (centres inside, inclusive)",

@@ -224,6 +224,78 @@ TEST(SceneGenerators, RandomKeepsClearOfOtherParticles) {
   }
 }
 
+// kind = "deposit": 40 steel and 40 glass spheres dropped into one 3D box under gravity -y.
+std::string deposit_scene(const std::string& gravity = "[0.0, -9.81, 0.0]",
+                          const std::string& second_box = "{ min = [0.0, 0.0, 0.0], max = [0.008, 0.03, 0.008] }") {
+  return header()
+      .set("simulation.dimension", 3)
+      .set("simulation.gravity", raw(gravity))
+      .add("generate", with(random_fill(40, "{ min = [0.0, 0.0, 0.0], max = [0.008, 0.03, 0.008] }",
+                                        {{"radii", {0.0005, 0.001}}, {"fractions", {0.5, 0.5}}}),
+                            {{"kind", "deposit"}}))
+      .add("generate", with(random_fill(40, second_box, {{"radius", 0.0007}, {"material", "glass"}}),
+                            {{"kind", "deposit"}}));
+}
+
+TEST(SceneGenerators, DepositLaysARestingBedOnTheFloorOfItsBox) {
+  const Scene scene = load_scene_text(deposit_scene(), "t");
+  ASSERT_EQ(scene.particles.size(), 80u);
+  std::size_t on_floor = 0;
+  double lowest_glass = 1.0, highest_steel = 0.0;
+  for (std::size_t a = 0; a < 80; ++a) {
+    const Particle& p = scene.particles[a];
+    EXPECT_EQ(p.material, a < 40 ? 0 : 1);
+    EXPECT_GE(p.position_m[1] - p.radius_m, -1e-15);
+    for (const int d : {0, 2}) {
+      EXPECT_GE(p.position_m[d] - p.radius_m, -1e-15);
+      EXPECT_LE(p.position_m[d] + p.radius_m, 0.008 + 1e-15);
+    }
+    if (std::abs(p.position_m[1] - p.radius_m) < 1e-15) ++on_floor;
+    bool touches = std::abs(p.position_m[1] - p.radius_m) < 1e-15;
+    for (std::size_t b = 0; b < 80; ++b) {
+      if (b == a) continue;
+      const double gap = distance(p.position_m, scene.particles[b].position_m) - p.radius_m -
+                         scene.particles[b].radius_m;
+      EXPECT_GT(gap, -1e-15) << a << " " << b;
+      touches = touches || gap < 1e-12;
+    }
+    EXPECT_TRUE(touches) << "particle " << a << " hangs in the air";
+    (a < 40 ? highest_steel : lowest_glass) =
+        a < 40 ? std::max(highest_steel, p.position_m[1]) : std::min(lowest_glass, p.position_m[1]);
+  }
+  EXPECT_GT(on_floor, 10u);
+  // The two entries share the box, so they are dropped together: glass lies below steel's top.
+  EXPECT_LT(lowest_glass, highest_steel);
+  // Reproducible; another seed lays another bed.
+  EXPECT_EQ(load_scene_text(deposit_scene(), "t").particles[7].position_m, scene.particles[7].position_m);
+  EXPECT_NE(load_scene_text(deposit_scene(), "t", {"simulation.seed=5"}).particles[7].position_m,
+            scene.particles[7].position_m);
+}
+
+TEST(SceneGenerators, DepositsInDifferentBoxesAreLaidOneAfterTheOther) {
+  // The glass entry's box differs (higher top): it is laid after the steel one, on top of it.
+  const Scene scene = load_scene_text(
+      deposit_scene("[0.0, -9.81, 0.0]", "{ min = [0.0, 0.0, 0.0], max = [0.008, 0.04, 0.008] }"), "t");
+  double mean_steel = 0.0, mean_glass = 0.0;  // m, mean heights
+  for (std::size_t a = 0; a < 80; ++a) (a < 40 ? mean_steel : mean_glass) += scene.particles[a].position_m[1] / 40;
+  EXPECT_GT(mean_glass, 1.5 * mean_steel);
+  // Filled together, they are mixed.
+  const Scene mixed = load_scene_text(deposit_scene(), "t");
+  double mixed_steel = 0.0, mixed_glass = 0.0;
+  for (std::size_t a = 0; a < 80; ++a) (a < 40 ? mixed_steel : mixed_glass) += mixed.particles[a].position_m[1] / 40;
+  EXPECT_LT(std::abs(mixed_glass - mixed_steel), 0.25 * mixed_steel);
+}
+
+TEST(SceneGenerators, DepositNeedsGravityAlongAnAxisAndRoom) {
+  expect_scene_error(deposit_scene("[0.0, 0.0, 0.0]"), {}, {"generate[0].kind", "along gravity"});
+  expect_scene_error(deposit_scene("[1.0, -9.81, 0.0]"), {}, {"generate[0].kind", "along gravity"});
+  expect_scene_error(deposit_scene(), {"generate[0].box.max=[0.008, 0.004, 0.008]"},
+                     {"generate[0].box", "too low"});
+  // Gravity along +x works as well: the floor is then the box's face x = max.
+  const Scene sideways = load_scene_text(deposit_scene("[9.81, 0.0, 0.0]"), "t");
+  for (const auto& p : sideways.particles) EXPECT_LE(p.position_m[0] + p.radius_m, 0.008 + 1e-15);
+}
+
 // 4 x 4 touching steel spheres in the plane z = 0.
 SceneBuilder lattice_for_assign() {
   return header().add("generate", lattice({4, 4, 1}, {{"origin", {0.001, 0.001, 0.0}}}));

@@ -1,0 +1,504 @@
+#include "mechanics/model/SequentialDeposition.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <random>
+#include <cstdio>
+#include <sstream>
+#include <stdexcept>
+
+namespace tmdem::mechanics {
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+// Relative round-off allowances: a root this close to the start of a curve is the start itself;
+// a support force this close to 0 (in units of the sphere's weight) is taken as 0.
+constexpr double kStartTolerance = 1e-10;
+constexpr double kForceTolerance = 1e-12;
+
+// Uniform double in [0, 1) from the top 53 bits of one draw: identical on every machine
+// (std::uniform_real_distribution's output is implementation-defined).
+double unit_draw(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+
+// What a moving sphere of radius r can touch: another sphere (its centre at contact distance
+// `offset` = r + r_j from `vector`) or a face of the box (inward normal `vector`, touched when
+// vector . p = offset).
+struct Body {
+  bool plane = false;
+  Vec3 vector = Vec3::Zero();
+  double offset = 0.0;
+};
+
+// A motion: a line p(s) = origin + s e1 (s in m), or a circle p(s) = origin + rho (cos s e1 +
+// sin s e2) (s in rad) with s from 0; `end` is the parameter of its lowest point (infinity for a
+// line). The centre moves along it from s = 0, downhill.
+struct Curve {
+  bool line = true;
+  Vec3 origin = Vec3::Zero();
+  Vec3 e1 = Vec3::Zero();
+  Vec3 e2 = Vec3::Zero();
+  double rho = 0.0;
+  double end = kInf;
+  Vec3 at(double s) const {
+    return line ? Vec3(origin + s * e1) : Vec3(origin + rho * (std::cos(s) * e1 + std::sin(s) * e2));
+  }
+};
+
+// First s in [0, hi] where h(s) = A cos s + B sin s - C goes from positive to zero (h' <= 0),
+// or infinity. h(s) = R cos(s - phi) - C, so its falling root is phi + acos(C / R). A falling
+// root at the very start (|s| within the tolerance, h'(0) = B < 0) is an event at 0: the sphere
+// already touches and is moving in.
+double first_falling_root(double A, double B, double C, double hi) {
+  const double R = std::hypot(A, B);
+  if (!(R > 0.0) || std::abs(C) >= R) return kInf;
+  double s = std::remainder(std::atan2(B, A) + std::acos(C / R), kTwoPi);
+  if (std::abs(s) <= kStartTolerance) {
+    if (B < 0.0) return 0.0;
+    s = kTwoPi;
+  } else if (s < 0.0) {
+    s += kTwoPi;
+  }
+  return s <= hi ? s : kInf;
+}
+
+// Where a curve first enters body b (the body's contact condition turning from clear to
+// touching), or infinity.
+double entry(const Curve& c, const Body& b) {
+  if (c.line) {
+    if (b.plane) {
+      const double rate = b.vector.dot(c.e1);
+      if (!(rate < 0.0)) return kInf;
+      const double s = (b.offset - b.vector.dot(c.origin)) / rate;
+      return std::max(s, 0.0);  // already through it (round-off): touching now
+    }
+    const Vec3 w = c.origin - b.vector;
+    const double half_b = w.dot(c.e1);
+    const double cc = w.squaredNorm() - b.offset * b.offset;
+    const double disc = half_b * half_b - cc;
+    // No contact, or a grazing one (the line tangent to the sphere: it does not move in).
+    if (!(disc > kStartTolerance * b.offset * b.offset) ||
+        cc < -kStartTolerance * b.offset * b.offset)
+      return kInf;
+    const double s = -half_b - std::sqrt(disc);
+    if (s >= 0.0) return s;
+    // Touching at the start within round-off and moving in: an event at 0.
+    return (half_b < 0.0 && cc <= kStartTolerance * b.offset * b.offset) ? 0.0 : kInf;
+  }
+  if (b.plane) {
+    return first_falling_root(c.rho * b.vector.dot(c.e1), c.rho * b.vector.dot(c.e2),
+                              b.offset - b.vector.dot(c.origin), c.end);
+  }
+  const Vec3 w = c.origin - b.vector;
+  return first_falling_root(2.0 * c.rho * w.dot(c.e1), 2.0 * c.rho * w.dot(c.e2),
+                            b.offset * b.offset - w.squaredNorm() - c.rho * c.rho, c.end);
+}
+
+// Outward contact normal of body b at centre position p (the direction its force pushes).
+Vec3 normal_at(const Body& b, const Vec3& p) {
+  return b.plane ? b.vector : Vec3((p - b.vector).normalized());
+}
+
+// A horizontal unit vector (perpendicular to `up`), drawn: the direction a sphere landing exactly
+// on top of another rolls off to.
+Vec3 random_horizontal(const Vec3& up, std::mt19937_64& rng) {
+  const double angle = kTwoPi * unit_draw(rng);
+  const Vec3 a = up.unitOrthogonal();
+  const Vec3 b = up.cross(a);
+  return std::cos(angle) * a + std::sin(angle) * b;
+}
+
+void check_arguments(const std::vector<double>& radii, const Vec3& box_min, const Vec3& box_max,
+                     int down_axis, int down_sign, int dimension, const std::vector<Vec3>& obstacle_positions,
+                     const std::vector<double>& obstacle_radii) {
+  if (dimension != 2 && dimension != 3)
+    throw std::invalid_argument("deposit_spheres: dimension must be 2 or 3");
+  if (down_axis < 0 || down_axis >= dimension || (down_sign != 1 && down_sign != -1))
+    throw std::invalid_argument(dimension == 2 ? "deposit_spheres: gravity must be along x or y in 2D"
+                                               : "deposit_spheres: gravity must be along a coordinate axis");
+  if (obstacle_positions.size() != obstacle_radii.size())
+    throw std::invalid_argument("deposit_spheres: obstacle positions and radii differ in length");
+  if (!box_min.allFinite() || !box_max.allFinite())
+    throw std::invalid_argument("deposit_spheres: box corners must be finite");
+  for (const double r : radii)
+    if (!(r > 0.0) || !std::isfinite(r))
+      throw std::invalid_argument("deposit_spheres: radii must be positive and finite");
+  for (const double r : obstacle_radii)
+    if (!(r > 0.0) || !std::isfinite(r))
+      throw std::invalid_argument("deposit_spheres: obstacle radii must be positive and finite");
+  const double r_max = radii.empty() ? 0.0 : *std::max_element(radii.begin(), radii.end());
+  for (int a = 0; a < dimension; ++a) {
+    if (a == down_axis) continue;
+    if (box_max[a] - box_min[a] < 2.0 * r_max) {
+      std::ostringstream message;
+      message << "deposit_spheres: the box is narrower than the largest diameter ("
+              << 2.0 * r_max << " m) along " << "xyz"[a];
+      throw std::invalid_argument(message.str());
+    }
+  }
+  if (!(box_max[down_axis] > box_min[down_axis]))
+    throw std::invalid_argument("deposit_spheres: the box has no height");
+}
+
+}  // namespace
+
+
+// Uniform cell grid over the box, cells one largest contact distance wide, each a list of
+// sphere ids. Spheres outside the box go to the nearest cell (clamped), which is adjacent to
+// every cell they can reach into.
+class SequentialDeposition::Grid {
+ public:
+  Grid(const Vec3& lo, const Vec3& hi, double cell) : lo_(lo), cell_(cell) {
+    for (int a = 0; a < 3; ++a)
+      dims_[a] = static_cast<int>(std::clamp(std::ceil((hi[a] - lo[a]) / cell), 1.0, 1e7));
+    const double cells = static_cast<double>(dims_[0]) * dims_[1] * dims_[2];
+    if (cells > 2e7)
+      throw std::invalid_argument(
+          "deposit_spheres: the box is too large for the radii (over 2e7 grid cells)");
+    cells_.resize(static_cast<std::size_t>(cells));
+  }
+  void insert(int id, const Vec3& x) { cells_[index(cell_of(x))].push_back(id); }
+  // Calls f(id) for every sphere whose cell meets [lo, hi].
+  template <class F>
+  void for_each_in(const Vec3& lo, const Vec3& hi, F&& f) const {
+    const Eigen::Vector3i a = cell_of(lo);
+    const Eigen::Vector3i b = cell_of(hi);
+    for (int z = a[2]; z <= b[2]; ++z)
+      for (int y = a[1]; y <= b[1]; ++y)
+        for (int x = a[0]; x <= b[0]; ++x)
+          for (const int id : cells_[index({x, y, z})]) f(id);
+  }
+
+ private:
+  Eigen::Vector3i cell_of(const Vec3& x) const {
+    Eigen::Vector3i c;
+    for (int a = 0; a < 3; ++a) {
+      const double t = std::floor((x[a] - lo_[a]) / cell_);
+      c[a] = static_cast<int>(std::clamp(t, 0.0, static_cast<double>(dims_[a] - 1)));
+    }
+    return c;
+  }
+  std::size_t index(const Eigen::Vector3i& c) const {
+    return (static_cast<std::size_t>(c[2]) * dims_[1] + c[1]) * dims_[0] + c[0];
+  }
+  Vec3 lo_;
+  double cell_;
+  int dims_[3] = {1, 1, 1};
+  std::vector<std::vector<int>> cells_;
+};
+
+SequentialDeposition::SequentialDeposition(const Vec3& box_min_m, const Vec3& box_max_m,
+                                           int down_axis, int down_sign, double largest_radius_m,
+                                           int dimension)
+    : box_min_(box_min_m), box_max_(box_max_m), down_axis_(down_axis), dimension_(dimension),
+      largest_(largest_radius_m) {
+  check_arguments({largest_radius_m}, box_min_m, box_max_m, down_axis, down_sign, dimension, {}, {});
+  up_ = Vec3::Zero();
+  up_[down_axis] = -down_sign;
+  floor_ = up_.dot(down_sign < 0 ? box_min_ : box_max_);
+  top_ = floor_;
+  grid_ = std::make_shared<Grid>(box_min_, box_max_, 2.0 * largest_);
+}
+
+void SequentialDeposition::add_sphere(const Vec3& centre_m, double radius_m) {
+  if (!(radius_m > 0.0) || radius_m > largest_ || !centre_m.allFinite())
+    throw std::invalid_argument("SequentialDeposition: a sphere's radius must be in (0, largest]");
+  grid_->insert(static_cast<int>(centre_.size()), centre_m);
+  centre_.push_back(centre_m);
+  radius_.push_back(radius_m);
+  top_ = std::max(top_, up_.dot(centre_m) + radius_m);
+}
+
+SequentialDeposition::Drop SequentialDeposition::drop(double r, const Vec3& start_m,
+                                                      std::mt19937_64& rng,
+                                                      std::size_t max_moves) {
+  if (!(r > 0.0) || r > largest_)
+    throw std::invalid_argument("SequentialDeposition: the radius must be in (0, largest]");
+  const Vec3 up = up_;
+  const Vec3 down = -up_;
+  const double floor_height = floor_;
+  // The faces for this radius: the floor and the four walls along gravity, offset by r. In 2D
+  // the two z faces hold every centre in the plane z = mid (they carry no force: gravity lies
+  // in the plane).
+  Body faces[5];
+  int face_count = 0;
+  faces[face_count++] = {true, up, floor_height + r};
+  const double mid_z = 0.5 * (box_min_[2] + box_max_[2]);
+  for (int a = 0; a < 3; ++a) {
+    if (a == down_axis_) continue;
+    Vec3 n = Vec3::Zero();
+    n[a] = 1.0;
+    const bool plane_of_motion = a < dimension_;
+    faces[face_count++] = {true, n, plane_of_motion ? box_min_[a] + r : mid_z};
+    faces[face_count++] = {true, -n, plane_of_motion ? -box_max_[a] + r : -mid_z};
+  }
+  const auto body = [&](int b) -> Body {
+    if (b < 0) return faces[-1 - b];
+    const auto k = static_cast<std::size_t>(b);
+    return {false, centre_[k], r + radius_[k]};
+  };
+
+  Drop out;
+  Vec3 p = start_m;
+  if (dimension_ == 2) p.z() = mid_z;
+  p += up * (top_ + r + largest_ - up.dot(p));  // clear of every sphere laid so far
+  int supports[3];  // body ids: spheres >= 0, faces -1 - face
+  int m = 0;
+  const auto erase = [&](int k) {
+    for (int j = k; j + 1 < m; ++j) supports[j] = supports[j + 1];
+    --m;
+  };
+  std::size_t move = 0;
+  for (; move < max_moves && !out.resting; ++move) {
+    // 1. Forces of the supports: one that would have to pull lets go; so does a single one
+    // holding nothing (a sphere at its equator, a wall along gravity). Three that hold: rest.
+    if (m > 0) {
+      Eigen::Matrix3d N = Eigen::Matrix3d::Zero();
+      for (int k = 0; k < m; ++k) N.col(k) = normal_at(body(supports[k]), p);
+      const auto Nm = N.leftCols(m);
+      const Eigen::VectorXd lambda = (Nm.transpose() * Nm).ldlt().solve(Nm.transpose() * up);
+      int weakest = 0;
+      for (int k = 1; k < m; ++k)
+        if (lambda[k] < lambda[weakest]) weakest = k;
+      if (lambda[weakest] < -kForceTolerance || (m == 1 && lambda[0] <= kForceTolerance)) {
+        erase(weakest);
+        continue;
+      }
+      if (m == 3) {
+        out.resting = true;
+        break;
+      }
+    }
+
+    // 2. The curve the supports leave free, downhill from p.
+    Curve curve;
+    double force_a[2] = {0.0, 0.0}, force_b[2] = {0.0, 0.0}, force_c[2] = {0.0, 0.0};
+    int forces = 0;  // support forces that can reach zero along the curve
+    if (m == 0) {
+      curve.origin = p;
+      curve.e1 = down;
+    } else if (m == 1) {
+      const Body b = body(supports[0]);
+      if (b.plane) {  // slide down the face; on the floor: at rest
+        const Vec3 along = down - down.dot(b.vector) * b.vector;
+        if (along.norm() < 1e-12) {
+          out.resting = true;
+          break;
+        }
+        curve.origin = p;
+        curve.e1 = along.normalized();
+      } else {  // roll over the sphere in the vertical plane, down to its equator
+        curve.line = false;
+        curve.origin = b.vector;
+        curve.rho = b.offset;
+        curve.e1 = (p - b.vector).normalized();
+        Vec3 t = down - down.dot(curve.e1) * curve.e1;
+        if (t.norm() < 1e-9) t = random_horizontal(up, rng);  // landed right on top
+        curve.e2 = t.normalized();
+        // Its force, up . n(s), is zero at the equator: there it falls free.
+        curve.end = first_falling_root(up.dot(curve.e1), up.dot(curve.e2), 0.0, kTwoPi);
+        if (!std::isfinite(curve.end)) curve.end = 0.0;
+      }
+    } else {
+      const Body b1 = body(supports[0]);
+      const Body b2 = body(supports[1]);
+      if (b1.plane && b2.plane) {  // along the edge of two faces
+        Vec3 along = b1.vector.cross(b2.vector);
+        if (along.norm() < 1e-12) {  // parallel faces: keep one
+          erase(1);
+          continue;
+        }
+        along.normalize();
+        if (up.dot(along) > 0.0) along = -along;
+        if (std::abs(up.dot(along)) < 1e-12) {
+          out.resting = true;
+          break;
+        }
+        curve.origin = p;
+        curve.e1 = along;
+      } else {
+        // The circle of centres touching both: axis a, centre `origin`, radius rho.
+        curve.line = false;
+        Vec3 a;
+        if (b1.plane || b2.plane) {
+          const Body& face = b1.plane ? b1 : b2;
+          const Body& ball = b1.plane ? b2 : b1;
+          a = face.vector;
+          const double height = face.offset - a.dot(ball.vector);  // m, along a from the centre
+          curve.origin = ball.vector + height * a;
+          curve.rho = std::sqrt(std::max(0.0, ball.offset * ball.offset - height * height));
+        } else {
+          const Vec3 d = b2.vector - b1.vector;
+          const double L = d.norm();
+          a = d / L;
+          const double along = (b1.offset * b1.offset - b2.offset * b2.offset + L * L) / (2.0 * L);
+          curve.origin = b1.vector + along * a;
+          curve.rho = std::sqrt(std::max(0.0, b1.offset * b1.offset - along * along));
+        }
+        if (!(curve.rho > 1e-12 * std::max(b1.offset, b2.offset))) {  // touching at one point
+          erase(1);
+          continue;
+        }
+        const Vec3 radial = p - curve.origin;
+        curve.e1 = (radial - radial.dot(a) * a).normalized();
+        Vec3 t = a.cross(curve.e1);
+        if (up.dot(t) > 0.0) t = -t;
+        if (std::abs(up.dot(t)) < 1e-12 && up.dot(curve.e1) < 0.0) {  // at its lowest point
+          out.resting = true;
+          break;
+        }
+        curve.e2 = t;
+        curve.end = std::atan2(-up.dot(curve.e2), -up.dot(curve.e1));
+        if (curve.end <= 0.0) curve.end += kTwoPi;
+        // Support forces along the circle: n_k = beta_k a + gamma_k r(s), so with
+        // u_a = up . a and u_r(s) = up . r(s), lambda_1 det = gamma_2 u_a - beta_2 u_r(s) and
+        // lambda_2 det = beta_1 u_r(s) - gamma_1 u_a: each zero where A cos s + B sin s = C.
+        double beta[2], gamma[2];
+        const Body* bs[2] = {&b1, &b2};
+        for (int k = 0; k < 2; ++k) {
+          if (bs[k]->plane) {
+            beta[k] = bs[k]->vector.dot(a);
+            gamma[k] = 0.0;
+          } else {
+            beta[k] = (curve.origin - bs[k]->vector).dot(a) / bs[k]->offset;
+            gamma[k] = curve.rho / bs[k]->offset;
+          }
+        }
+        const double sign = beta[0] * gamma[1] - beta[1] * gamma[0] < 0.0 ? -1.0 : 1.0;
+        const double ua = up.dot(a);
+        const double ue1 = up.dot(curve.e1);
+        const double ue2 = up.dot(curve.e2);
+        force_a[0] = -sign * beta[1] * ue1;
+        force_b[0] = -sign * beta[1] * ue2;
+        force_c[0] = -sign * gamma[1] * ua;
+        force_a[1] = sign * beta[0] * ue1;
+        force_b[1] = sign * beta[0] * ue2;
+        force_c[1] = sign * gamma[0] * ua;
+        forces = 2;
+      }
+    }
+
+    // 3. The first event along it: a support letting go, a new contact, the lowest point.
+    double s_event = curve.end;
+    int event = 0;  // 0: end of the curve, 1: new contact with `touched`, 2: `dropped` lets go
+    int touched = 0;
+    int dropped = 0;
+    for (int k = 0; k < forces; ++k) {
+      const double s = first_falling_root(force_a[k], force_b[k], force_c[k], curve.end);
+      if (s < s_event) {
+        s_event = s;
+        event = 2;
+        dropped = k;
+      }
+    }
+    const auto consider = [&](int b) {
+      for (int k = 0; k < m; ++k)
+        if (supports[k] == b) return;
+      const double s = entry(curve, body(b));
+      if (s < s_event) {
+        s_event = s;
+        event = 1;
+        touched = b;
+      }
+    };
+    for (int f = 0; f < face_count; ++f) consider(-1 - f);
+    // Spheres the curve can reach: its bounding box grown by the largest contact distance.
+    Vec3 lo, hi;
+    const double reach = r + largest_;
+    if (curve.line) {
+      const double fall = curve.e1.dot(down);
+      double length = fall > 1e-12 ? (up.dot(curve.origin) - floor_height) / fall
+                                   : (box_max_ - box_min_).norm();
+      if (s_event < length) length = s_event;
+      const Vec3 q = curve.at(std::max(length, 0.0));
+      lo = curve.origin.cwiseMin(q).array() - reach;
+      hi = curve.origin.cwiseMax(q).array() + reach;
+    } else {
+      lo = curve.origin.array() - (curve.rho + reach);
+      hi = curve.origin.array() + (curve.rho + reach);
+    }
+    near_.clear();
+    grid_->for_each_in(lo, hi, [&](int b) { near_.push_back(b); });
+    for (const int b : near_) consider(b);
+
+    if (!std::isfinite(s_event)) {
+      std::ostringstream message;
+      message << "SequentialDeposition: a sphere on " << m
+              << " supports found nothing to stop it along its path";
+      throw std::runtime_error(message.str());
+    }
+    p = curve.at(s_event);
+#ifdef TMDEM_DEPOSITION_TRACE
+    fprintf(stderr, "move %zu m=%d line=%d s=%.17g end=%.17g event=%d touched=%d dropped=%d p=%.9g %.9g %.9g\n", move, m, curve.line, s_event, curve.end, event, touched, dropped, p.x(), p.y(), p.z());
+#endif
+    if (event == 1) {
+      supports[m++] = touched;
+    } else if (event == 2) {
+      erase(dropped);
+    } else if (m == 1) {
+      m = 0;  // off the equator: falls free
+    } else {
+      out.resting = true;  // the lowest point of a two-support circle
+    }
+  }
+  out.moves = move;
+  out.position = p;
+  return out;
+}
+
+DepositionResult deposit_spheres(const std::vector<double>& radii, const Eigen::Vector3d& box_min,
+                                 const Eigen::Vector3d& box_max, int down_axis, int down_sign,
+                                 std::uint64_t seed, int dimension,
+                                 const std::vector<Eigen::Vector3d>& obstacle_positions,
+                                 const std::vector<double>& obstacle_radii, std::size_t max_moves) {
+  check_arguments(radii, box_min, box_max, down_axis, down_sign, dimension, obstacle_positions,
+                  obstacle_radii);
+  DepositionResult out;
+  out.positions.assign(radii.size(), Vec3::Zero());
+  if (radii.empty()) return out;
+  double largest = *std::max_element(radii.begin(), radii.end());
+  for (const double r : obstacle_radii) largest = std::max(largest, r);
+  SequentialDeposition container(box_min, box_max, down_axis, down_sign, largest, dimension);
+  for (std::size_t k = 0; k < obstacle_positions.size(); ++k)
+    container.add_sphere(obstacle_positions[k], obstacle_radii[k]);
+  const double box_height = std::abs(box_max[down_axis] - box_min[down_axis]);
+
+  std::mt19937_64 rng(seed);
+  // Drop order: a Fisher-Yates shuffle with our own draws, so that radius classes given in
+  // order (all small, then all large) are not laid in layers.
+  std::vector<std::size_t> order(radii.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  for (std::size_t k = order.size() - 1; k > 0; --k) {
+    const auto j = static_cast<std::size_t>(unit_draw(rng) * static_cast<double>(k + 1));
+    std::swap(order[k], order[std::min(j, k)]);
+  }
+  for (std::size_t n = 0; n < order.size(); ++n) {
+    const std::size_t id = order[n];
+    const double r = radii[id];
+    Vec3 start = Vec3::Zero();
+    for (int a = 0; a < dimension; ++a)
+      if (a != down_axis)
+        start[a] = box_min[a] + r + unit_draw(rng) * (box_max[a] - box_min[a] - 2.0 * r);
+    const SequentialDeposition::Drop d = container.drop(r, start, rng, max_moves);
+    out.moves += d.moves;
+    if (!d.resting) ++out.stopped_short;
+    const double height = container.height_m(d.position) + r;
+    if (height > box_height * (1.0 + 1e-12)) {
+      std::ostringstream message;
+      message << "deposit_spheres: the box is too low: sphere " << n + 1 << " of " << radii.size()
+              << " comes to rest reaching " << height << " m above the floor, the box is "
+              << box_height << " m high";
+      throw std::runtime_error(message.str());
+    }
+    out.positions[id] = d.position;
+    container.add_sphere(d.position, r);
+  }
+  out.top_m = container.top_m();
+  return out;
+}
+
+}  // namespace tmdem::mechanics

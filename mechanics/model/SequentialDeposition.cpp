@@ -6,7 +6,6 @@
 #include <limits>
 #include <numbers>
 #include <random>
-#include <cstdio>
 #include <sstream>
 #include <stdexcept>
 
@@ -432,9 +431,6 @@ SequentialDeposition::Drop SequentialDeposition::drop(double r, const Vec3& star
       throw std::runtime_error(message.str());
     }
     p = curve.at(s_event);
-#ifdef TMDEM_DEPOSITION_TRACE
-    fprintf(stderr, "move %zu m=%d line=%d s=%.17g end=%.17g event=%d touched=%d dropped=%d p=%.9g %.9g %.9g\n", move, m, curve.line, s_event, curve.end, event, touched, dropped, p.x(), p.y(), p.z());
-#endif
     if (event == 1) {
       supports[m++] = touched;
     } else if (event == 2) {

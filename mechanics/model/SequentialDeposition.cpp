@@ -203,13 +203,66 @@ SequentialDeposition::SequentialDeposition(const Vec3& box_min_m, const Vec3& bo
   grid_ = std::make_shared<Grid>(box_min_, box_max_, 2.0 * largest_);
 }
 
+namespace {
+constexpr int kNoShift = 13;  // shift code of (0, 0, 0)
+int shift_code(const int shift[3]) { return (shift[0] + 1) + 3 * (shift[1] + 1) + 9 * (shift[2] + 1); }
+}  // namespace
+
+void SequentialDeposition::make_periodic(int axis) {
+  if (axis < 0 || axis >= dimension_ || axis == down_axis_)
+    throw std::invalid_argument("SequentialDeposition: a periodic axis must lie across gravity");
+  if (!centre_.empty())
+    throw std::invalid_argument("SequentialDeposition: make an axis periodic before adding spheres");
+  if (box_max_[axis] - box_min_[axis] < 8.0 * largest_) {
+    std::ostringstream message;
+    message << "SequentialDeposition: the period along " << "xyz"[axis] << " ("
+            << box_max_[axis] - box_min_[axis] << " m) is shorter than 4 largest diameters ("
+            << 8.0 * largest_ << " m)";
+    throw std::invalid_argument(message.str());
+  }
+  periodic_[axis] = true;
+}
+
 void SequentialDeposition::add_sphere(const Vec3& centre_m, double radius_m) {
   if (!(radius_m > 0.0) || radius_m > largest_ || !centre_m.allFinite())
     throw std::invalid_argument("SequentialDeposition: a sphere's radius must be in (0, largest]");
-  grid_->insert(static_cast<int>(centre_.size()), centre_m);
-  centre_.push_back(centre_m);
-  radius_.push_back(radius_m);
-  top_ = std::max(top_, up_.dot(centre_m) + radius_m);
+  Vec3 c = centre_m;
+  for (int a = 0; a < 3; ++a) {
+    if (!periodic_[a]) continue;
+    const double period = box_max_[a] - box_min_[a];
+    c[a] -= period * std::floor((c[a] - box_min_[a]) / period);
+    if (c[a] >= box_max_[a]) c[a] = box_min_[a];  // round-off of the floor above
+  }
+  const int owner = static_cast<int>(centre_.size());
+  const auto push = [&](const Vec3& x, int code) {
+    const int entry = static_cast<int>(centre_.size());
+    grid_->insert(entry, x);
+    centre_.push_back(x);
+    radius_.push_back(radius_m);
+    owner_.push_back(owner);
+    shift_code_.push_back(code);
+    if (code != kNoShift) entry_of_[{owner, code}] = entry;
+  };
+  push(c, kNoShift);
+  top_ = std::max(top_, up_.dot(c) + radius_m);
+  // Images across periodic sides within two largest diameters (and at corners, across both).
+  const double band = 4.0 * largest_;
+  int choices[3][2] = {{0, 0}, {0, 0}, {0, 0}};
+  int counts[3] = {1, 1, 1};
+  for (int a = 0; a < 3; ++a) {
+    if (!periodic_[a]) continue;
+    if (c[a] - box_min_[a] < band) choices[a][counts[a]++] = 1;        // image beyond max
+    else if (box_max_[a] - c[a] < band) choices[a][counts[a]++] = -1;  // image below min
+  }
+  for (int i = 0; i < counts[0]; ++i)
+    for (int j = 0; j < counts[1]; ++j)
+      for (int k = 0; k < counts[2]; ++k) {
+        const int shift[3] = {choices[0][i], choices[1][j], choices[2][k]};
+        if (shift[0] == 0 && shift[1] == 0 && shift[2] == 0) continue;
+        Vec3 x = c;
+        for (int a = 0; a < 3; ++a) x[a] += shift[a] * (box_max_[a] - box_min_[a]);
+        push(x, shift_code(shift));
+      }
 }
 
 SequentialDeposition::Drop SequentialDeposition::drop(double r, const Vec3& start_m,
@@ -231,6 +284,7 @@ SequentialDeposition::Drop SequentialDeposition::drop(double r, const Vec3& star
     if (a == down_axis_) continue;
     Vec3 n = Vec3::Zero();
     n[a] = 1.0;
+    if (periodic_[a]) continue;
     const bool plane_of_motion = a < dimension_;
     faces[face_count++] = {true, n, plane_of_motion ? box_min_[a] + r : mid_z};
     faces[face_count++] = {true, -n, plane_of_motion ? -box_max_[a] + r : -mid_z};
@@ -440,6 +494,45 @@ SequentialDeposition::Drop SequentialDeposition::drop(double r, const Vec3& star
     } else {
       out.resting = true;  // the lowest point of a two-support circle
     }
+    // Rolled a diameter out across a periodic side: back by one period, the supports by their
+    // images on this side (all supports go if one has none: the sphere falls on from there).
+    for (int a = 0; a < 3; ++a) {
+      if (!periodic_[a]) continue;
+      const double period = box_max_[a] - box_min_[a];
+      const int back = p[a] > box_max_[a] + 2.0 * largest_ ? -1 : p[a] < box_min_[a] - 2.0 * largest_ ? 1 : 0;
+      if (back == 0) continue;
+      p[a] += back * period;
+      bool kept = true;
+      for (int k = 0; k < m && kept; ++k) {
+        if (supports[k] < 0) continue;  // a face: not along a periodic axis
+        const auto e = static_cast<std::size_t>(supports[k]);
+        int code = shift_code_[e];
+        int shift[3] = {code % 3 - 1, code / 3 % 3 - 1, code / 9 - 1};
+        shift[a] += back;
+        if (shift[a] < -1 || shift[a] > 1) {
+          kept = false;
+          break;
+        }
+        code = shift_code(shift);
+        if (code == kNoShift) {
+          supports[k] = owner_[e];
+        } else if (const auto found = entry_of_.find({owner_[e], code}); found != entry_of_.end()) {
+          supports[k] = found->second;
+        } else {
+          kept = false;
+        }
+      }
+      if (!kept) {
+        m = 0;
+        out.resting = false;
+      }
+    }
+  }
+  for (int a = 0; a < 3; ++a) {
+    if (!periodic_[a]) continue;
+    const double period = box_max_[a] - box_min_[a];
+    p[a] -= period * std::floor((p[a] - box_min_[a]) / period);
+    if (p[a] >= box_max_[a]) p[a] = box_min_[a];
   }
   out.moves = move;
   out.position = p;
@@ -450,7 +543,8 @@ DepositionResult deposit_spheres(const std::vector<double>& radii, const Eigen::
                                  const Eigen::Vector3d& box_max, int down_axis, int down_sign,
                                  std::uint64_t seed, int dimension,
                                  const std::vector<Eigen::Vector3d>& obstacle_positions,
-                                 const std::vector<double>& obstacle_radii, std::size_t max_moves) {
+                                 const std::vector<double>& obstacle_radii,
+                                 const std::array<bool, 3>& periodic, std::size_t max_moves) {
   check_arguments(radii, box_min, box_max, down_axis, down_sign, dimension, obstacle_positions,
                   obstacle_radii);
   DepositionResult out;
@@ -459,6 +553,8 @@ DepositionResult deposit_spheres(const std::vector<double>& radii, const Eigen::
   double largest = *std::max_element(radii.begin(), radii.end());
   for (const double r : obstacle_radii) largest = std::max(largest, r);
   SequentialDeposition container(box_min, box_max, down_axis, down_sign, largest, dimension);
+  for (int a = 0; a < 3; ++a)
+    if (periodic[a]) container.make_periodic(a);
   for (std::size_t k = 0; k < obstacle_positions.size(); ++k)
     container.add_sphere(obstacle_positions[k], obstacle_radii[k]);
   const double box_height = std::abs(box_max[down_axis] - box_min[down_axis]);
@@ -478,7 +574,8 @@ DepositionResult deposit_spheres(const std::vector<double>& radii, const Eigen::
     Vec3 start = Vec3::Zero();
     for (int a = 0; a < dimension; ++a)
       if (a != down_axis)
-        start[a] = box_min[a] + r + unit_draw(rng) * (box_max[a] - box_min[a] - 2.0 * r);
+        start[a] = periodic[a] ? box_min[a] + unit_draw(rng) * (box_max[a] - box_min[a])
+                               : box_min[a] + r + unit_draw(rng) * (box_max[a] - box_min[a] - 2.0 * r);
     const SequentialDeposition::Drop d = container.drop(r, start, rng, max_moves);
     out.moves += d.moves;
     if (!d.resting) ++out.stopped_short;

@@ -18,6 +18,8 @@
 #include <Eigen/Core>
 #include <cstddef>
 #include <cstdint>
+#include <array>
+#include <map>
 #include <memory>
 #include <random>
 #include <vector>
@@ -35,7 +37,14 @@ class SequentialDeposition {
   SequentialDeposition(const Eigen::Vector3d& box_min_m, const Eigen::Vector3d& box_max_m,
                        int down_axis, int down_sign, double largest_radius_m, int dimension = 3);
 
-  // A sphere already in place (earlier particles of the scene, or one just dropped).
+  // Makes `axis` (not gravity's) periodic with the box's extent along it as period, which must
+  // be at least 4 largest diameters: its two faces go, a sphere near one side supports (by its
+  // image) spheres across it, and positions come back wrapped into [min, max). Call before any
+  // add_sphere.
+  void make_periodic(int axis);
+
+  // A sphere already in place (earlier particles of the scene, or one just dropped); on a
+  // periodic axis its centre is wrapped into [min, max).
   void add_sphere(const Eigen::Vector3d& centre_m, double radius_m);
 
   struct Drop {
@@ -63,8 +72,14 @@ class SequentialDeposition {
   double floor_;     // up . p on the floor
   double largest_;   // m
   double top_;       // up . p of the highest sphere top
+  bool periodic_[3] = {false, false, false};
+  // Spheres and the images of those near a periodic side: centre, radius, and for an image the
+  // sphere it copies and its shift code (sum over axes of 3^a (shift_a + 1), shift_a in -1..1).
   std::vector<Eigen::Vector3d> centre_;
   std::vector<double> radius_;
+  std::vector<int> owner_;
+  std::vector<int> shift_code_;
+  std::map<std::pair<int, int>, int> entry_of_;  // (owner, shift code) -> entry, images only
   std::shared_ptr<Grid> grid_;
   std::vector<int> near_;  // reused candidate list
 };
@@ -78,8 +93,8 @@ struct DepositionResult {
 
 // Drops the spheres of `radii` (m) into the box [box_min, box_max] (m) in an order shuffled with
 // `seed`, each from a uniformly drawn horizontal position, on top of the spheres of
-// `obstacle_positions` / `obstacle_radii` (m) that are there already (dimension as for
-// SequentialDeposition). Reproducible on every
+// `obstacle_positions` / `obstacle_radii` (m) that are there already (dimension and periodic
+// axes as for SequentialDeposition; drops on a periodic axis are drawn over its whole period). Reproducible on every
 // machine (std::mt19937_64, own mapping to [0, 1)).
 // Throws std::invalid_argument for bad arguments and std::runtime_error when a sphere comes to
 // rest reaching above the box's top (the box is too low for the count).
@@ -88,6 +103,7 @@ DepositionResult deposit_spheres(const std::vector<double>& radii, const Eigen::
                                  std::uint64_t seed, int dimension = 3,
                                  const std::vector<Eigen::Vector3d>& obstacle_positions = {},
                                  const std::vector<double>& obstacle_radii = {},
+                                 const std::array<bool, 3>& periodic = {false, false, false},
                                  std::size_t max_moves = 1000);
 
 }  // namespace tmdem::mechanics

@@ -248,6 +248,55 @@ TEST(SequentialDeposition, EqualSpheresPackAtTheVisscherBolsterliFraction) {
   RecordProperty("solid_fraction", std::to_string(fraction));
 }
 
+TEST(SequentialDeposition, PeriodicSidesSupportAcrossTheBoundary) {
+  // Periodic in x and z: no side faces; every sphere wrapped into the box, no overlap and every
+  // weight carried by the contact normals, all by the nearest image; and spheres near a side
+  // rest on spheres across it (some contacts cross the boundary).
+  const int n = 600;
+  std::vector<double> radii(n, 0.5e-3);
+  const double side = 0.008;  // m: 8 diameters
+  const Vec3 lo(0.0, 0.0, 0.0), hi(side, 0.03, side);
+  const DepositionResult d = deposit_spheres(radii, lo, hi, 1, -1, 3, 3, {}, {}, {true, false, true});
+  EXPECT_EQ(d.stopped_short, 0u);
+  const auto nearest = [&](Vec3 b) {
+    for (const int a : {0, 2}) b[a] -= side * std::round(b[a] / side);
+    return b;
+  };
+  int crossing = 0, unbalanced_count = 0;
+  double worst_overlap = 0.0;
+  const Vec3 up(0.0, 1.0, 0.0);
+  for (int i = 0; i < n; ++i) {
+    const Vec3& x = d.positions[i];
+    EXPECT_TRUE(x.x() >= 0.0 && x.x() < side && x.z() >= 0.0 && x.z() < side) << i;
+    std::vector<Vec3> normals;
+    if (std::abs(x.y() - 0.5e-3) < 1e-12) normals.push_back(up);
+    for (int j = 0; j < n; ++j) {
+      if (j == i) continue;
+      const Vec3 direct = x - d.positions[j];
+      const Vec3 b = nearest(direct);
+      const double gap = (b.norm() - 1e-3) / 1e-3;
+      worst_overlap = std::max(worst_overlap, -gap);
+      if (std::abs(gap) < 1e-9) {
+        normals.push_back(b.normalized());
+        if ((b - direct).norm() > 0.5 * side && j > i) ++crossing;
+      }
+    }
+    bool held = false;
+    for (std::size_t a = 0; a < normals.size() && !held; ++a)
+      for (std::size_t b = a; b < normals.size() && !held; ++b)
+        for (std::size_t c = b; c < normals.size() && !held; ++c) {
+          Eigen::Matrix3d N;
+          N << normals[a], normals[b], normals[c];
+          const Eigen::Vector3d lambda = N.colPivHouseholderQr().solve(up);
+          held = (N * lambda - up).norm() < 1e-9 && lambda.minCoeff() >= -1e-9;
+        }
+    if (!held) ++unbalanced_count;
+  }
+  EXPECT_LT(worst_overlap, 1e-12);
+  EXPECT_EQ(unbalanced_count, 0);
+  EXPECT_GT(crossing, 20);
+}
+
 TEST(SequentialDeposition, BadArgumentsAndALowBoxAreReported) {
   const Vec3 lo(0.0, 0.0, 0.0), hi(0.004, 0.004, 0.004);
   EXPECT_THROW(deposit_spheres({1e-3}, lo, hi, 3, -1, 1), std::invalid_argument);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace tmdem::mechanics {
 namespace {
@@ -52,7 +53,11 @@ bool ContactDetector::update(const ParticleSet& particles, const std::vector<Wal
   for (std::size_t i = 0; i < n; ++i) {
     const double ahead = lookahead_m.empty() ? 0.0 : lookahead_m[i];
     lookahead_max = std::max(lookahead_max, ahead);
-    if (!need && (particles.position[i] - reference_position_[i]).norm() + ahead > 0.5 * margin_) {
+    // Through the nearest image: a particle wrapped across a periodic boundary has moved by
+    // its displacement, not by the period.
+    if (!need &&
+        particles.box.minimum_image(particles.position[i] - reference_position_[i]).norm() + ahead >
+            0.5 * margin_) {
       need = true;
     }
   }
@@ -71,6 +76,24 @@ bool ContactDetector::update(const ParticleSet& particles, const std::vector<Wal
   return true;
 }
 
+void ContactDetector::fit_margin_to_period(const ParticleSet& particles, double lookahead_max) {
+  // The nearest image is the only one within reach while the reach 2 r_max + margin is at most
+  // half a period; past that a pair could touch twice (two images), which one candidate cannot
+  // hold. So the margin shrinks to fit (more rebuilds, never a missed pair), but never below
+  // twice the largest look-ahead, which keeps the half-margin test sound.
+  double period_m = INFINITY;
+  for (int a = 0; a < 3; ++a)
+    if (particles.box.along(a)) period_m = std::min(period_m, particles.box.length(a));
+  const double fit_m = 0.5 * period_m - 2.0 * particles.max_radius();
+  margin_ = std::min(margin_, fit_m);
+  if (!(margin_ > 0.0) || margin_ < 2.0 * lookahead_max)
+    throw std::runtime_error(
+        "periodic period " + std::to_string(period_m) + " m is too short for the contact reach "
+        "(2 x (largest diameter + detection margin, at least 2 x the largest look-ahead " +
+        std::to_string(lookahead_max) + " m) must fit in it): enlarge the period or slow the "
+        "particles");
+}
+
 void ContactDetector::rebuild(const ParticleSet& particles, const std::vector<Wall>& walls,
                               double lookahead_max) {
   const std::size_t n = particles.size();
@@ -84,7 +107,9 @@ void ContactDetector::rebuild(const ParticleSet& particles, const std::vector<Wa
   const auto& r = particles.radius;
   const auto& fixed = particles.fixed;
   const auto count = static_cast<std::ptrdiff_t>(n);
-  if (n >= 2) grid_.build(x, 2.0 * particles.max_radius() + margin_);
+  const PeriodicBox& box = particles.box;
+  if (box.any()) fit_margin_to_period(particles, lookahead_max);
+  if (n >= 2) grid_.build(x, 2.0 * particles.max_radius() + margin_, box);
   const bool parallel = count >= parallel_from_;
   const auto threads = static_cast<std::size_t>(parallel ? omp_get_max_threads() : 1);
   if (thread_pairs_.size() < threads) {
@@ -115,7 +140,7 @@ void ContactDetector::rebuild(const ParticleSet& particles, const std::vector<Wa
       grid_.for_each_neighbour(a, [&](std::uint32_t b) {
         if (b < a || (fixed[a] && fixed[b])) return;  // fixed bodies never exchange impulses
         const double reach = r[a] + r[b] + margin_;
-        if ((x[a] - x[b]).squaredNorm() <= reach * reach) neighbours.push_back(b);
+        if (box.minimum_image(x[a] - x[b]).squaredNorm() <= reach * reach) neighbours.push_back(b);
       });
       std::sort(neighbours.begin(), neighbours.end());
       for (const std::uint32_t b : neighbours) local.push_back({ii, static_cast<std::int32_t>(b)});

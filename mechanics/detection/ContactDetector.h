@@ -11,6 +11,10 @@
 // same test with its own displacement and look-ahead: a particle-wall gap then closes by at
 // most margin / 2 + margin / 2.
 //
+// Periodic axes (particles.box): the grid wraps, pairs and displacements are measured through
+// the nearest image, and a pair across a boundary is the same (i, j) entry as inside the box,
+// so wrapping a particle keeps its candidates and their warm starts.
+//
 // Everything lives in reused vectors: no allocation once warm.
 //
 // Parallel (OpenMP, from parallel_from particles on): each thread lists the pairs (i, j > i)
@@ -75,6 +79,9 @@ class ContactDetector {
 
  private:
   void rebuild(const ParticleSet& particles, const std::vector<Wall>& walls, double lookahead_max);
+  // Shrinks margin_ so that twice the contact reach fits in the shortest period; throws
+  // std::runtime_error when that leaves less than twice the largest look-ahead.
+  void fit_margin_to_period(const ParticleSet& particles, double lookahead_max);
 
   double min_margin_;
   double max_margin_;

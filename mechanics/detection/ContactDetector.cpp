@@ -46,18 +46,21 @@ bool ContactDetector::update(const ParticleSet& particles, const std::vector<Wal
                              const std::vector<double>& lookahead_m,
                              const std::vector<double>& wall_lookahead_m) {
   const std::size_t n = particles.size();
-  double lookahead_max = 0.0;
+  double lookahead_max = 0.0, particle_lookahead_max = 0.0;
   bool need = !valid_ || reference_position_.size() != n;
+  // Particles are held to the margin that fits the periods (margin_ without periodic axes).
+  const double particle_margin = particle_margin_m(particles);
   // Serial on purpose: about 3 ns per particle, less than waking threads costs on a loaded
   // machine (measured: 100,000 particles, 0.3 ms serial, 1 to 20 ms with 2 threads at load 11).
   for (std::size_t i = 0; i < n; ++i) {
     const double ahead = lookahead_m.empty() ? 0.0 : lookahead_m[i];
     lookahead_max = std::max(lookahead_max, ahead);
+    particle_lookahead_max = std::max(particle_lookahead_max, ahead);
     // Through the nearest image: a particle wrapped across a periodic boundary has moved by
     // its displacement, not by the period.
     if (!need &&
         particles.box.minimum_image(particles.position[i] - reference_position_[i]).norm() + ahead >
-            0.5 * margin_) {
+            0.5 * particle_margin) {
       need = true;
     }
   }
@@ -73,25 +76,32 @@ bool ContactDetector::update(const ParticleSet& particles, const std::vector<Wal
   }
   if (!need) return false;
   rebuild(particles, walls, lookahead_max);
+  if (particles.box.any()) check_period(particles, particle_lookahead_max);
   return true;
 }
 
-void ContactDetector::fit_margin_to_period(const ParticleSet& particles, double lookahead_max) {
-  // The nearest image is the only one within reach while the reach 2 r_max + margin is at most
-  // half a period; past that a pair could touch twice (two images), which one candidate cannot
-  // hold. So the margin shrinks to fit (more rebuilds, never a missed pair), but never below
-  // twice the largest look-ahead, which keeps the half-margin test sound.
+double ContactDetector::particle_margin_m(const ParticleSet& particles) const {
+  // The nearest image is the only one that can touch while a pair's relative motion between
+  // rebuilds (at most the particle margin: half of it each) stays below half a period less a
+  // diameter; past that a pair could touch twice (two images), which one candidate cannot
+  // hold. So along periodic axes the particles are held to that margin (more rebuilds, never a
+  // missed pair). Walls (a fast piston) keep the whole margin: their gaps are not periodic.
+  if (!particles.box.any()) return margin_;
   double period_m = INFINITY;
   for (int a = 0; a < 3; ++a)
     if (particles.box.along(a)) period_m = std::min(period_m, particles.box.length(a));
-  const double fit_m = 0.5 * period_m - 2.0 * particles.max_radius();
-  margin_ = std::min(margin_, fit_m);
-  if (!(margin_ > 0.0) || margin_ < 2.0 * lookahead_max)
+  return std::min(margin_, 0.5 * period_m - 2.0 * particles.max_radius());
+}
+
+void ContactDetector::check_period(const ParticleSet& particles, double lookahead_max) const {
+  // The half-margin test is sound only with a margin of at least twice the largest look-ahead.
+  const double fitted_m = particle_margin_m(particles);
+  if (!(fitted_m > 0.0) || fitted_m < 2.0 * lookahead_max)
     throw std::runtime_error(
-        "periodic period " + std::to_string(period_m) + " m is too short for the contact reach "
-        "(2 x (largest diameter + detection margin, at least 2 x the largest look-ahead " +
-        std::to_string(lookahead_max) + " m) must fit in it): enlarge the period or slow the "
-        "particles");
+        "a periodic period is too short for the contact reach: half the shortest period less "
+        "the largest diameter leaves " + std::to_string(fitted_m) + " m, less than twice the "
+        "largest look-ahead " + std::to_string(lookahead_max) + " m (how far a particle may move "
+        "in a step): enlarge the period or shorten mechanics.time_step");
 }
 
 void ContactDetector::rebuild(const ParticleSet& particles, const std::vector<Wall>& walls,
@@ -108,7 +118,6 @@ void ContactDetector::rebuild(const ParticleSet& particles, const std::vector<Wa
   const auto& fixed = particles.fixed;
   const auto count = static_cast<std::ptrdiff_t>(n);
   const PeriodicBox& box = particles.box;
-  if (box.any()) fit_margin_to_period(particles, lookahead_max);
   if (n >= 2) grid_.build(x, 2.0 * particles.max_radius() + margin_, box);
   const bool parallel = count >= parallel_from_;
   const auto threads = static_cast<std::size_t>(parallel ? omp_get_max_threads() : 1);

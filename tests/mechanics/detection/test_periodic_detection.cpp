@@ -132,13 +132,19 @@ TEST(PeriodicDetection, APeriodTooShortForTheReachIsRefused) {
   ParticleSet set = two_spheres(2.6e-3, box);
   ContactDetector detector(0.1e-3, 2e-3);
   EXPECT_THROW(detector.update(set, {}, {}), std::runtime_error);
-  // 4.6 mm: the margin (4 x the look-ahead of 0.1 mm) shrinks to fit (0.3 mm), the pair is
-  // found; a look-ahead of 0.2 mm needs a margin of 0.4 mm, more than fits.
+  // 4.6 mm: the margin (4 x the look-ahead of 0.1 mm) is 0.4 mm, but the particles are held
+  // to the 0.3 mm that fits (half the period less a diameter): a move of 0.06 mm plus the
+  // look-ahead passes half of it and rebuilds. A look-ahead of 0.2 mm needs 0.4 mm: refused.
   set.box.high.x() = 4.6e-3;
   ContactDetector fitted(0.1e-3, 2e-3);
-  ASSERT_TRUE(fitted.update(set, {}, {0.1e-3, 0.1e-3}));
-  EXPECT_NEAR(fitted.margin(), 0.3e-3, 1e-15);
+  const std::vector<double> ahead{0.1e-3, 0.1e-3};
+  ASSERT_TRUE(fitted.update(set, {}, ahead));
+  EXPECT_NEAR(fitted.margin(), 0.4e-3, 1e-15);
   EXPECT_EQ(fitted.pairs().size(), 1u);
+  set.position[1].x() += 0.04e-3;
+  EXPECT_FALSE(fitted.update(set, {}, ahead));
+  set.position[1].x() += 0.02e-3;
+  EXPECT_TRUE(fitted.update(set, {}, ahead));
   ContactDetector fast(0.1e-3, 2e-3);
   EXPECT_THROW(fast.update(set, {}, {0.2e-3, 0.2e-3}), std::runtime_error);
 }

@@ -53,6 +53,17 @@ void check_scene(const Scene& scene, std::ostream& out) {
   std::size_t isothermal = 0;
   for (const auto& w : scene.walls) isothermal += w.temperature_K.has_value();
   out << " (" << isothermal << " isothermal)\n";
+  if (scene.periodic.any()) {
+    out << "periodic:";
+    const char* separator = " ";
+    for (int a = 0; a < 3; ++a)
+      if (scene.periodic.axis[std::size_t(a)]) {
+        out << separator << "xyz"[a] << " [" << scene.periodic.low_m[std::size_t(a)] << ", "
+            << scene.periodic.high_m[std::size_t(a)] << ") m";
+        separator = ", ";
+      }
+    out << "\n";
+  }
   out << "effects: mechanics " << mechanics_name(scene.effects.mechanics);
   for (const auto& e : thermal::heat_transfer_effects())
     out << ", " << e.key << (scene.effects.on(e.key) ? " on" : " off");

@@ -95,37 +95,22 @@ bool ContactSlabs::update(const ContactProblem& problem, int slabs) {
     order_[static_cast<std::size_t>(cursor_[static_cast<std::size_t>(slab_of_[c])]++)] = static_cast<std::int32_t>(c);
   phase_start_ = {0, even, cut, cut + 1};
 #ifndef NDEBUG
-  // The promise, checked: the contacts of one particle lie in one slab or two neighbours.
-  std::vector<std::int32_t> first(problem.particle_count, cut), last(problem.particle_count, -1);
+  // The promise, checked: the contacts of one particle lie in one slab or two neighbours (round
+  // a period the last slab and the first are neighbours too).
+  std::vector<std::int32_t> seen(problem.particle_count, -1), other(problem.particle_count, -1);
   for (std::size_t c = 0; c < count; ++c) {
     if (on_piston(problem, c)) continue;
     const std::int32_t v = slab_of_[c];
     const std::int32_t slab = v < even ? 2 * v : 2 * (v - even) + 1;
     for (const std::int32_t b : {problem.body_i[c], problem.body_j[c]}) {
       if (is_wall(b)) continue;
-      first[static_cast<std::size_t>(b)] = std::min(first[static_cast<std::size_t>(b)], slab);
-      last[static_cast<std::size_t>(b)] = std::max(last[static_cast<std::size_t>(b)], slab);
-    }
-  }
-  if (!periodic) {
-    for (std::size_t p = 0; p < problem.particle_count; ++p) assert(last[p] - first[p] <= 1);
-  } else {
-    // Round the period: one slab, two neighbours, or the last and the first.
-    std::vector<std::int32_t> seen(problem.particle_count, -1), other(problem.particle_count, -1);
-    for (std::size_t c = 0; c < count; ++c) {
-      if (on_piston(problem, c)) continue;
-      const std::int32_t v = slab_of_[c];
-      const std::int32_t slab = v < even ? 2 * v : 2 * (v - even) + 1;
-      for (const std::int32_t b : {problem.body_i[c], problem.body_j[c]}) {
-        if (is_wall(b)) continue;
-        const auto p = static_cast<std::size_t>(b);
-        if (seen[p] < 0) seen[p] = slab;
-        if (slab == seen[p] || slab == other[p]) continue;
-        assert(other[p] < 0);  // a third slab
-        other[p] = slab;
-        const std::int32_t apart = (slab - seen[p] + cut) % cut;
-        assert(apart == 1 || apart == cut - 1);
-      }
+      const auto p = static_cast<std::size_t>(b);
+      if (seen[p] < 0) seen[p] = slab;
+      if (slab == seen[p] || slab == other[p]) continue;
+      assert(other[p] < 0);  // a third slab
+      other[p] = slab;
+      const std::int32_t apart = std::abs(slab - seen[p]);
+      assert(apart == 1 || (periodic && apart == cut - 1));
     }
   }
 #endif

@@ -53,6 +53,17 @@ void check_scene(const Scene& scene, std::ostream& out) {
   std::size_t isothermal = 0;
   for (const auto& w : scene.walls) isothermal += w.temperature_K.has_value();
   out << " (" << isothermal << " isothermal)\n";
+  if (scene.periodic.any()) {
+    out << "periodic:";
+    const char* separator = " ";
+    for (int a = 0; a < 3; ++a)
+      if (scene.periodic.axis[std::size_t(a)]) {
+        out << separator << "xyz"[a] << " [" << scene.periodic.low_m[std::size_t(a)] << ", "
+            << scene.periodic.high_m[std::size_t(a)] << ") m";
+        separator = ", ";
+      }
+    out << "\n";
+  }
   out << "effects: mechanics " << mechanics_name(scene.effects.mechanics);
   for (const auto& e : thermal::heat_transfer_effects())
     out << ", " << e.key << (scene.effects.on(e.key) ? " on" : " off");
@@ -80,6 +91,23 @@ void check_scene(const Scene& scene, std::ostream& out) {
           << "; lower mechanics.time_step below " << travel.limit_m() / travel.speed_m_per_s
           << " s\n";
     }
+  }
+  if (travel.speed_m_per_s > 0.0 && scene.periodic.any()) {
+    // The detector's look-ahead 2 h (|v| + h |g|) must fit twice in half the shortest period
+    // less the largest diameter (mechanics/detection/ContactDetector.h), else the run stops.
+    double period_m = INFINITY, r_max = 0.0;
+    for (int a = 0; a < 3; ++a)
+      if (scene.periodic.axis[std::size_t(a)]) period_m = std::min(period_m, scene.periodic.length_m(a));
+    for (const auto& p : scene.particles) r_max = std::max(r_max, p.radius_m);
+    const double h = scene.mechanics.time_step_s;
+    const double g = std::hypot(scene.gravity_m_per_s2[0], scene.gravity_m_per_s2[1], scene.gravity_m_per_s2[2]);
+    const double needed_m = 4.0 * h * (travel.speed_m_per_s + h * g);
+    const double room_m = 0.5 * period_m - 2.0 * r_max;
+    if (needed_m > room_m)
+      out << "warning: at the estimated speed the detection needs " << needed_m
+          << " m of margin (twice the look-ahead), more than the periods leave (" << room_m
+          << " m: half the shortest period less the largest diameter); the run would stop when a "
+             "particle gets that fast: enlarge the period or lower mechanics.time_step\n";
   }
   out << "thermal: integrator " << scene.thermal.integrator << ", linear solver "
       << scene.thermal.linear_solver << ", conductance " << scene.thermal.conductance << "\n";

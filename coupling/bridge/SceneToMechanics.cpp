@@ -9,6 +9,7 @@ double particle_mass_kg(const Scene& scene, std::size_t id) {
 
 mechanics::ParticleSet make_particle_set(const Scene& scene) {
   mechanics::ParticleSet set;
+  set.box = periodic_box(scene.periodic);
   set.reserve(scene.particles.size());
   for (std::size_t i = 0; i < scene.particles.size(); ++i) {
     const auto& p = scene.particles[i];

@@ -164,7 +164,7 @@ void ThermalNetworkBuilder::add_gap_edge(thermal::ThermalNetwork& edges, std::in
   const double a = contact ? thermal::hertz_contact_radius_m(body(i), body(j), force_N) : 0.0;
   const auto si = std::size_t(i);
   if (!mechanics::is_wall(j)) {
-    const double gap = (x[si] - x[std::size_t(j)]).norm() - r[si] - r[std::size_t(j)];
+    const double gap = geometry.branch(si, std::size_t(j)).norm() - r[si] - r[std::size_t(j)];
     edges.add_edge(std::int32_t(i), std::int32_t(j), H, gap, a, contact);
     return;
   }

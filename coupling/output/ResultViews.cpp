@@ -122,9 +122,19 @@ void create_static_views(hid_t file, std::size_t particles) {
 
 }  // namespace
 
-void ResultViews::create(hid_t file, std::size_t particles, const std::vector<WallPlane>& walls) {
+void ResultViews::create(hid_t file, std::size_t particles, const std::vector<WallPlane>& walls,
+                         const PeriodicBounds& periodic) {
   particles_ = particles;
   walls_ = walls;
+  periodic_ = periodic;
+  if (periodic.any()) {
+    Hdf5Handle box = hdf5::create_group(file, "periodic");
+    std::vector<std::int64_t> axis;
+    for (const bool a : periodic.axis) axis.push_back(a ? 1 : 0);
+    hdf5::write_array(box.get(), "axis", axis, 0, "1");
+    hdf5::write_array(box.get(), "low", std::vector<double>(periodic.low_m.begin(), periodic.low_m.end()), 0, "m");
+    hdf5::write_array(box.get(), "high", std::vector<double>(periodic.high_m.begin(), periodic.high_m.end()), 0, "m");
+  }
   Hdf5Handle group = hdf5::create_group(file, "walls");
   std::vector<double> point, normal, radius, temperature;
   for (const WallPlane& w : walls) {
@@ -143,6 +153,18 @@ void ResultViews::create(hid_t file, std::size_t particles, const std::vector<Wa
 void ResultViews::open(hid_t file, std::size_t particles) {
   particles_ = particles;
   walls_.clear();
+  periodic_ = {};
+  if (hdf5::exists(file, "periodic")) {
+    Hdf5Handle box = hdf5::open_group(file, "periodic");
+    const auto low = hdf5::read_double_array(box.get(), "low", 0);
+    const auto high = hdf5::read_double_array(box.get(), "high", 0);
+    const auto axis = hdf5::read_int64_array(box.get(), "axis", 0);
+    for (std::size_t k = 0; k < 3 && k < axis.size() && k < low.size() && k < high.size(); ++k) {
+      periodic_.axis[k] = axis[k] != 0;
+      periodic_.low_m[k] = low[k];
+      periodic_.high_m[k] = high[k];
+    }
+  }
   if (hdf5::exists(file, "walls")) {
     Hdf5Handle group = hdf5::open_group(file, "walls");
     const auto point = hdf5::read_double_array(group.get(), "point", 3);
@@ -334,10 +356,12 @@ FrameViewCounts ResultViews::add_frame(hid_t file, std::size_t frame, const Fram
   const std::string force_block = block("/contacts/blocks", "normal_force");
   if (contacts_same) {
     counts.wall_contacts = previous_.counts.wall_contacts;
+    counts.image_ends = previous_.counts.image_ends;
     for (const char* name : {"contact_lines", "contact_points", "normal_force", "conductance",
                              "tangential_force"})
       link(previous_.contacts_frame, name);
     if (counts.wall_contacts > 0) link(previous_.contacts_frame, "wall_feet");
+    if (counts.image_ends > 0) link(previous_.contacts_frame, "image_ends");
   } else if (c > 0) {
     std::vector<std::int64_t> lines(pair.begin(), pair.end());
     std::vector<double> feet;
@@ -359,6 +383,30 @@ FrameViewCounts ResultViews::add_frame(hid_t file, std::size_t frame, const Fram
       lines[2 * k + 1] = std::int64_t(n + counts.wall_contacts);
       ++counts.wall_contacts;
     }
+    // A contact round a periodic boundary ends at the image of j beside i, so that no line
+    // spans the box.
+    std::vector<double> images;
+    if (periodic_.any()) {
+      for (std::size_t k = 0; k < counts.contacts; ++k) {
+        const std::int64_t j = pair[2 * k + 1];
+        if (j < 0) continue;
+        const std::size_t i = std::size_t(pair[2 * k]);
+        std::array<double, 3> end{};
+        bool across = false;
+        for (int a = 0; a < 3; ++a) {
+          end[a] = position_m[3 * std::size_t(j) + a];
+          if (!periodic_.axis[a]) continue;
+          const double L = periodic_.high_m[a] - periodic_.low_m[a];
+          const double shift = L * std::round((position_m[3 * i + a] - end[a]) / L);
+          across = across || shift != 0.0;
+          end[a] += shift;
+        }
+        if (!across) continue;
+        images.insert(images.end(), end.begin(), end.end());
+        lines[2 * k + 1] = std::int64_t(n + counts.wall_contacts + counts.image_ends);
+        ++counts.image_ends;
+      }
+    }
     hdf5::write_array(g, "contact_lines", lines, 2, "1");
     const hsize_t w = counts.wall_contacts;
     std::vector<Mapping> points = {
@@ -368,7 +416,12 @@ FrameViewCounts ResultViews::add_frame(hid_t file, std::size_t frame, const Fram
       hdf5::write_array(g, "wall_feet", feet, 3, "m");
       points.push_back({n, w, here + "wall_feet", {w, 3}, 0, w});
     }
-    create_virtual(g, "contact_points", {n + w, 3}, points, "m");
+    const hsize_t m = counts.image_ends;
+    if (m > 0) {
+      hdf5::write_array(g, "image_ends", images, 3, "m");
+      points.push_back({n + w, m, here + "image_ends", {m, 3}, 0, m});
+    }
+    create_virtual(g, "contact_points", {n + w + m, 3}, points, "m");
     if (!force_block.empty()) {
       link_block(force_block, "normal_force");
       link_block(block("/contacts/blocks", "conductance"), "conductance");
@@ -409,6 +462,10 @@ FrameViewCounts ResultViews::counts(hid_t file, std::size_t frame) const {
   if (hdf5::exists(group.get(), "wall_feet")) {
     Hdf5Handle feet = hdf5::open_dataset(group.get(), "wall_feet");
     counts.wall_contacts = hdf5::dataset_rows(feet.get());
+  }
+  if (hdf5::exists(group.get(), "image_ends")) {
+    Hdf5Handle ends = hdf5::open_dataset(group.get(), "image_ends");
+    counts.image_ends = hdf5::dataset_rows(ends.get());
   }
   return counts;
 }

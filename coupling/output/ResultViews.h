@@ -14,7 +14,10 @@
 //   /xdmf/frame_<f>/position [N,3], velocity [N,3], temperature [N]          (virtual)
 //   /xdmf/frame_<f>/contact_lines [C_f,2] int64: particle ids i, j, or N + k for the k-th wall
 //     contact of the frame, whose end is wall_feet[k] [W_f,3] (the centre's projection on it)
-//   /xdmf/frame_<f>/contact_points [N+W_f,3]: the positions, then wall_feet        (virtual)
+//   /xdmf/frame_<f>/image_ends [I_f,3] m (periodic scenes): a contact round a periodic boundary is
+//     drawn from i to the image of j beside it, not across the box: its line's second end is
+//     N + W_f + k for the k-th such contact of the frame, the point image_ends[k]
+//   /xdmf/frame_<f>/contact_points [N+W_f+I_f,3]: the positions, wall_feet, image_ends (virtual)
 //   /xdmf/frame_<f>/normal_force, conductance, heat_flow [C_f], tangential_force [C_f,3] (virtual)
 //   /xdmf/frame_<f>/wall_points [4Q,3] m: only in a frame where a wall (a piston) stands away
 //     from /walls/point: /xdmf/walls/points with each wall's quads shifted by how far its point
@@ -35,13 +38,16 @@ namespace tmdem::coupling {
 struct FrameViewCounts {
   std::size_t contacts = 0;       // C_f (0: no contact grid in this frame)
   std::size_t wall_contacts = 0;  // W_f
+  std::size_t image_ends = 0;     // I_f: contacts round a periodic boundary
   bool moved_walls = false;       // the frame has its own wall_points (a wall has moved)
 };
 
 class ResultViews {
  public:
   // /walls and /xdmf/vertices of a new file.
-  void create(hid_t file, std::size_t particles, const std::vector<WallPlane>& walls);
+  // /periodic too when `periodic` has a periodic axis.
+  void create(hid_t file, std::size_t particles, const std::vector<WallPlane>& walls,
+              const PeriodicBounds& periodic = {});
   // An existing file; a file written before /xdmf existed gets /xdmf/vertices (and no walls).
   void open(hid_t file, std::size_t particles);
 
@@ -67,6 +73,7 @@ class ResultViews {
 
   std::size_t particles_ = 0;
   std::vector<WallPlane> walls_;
+  PeriodicBounds periodic_;
   std::size_t wall_quads_ = 0;
   std::vector<double> wall_corners_;    // /xdmf/walls/points, read when a wall first moves
   std::vector<std::size_t> quad_wall_;  // the wall each quad belongs to

@@ -234,7 +234,7 @@ ResultWriter::ResultWriter(const std::string& path, const ResultHeader& header,
     w.frames.create(w.file.get(), n, header.walls.size(), header.frozen);
     w.contacts.create(w.file.get(), n, store_contacts,
                       header.frozen ? header.frozen_contacts : 0);
-    w.views.create(w.file.get(), n, header.walls);
+    w.views.create(w.file.get(), n, header.walls, header.periodic);
     hdf5::check_ok(H5Fflush(w.file.get(), H5F_SCOPE_LOCAL), "H5Fflush");
   } catch (const Hdf5Failure& e) {
     w.close_ids();

@@ -13,6 +13,7 @@
 //   /contacts/pair [C,2] int64 ("1"; j < 0 is wall -1-j), normal_force [C] N,
 //      tangential_force [C,3] N, conductance [C] W/K, heat_flow [C] W; group attribute
 //      "stored" = 1 or 0
+//   /periodic (scenes with [periodic] only): axis [3] int64 (1: periodic), low [3] m, high [3] m
 //   /walls and /xdmf: the walls and the per-frame views RESULT.xdmf points at (ResultViews.h)
 //   A frozen bed (ResultHeader::frozen): /frames/position and velocity, /contacts/pair,
 //   normal_force, tangential_force and conductance are virtual datasets over blocks in
@@ -62,6 +63,14 @@ struct WallPlane {
   double temperature_K = std::numeric_limits<double>::quiet_NaN();   // NaN: adiabatic
 };
 
+// The periodic box as the result file describes it (/periodic, written only when some axis is
+// periodic): positions are stored wrapped into [low, high) along each periodic axis.
+struct PeriodicBounds {
+  std::array<bool, 3> axis{false, false, false};
+  std::array<double, 3> low_m{}, high_m{};  // m; read along the periodic axes only
+  bool any() const { return axis[0] || axis[1] || axis[2]; }
+};
+
 // Static data, written once. All vectors have N entries (N = radius_m.size()).
 struct ResultHeader {
   std::string scene_toml;                     // resolved scene, root attribute "scene"
@@ -71,6 +80,7 @@ struct ResultHeader {
   std::vector<int> material;                  // index into the scene's materials
   std::vector<std::string> material_names;    // optional; attribute "names" of /particles/material
   std::vector<WallPlane> walls;               // /walls, drawn in RESULT.xdmf
+  PeriodicBounds periodic;                    // /periodic (none: not written)
   // A frozen bed (mechanics "settle" or "off"): every frame has the same positions, velocities
   // and frozen_contacts contacts. Those are then written once (BlockSeries.h: each later frame
   // is a hard link while the values stay the same); readers see the same [F, ...] datasets.

@@ -108,7 +108,7 @@ std::string xdmf_document(const std::string& h5_file_name, std::size_t particles
       c = std::to_string(views[f].contacts);
       c2 = c + " 2";
       c3 = c + " 3";
-      points = std::to_string(particles + views[f].wall_contacts) + " 3";
+      points = std::to_string(particles + views[f].wall_contacts + views[f].image_ends) + " 3";
       open_frame("contacts", f);
       out.append("        <Topology TopologyType=\"Polyline\" NumberOfElements=\"").append(c);
       out.append("\" NodesPerElement=\"2\">");

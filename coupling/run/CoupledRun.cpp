@@ -412,6 +412,9 @@ void CoupledRun::open_result_file() {
       if (wall.temperature_K) plane.temperature_K = *wall.temperature_K;
       header.walls.push_back(plane);
     }
+    header.periodic.axis = scene_.periodic.axis;
+    header.periodic.low_m = scene_.periodic.low_m;
+    header.periodic.high_m = scene_.periodic.high_m;
     header.frozen = frozen_;  // the contacts too: fixed after settling (or from the start)
     header.frozen_contacts = contacts_.size();
     writer_.emplace(options_.output_path, header, scene_.output.contacts,

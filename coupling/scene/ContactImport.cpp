@@ -84,10 +84,13 @@ void SceneBuilder::read_import_contacts(const SceneTable& t, const Packing& pack
     // n: the unit vector from j to i.
     const auto& a = scene_.particles[i].position_m;
     const auto& b = scene_.particles[j].position_m;
+    // Through the nearest periodic image (a pair across a [periodic] boundary).
+    const Eigen::Vector3d branch = periodic_box(scene_.periodic).minimum_image(
+        Eigen::Vector3d(a[0] - b[0], a[1] - b[1], a[2] - b[2]));
     Vec3 n{};
     double length = 0.0;
     for (int d = 0; d < 3; ++d) {
-      n[d] = a[d] - b[d];
+      n[d] = branch[d];
       length += n[d] * n[d];
     }
     length = std::sqrt(length);

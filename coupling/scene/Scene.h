@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "mechanics/integrator/NscdParameters.h"
+#include "mechanics/model/PeriodicBox.h"
 #include "mechanics/solvers/ContactSolverRegistry.h"
 #include "thermal/integrators/IntegratorKind.h"
 #include "thermal/modes/ModeSettings.h"
@@ -200,6 +201,26 @@ struct OutputSettings {
   double checkpoint_interval_s = 0.0;
 };
 
+// [periodic]: the axes along which space repeats, each with its period [low, high) (m). The
+// particles are wrapped into it at load; walls must be planes parallel to every periodic axis.
+struct PeriodicSettings {
+  std::array<bool, 3> axis{false, false, false};
+  Vec3 low_m{}, high_m{};
+  bool any() const { return axis[0] || axis[1] || axis[2]; }
+  double length_m(int a) const { return high_m[std::size_t(a)] - low_m[std::size_t(a)]; }
+};
+
+// The mechanics' view of [periodic] (no axis: a box that changes nothing).
+inline mechanics::PeriodicBox periodic_box(const PeriodicSettings& p) {
+  mechanics::PeriodicBox box;
+  box.periodic = p.axis;
+  for (int a = 0; a < 3; ++a) {
+    box.low[a] = p.low_m[std::size_t(a)];
+    box.high[a] = p.high_m[std::size_t(a)];
+  }
+  return box;
+}
+
 struct Scene {
   double duration_s = 0.0;
   int dimension = 3;
@@ -210,6 +231,7 @@ struct Scene {
   // ids: explicit [[particle]] first, then each [[generate]], then each [[import]]
   std::vector<Particle> particles;
   std::vector<Wall> walls;
+  PeriodicSettings periodic;          // none by default
   std::vector<ImportReport> imports;  // one per [[import]], in file order
   ImportedForces imported_forces;     // from [[import]] contacts; empty without
   // Every registered mode's parameters from its own section (defaults filled in), by mode name

@@ -26,6 +26,7 @@ Scene SceneBuilder::build() {
   root_.check_keys();
   read_format();
   read_simulation();
+  read_periodic();
   read_effects();
   read_materials();
   read_particles();
@@ -35,6 +36,7 @@ Scene SceneBuilder::build() {
     throw SceneError(source_ +
                      ": the scene has no particles (add [[particle]], [[generate]] or [[import]] entries)");
   read_walls();
+  check_periodic_bodies();
   read_assigns();
   read_heat_modes();
   read_settings();

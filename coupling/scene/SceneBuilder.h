@@ -74,6 +74,8 @@ class SceneBuilder {
                     const std::string& origin, const SceneTable& t);
   void read_particles();
   void read_walls();
+  void read_periodic();          // [periodic]: the periods (after [simulation])
+  void check_periodic_bodies();  // the periods against the particles and walls; wraps them
   void read_assigns();
   // SceneBuilderGenerators.cpp
   void read_generators();

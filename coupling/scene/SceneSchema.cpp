@@ -166,7 +166,8 @@ std::vector<Section> build_sections() {
       table("import", Kind::TableArray,
             "particles from a file: CSV, LAMMPS/LIGGGHTS text dump or a tmdem result"),
       table("assign", Kind::TableArray, "changes selected particles after generation"),
-      table("wall", Kind::TableArray, "infinite planes and cylinders")};
+      table("wall", Kind::TableArray, "infinite planes and cylinders"),
+      table("periodic", Kind::Table, "periodic boundaries: the axes along which space repeats")};
   for (const auto& s : modes) top.push_back(table(s.name, Kind::Table, s.description));
   for (const auto& k : {table("mechanics", Kind::Table, "NSCD contact dynamics"),
                         table("thermal", Kind::Table, "thermal integrator and contact conductance"),
@@ -335,6 +336,16 @@ std::vector<Section> build_sections() {
                "piston: pressure pushing it into the domain, over pressure_area"),
         number("pressure_area", "m^2", std::nullopt, Range::greater(0.0),
                "piston: the area the pressure acts over (e.g. the box cross-section)")}}};
+  sections.push_back(
+      {"periodic",
+       "periodic boundaries (no key: none): a particle leaving at max comes back at min, pairs "
+       "touch through the nearest image; particles outside [min, max) at start are moved in by "
+       "whole periods; walls must be planes parallel to every periodic axis; each period at "
+       "least 2 x (largest diameter + 0.1 x largest radius)",
+       {value("x", "m", "", "[min, max], max > min", "periodic along x with period max - min"),
+        value("y", "m", "", "[min, max], max > min", "periodic along y with period max - min"),
+        value("z", "m", "", "[min, max], max > min; 3D only",
+              "periodic along z with period max - min")}});
   for (const auto& s : modes) sections.push_back(s);
   sections.push_back(
       {"mechanics", "NSCD (Moreau-Jean, Gauss-Seidel); range checks apply when mechanics is on",

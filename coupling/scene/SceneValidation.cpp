@@ -42,6 +42,7 @@ std::string allowance(const Scene& scene, int group) {
 void check_overlaps(Scene& scene, const std::vector<std::string>& origins,
                     const std::vector<int>& import_of, const std::string& source) {
   mechanics::ParticleSet set;
+  set.box = periodic_box(scene.periodic);  // overlaps across a periodic boundary count too
   set.reserve(scene.particles.size());
   for (const auto& p : scene.particles) {
     const double mass = mechanics::sphere_mass(

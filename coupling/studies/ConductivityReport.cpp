@@ -10,7 +10,9 @@ namespace tmdem::coupling {
 void print_conductivity_report(std::ostream& out, const ConductivityResult& r) {
   out << "hot wall[" << r.hot_wall << "] " << shortest_number(r.T_hot_K) << " K, cold wall["
       << r.cold_wall << "] " << shortest_number(r.T_cold_K) << " K, L = " << r.length_m
-      << " m, A = " << r.area_m2 << " m^2\n"
+      << " m, A = " << r.area_m2 << " m^2"
+      << (r.periodic_axes.empty() ? "" : " (periodic along " + r.periodic_axes + ": A from the periods)")
+      << "\n"
       << "particles " << r.particles << ", contacts " << r.contacts << " (+ " << r.wall_contacts
       << " with walls), coordination number " << r.coordination << ", porosity " << r.porosity
       << "\n";

@@ -60,8 +60,8 @@ double mode_heat_sum(const thermal::HeatTransferMode& mode, const thermal::Therm
   return sum;
 }
 
-// Cross-section normal to `axis`: side walls bound it where the scene has them, else the
-// particles' extent.
+// Cross-section normal to `axis`: a period along a periodic direction, side walls where the
+// scene has them, else the particles' extent.
 double cross_section_m2(const Scene& scene, const std::vector<Vec3>& positions,
                         const Eigen::Vector3d& axis, std::size_t hot, std::size_t cold) {
   // A column: a cylinder along the axis bounds the whole cross-section.
@@ -88,6 +88,12 @@ double cross_section_m2(const Scene& scene, const std::vector<Vec3>& positions,
   const Eigen::Vector3d e2 = axis.cross(e1).normalized();
   double area = 1.0;
   for (const auto& e : {e1, e2}) {
+    // A periodic direction has no sides: the bed repeats, and one period is its width.
+    Eigen::Index along = 0;
+    if (e.cwiseAbs().maxCoeff(&along) > 1.0 - 1e-9 && scene.periodic.axis[std::size_t(along)]) {
+      area *= scene.periodic.length_m(int(along));
+      continue;
+    }
     double lo = INFINITY, hi = -INFINITY;
     for (std::size_t i = 0; i < positions.size(); ++i) {
       const double x = vec(positions[i]).dot(e), r = scene.particles[i].radius_m;
@@ -186,6 +192,9 @@ ConductivityResult measure_conductivity(const Scene& scene, const FrozenThermalP
   const std::size_t n = scene.particles.size();
   r.particles = n;
   r.area_m2 = cross_section_m2(scene, problem.positions_m, axis, r.hot_wall, r.cold_wall);
+  for (int a = 0; a < 3; ++a)
+    if (scene.periodic.axis[std::size_t(a)])
+      r.periodic_axes += std::string(r.periodic_axes.empty() ? "" : ", ") + "xyz"[a];
   double solid_m3 = 0.0;
   for (const auto& p : scene.particles) solid_m3 += 4.0 / 3.0 * std::numbers::pi * std::pow(p.radius_m, 3);
   r.porosity = 1.0 - solid_m3 / (r.area_m2 * r.length_m);

@@ -10,7 +10,9 @@
 //   k_eff = Q L / (A dT)
 // with Q the heat through the hot wall, W; L the distance between the two wall planes, m;
 // A the cross-section normal to the axis, m^2: in each of the two directions across the axis,
-// the gap between opposite side walls if the scene has them, else the particles' extent
+// the period if the scene is periodic along it ([periodic]: a bulk bed between the two walls,
+// no side walls), else the gap between opposite side walls if the scene has them, else the
+// particles' extent
 // (max of x + r minus min of x - r; in 2D the z extent is one diameter); dT = T_hot - T_cold.
 // Porosity = 1 - (sum of sphere volumes 4/3 pi r^3) / (A L). Coordination number = 2 x the
 // particle-particle contacts / particles (settled packings: contacts with a positive normal
@@ -46,6 +48,7 @@ struct ConductivityResult {
   std::size_t hot_wall = 0, cold_wall = 0;  // indices into scene.walls
   double T_hot_K = 0.0, T_cold_K = 0.0;
   double length_m = 0.0, area_m2 = 0.0;
+  std::string periodic_axes;   // "x, z": the periods give A (and the porosity's volume A L)
   double heat_hot_W = 0.0;     // into the bed through the hot wall
   double heat_cold_W = 0.0;    // out of the bed through the cold wall
   double balance_rel = 0.0;    // |heat_hot - heat_cold| / |heat_hot|

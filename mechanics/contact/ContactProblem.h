@@ -14,6 +14,7 @@
 #include <Eigen/Geometry>
 #include <cstddef>
 #include <cstdint>
+#include <array>
 #include <vector>
 
 #include "mechanics/model/PairIndex.h"
@@ -71,6 +72,10 @@ struct ContactProblem {
   // NscdIntegrator gives them: the horizontal axis along which the particles spread widest.
   std::vector<Eigen::Vector3d> particle_position;
   int split_axis = 0;
+  // [low, high) of split_axis when it is periodic (m; positions wrapped into it), else {0, 0}:
+  // slabs then go round the period (ContactSlabs.h).
+  std::array<double, 2> split_period{0.0, 0.0};
+  bool split_periodic() const { return split_period[1] > split_period[0]; }
 
   std::size_t size() const { return body_i.size(); }
   std::size_t body_count() const { return inverse_mass.size(); }

@@ -8,9 +8,12 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
+
+#include "mechanics/model/PeriodicBox.h"
 
 namespace tmdem::mechanics {
 
@@ -20,7 +23,13 @@ class CellGrid {
   // bounding box would otherwise need more than a few cells per point (a particle far away
   // from the others must not blow up memory). Throws std::invalid_argument on non-finite
   // input or a non-positive cell size.
-  void build(const std::vector<Eigen::Vector3d>& points, double min_cell_size_m);
+  //
+  // Along a periodic axis of `box` the grid spans the period [low, high) in whole cells (at
+  // least min_cell_size_m each) and the first and last cells are neighbours; the points must
+  // lie in the period (wrapped). An axis of fewer than 3 cells visits all of them as neighbours
+  // (each once), which stays correct for any period.
+  void build(const std::vector<Eigen::Vector3d>& points, double min_cell_size_m,
+             const PeriodicBox& box = {});
 
   // Calls visit(a, b) exactly once for every unordered pair of distinct points that lie in
   // the same or in adjacent cells (a and b in no particular order).
@@ -33,7 +42,7 @@ class CellGrid {
   template <class Visit>
   void for_each_neighbour(std::uint32_t a, Visit&& visit) const;
 
-  double cell_size() const { return cell_size_; }
+  double cell_size() const { return cell_size_; }  // m, the smallest edge
   std::size_t cell_count() const { return cell_start_.empty() ? 0 : cell_start_.size() - 1; }
 
   // Point count from which build() uses OpenMP threads (below, waking them costs more than
@@ -41,9 +50,17 @@ class CellGrid {
   void set_parallel_from(std::ptrdiff_t points) { parallel_from_ = points; }
 
  private:
+  // The (up to 3) distinct cells along one axis next to cell c, in `out`; returns how many.
+  int neighbour_cells(int axis, int c, int out[3]) const;
+  template <class Visit>
+  void for_each_neighbour_periodic(std::uint32_t a, Visit&& visit) const;
+
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d inverse_edge_ = Eigen::Vector3d::Zero();  // 1/m, per axis
   double cell_size_ = 0.0;
   int nx_ = 0, ny_ = 0, nz_ = 0;
+  std::array<bool, 3> periodic_{false, false, false};
+  bool any_periodic_ = false;
   std::ptrdiff_t parallel_from_ = 4096;
   std::vector<std::uint32_t> cell_of_;     // cell of each point
   std::vector<std::uint32_t> cell_start_;  // points of cell c are sorted_[start[c], start[c+1])
@@ -52,6 +69,14 @@ class CellGrid {
 
 template <class Visit>
 void CellGrid::for_each_candidate_pair(Visit&& visit) const {
+  if (any_periodic_) {
+    // Wrapped neighbourhoods do not split into the 13 forward offsets below when an axis has
+    // fewer than 3 cells; each point's full neighbourhood, the pair taken from its lower id.
+    const auto n = static_cast<std::uint32_t>(cell_of_.size());
+    for (std::uint32_t a = 0; a < n; ++a)
+      for_each_neighbour_periodic(a, [&](std::uint32_t b) { if (a < b) visit(a, b); });
+    return;
+  }
   // Half of the 26 neighbours: each adjacent pair of cells is visited from one side only.
   static constexpr int kOffsets[13][3] = {{1, 0, 0},  {-1, 1, 0}, {0, 1, 0},  {1, 1, 0},
                                           {-1, -1, 1}, {0, -1, 1}, {1, -1, 1}, {-1, 0, 1},
@@ -82,6 +107,10 @@ void CellGrid::for_each_candidate_pair(Visit&& visit) const {
 
 template <class Visit>
 void CellGrid::for_each_neighbour(std::uint32_t a, Visit&& visit) const {
+  if (any_periodic_) {
+    for_each_neighbour_periodic(a, visit);
+    return;
+  }
   const std::uint32_t c = cell_of_[a];
   const int cx = static_cast<int>(c % static_cast<std::uint32_t>(nx_));
   const int cy = static_cast<int>((c / static_cast<std::uint32_t>(nx_)) % static_cast<std::uint32_t>(ny_));
@@ -96,6 +125,41 @@ void CellGrid::for_each_neighbour(std::uint32_t a, Visit&& visit) const {
       }
     }
   }
+}
+
+template <class Visit>
+void CellGrid::for_each_neighbour_periodic(std::uint32_t a, Visit&& visit) const {
+  const std::uint32_t c = cell_of_[a];
+  const auto ux = static_cast<std::uint32_t>(nx_), uy = static_cast<std::uint32_t>(ny_);
+  int xs[3], ys[3], zs[3];
+  const int kx = neighbour_cells(0, static_cast<int>(c % ux), xs);
+  const int ky = neighbour_cells(1, static_cast<int>((c / ux) % uy), ys);
+  const int kz = neighbour_cells(2, static_cast<int>(c / (ux * uy)), zs);
+  for (int iz = 0; iz < kz; ++iz) {
+    for (int iy = 0; iy < ky; ++iy) {
+      for (int ix = 0; ix < kx; ++ix) {
+        const std::size_t d = (static_cast<std::size_t>(zs[iz]) * ny_ + ys[iy]) * nx_ + xs[ix];
+        for (std::uint32_t k = cell_start_[d]; k < cell_start_[d + 1]; ++k) {
+          if (sorted_[k] != a) visit(sorted_[k]);
+        }
+      }
+    }
+  }
+}
+
+inline int CellGrid::neighbour_cells(int axis, int c, int out[3]) const {
+  const int n = axis == 0 ? nx_ : axis == 1 ? ny_ : nz_;
+  int k = 0;
+  if (!periodic_[static_cast<std::size_t>(axis)]) {
+    for (int x = std::max(c - 1, 0); x <= std::min(c + 1, n - 1); ++x) out[k++] = x;
+  } else if (n >= 3) {
+    out[k++] = c == 0 ? n - 1 : c - 1;
+    out[k++] = c;
+    out[k++] = c == n - 1 ? 0 : c + 1;
+  } else {
+    for (int x = 0; x < n; ++x) out[k++] = x;
+  }
+  return k;
 }
 
 }  // namespace tmdem::mechanics

@@ -11,6 +11,13 @@
 // same test with its own displacement and look-ahead: a particle-wall gap then closes by at
 // most margin / 2 + margin / 2.
 //
+// Periodic axes (particles.box): the grid wraps, pairs and displacements are measured through
+// the nearest image, and a pair across a boundary is the same (i, j) entry as inside the box,
+// so wrapping a particle keeps its candidates and their warm starts. Only the nearest image is
+// listed, so particles are held to a margin of at most half the shortest period less 2 r_max
+// (their relative motion between rebuilds stays below it, and no second image can come into
+// reach); walls, whose gaps are not periodic, keep the whole margin.
+//
 // Everything lives in reused vectors: no allocation once warm.
 //
 // Parallel (OpenMP, from parallel_from particles on): each thread lists the pairs (i, j > i)
@@ -75,6 +82,10 @@ class ContactDetector {
 
  private:
   void rebuild(const ParticleSet& particles, const std::vector<Wall>& walls, double lookahead_max);
+  // The margin particles are held to: margin_, at most half the shortest period less 2 r_max.
+  double particle_margin_m(const ParticleSet& particles) const;
+  // Throws std::runtime_error when that margin is below twice the particles' largest look-ahead.
+  void check_period(const ParticleSet& particles, double lookahead_max) const;
 
   double min_margin_;
   double max_margin_;

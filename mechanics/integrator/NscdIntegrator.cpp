@@ -1,6 +1,7 @@
 #include "mechanics/integrator/NscdIntegrator.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <chrono>
 #include <stdexcept>
@@ -116,6 +117,16 @@ NscdIntegrator::NscdIntegrator(ParticleSet particles, std::vector<Material> mate
     }
   }
   keep_in_plane();
+  for (int a = 0; a < 3; ++a) {
+    if (!particles_.box.along(a)) continue;
+    require(a < dimension_, "a 2D run cannot be periodic along z");
+    for (std::size_t w = 0; w < walls_.size(); ++w)
+      require(walls_[w].shape == WallShape::Plane && walls_[w].normal[a] == 0.0,
+              "wall " + std::to_string(w) + " crosses periodic axis " + std::to_string(a) +
+                  " (only plane walls parallel to a periodic axis are allowed)");
+  }
+  // Start inside the periodic box (the scene wraps its particles; a hand-built set may not).
+  for (auto& x : particles_.position) x = particles_.box.wrap(x);
   slop_m_ = parameters_.penetration_slop_fraction * particles_.min_radius();
   // Validates fall_tolerance, fall_speed and tighten_steps (std::invalid_argument).
   require(parameters_.fall_speed >= 0.0 && std::isfinite(parameters_.fall_speed),
@@ -234,6 +245,7 @@ void NscdIntegrator::setup_contacts(double h) {
   }
   gap_.resize(pairs.size());
   // Every candidate writes only its own entries: the same bits for any thread count.
+  const bool periodic = particles_.box.any();  // hoisted: the open case stays x_i - x_j
 #pragma omp parallel for schedule(static) \
     if (static_cast<std::ptrdiff_t>(pairs.size()) >= parameters_.parallel_from)
   for (std::size_t k = 0; k < pairs.size(); ++k) {
@@ -249,7 +261,8 @@ void NscdIntegrator::setup_contacts(double h) {
     Eigen::Vector3d n;
     double gap;
     if (!is_wall(j)) {
-      const Eigen::Vector3d d = xi - particles_.position[j];
+      const Eigen::Vector3d d = periodic ? particles_.box.minimum_image(xi - particles_.position[j])
+                                         : Eigen::Vector3d(xi - particles_.position[j]);
       const double distance = d.norm();
       // Coincident centres have no defined normal; any unit vector in the plane will do.
       n = distance > 0.0 ? Eigen::Vector3d(d / distance) : Eigen::Vector3d::UnitY();
@@ -368,6 +381,10 @@ StepReport NscdIntegrator::step(double h) {
   // Where the particles are, for a solver that cuts the contacts into slabs (ContactSlabs.h).
   problem_.particle_position.assign(particles_.position.begin(), particles_.position.end());
   problem_.split_axis = split_axis();
+  problem_.split_period = particles_.box.along(problem_.split_axis)
+                              ? std::array<double, 2>{particles_.box.low[problem_.split_axis],
+                                                      particles_.box.high[problem_.split_axis]}
+                              : std::array<double, 2>{0.0, 0.0};
   report.detection_s += lap();
   report.candidates = problem_.size();
   const SolveReport solved = solve_contacts();
@@ -423,6 +440,10 @@ StepReport NscdIntegrator::step(double h) {
     }
   }
   report.correction_s = lap();
+  // Back into the periodic box: pairs are (i, j) ids and their vectors minimum images, so a
+  // wrapped particle keeps its candidates, warm starts and contacts.
+  if (particles_.box.any())
+    for (auto& x : particles_.position) x = particles_.box.wrap(x);
 
   // Forces for the warm start and the contact list; penetration after the step.
   contacts_.clear();
@@ -541,10 +562,12 @@ void NscdIntegrator::account_energy(double h, StepReport& report) const {
 
 void NscdIntegrator::gaps_after_step(std::vector<double>& gap) const {
   gap.resize(problem_.size());
+  const bool periodic = particles_.box.any();
   for (std::size_t k = 0; k < problem_.size(); ++k) {
     const std::int32_t i = problem_.body_i[k], j = problem_.body_j[k];
     if (!is_wall(j)) {
-      gap[k] = (particles_.position[i] - particles_.position[j]).norm() - problem_.lever_i[k] -
+      const Eigen::Vector3d d = particles_.position[i] - particles_.position[j];
+      gap[k] = (periodic ? particles_.box.minimum_image(d) : d).norm() - problem_.lever_i[k] -
                problem_.lever_j[k];
     } else {
       gap[k] = walls_[wall_index(j)].signed_distance(particles_.position[i]) - problem_.lever_i[k];

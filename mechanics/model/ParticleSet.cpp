@@ -57,6 +57,11 @@ void ParticleSet::validate() const {
     }
     if (material[i] < 0) throw std::invalid_argument(id + ": negative material index");
   }
+  for (int a = 0; a < 3; ++a) {
+    if (box.along(a) && !(box.length(a) > 0.0 && std::isfinite(box.length(a)) &&
+                          std::isfinite(box.low[a])))
+      throw std::invalid_argument("periodic axis " + std::to_string(a) + ": need low < high, finite");
+  }
 }
 
 double ParticleSet::max_radius() const {

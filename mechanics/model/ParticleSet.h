@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "mechanics/model/PeriodicBox.h"
+
 namespace tmdem::mechanics {
 
 // Mass of a solid sphere, kg. Particles are spheres in 2D runs too (motion is planar, the
@@ -24,6 +26,15 @@ struct ParticleSet {
   // 1 = does not move (treated as infinite mass and inertia). uint8 rather than
   // std::vector<bool> so that elements are addressable and reads are plain loads.
   std::vector<std::uint8_t> fixed;
+  // The space the particles live in: periodic along none, some or all axes. Held here rather
+  // than passed beside the set because every pair vector of the set needs it (detection, the
+  // contact problem, touching pairs, the coupling's gaps): a set carries its own geometry.
+  PeriodicBox box;
+
+  // x_i - x_j through the nearest periodic image (plain x_i - x_j without periodic axes), m.
+  Eigen::Vector3d branch(std::size_t i, std::size_t j) const {
+    return box.minimum_image(position[i] - position[j]);
+  }
 
   std::size_t size() const { return radius.size(); }
   bool empty() const { return radius.empty(); }

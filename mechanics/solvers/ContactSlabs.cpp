@@ -15,11 +15,26 @@ bool on_piston(const ContactProblem& problem, std::size_t c) {
   return is_wall(j) && problem.inverse_mass[problem.wall_body(j)] > 0.0;
 }
 
+// x_i - x_j along the split axis, through the nearest image when the axis is periodic.
+double branch(const ContactProblem& problem, std::size_t c) {
+  const int a = problem.split_axis;
+  const double d = problem.particle_position[static_cast<std::size_t>(problem.body_i[c])][a] -
+                   problem.particle_position[static_cast<std::size_t>(problem.body_j[c])][a];
+  if (!problem.split_periodic()) return d;
+  const double L = problem.split_period[1] - problem.split_period[0];
+  return d - L * std::round(d / L);
+}
+
 double midpoint(const ContactProblem& problem, std::size_t c) {
   const int a = problem.split_axis;
   const double xi = problem.particle_position[static_cast<std::size_t>(problem.body_i[c])][a];
   const std::int32_t j = problem.body_j[c];
-  return is_wall(j) ? xi : 0.5 * (xi + problem.particle_position[static_cast<std::size_t>(j)][a]);
+  if (!problem.split_periodic())
+    return is_wall(j) ? xi : 0.5 * (xi + problem.particle_position[static_cast<std::size_t>(j)][a]);
+  // Halfway along the nearest image, back into the period.
+  const double low = problem.split_period[0], L = problem.split_period[1] - low;
+  const double m = is_wall(j) ? xi : xi - 0.5 * branch(problem, c);
+  return m - L * std::floor((m - low) / L);
 }
 
 }  // namespace
@@ -30,25 +45,33 @@ bool ContactSlabs::update(const ContactProblem& problem, int slabs) {
   const std::size_t count = problem.size();
   if (problem.particle_position.size() != problem.particle_count || count == 0 || slabs < 3)
     return false;
-  const int a = problem.split_axis;
   double span = 0.0, low = INFINITY, high = -INFINITY;
   for (std::size_t c = 0; c < count; ++c) {
     const std::int32_t j = problem.body_j[c];
-    if (!is_wall(j)) {
-      span = std::max(span, std::abs(problem.particle_position[static_cast<std::size_t>(problem.body_i[c])][a] -
-                                     problem.particle_position[static_cast<std::size_t>(j)][a]));
-    }
+    if (!is_wall(j)) span = std::max(span, std::abs(branch(problem, c)));
     if (on_piston(problem, c)) continue;
     const double x = midpoint(problem, c);
     low = std::min(low, x);
     high = std::max(high, x);
   }
+  const bool periodic = problem.split_periodic();
+  if (periodic) {
+    // Round the period: slab 0 and the last are neighbours, so the count is even (the two
+    // are then in different phases) and at least 4 (two slabs per phase).
+    low = problem.split_period[0];
+    high = problem.split_period[1];
+  }
   if (!(high > low) || !std::isfinite(high - low)) return false;
   // A margin over the span, so that rounding in the division below cannot put two contacts of
   // one particle two slabs apart.
-  const double width = std::max(span * (1.0 + 1e-9), (high - low) / slabs);
+  double width = std::max(span * (1.0 + 1e-9), (high - low) / slabs);
   const double fit = std::floor((high - low) / width);
-  const auto cut = static_cast<std::int32_t>(std::min<double>(fit, slabs));
+  auto cut = static_cast<std::int32_t>(std::min<double>(fit, slabs));
+  if (periodic) {
+    cut -= cut % 2;
+    if (cut < 4) return false;
+    width = (high - low) / cut;  // equal slabs filling the period, each at least as wide
+  }
   if (cut < 3) return false;
   // Visiting order: even slabs, odd slabs, then one slab for a piston's contacts.
   const std::int32_t even = (cut + 1) / 2;
@@ -72,19 +95,24 @@ bool ContactSlabs::update(const ContactProblem& problem, int slabs) {
     order_[static_cast<std::size_t>(cursor_[static_cast<std::size_t>(slab_of_[c])]++)] = static_cast<std::int32_t>(c);
   phase_start_ = {0, even, cut, cut + 1};
 #ifndef NDEBUG
-  // The promise, checked: the contacts of one particle lie in one slab or two neighbours.
-  std::vector<std::int32_t> first(problem.particle_count, cut), last(problem.particle_count, -1);
+  // The promise, checked: the contacts of one particle lie in one slab or two neighbours (round
+  // a period the last slab and the first are neighbours too).
+  std::vector<std::int32_t> seen(problem.particle_count, -1), other(problem.particle_count, -1);
   for (std::size_t c = 0; c < count; ++c) {
     if (on_piston(problem, c)) continue;
     const std::int32_t v = slab_of_[c];
     const std::int32_t slab = v < even ? 2 * v : 2 * (v - even) + 1;
     for (const std::int32_t b : {problem.body_i[c], problem.body_j[c]}) {
       if (is_wall(b)) continue;
-      first[static_cast<std::size_t>(b)] = std::min(first[static_cast<std::size_t>(b)], slab);
-      last[static_cast<std::size_t>(b)] = std::max(last[static_cast<std::size_t>(b)], slab);
+      const auto p = static_cast<std::size_t>(b);
+      if (seen[p] < 0) seen[p] = slab;
+      if (slab == seen[p] || slab == other[p]) continue;
+      assert(other[p] < 0);  // a third slab
+      other[p] = slab;
+      const std::int32_t apart = std::abs(slab - seen[p]);
+      assert(apart == 1 || (periodic && apart == cut - 1));
     }
   }
-  for (std::size_t p = 0; p < problem.particle_count; ++p) assert(last[p] - first[p] <= 1);
 #endif
   return true;
 }

@@ -13,6 +13,10 @@
 // (about 30 in a 3D bed), and inside each slab the sweep keeps the problem's own order, so a
 // load still crosses the whole height of a slab in one sweep.
 //
+// A periodic split axis (problem.split_period): a contact sits at the midpoint of its nearest
+// image, wrapped into the period, the slabs fill the period and go round it, their count even
+// (slab 0 and the last are neighbours and must fall in different phases) and at least 4.
+//
 // The cut depends only on the problem (positions, pairs, axis) and `slabs`, never on the
 // thread count: every thread count sweeps in the same order and gives the same bits.
 

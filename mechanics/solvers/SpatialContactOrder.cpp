@@ -96,6 +96,7 @@ void SpatialContactOrder::gather(const ContactProblem& problem, const std::vecto
   }
   // The positions too, for a solver that cuts the contacts into slabs (ContactSlabs.h).
   q.split_axis = problem.split_axis;
+  q.split_period = problem.split_period;
   q.particle_position.resize(problem.particle_position.size() == n ? n : 0);
   for (std::size_t p = 0; p < q.particle_position.size(); ++p)
     q.particle_position[static_cast<std::size_t>(number_[p])] = problem.particle_position[p];

@@ -133,3 +133,11 @@ TEST(EndToEndBitwiseRestart, PouredBedDynamicAcrossTheToleranceSwitch) {
   EXPECT_LE(ts.at("fall_unconverged_steps").get<std::int64_t>(),
             summary.at("mechanics").at("unconverged_steps").get<std::int64_t>());
 }
+
+// examples/periodic_bed.toml: 60 spheres poured into a box periodic along x and z, contacts
+// round the boundaries and particles wrapped as they cross; stopped at 0.1 s of 0.3 s. The
+// periodic box is scene data: the checkpoint's wrapped positions and candidate table restart
+// the same steps.
+TEST(EndToEndBitwiseRestart, PeriodicBedDynamic) {
+  expect_segments_equal_uninterrupted("periodic_bed", "periodic_bed.toml", 0.1, {0.1}, 0.3);
+}

@@ -324,3 +324,52 @@ TEST(ResultViews, GrowingDatasetsAreCompressed) {
 }
 
 }  // namespace
+
+// Periodic along x with period 6.5 mm from -1 mm: particles 0 (x = 0) and 2 (x = 5 mm) touch
+// round the boundary, 1.5 mm apart. Their line ends at the image of 2 beside 0, x = -1.5 mm,
+// rather than spanning the box; /periodic describes the box.
+TEST(ResultViews, ContactsRoundAPeriodicBoundaryEndAtTheImageBesideI) {
+  ViewFile file;
+  ResultHeader header = three_particles();
+  header.periodic.axis = {true, false, false};
+  header.periodic.low_m = {-1e-3, 0.0, 0.0};
+  header.periodic.high_m = {5.5e-3, 0.0, 0.0};
+  ViewFrame fr = frame(0);
+  fr.pair = {0, 2, 0, -1, 0, 1};
+  fr.force = {1.0, 2.0, 3.0};
+  fr.H = {0.1, 0.2, 0.3};
+  fr.Q = {-1.0, -2.0, -3.0};
+  fr.tangential.assign(9, 0.0);
+  {
+    ResultWriter writer(file.path, header, true);
+    writer.write_frame(fr.view(0.0));
+    writer.write_frame(fr.view(1.0));  // the same contacts: views linked to frame 0's
+    writer.finish("ok");
+  }
+  EXPECT_EQ(read_ids(file.path, "/periodic/axis"), (std::vector<std::int64_t>{1, 0, 0}));
+  EXPECT_EQ(read_view(file.path, "/periodic/low"), (std::vector<double>{-1e-3, 0.0, 0.0}));
+  EXPECT_EQ(read_view(file.path, "/periodic/high"), (std::vector<double>{5.5e-3, 0.0, 0.0}));
+  for (const std::string view : {"/xdmf/frame_0/", "/xdmf/frame_1/"}) {
+    // (0, 2) -> the image, point N + W = 4; (0, floor) -> foot N + 0 = 3; (0, 1) as it is.
+    EXPECT_EQ(read_ids(file.path, view + "contact_lines"), (std::vector<std::int64_t>{0, 4, 0, 3, 0, 1}));
+    const auto image = read_view(file.path, view + "image_ends");
+    ASSERT_EQ(image.size(), 3u);
+    EXPECT_NEAR(image[0], -1.5e-3, 1e-18);
+    EXPECT_EQ(image[1], 2e-3);
+    EXPECT_EQ(image[2], 0.0);
+    EXPECT_EQ(read_view(file.path, view + "contact_points").size(), 3u * 5u);
+  }
+  // The XDMF gives the line set its 5 points (3 particles, a foot, an image).
+  std::ifstream xdmf(fs::path(file.path).replace_extension(".xdmf"));
+  const std::string text{std::istreambuf_iterator<char>(xdmf), std::istreambuf_iterator<char>()};
+  EXPECT_NE(text.find("Dimensions=\"5 3\""), std::string::npos) << text;
+  // Without [periodic] the file has no /periodic and the same pair spans the box.
+  ViewFile open_file;
+  {
+    ResultWriter writer(open_file.path, three_particles(), true);
+    writer.write_frame(fr.view(0.0));
+    writer.finish("ok");
+  }
+  EXPECT_FALSE(has(open_file.path, "/periodic"));
+  EXPECT_EQ(read_ids(open_file.path, "/xdmf/frame_0/contact_lines"), (std::vector<std::int64_t>{0, 2, 0, 3, 0, 1}));
+}

@@ -80,5 +80,59 @@ TEST(NearPairs, FrozenNetworkHoldsExactlyThePairsWithinTheReach) {
   }
 }
 
+// The same with [periodic] along x and z (12 mm periods): the gas reaches round the boundaries,
+// each gap that of the nearest image. A lattice row of 6 touching spheres closes a ring round x.
+TEST(NearPairs, PeriodicNetworkHoldsThePairsRoundTheBoundariesWithTheirGaps) {
+  const double reach = 0.4, L = 0.012;
+  const auto text = thermal_scene()
+                        .set({{"effects.gas_conduction", true},
+                              {"fluid.model", "surrounding_layer"},
+                              {"fluid.cutoff", reach}})
+                        .set({{"periodic.x", {0.0, L}}, {"periodic.z", {0.0, L}}})
+                        .add("generate", random_fill(120, "{ min = [0.0, 0.0, 0.0], max = [0.012, 0.012, 0.012] }",
+                                                     {{"radii", {0.0006, 0.001}}, {"fractions", {0.5, 0.5}}}))
+                        .add("generate", lattice({6, 1, 1}, {{"origin", {0.001, 0.02, 0.001}}}))
+                        .add("wall", floor_wall({{"temperature", 350.0}}))
+                        .str();
+  const auto scene = load_scene_text(text, "near");
+  std::ostringstream sink;
+  ProgressReporter progress(sink, true, false);
+  const auto problem = build_frozen_thermal_problem(scene, progress);
+  const auto& net = problem.system->network();
+
+  const auto& P = scene.particles;
+  std::map<std::pair<int, int>, double> expected;
+  std::size_t across = 0;
+  for (std::size_t i = 0; i < P.size(); ++i)
+    for (std::size_t j = i + 1; j < P.size(); ++j) {
+      double d2 = 0.0;
+      bool wrapped = false;
+      for (int k = 0; k < 3; ++k) {
+        double d = P[i].position_m[k] - P[j].position_m[k];
+        if (k != 1 && std::abs(d) > L / 2) {
+          d -= std::copysign(L, d);
+          wrapped = true;
+        }
+        d2 += d * d;
+      }
+      const double gap = std::sqrt(d2) - P[i].radius_m - P[j].radius_m;
+      if (gap <= reach * std::min(P[i].radius_m, P[j].radius_m)) {
+        expected[{int(i), int(j)}] = gap;
+        across += wrapped;
+      }
+    }
+  ASSERT_GE(across, 2u);  // the ring's closing pair and a random pair round a boundary
+  int touching = 0;
+  for (const auto& [pair, gap] : expected) touching += gap <= 1e-15;
+  ASSERT_GE(touching, 6);  // the ring's
+  ASSERT_EQ(net.edge_count(), expected.size());
+  for (std::size_t e = 0; e < net.edge_count(); ++e) {
+    const auto key = std::pair{std::min(net.edge_a[e], net.edge_b[e]), std::max(net.edge_a[e], net.edge_b[e])};
+    const auto it = expected.find(key);
+    ASSERT_NE(it, expected.end()) << key.first << "-" << key.second;
+    EXPECT_NEAR(net.edge_gap_m[e], it->second, 1e-15);
+  }
+}
+
 }  // namespace
 }  // namespace tmdem::coupling

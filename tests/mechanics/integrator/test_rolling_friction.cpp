@@ -31,7 +31,7 @@ Material rolling_steel(double friction, double rolling_friction) {
   return m;
 }
 
-NscdParameters tight(const char* solver = "nlgs") {
+NscdParameters rolling_tight(const char* solver = "nlgs") {
   NscdParameters parameters = nlgs_parameters();
   parameters.tolerance = 1e-13;
   parameters.solver = solver;
@@ -47,7 +47,7 @@ NscdIntegrator sphere_on_floor(double friction, double rolling_friction, double 
   return NscdIntegrator(std::move(set), {rolling_steel(friction, rolling_friction)},
                         {Wall::through({0, 0, 0}, {0, 1, 0}, 0)},
                         Vector3d(kG * std::sin(angle), -kG * std::cos(angle), 0), dimension,
-                        tight(solver));
+                        rolling_tight(solver));
 }
 
 class RollingSphere : public ::testing::TestWithParam<std::tuple<int, const char*>> {};
@@ -138,7 +138,7 @@ TEST_P(RollingOnSphere, TwoSpheresUseTheEffectiveRadius) {
     set.add(Vector3d(0, 2 * kRadius, 0), kRadius, m, 0);
     NscdIntegrator sim(std::move(set), {rolling_steel(0.9, mu_r)}, {},
                        Vector3d(kG * std::sin(angle), -kG * std::cos(angle), 0), 3,
-                       tight(GetParam()));
+                       rolling_tight(GetParam()));
     for (int step = 0; step < 20; ++step) sim.step();
     if (ratio < 1) EXPECT_LT(sim.max_speed(), 1e-13);
     else EXPECT_GT(sim.max_speed(), 1e-5);  // rolls over the lower sphere
@@ -190,7 +190,7 @@ struct RollingSolve {
   SolveReport report;
 };
 
-RollingSolve solve_cold(ContactSolver& solver, const ContactProblem& problem) {
+RollingSolve solve_rolling_cold(ContactSolver& solver, const ContactProblem& problem) {
   RollingSolve out;
   out.r.assign(problem.size(), Vector3d::Zero());
   out.m.assign(problem.size(), Vector3d::Zero());
@@ -220,7 +220,7 @@ TEST(RollingFriction, EverySolverMatchesGaussSeidelWithSameBitsForAnyThreadCount
   settings.max_iterations = 100000;
   settings.stall_sweeps = 100000;
   GaussSeidelSolver nlgs(settings);
-  const RollingSolve reference = solve_cold(nlgs, problem);
+  const RollingSolve reference = solve_rolling_cold(nlgs, problem);
   ASSERT_TRUE(reference.report.converged);
   auto at_threads = [&](const char* name, int threads) {
     const int before = omp_get_max_threads();
@@ -229,7 +229,7 @@ TEST(RollingFriction, EverySolverMatchesGaussSeidelWithSameBitsForAnyThreadCount
     std::unique_ptr<ContactSolver> solver;
     if (std::string(name) == "apgd") solver = std::make_unique<ApgdSolver>(settings, 0);
     else solver = std::make_unique<ColouredGaussSeidelSolver>(settings, 0);
-    RollingSolve out = solve_cold(*solver, problem);
+    RollingSolve out = solve_rolling_cold(*solver, problem);
     omp_set_num_threads(before);
     return out;
   };

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "mechanics/SameBits.h"
+#include "mechanics/PeriodicPile.h"
 #include "mechanics/SolverTestPile.h"
 #include "mechanics/solvers/ContactSlabs.h"
 #include "mechanics/solvers/GaussSeidelSolver.h"
@@ -83,6 +84,50 @@ TEST(ContactSlabs, NoParticleIsTouchedByTwoSlabsOfOnePhase) {
   EXPECT_GE(slabs.slab_count(), 4u);
   EXPECT_EQ(slabs.phase_start()[3] - slabs.phase_start()[2], 1);  // the piston's slab, empty
   expect_phases_touch_disjoint_bodies(problem, slabs);
+}
+
+TEST(ContactSlabs, PeriodicAxisSlabsGoRoundThePeriod) {
+  // A pile falling into a box periodic along x and z: the slabs fill the period, their count
+  // even, and a contact round the boundary sits in slab 0 or the last, which are neighbours
+  // in different phases.
+  static const NscdIntegrator sim = [] {
+    NscdIntegrator s = periodic_pile(400, 0.3, 5);
+    for (int step = 0; step < 12; ++step) s.step();
+    return s;
+  }();
+  ContactProblem problem = sim.problem();
+  ASSERT_GT(problem.size(), 1000u);
+  ASSERT_TRUE(problem.split_periodic());
+  EXPECT_EQ(problem.split_period[0], 0.0);
+  EXPECT_EQ(problem.split_period[1], kPeriodicWidth);
+  ContactSlabs slabs;
+  ASSERT_TRUE(slabs.update(problem, 16));
+  EXPECT_EQ(slabs.slab_count() % 2, 1u);  // an even count plus the piston's slab
+  EXPECT_GE(slabs.slab_count(), 5u);
+  expect_phases_touch_disjoint_bodies(problem, slabs);
+  // Contacts round the boundary exist and all sit in the first or the last slab.
+  const auto cut = static_cast<std::int32_t>(slabs.slab_count()) - 1;
+  const std::int32_t even = slabs.phase_start()[1];
+  const std::int32_t first = 0, last = even + (cut - 1) / 2;  // slabs 0 and cut - 1, by visit
+  std::size_t across = 0;
+  for (std::int32_t s = 0; s < cut; ++s) {
+    for (std::int32_t k = slabs.slab_start()[s]; k < slabs.slab_start()[s + 1]; ++k) {
+      const std::int32_t c = slabs.order()[k];
+      const std::int32_t j = problem.body_j[c];
+      if (is_wall(j)) continue;
+      const int a = problem.split_axis;
+      const double dx = problem.particle_position[std::size_t(problem.body_i[c])][a] -
+                        problem.particle_position[std::size_t(j)][a];
+      if (std::abs(dx) < 0.5 * kPeriodicWidth) continue;
+      ++across;
+      EXPECT_TRUE(s == first || s == last) << "contact " << c << " in slab " << s;
+    }
+  }
+  EXPECT_GT(across, 10u);
+  // Read without the period, a contact round the boundary spans the whole box: no cut.
+  problem.split_period = {0.0, 0.0};
+  ContactSlabs open;
+  EXPECT_FALSE(open.update(problem, 16));
 }
 
 TEST(ContactSlabs, APistonsContactsAreAloneInTheLastPhase) {

@@ -65,8 +65,9 @@ bool ContactDetector::update(const ParticleSet& particles, const std::vector<Wal
     for (std::size_t i = 0; i < n; ++i) {
       const double ahead = lookahead_m.empty() ? 0.0 : lookahead_m[i];
       lookahead_max = std::max(lookahead_max, ahead);
-      const Eigen::Vector3d moved = box.minimum_image(particles.position[i] - reference_position_[i]);
-      if (!need && moved.norm() + ahead > 0.5 * particle_margin) need = true;
+      if (!need && box.minimum_image(particles.position[i] - reference_position_[i]).norm() + ahead >
+                       0.5 * particle_margin)
+        need = true;
     }
   }
   const double particle_lookahead_max = lookahead_max;

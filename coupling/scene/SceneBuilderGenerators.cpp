@@ -230,10 +230,23 @@ void SceneBuilder::read_box_filling(const std::vector<SceneTable>& tables, std::
     group.push_back(j);
     group_count.push_back(more.size());
   }
+  // Along a periodic axis the deposit fills the period: no faces there, spheres supported
+  // across it. The box must say so (its extent there is the period).
+  const PeriodicSettings& periodic = scene_.periodic;
+  for (int a = 0; a < 3; ++a) {
+    if (!periodic.axis[std::size_t(a)]) continue;
+    if (f.lo[std::size_t(a)] != periodic.low_m[std::size_t(a)] ||
+        f.hi[std::size_t(a)] != periodic.high_m[std::size_t(a)])
+      t.fail("box", std::string("along the periodic axis ") + "xyz"[a] +
+                        " the box of a deposit must span the period [" +
+                        format_number(periodic.low_m[std::size_t(a)]) + ", " +
+                        format_number(periodic.high_m[std::size_t(a)]) + "] of [periodic]");
+  }
   mechanics::DepositionResult d;
   try {
     d = mechanics::deposit_spheres(all_radii, box_min, box_max, axis, g[axis] < 0.0 ? -1 : 1,
-                                   seed, scene_.dimension, placed.positions, placed.radii);
+                                   seed, scene_.dimension, placed.positions, placed.radii,
+                                   periodic.axis);
   } catch (const std::exception& error) {
     std::string_view why = error.what();
     for (const std::string_view prefix : {"deposit_spheres: ", "SequentialDeposition: "})

@@ -116,6 +116,28 @@ TEST(E2eConductivity, PistonLoadedLatticeFollowsHertzOneThirdPowerLaw) {
   }
 }
 
+// The network rest test waits for the piston: a bed already at rest under its own weight (the
+// lattice with gravity) and a piston started 1 mm above it. The bed's forces are stationary
+// from the first steps, but until the piston lands the load is about to change; the settle
+// must go on until the piston rests on the top layer (before, the bed was frozen with the
+// piston in the air and the study found no heat path through the cold wall).
+TEST(E2eConductivity, SettleWaitsForAFallingPistonToLand) {
+  const auto dir = scratch_dir("conductivity_falling_piston");
+  std::string scene = piston_lattice();
+  const std::string at_top = "point = [0.0, 0.008, 0.0]";
+  ASSERT_NE(scene.find(at_top), std::string::npos);
+  scene.replace(scene.find(at_top), at_top.size(), "point = [0.0, 0.009, 0.0]");
+  write_file(dir + "/bed.toml", scene);
+  const auto r = run_tmdem("study conductivity bed.toml --pressures 1e3 --csv k.csv "
+                           "--set 'simulation.gravity=[0.0, -9.81, 0.0]'", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.output.find("touches no particle"), std::string::npos) << r.output;
+  const auto rows = csv_numbers(dir + "/k.csv", 8);
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_GT(rows[0][1], 0.0);
+  EXPECT_NEAR(rows[0][7], 0.008, 1e-6);  // the piston on the top layer: L = 8 mm
+}
+
 // The stress-effect check on a random bed: 48 glass spheres (radii 0.8 and 1 mm, rolling
 // friction 0.1 so that they come to rest) poured into a 6 x 6 mm box and settled with gravity, then
 // a light piston (0.1 g) laid 0.1 mm above the bed presses it at 1e3, 1e4 and 1e5 Pa in turn;

@@ -296,6 +296,45 @@ TEST(SceneGenerators, DepositNeedsGravityAlongAnAxisAndRoom) {
   for (const auto& p : sideways.particles) EXPECT_LE(p.position_m[0] + p.radius_m, 0.008 + 1e-15);
 }
 
+TEST(SceneGenerators, DepositFillsAPeriodicBoxAcrossItsSides) {
+  // Periodic along x and z: the spheres rest on each other round the sides (a pair closer than
+  // the period's half apart only through the boundary) and the box must span the periods.
+  const std::string text = header()
+                               .set("simulation.dimension", 3)
+                               .set("simulation.gravity", raw("[0.0, -9.81, 0.0]"))
+                               .set("periodic.x", raw("[0.0, 0.01]"))
+                               .set("periodic.z", raw("[0.0, 0.01]"))
+                               .add("generate", with(random_fill(150, "{ min = [0.0, 0.0, 0.0], max = [0.01, 0.03, 0.01] }",
+                                                                 {{"radius", 0.0006}}),
+                                                     {{"kind", "deposit"}}))
+                               .str();
+  const Scene scene = load_scene_text(text, "t");
+  ASSERT_EQ(scene.particles.size(), 150u);
+  int across = 0;
+  for (std::size_t a = 0; a < 150; ++a) {
+    const auto& p = scene.particles[a].position_m;
+    EXPECT_TRUE(p[0] >= 0.0 && p[0] < 0.01 && p[2] >= 0.0 && p[2] < 0.01) << a;
+    for (std::size_t b = a + 1; b < 150; ++b) {
+      const auto& q = scene.particles[b].position_m;
+      double d2 = (p[1] - q[1]) * (p[1] - q[1]);
+      bool wrapped = false;
+      for (const int k : {0, 2}) {
+        double d = p[k] - q[k];
+        if (std::abs(d) > 0.005) {
+          d -= std::copysign(0.01, d);
+          wrapped = true;
+        }
+        d2 += d * d;
+      }
+      EXPECT_GT(std::sqrt(d2), 0.0012 * (1.0 - 1e-12)) << a << " " << b;
+      if (wrapped && std::sqrt(d2) < 0.0012 * (1.0 + 1e-9)) ++across;
+    }
+  }
+  EXPECT_GT(across, 5);
+  expect_scene_error(text, {"generate[0].box.max=[0.009, 0.03, 0.01]"},
+                     {"generate[0].box", "must span the period"});
+}
+
 // 4 x 4 touching steel spheres in the plane z = 0.
 SceneBuilder lattice_for_assign() {
   return header().add("generate", lattice({4, 4, 1}, {{"origin", {0.001, 0.001, 0.0}}}));

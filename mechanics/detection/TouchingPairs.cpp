@@ -20,8 +20,10 @@ std::vector<TouchingPair> particle_pairs_below(const ParticleSet& particles,
   grid.build(particles.position, reach, particles.box);
   const auto& x = particles.position;
   const auto& r = particles.radius;
+  const bool periodic = particles.box.any();
   grid.for_each_candidate_pair([&](std::uint32_t a, std::uint32_t b) {
-    const double gap = particles.box.minimum_image(x[a] - x[b]).norm() - r[a] - r[b];
+    const Eigen::Vector3d d = x[a] - x[b];
+    const double gap = (periodic ? particles.box.minimum_image(d) : d).norm() - r[a] - r[b];
     if (gap <= threshold_fraction * std::min(r[a], r[b])) {
       pairs.push_back({std::min(a, b), std::max(a, b), gap});
     }

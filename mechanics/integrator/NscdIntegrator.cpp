@@ -245,6 +245,7 @@ void NscdIntegrator::setup_contacts(double h) {
   }
   gap_.resize(pairs.size());
   // Every candidate writes only its own entries: the same bits for any thread count.
+  const bool periodic = particles_.box.any();  // hoisted: the open case stays x_i - x_j
 #pragma omp parallel for schedule(static) \
     if (static_cast<std::ptrdiff_t>(pairs.size()) >= parameters_.parallel_from)
   for (std::size_t k = 0; k < pairs.size(); ++k) {
@@ -260,7 +261,8 @@ void NscdIntegrator::setup_contacts(double h) {
     Eigen::Vector3d n;
     double gap;
     if (!is_wall(j)) {
-      const Eigen::Vector3d d = particles_.box.minimum_image(xi - particles_.position[j]);
+      const Eigen::Vector3d d = periodic ? particles_.box.minimum_image(xi - particles_.position[j])
+                                         : Eigen::Vector3d(xi - particles_.position[j]);
       const double distance = d.norm();
       // Coincident centres have no defined normal; any unit vector in the plane will do.
       n = distance > 0.0 ? Eigen::Vector3d(d / distance) : Eigen::Vector3d::UnitY();
@@ -560,10 +562,12 @@ void NscdIntegrator::account_energy(double h, StepReport& report) const {
 
 void NscdIntegrator::gaps_after_step(std::vector<double>& gap) const {
   gap.resize(problem_.size());
+  const bool periodic = particles_.box.any();
   for (std::size_t k = 0; k < problem_.size(); ++k) {
     const std::int32_t i = problem_.body_i[k], j = problem_.body_j[k];
     if (!is_wall(j)) {
-      gap[k] = particles_.branch(std::size_t(i), std::size_t(j)).norm() - problem_.lever_i[k] -
+      const Eigen::Vector3d d = particles_.position[i] - particles_.position[j];
+      gap[k] = (periodic ? particles_.box.minimum_image(d) : d).norm() - problem_.lever_i[k] -
                problem_.lever_j[k];
     } else {
       gap[k] = walls_[wall_index(j)].signed_distance(particles_.position[i]) - problem_.lever_i[k];

@@ -100,7 +100,9 @@ class NscdIntegrator {
   void restore_state(const MechanicsState& state);
 
   double kinetic_energy() const;    // J, translation + rotation of moving particles
-  double potential_energy() const;  // J, -sum m g.x (zero at the origin), moving particles
+  // J, -sum m g.x (zero at the origin), moving particles. Gravity along a periodic axis makes it
+  // jump by m g L where a particle wraps; StepReport's energy account sums displacements instead.
+  double potential_energy() const;
   // Largest centre speed |v| of a moving particle, m/s; the "settle" phase ends when it
   // drops below settle_velocity. Spin is left out on purpose: a sphere spinning about its
   // contact normal is at rest as far as the packing goes, and point contacts never stop it.

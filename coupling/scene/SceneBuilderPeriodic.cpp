@@ -42,7 +42,7 @@ void SceneBuilder::check_periodic_bodies() {
   // The detector needs twice the contact reach, 2 r_max + its smallest margin, in each period
   // (mechanics/detection/ContactDetector.h): one image of a pair within reach, never two.
   const double shortest_m =
-      2.0 * (2.0 + mechanics::NscdParameters{}.min_margin_fraction) * largest_radius_m;
+      2.0 * (2.0 * largest_radius_m + mechanics::NscdParameters{}.min_margin_fraction * largest_radius_m);
   for (int a = 0; a < 3; ++a) {
     if (!periodic.axis[std::size_t(a)]) continue;
     if (periodic.length_m(a) < shortest_m)

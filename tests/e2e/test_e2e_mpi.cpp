@@ -23,6 +23,7 @@ struct BedShape {
   double lid_z_m = 0.012;   // on the top layer
   int held_id = 300;
   std::string gravity = "[0.0, 0.0, 0.0]";
+  std::string periodic;  // a [periodic] table, or none
 };
 
 // Steel spheres touching in a lattice on a hot floor under a cooled flux lid, convection, a
@@ -34,6 +35,7 @@ std::string lattice_bed_scene(const BedShape& shape) {
 duration = 20.0
 dimension = 3
 gravity = )" + shape.gravity + R"(
+)" + shape.periodic + R"(
 [effects]
 mechanics = ")" + shape.mechanics + R"("
 convection = true
@@ -182,6 +184,24 @@ TEST(E2eMpi, TwoProcessesHeatAFrozenBedAsOneToTheIntegratorTolerance) {
 TEST(E2eMpi, ThreeProcessesHeatAFrozenBedAsOne) {
   if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed (Debian openmpi-bin) or cannot start 2 processes";
   expect_equal_to_the_tolerance(heat_with_one_and_many("mpi_three", BedShape{}, 3), 360);
+}
+
+// Periodic along x (20 mm: the lattice's first and last columns touch round the boundary): the
+// first and the last of three slabs exchange ghosts too, the network's edges round the boundary.
+TEST(E2eMpi, ThreeProcessesHeatAPeriodicBedAsOne) {
+  if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed (Debian openmpi-bin) or cannot start 2 processes";
+  BedShape periodic;
+  periodic.periodic = "[periodic]\nx = [0.0, 0.02]\n";
+  const auto r = heat_with_one_and_many("mpi_periodic", periodic, 3);
+  expect_equal_to_the_tolerance(r, 360);
+  const auto open = heat_with_one_and_many("mpi_open", BedShape{}, 3);
+  if (r.T2.empty() || open.T2.empty()) return;
+  // The boundary's 36 pairs: their heat makes the periodic bed's temperatures differ, and their
+  // two ends are ghosts of the first and the last process.
+  double difference_K = 0.0;
+  for (std::size_t i = 0; i < 360; ++i) difference_K = std::max(difference_K, std::abs(r.T1[i] - open.T1[i]));
+  EXPECT_GT(difference_K, 0.1);
+  EXPECT_EQ(r.s2["mpi"]["ghosts"].get<int>(), open.s2["mpi"]["ghosts"].get<int>() + 72);
 }
 
 // Settled first (every process settles the same column and checks that they agree), then

@@ -1,9 +1,9 @@
 // End to end with [periodic]: `study conductivity` on bulk lattices between two walls with no
-// side walls (a simple cubic lattice under given contact forces: the Hertz chains of its
-// columns over the periods; a
-// body-centred lattice: the layered network, and without its periodic neighbours another
-// number); a pair pushed across the boundary keeps its contact and its heat, the thermal
-// energy conserved; a bed poured into an x-z periodic box settles inside it.
+// side walls (a simple cubic lattice under given contact forces: the Hertz chains of its columns
+// over the periods; a body-centred lattice: the layered network, and without its periodic
+// neighbours another number); a pair pushed across the boundary keeps its contact and its heat,
+// the thermal energy conserved; a period too short for the fall is warned of and stops the run;
+// a bed poured into an x-z periodic box settles inside it.
 #include <gtest/gtest.h>
 
 #include <H5Cpp.h>

@@ -1,13 +1,15 @@
 """Opens a tmdem RESULT.xdmf with ParaView's three XDMF readers and checks what they show.
 
 Run by tests/paraview/test_paraview_readers.cpp through pvbatch:
-  pvbatch check_xdmf.py XDMF PARTICLES FRAMES LAST_TIME PARTICLE_ID TEMPERATURE CONTACTS WALLS [AT [WALL_Y]]
+  pvbatch check_xdmf.py XDMF PARTICLES FRAMES LAST_TIME PARTICLE_ID TEMPERATURE CONTACTS WALLS [AT [WALL_Y [LONGEST]]]
 XDMF must be an absolute path (ParaView's Xdmf3 readers resolve the .h5 next to it wrongly for
 a bare file name). Exit 0 when every reader shows FRAMES time steps ending at LAST_TIME and, at
 time AT (default LAST_TIME): PARTICLES points with the point arrays of the contract, particle
 PARTICLE_ID at TEMPERATURE (K, to 1e-9 relative), CONTACTS contact lines with their cell arrays
 (CONTACTS = 0: no contact grid, or one of 0 lines) and WALLS wall squares; with WALL_Y, one of
-the squares lies in the plane y = WALL_Y (m, to 1e-12 m: a piston drawn where it is at AT).
+the squares lies in the plane y = WALL_Y (m, to 1e-12 m: a piston drawn where it is at AT; nan:
+no check); with LONGEST, no contact line is longer than LONGEST (m: a periodic scene's contact
+round a boundary drawn to the image beside it, not across the box).
 """
 import sys
 
@@ -18,7 +20,8 @@ particles, frames = int(sys.argv[2]), int(sys.argv[3])
 last_time, particle_id, temperature = float(sys.argv[4]), int(sys.argv[5]), float(sys.argv[6])
 contacts, walls = int(sys.argv[7]), int(sys.argv[8])
 check_time = float(sys.argv[9]) if len(sys.argv) > 9 else last_time
-wall_y = float(sys.argv[10]) if len(sys.argv) > 10 else None
+wall_y = float(sys.argv[10]) if len(sys.argv) > 10 and sys.argv[10] != "nan" else None
+longest = float(sys.argv[11]) if len(sys.argv) > 11 else None
 
 
 def leaves(data):
@@ -80,6 +83,15 @@ def check(name, reader):
             problems.append(f"{lines[0].GetNumberOfCells()} contact lines, expected {contacts}")
         elif {"normal_force", "conductance", "tangential_force"} - cell_arrays(lines[0]):
             problems.append("contact cell arrays missing")
+        elif longest is not None:
+            grid = lines[0]
+            for c in range(grid.GetNumberOfCells()):
+                ids = grid.GetCell(c).GetPointIds()
+                a, b = grid.GetPoint(ids.GetId(0)), grid.GetPoint(ids.GetId(1))
+                length = sum((a[k] - b[k]) ** 2 for k in range(3)) ** 0.5
+                if length > longest:
+                    problems.append(f"contact line {c} is {length!r} m long, longer than {longest!r}")
+                    break
     if walls > 0 and len(squares) != 1:
         problems.append(f"{len(squares)} wall grids with {4 * walls} points")
     elif wall_y is not None:

@@ -23,6 +23,7 @@ struct Expected {
   double last_time_s = 0.0, at_s = 0.0, temperature_K = 0.0;
   long long contacts = 0;
   double wall_y_m = std::numeric_limits<double>::quiet_NaN();  // a square at this y (NaN: no check)
+  double longest_line_m = std::numeric_limits<double>::quiet_NaN();  // no contact line longer (NaN: no check)
 };
 
 Expected expected_at(const std::string& h5, std::size_t frame, std::size_t probe,
@@ -50,8 +51,12 @@ bool readers_show(const std::string& xdmf, const Expected& e, std::string& log) 
   std::snprintf(numbers, sizeof numbers, "%zu %zu %.17g %zu %.17g %lld %zu %.17g", e.particles,
                 e.frames, e.last_time_s, e.probe, e.temperature_K, e.contacts, e.walls, e.at_s);
   std::string arguments = numbers;
-  if (!std::isnan(e.wall_y_m)) {
+  if (!std::isnan(e.wall_y_m) || !std::isnan(e.longest_line_m)) {
     std::snprintf(numbers, sizeof numbers, " %.17g", e.wall_y_m);
+    arguments += std::isnan(e.wall_y_m) ? " nan" : numbers;
+  }
+  if (!std::isnan(e.longest_line_m)) {
+    std::snprintf(numbers, sizeof numbers, " %.17g", e.longest_line_m);
     arguments += numbers;
   }
   const std::string out = xdmf + ".pvbatch.log";
@@ -160,4 +165,34 @@ TEST_F(ParaView, PistonIsDrawnWhereItIsInEachFrame) {
     std::string log;
     EXPECT_TRUE(readers_show(xdmf, e, log)) << "frame " << frame << ": " << log;
   }
+}
+
+// A lattice periodic along x and z (6 mm periods, no side walls) on a hot floor, contacts from
+// geometry: the pairs round the boundaries end at the neighbour's image beside the sphere
+// (/xdmf/frame_<f>/image_ends), so every reader shows each contact as one line no longer than a
+// diameter; drawn between the wrapped centres they would be 4 mm long.
+TEST_F(ParaView, ContactsRoundAPeriodicBoundaryAreShortLines) {
+  const auto dir = scratch_dir("paraview_periodic");
+  const auto r = run_scene(dir, "periodic",
+                           heated_from_below(20.0, "off")
+                               .set({{"thermal.conductance", "constant"}})
+                               .set({{"periodic.x", {0.0, 0.006}}, {"periodic.z", {0.0, 0.006}}})
+                               .add("generate", lattice({3, 2, 3}))
+                               .set(output("periodic.h5", 10.0)));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  {
+    H5::H5File f(dir + "/periodic.h5", H5F_ACC_RDONLY);
+    std::vector<hsize_t> dims;
+    read_doubles(f, "/xdmf/frame_2/image_ends", &dims);
+    ASSERT_EQ(dims[0], 12u);  // one per pair round a boundary: 2 layers x 2 axes x 3 rows
+  }
+  const std::string xdmf = std::filesystem::absolute(dir + "/periodic.xdmf").string();
+  Expected e = expected_at(dir + "/periodic.h5", 2, 1, 1);
+  ASSERT_GT(e.contacts, 0);
+  e.longest_line_m = 0.002 * (1.0 + 1e-6);
+  std::string log;
+  EXPECT_TRUE(readers_show(xdmf, e, log)) << log;
+  // The check can fail: every contact line is 2 mm long.
+  e.longest_line_m = 0.0019;
+  EXPECT_FALSE(readers_show(xdmf, e, log)) << log;
 }

@@ -34,6 +34,10 @@ void print_conductivity_report(std::ostream& out, const ConductivityResult& r) {
         << m.cold_wall_W + 0.0 << " W)\n";
   out << std::setprecision(8) << "k_eff = " << r.k_eff_W_per_mK << " W/(m K)\n"
       << std::setprecision(6);
+  if (r.zsb_W_per_mK)
+    out << "Zehner-Schlunder-Bauer at this porosity (flattening 0.0077, the gas's jump length): "
+        << *r.zsb_W_per_mK << " W/(m K), k_eff / ZSB = " << r.k_eff_W_per_mK / *r.zsb_W_per_mK
+        << " (docs/validation.md)\n";
 }
 
 void write_conductivity_csv(std::ostream& out, const std::vector<ConductivityResult>& results) {

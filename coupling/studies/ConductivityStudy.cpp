@@ -10,7 +10,10 @@
 #include "coupling/bridge/SceneToMechanics.h"
 #include "coupling/run/ThermalProblem.h"
 #include "coupling/scene/SceneError.h"
+#include "coupling/studies/ZehnerSchlunderBauer.h"
 #include "mechanics/model/PairIndex.h"
+#include "thermal/modes/GasGapConductance.h"
+#include "thermal/modes/ModeRegistry.h"
 #include "thermal/steady/SteadyStateSolver.h"
 #include "thermal/integrators/ThermalSolverError.h"
 
@@ -157,6 +160,35 @@ std::pair<std::size_t, std::size_t> conductivity_walls(const Scene& scene) {
 namespace {
 
 // k_eff and the rest from a frozen problem; `scene` has the walls where the problem has them.
+// ZSB beside k_eff (docs/validation.md) for a bed in a gas of one solid with a constant
+// conductivity: at the study's porosity, the particles' mean diameter, the gas mode's
+// conductivity and jump length, and the VDI's flattening coefficient for spheres.
+std::optional<double> zehner_schlunder_bauer_of(const Scene& scene, const ConductivityResult& r) {
+  const bool gas = std::any_of(r.modes.begin(), r.modes.end(),
+                               [](const ModeShare& m) { return m.mode == "gas_conduction"; });
+  if (!gas || scene.particles.empty() || !(r.porosity > 0.0 && r.porosity < 1.0)) return std::nullopt;
+  const int material = scene.particles.front().material;
+  double diameter_sum_m = 0.0;
+  for (const auto& p : scene.particles) {
+    if (p.material != material) return std::nullopt;
+    diameter_sum_m += 2.0 * p.radius_m;
+  }
+  const Material& solid = scene.materials[std::size_t(material)];
+  if (solid.temperature_dependent()) return std::nullopt;
+  const auto* mode = thermal::find_heat_transfer_mode("gas_conduction");
+  if (mode == nullptr) return std::nullopt;
+  const thermal::ModeParameters fluid = thermal::resolve_mode_parameters(*mode, scene.heat_modes);
+  ZehnerSchlunderBauerInput in;
+  in.porosity = r.porosity;
+  in.k_solid_W_per_mK = solid.conductivity_W_per_mK;
+  in.k_fluid_W_per_mK = fluid["conductivity"];
+  in.diameter_m = diameter_sum_m / double(scene.particles.size());
+  in.flattening = 0.0077;
+  in.jump_length_m =
+      thermal::gas_jump_length_m(fluid["pressure"], fluid["mean_free_path"], fluid["accommodation"]);
+  return zehner_schlunder_bauer(in).k_eff_W_per_mK;
+}
+
 ConductivityResult measure_conductivity(const Scene& scene, const FrozenThermalProblem& problem,
                                         std::size_t hot_wall, std::size_t cold_wall) {
   ConductivityResult r;
@@ -238,6 +270,7 @@ ConductivityResult measure_conductivity(const Scene& scene, const FrozenThermalP
     r.modes[m].share = r.heat_cold_W != 0.0 ? transport_Wm[m] / (r.length_m * r.heat_cold_W) : 0.0;
   r.balance_rel = r.heat_hot_W != 0.0 ? std::abs(r.heat_hot_W - r.heat_cold_W) / std::abs(r.heat_hot_W) : 0.0;
   r.k_eff_W_per_mK = r.heat_hot_W * r.length_m / (r.area_m2 * (r.T_hot_K - r.T_cold_K));
+  r.zsb_W_per_mK = zehner_schlunder_bauer_of(scene, r);
   return r;
 }
 

@@ -65,6 +65,9 @@ struct ConductivityResult {
   double max_residual_W = 0.0;
   bool at_rest = true;         // settled packings: came to rest within settle_time
   std::vector<ModeShare> modes;   // every switched-on mode, registry order
+  // Zehner-Schlunder-Bauer at this porosity, for a bed of one solid in a gas (gas_conduction on,
+  // constant conductivity): the reference of docs/validation.md. W/(m K).
+  std::optional<double> zsb_W_per_mK;
   std::vector<double> T_K;        // steady temperatures
 };
 

@@ -126,6 +126,7 @@ TEST_P(Validation, BulkBedInAirAndHeliumAgainstZehnerSchlunderBauer) {
   // each gas.
   // One conductivity study of the pressed bed in `gas` at `pressure_Pa` (0: continuum):
   // {k_eff, porosity}.
+  std::string last_output;  // of the last study (its report prints ZSB beside k_eff)
   const auto study = [&](const Gas& gas, double pressure_Pa) -> std::pair<double, double> {
     std::ostringstream settings;
     settings << "[fluid]\nmodel = \"surrounding_layer\"\nconductivity = " << gas.conductivity_W_per_mK
@@ -137,8 +138,9 @@ TEST_P(Validation, BulkBedInAirAndHeliumAgainstZehnerSchlunderBauer) {
                   "[effects]\nmechanics = \"settle\"\ngas_conduction = true\n");
     write_file(dir + "/bed.toml", scene + settings.str());
     const std::string csv = std::string(gas.name) + ".csv";
-    const auto result = run_tmdem("study conductivity bed.toml --csv " + csv + " --quiet", dir);
+    const auto result = run_tmdem("study conductivity bed.toml --csv " + csv, dir);
     EXPECT_EQ(result.exit_code, 0) << result.output;
+    last_output = result.output;
     const auto cells = csv_row(dir + "/" + csv);
     if (cells.size() < 7) {
       ADD_FAILURE() << "no study row in " << csv;
@@ -189,6 +191,10 @@ TEST_P(Validation, BulkBedInAirAndHeliumAgainstZehnerSchlunderBauer) {
                 row.solid.name, pressure, k, k / k_continuum, reference,
                 reference / zsb(kAir, porosity, 0.0, 0.0077), k / reference);
     EXPECT_LT(k, previous) << pressure;
+    // The study's own report gives the same ZSB (and ratio) as this test computes.
+    const auto at = last_output.find("k_eff / ZSB = ");
+    ASSERT_NE(at, std::string::npos) << last_output;
+    EXPECT_NEAR(std::stod(last_output.substr(at + 14)), k / reference, 1e-5) << pressure;
     EXPECT_GE(k / reference, band.low) << pressure;
     EXPECT_LE(k / reference, band.high) << pressure;
     previous = k;

@@ -55,6 +55,7 @@ mechanics::NscdParameters make_nscd_parameters(const Scene& scene) {
   p.tighten_steps = scene.mechanics.tighten_steps;
   p.stop_travel_fraction = scene.mechanics.stop_travel;
   p.skip_out_of_reach = scene.mechanics.skip_out_of_reach;
+  p.static_warm_start = scene.mechanics.static_warm_start;
   p.max_iterations = scene.mechanics.max_iterations;
   p.full_sweep_every = scene.mechanics.full_sweep_every;
   p.penetration_slop_fraction = scene.mechanics.penetration_slop;

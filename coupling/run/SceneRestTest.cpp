@@ -9,7 +9,7 @@ SceneRestTest::SceneRestTest(const Scene& scene, const mechanics::NscdIntegrator
       settle_velocity_m_per_s_(scene.mechanics.settle_velocity_m_per_s),
       network_test_(scene.mechanics.rest_test == "network"),
       network_({.window_steps = scene.mechanics.rest_window,
-                .gravity_m_s2 = nscd.gravity().norm(),
+                .gravity_m_s2 = nscd.gravity(),
                 .force_change = scene.mechanics.rest_force_change,
                 .speed_m_s = scene.mechanics.settle_velocity_m_per_s}) {}
 

@@ -44,27 +44,50 @@ bool SettleRestTest::after_step(const std::vector<mechanics::ContactForce>& cont
   now.pair.clear();
   now.normal_force_N.clear();
   contact_force_N_.assign(particles.size(), 0.0);
+  pressed_N_.assign(particles.size(), 0.0);
+  const double gravity = settings_.gravity_m_s2.norm();
+  const Eigen::Vector3d down = gravity > 0.0 ? Eigen::Vector3d(settings_.gravity_m_s2 / gravity)
+                                             : Eigen::Vector3d::Zero();
   double total_N = 0.0;
   for (const auto& c : contacts) {
     now.pair.emplace_back(c.i, c.j);
     now.normal_force_N.push_back(c.normal_force_N);
     total_N += c.normal_force_N;
+    // On i; j takes the opposite.
+    const double along_gravity_N = (c.normal_force_N * c.normal + c.tangential_force_N).dot(down);
     contact_force_N_[std::size_t(c.i)] += c.normal_force_N;
-    if (!mechanics::is_wall(c.j)) contact_force_N_[std::size_t(c.j)] += c.normal_force_N;
+    pressed_N_[std::size_t(c.i)] += std::max(along_gravity_N, 0.0);
+    if (!mechanics::is_wall(c.j)) {
+      contact_force_N_[std::size_t(c.j)] += c.normal_force_N;
+      pressed_N_[std::size_t(c.j)] += std::max(-along_gravity_N, 0.0);
+    }
   }
   history_.push_back(std::move(now));
 
+  // Pressed by at least half its weight: passes load on. Where nobody is, every particle held
+  // by half its weight counts (a single layer on a floor, no gravity).
+  bool any_pressed = false;
+  for (std::size_t p = 0; p < particles.size(); ++p)
+    if (!particles.fixed[p] && pressed_N_[p] > 0.0 &&
+        pressed_N_[p] >= 0.5 * particles.mass[p] * gravity) {
+      any_pressed = true;
+      break;
+    }
   double kinetic_2J = 0.0, mass_kg = 0.0;  // 2 KE and M of the load carriers
   double max_speed_m_s = 0.0;
   rattlers_ = 0;
+  load_carriers_ = 0;
   for (std::size_t p = 0; p < particles.size(); ++p) {
     if (particles.fixed[p]) continue;
     max_speed_m_s = std::max(max_speed_m_s, particles.velocity[p].norm());
+    const double half_weight_N = 0.5 * particles.mass[p] * gravity;
     const double force_N = contact_force_N_[p];
-    if (!(force_N > 0.0 && force_N >= 0.5 * particles.mass[p] * settings_.gravity_m_s2)) {
+    if (!(force_N > 0.0 && force_N >= half_weight_N)) {
       ++rattlers_;
       continue;
     }
+    if (any_pressed && !(pressed_N_[p] > 0.0 && pressed_N_[p] >= half_weight_N)) continue;
+    ++load_carriers_;
     kinetic_2J += particles.mass[p] * particles.velocity[p].squaredNorm();
     mass_kg += particles.mass[p];
   }

@@ -161,6 +161,7 @@ struct MechanicsSettings {
   double fall_speed_m_per_s = mechanics::NscdParameters{}.fall_speed;
   double stop_travel = mechanics::NscdParameters{}.stop_travel_fraction;  // of r_min per step
   bool skip_out_of_reach = mechanics::NscdParameters{}.skip_out_of_reach;
+  bool static_warm_start = mechanics::NscdParameters{}.static_warm_start;
   int tighten_steps = mechanics::NscdParameters{}.tighten_steps;  // fall_tolerance -> tolerance over this many steps
   int max_iterations = mechanics::NscdParameters{}.max_iterations;
   int full_sweep_every = 1;  // Gauss-Seidel active-set sweeps (mechanics::NscdParameters)

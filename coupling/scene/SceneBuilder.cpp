@@ -129,6 +129,7 @@ void SceneBuilder::read_settings() {
     m.fall_speed_m_per_s = t.optional_number("fall_speed").value_or(0.0);  // absent: automatic
     m.stop_travel = t.number("stop_travel");
     m.skip_out_of_reach = t.boolean("skip_out_of_reach", m.skip_out_of_reach);
+    m.static_warm_start = t.boolean("static_warm_start", m.static_warm_start);
     // Sweep counts: integers >= 1 (checked only when mechanics is on).
     auto sweeps = [&](std::string_view key, int fallback) {
       return static_cast<int>(t.integer(key, fallback,

@@ -379,6 +379,11 @@ std::vector<Section> build_sections() {
                 "about 2x faster while a large pour lands, but not exact (a struck particle can "
                 "outrun its own look-ahead), so off by default "
                 "(docs/mechanics.md \"The defaults\")"),
+        boolean("static_warm_start", kNscd.static_warm_start ? "true" : "false",
+                "the first step's solve starts from the statics of the contact geometry (each "
+                "particle's weight and what rests on it passed down to its supports) instead of "
+                "from no forces: a deposited or imported bed's first steps take fewer sweeps "
+                "(docs/mechanics.md \"The first step\")"),
         value("tighten_steps", "", std::to_string(kNscd.tighten_steps), "integer >= 1",
               "tolerance schedule: once the fall has ended, the tolerance goes from "
               "fall_tolerance to tolerance geometrically over this many steps (1: at once)"),
@@ -390,11 +395,13 @@ std::vector<Section> build_sections() {
         number("settle_time", "s", 5.0, Range::greater(0.0), "longest \"settle\" phase"),
         number("settle_velocity", "m/s", 1.0e-4, Range::greater(0.0),
                "rest_test \"velocity\": every particle slower than this; \"network\": the "
-               "mass-weighted mean speed sqrt(2 KE / M) of the load-carrying particles below this"),
+               "mass-weighted mean speed sqrt(2 KE / M) of the load-carrying particles (pressed "
+               "along gravity by at least half their weight) below this"),
         choice("rest_test", "network", {"network", "velocity"},
                "when \"settle\" ends: \"network\" once the contact normal forces changed by less "
                "than rest_force_change over rest_window steps and the load-carrying particles "
-               "are slower than settle_velocity (rattlers are not waited for); \"velocity\" once "
+               "are slower than settle_velocity (rattlers and the free surface are not waited for); "
+               "\"velocity\" once "
                "every particle is slower than settle_velocity"),
         value("rest_window", "", "5", "integer >= 1",
               "rest_test \"network\": steps over which the normal forces are compared"),

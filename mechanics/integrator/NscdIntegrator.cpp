@@ -1,4 +1,5 @@
 #include "mechanics/integrator/NscdIntegrator.h"
+#include "mechanics/integrator/StaticWarmStart.h"
 
 #include <algorithm>
 #include <array>
@@ -385,6 +386,14 @@ StepReport NscdIntegrator::step(double h) {
                               ? std::array<double, 2>{particles_.box.low[problem_.split_axis],
                                                       particles_.box.high[problem_.split_axis]}
                               : std::array<double, 2>{0.0, 0.0};
+  if (static_start_pending_) {
+    static_start_pending_ = false;
+    // Heights along a periodic axis have no order.
+    bool periodic_gravity = false;
+    for (int a = 0; a < 3; ++a) periodic_gravity |= particles_.box.along(a) && gravity_[a] != 0.0;
+    if (parameters_.static_warm_start && !periodic_gravity)
+      static_warm_start(problem_, gap_, particles_.position, gravity_, h, reactions_);
+  }
   report.detection_s += lap();
   report.candidates = problem_.size();
   const SolveReport solved = solve_contacts();

@@ -167,6 +167,7 @@ class NscdIntegrator {
   std::vector<double> lookahead_;
   std::vector<double> wall_lookahead_;  // m; empty when no wall moves
   bool has_piston_ = false;
+  bool static_start_pending_ = true;  // the next step is the first, and knows no forces
   double slop_m_ = 0.0;  // penetration slop (NscdParameters), m
   double stop_speed_m_per_s_ = 0.0;  // ContactProblem::stop_speed outside the fall
   ContactProblem problem_;

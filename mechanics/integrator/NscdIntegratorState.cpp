@@ -70,6 +70,7 @@ void NscdIntegrator::restore_state(const MechanicsState& s) {
   order_.invalidate();
   force_ = s.candidate_force_N;
   old_force_.clear();
+  static_start_pending_ = false;  // the state carries its own warm start
   // A state saved without rolling torques (no rolling resistance then) starts them at 0.
   torque_ = s.candidate_rolling_torque_Nm;
   if (rolling_) torque_.resize(s.candidates.size(), Eigen::Vector3d::Zero());

@@ -95,6 +95,10 @@ struct NscdParameters {
   // 124-126 and 108-110. Where between 18,000 and 98,000 it starts to pay was not measured.
   // 0: always (tests).
   std::size_t spatial_order_from = 50000;
+  // The first step of an integrator that knows no forces starts its solve from the statics of
+  // the contact geometry (StaticWarmStart.h) instead of from zero impulses. A restored state
+  // keeps its own warm start.
+  bool static_warm_start = true;
 };
 
 }  // namespace tmdem::mechanics

@@ -111,8 +111,10 @@ TEST_P(Validation, BulkBedInAirAndHeliumAgainstZehnerSchlunderBauer) {
     return top_m;
   };
   // 2. Pressed once by the piston laid on its top (1e3 Pa) and settled again.
+  // The position step holds overlaps up to twice the slop (2e-4 of the radius) to its own 1%
+  // tolerance: a pressed bed's deepest can be a hair over 2e-4 (2.003e-4 measured).
   const auto imported = [](const std::string& csv) {
-    return "[[import]]\nfile = \"" + csv + "\"\noverlap_tolerance = 2e-4\n";
+    return "[[import]]\nfile = \"" + csv + "\"\noverlap_tolerance = 2.5e-4\n";
   };
   write_file(dir + "/press.toml", bed_scene(row.solid, imported("laid.csv"), top_of("laid.csv") + 1e-6));
   r = run_tmdem("run press.toml -o press.h5 --quiet --summary press.json --set simulation.duration=0.001", dir);

@@ -1,6 +1,7 @@
 // The network rest test of the settle phase (coupling/run/SettleRestTest.h) on hand-made steps:
-// it waits exactly one window of stationary forces, ignores rattlers, counts an opened contact
-// with its whole force, and falls back on every particle's speed where nothing carries force.
+// it waits exactly one window of stationary forces, ignores rattlers and particles that carry
+// nothing but their own weight, counts an opened contact with its whole force, and falls back
+// on every particle's speed where nothing carries force.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -34,8 +35,14 @@ ParticleSet three_particles() {
 
 // Particles of 1e-5 kg under 9.81 m/s^2: a weight of 9.81e-5 N each.
 SettleRestTestSettings settings(int window, double force_change = 1e-2) {
-  return {.window_steps = window, .gravity_m_s2 = 9.81, .force_change = force_change,
+  return {.window_steps = window, .gravity_m_s2 = {0.0, -9.81, 0.0}, .force_change = force_change,
           .speed_m_s = 1e-4};
+}
+
+ContactForce contact(std::int64_t i, std::int64_t j, double force_N, const Eigen::Vector3d& normal) {
+  ContactForce c = contact(i, j, force_N);
+  c.normal = normal;
+  return c;
 }
 
 std::vector<ContactForce> carried_column(double floor_N, double pair_N) {
@@ -80,6 +87,52 @@ TEST(SettleRestTest, ParticleHeldByLessThanHalfItsWeightIsNoLoadCarrier) {
   contacts.back().normal_force_N = 4.91e-5;
   EXPECT_FALSE(rest.after_step(contacts, particles));
   EXPECT_EQ(rest.rattlers(), 0);
+}
+
+// Particle 1 rests on particle 0, which rests on the floor (normals from j to i): 0 is pressed
+// down by 1's weight and carries load; 1 carries only its own weight, as a sphere of the free
+// surface does, and rolling on it changes nobody's load: its speed holds nothing up. 0's does.
+TEST(SettleRestTest, SurfaceParticleCarryingOnlyItsWeightDoesNotHoldItUp) {
+  SettleRestTest rest(settings(1));
+  auto particles = three_particles();
+  const double weight_N = 9.81e-5;
+  const std::vector<ContactForce> column = {
+      contact(0, mechanics::wall_code<std::int64_t>(0), 2 * weight_N, {0.0, 1.0, 0.0}),
+      contact(0, 1, weight_N, {0.0, -1.0, 0.0})};
+  particles.velocity[1] = {0.05, 0.0, 0.0};
+  EXPECT_FALSE(rest.after_step(column, particles));
+  EXPECT_TRUE(rest.after_step(column, particles));
+  EXPECT_EQ(rest.load_carriers(), 1);
+  EXPECT_EQ(rest.rattlers(), 1);
+  EXPECT_EQ(rest.load_speed_m_s(), 0.0);
+  particles.velocity[0] = {2e-4, 0.0, 0.0};
+  EXPECT_FALSE(rest.after_step(column, particles));
+  EXPECT_NEAR(rest.load_speed_m_s(), 2e-4, 1e-18);
+  // Particle 1 lighter than half 0's weight on it: nobody is pressed, so every particle held by
+  // half its weight counts (0, by the floor; 1 is held by less and is a rattler).
+  auto light = column;
+  light[1].normal_force_N = 0.49 * weight_N;
+  EXPECT_FALSE(rest.after_step(light, particles));
+  EXPECT_EQ(rest.load_carriers(), 1);
+  EXPECT_EQ(rest.rattlers(), 2);
+}
+
+// Two particles side by side on the floor, nobody pressed: each one held by its weight carries
+// load, so a layer sliding on the floor (its forces unchanged) is not at rest.
+TEST(SettleRestTest, SingleLayerWaitsForEveryParticleHeldByItsWeight) {
+  SettleRestTest rest(settings(1));
+  auto particles = three_particles();
+  particles.position[1] = {0.002, 0.0, 0.0};
+  const double weight_N = 9.81e-5;
+  const std::vector<ContactForce> layer = {
+      contact(0, mechanics::wall_code<std::int64_t>(0), weight_N, {0.0, 1.0, 0.0}),
+      contact(1, mechanics::wall_code<std::int64_t>(0), weight_N, {0.0, 1.0, 0.0})};
+  particles.velocity[1] = {0.01, 0.0, 0.0};
+  EXPECT_FALSE(rest.after_step(layer, particles));
+  EXPECT_FALSE(rest.after_step(layer, particles));
+  EXPECT_EQ(rest.load_carriers(), 2);
+  particles.velocity[1] = {0.0, 0.0, 0.0};
+  EXPECT_TRUE(rest.after_step(layer, particles));
 }
 
 TEST(SettleRestTest, ForceChangeIsRelativeToTheTotalAndCountsOpenedContacts) {

@@ -118,10 +118,11 @@ TEST(Piston, PressedColumnCarriesLoadPlusWeights) {
   EXPECT_LT(c.sim.max_speed(), 1e-9);
   const double floor = expect_column_statics(c, count, load + mass * kG);
   EXPECT_NEAR(floor, load + mass * kG + count * c.weight_N, 1e-6 * floor);
-  // The piston rests on the top sphere: rigid contacts, the impact's penetration (2.6e-9 R
-  // measured) far inside the penetration slop (1e-4 R) that is held rather than pushed out.
-  EXPECT_NEAR(c.sim.walls()[1].point.y(), 2 * count * kRadius, 1e-8 * kRadius);
-  EXPECT_LT(c.sim.stats().max_penetration_m, 1e-8 * kRadius);
+  // The piston rests on the top sphere: rigid contacts, the impact's penetration (measured 2.6e-9
+  // R from a first step solved from zero impulses, 1.2e-8 R from the static warm start) far
+  // inside the penetration slop (1e-4 R) that is held rather than pushed out.
+  EXPECT_NEAR(c.sim.walls()[1].point.y(), 2 * count * kRadius, 1e-7 * kRadius);
+  EXPECT_LT(c.sim.stats().max_penetration_m, 1e-7 * kRadius);
   EXPECT_EQ(c.sim.stats().unconverged_steps, 0);
 }
 

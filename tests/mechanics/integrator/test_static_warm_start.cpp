@@ -1,0 +1,105 @@
+// The first step's warm start from the statics of the contact geometry (StaticWarmStart.h):
+// closed-form statics of a pyramid and of a column, what it leaves out, and the sweeps it saves
+// on a deep column.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "mechanics/ColumnStatics.h"
+#include "mechanics/MechanicsTestScenes.h"
+#include "mechanics/integrator/StaticWarmStart.h"
+#include "mechanics/model/PairIndex.h"
+
+using namespace tmdem::mechanics;
+using namespace tmdem::mechanics::test;
+using Eigen::Vector3d;
+
+namespace {
+
+
+// One contact of a hand-made problem: body j a particle or wall_code(w), n from j to i.
+void add_contact(ContactProblem& p, std::int32_t i, std::int32_t j, const Vector3d& n) {
+  const std::size_t c = p.size();
+  p.resize_contacts(c + 1);
+  p.body_i[c] = i;
+  p.body_j[c] = j;
+  p.normal[c] = n.normalized();
+  p.w_n[c] = 1.0;
+  p.mu[c] = 0.0;
+  p.lever_i[c] = 1e-3;  // m, the spheres' radius
+}
+
+}  // namespace
+
+// Four equal spheres: three on the floor, touching each other, one on top in their pocket
+// (phi from the vertical, cos phi = sqrt(2/3)). Statics of the top: three contacts of
+// m g / (3 cos phi). Each base sphere is pushed down by m g / 3 and outwards by (m g / 3) tan phi;
+// the floor takes 4/3 m g, and the outward push (which friction holds) is left to the solver:
+// the contacts within the base, horizontal, carry nothing.
+TEST(StaticWarmStart, PyramidCarriesItsVerticalStaticsAndLeavesTheRest) {
+  const double R = 1e-3, m = 1e-5, g = 9.81, h = 1e-3, mg = m * g;
+  const double cos_phi = std::sqrt(2.0 / 3.0);
+  std::vector<Vector3d> x;
+  for (int k = 0; k < 3; ++k) {
+    const double angle = 2 * std::numbers::pi * k / 3;
+    x.push_back(Vector3d(std::cos(angle), 0, std::sin(angle)) * (2 * R / std::sqrt(3.0)) +
+                Vector3d(0, R, 0));
+  }
+  x.push_back(Vector3d(0, R + 2 * R * cos_phi, 0));
+  ContactProblem p;
+  p.inverse_mass.assign(4, 1.0 / m);
+  p.inverse_inertia.assign(4, 1.0);
+  p.free_velocity.assign(4, Vector3d::Zero());
+  p.free_angular_velocity.assign(4, Vector3d::Zero());
+  p.add_fixed_wall_bodies(1);
+  for (std::int32_t k = 0; k < 3; ++k) add_contact(p, k, wall_code<std::int32_t>(0), {0, 1, 0});
+  add_contact(p, 0, 1, x[0] - x[1]);
+  add_contact(p, 0, 2, x[0] - x[2]);
+  add_contact(p, 1, 2, x[1] - x[2]);
+  for (std::int32_t k = 0; k < 3; ++k) add_contact(p, k, 3, x[std::size_t(k)] - x[3]);
+  const std::vector<double> gaps(p.size(), 0.0);
+  std::vector<Vector3d> r;
+  static_warm_start(p, gaps, x, Vector3d(0, -g, 0), h, r);
+  ASSERT_EQ(r.size(), p.size());
+  for (std::size_t c = 0; c < 3; ++c) EXPECT_NEAR(r[c][0], 4.0 / 3.0 * mg * h, 1e-12 * mg * h);
+  for (std::size_t c = 3; c < 6; ++c) EXPECT_EQ(r[c][0], 0.0) << "base contact " << c;
+  for (std::size_t c = 6; c < 9; ++c) EXPECT_NEAR(r[c][0], mg * h / (3 * cos_phi), 1e-12 * mg * h);
+  for (const auto& reaction : r) EXPECT_EQ(reaction.tail<2>().norm(), 0.0);
+
+  // Not touching (a gap of 2e-6 radii): nothing; no gravity: nothing.
+  std::vector<double> apart(p.size(), 2e-6 * R);
+  static_warm_start(p, apart, x, Vector3d(0, -g, 0), h, r);
+  for (const auto& reaction : r) EXPECT_EQ(reaction.norm(), 0.0);
+  static_warm_start(p, gaps, x, Vector3d::Zero(), h, r);
+  for (const auto& reaction : r) EXPECT_EQ(reaction.norm(), 0.0);
+}
+
+// A column of 40 equal spheres on the floor: Gauss-Seidel from zero impulses passes the weights
+// down a contact or so per sweep; the static start is the column's statics already, and the
+// first step confirms it in a sweep or two.
+TEST(StaticWarmStart, DeepColumnStartsAtItsStaticsAndSavesTheSweeps) {
+  std::vector<double> masses;
+  for (int k = 0; k < 40; ++k) masses.push_back(1e-5);
+  auto first_step = [&](bool static_start) {
+    ParticleSet set;
+    for (std::size_t k = 0; k < masses.size(); ++k)
+      set.add(Vector3d(0.0, (2.0 * double(k) + 1.0) * kRadius, 0.0), kRadius, masses[k], 0);
+    NscdParameters parameters = nlgs_parameters();
+    parameters.tolerance = 1e-8;
+    parameters.static_warm_start = static_start;
+    NscdIntegrator sim(std::move(set), {steel(0.3)}, {Wall::through({0, 0, 0}, {0, 1, 0}, 0)},
+                       Vector3d(0, -kG, 0), 3, parameters);
+    const StepReport report = sim.step();
+    if (static_start) {
+      EXPECT_TRUE(report.converged);
+      expect_column_statics(sim, sim.reactions(), 1e-8);
+    }
+    return report.sweeps;
+  };
+  const int cold = first_step(false), warm = first_step(true);
+  EXPECT_LE(warm, 3);
+  EXPECT_GE(cold, 100);  // 7,957 when written
+  std::printf("first step of a 40-sphere column: %d sweeps from zero, %d from the statics\n", cold, warm);
+}

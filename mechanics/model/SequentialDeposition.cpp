@@ -1,5 +1,7 @@
 #include "mechanics/model/SequentialDeposition.h"
 
+#include "mechanics/model/DepositionCurve.h"
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -12,104 +14,7 @@
 namespace tmdem::mechanics {
 namespace {
 
-using Vec3 = Eigen::Vector3d;
-constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
-// Relative round-off allowances: a root this close to the start of a curve is the start itself;
-// a support force this close to 0 (in units of the sphere's weight) is taken as 0.
-constexpr double kStartTolerance = 1e-10;
-constexpr double kForceTolerance = 1e-12;
-
-// Uniform double in [0, 1) from the top 53 bits of one draw: identical on every machine
-// (std::uniform_real_distribution's output is implementation-defined).
-double unit_draw(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
-
-// What a moving sphere of radius r can touch: another sphere (its centre at contact distance
-// `offset` = r + r_j from `vector`) or a face of the box (inward normal `vector`, touched when
-// vector . p = offset).
-struct Body {
-  bool plane = false;
-  Vec3 vector = Vec3::Zero();
-  double offset = 0.0;
-};
-
-// A motion: a line p(s) = origin + s e1 (s in m), or a circle p(s) = origin + rho (cos s e1 +
-// sin s e2) (s in rad) with s from 0; `end` is the parameter of its lowest point (infinity for a
-// line). The centre moves along it from s = 0, downhill.
-struct Curve {
-  bool line = true;
-  Vec3 origin = Vec3::Zero();
-  Vec3 e1 = Vec3::Zero();
-  Vec3 e2 = Vec3::Zero();
-  double rho = 0.0;
-  double end = kInf;
-  Vec3 at(double s) const {
-    return line ? Vec3(origin + s * e1) : Vec3(origin + rho * (std::cos(s) * e1 + std::sin(s) * e2));
-  }
-};
-
-// First s in [0, hi] where h(s) = A cos s + B sin s - C goes from positive to zero (h' <= 0),
-// or infinity. h(s) = R cos(s - phi) - C, so its falling root is phi + acos(C / R). A falling
-// root at the very start (|s| within the tolerance, h'(0) = B < 0) is an event at 0: the sphere
-// already touches and is moving in.
-double first_falling_root(double A, double B, double C, double hi) {
-  const double R = std::hypot(A, B);
-  if (!(R > 0.0) || std::abs(C) >= R) return kInf;
-  double s = std::remainder(std::atan2(B, A) + std::acos(C / R), kTwoPi);
-  if (std::abs(s) <= kStartTolerance) {
-    if (B < 0.0) return 0.0;
-    s = kTwoPi;
-  } else if (s < 0.0) {
-    s += kTwoPi;
-  }
-  return s <= hi ? s : kInf;
-}
-
-// Where a curve first enters body b (the body's contact condition turning from clear to
-// touching), or infinity.
-double entry(const Curve& c, const Body& b) {
-  if (c.line) {
-    if (b.plane) {
-      const double rate = b.vector.dot(c.e1);
-      if (!(rate < 0.0)) return kInf;
-      const double s = (b.offset - b.vector.dot(c.origin)) / rate;
-      return std::max(s, 0.0);  // already through it (round-off): touching now
-    }
-    const Vec3 w = c.origin - b.vector;
-    const double half_b = w.dot(c.e1);
-    const double cc = w.squaredNorm() - b.offset * b.offset;
-    const double disc = half_b * half_b - cc;
-    // No contact, or a grazing one (the line tangent to the sphere: it does not move in).
-    if (!(disc > kStartTolerance * b.offset * b.offset) ||
-        cc < -kStartTolerance * b.offset * b.offset)
-      return kInf;
-    const double s = -half_b - std::sqrt(disc);
-    if (s >= 0.0) return s;
-    // Touching at the start within round-off and moving in: an event at 0.
-    return (half_b < 0.0 && cc <= kStartTolerance * b.offset * b.offset) ? 0.0 : kInf;
-  }
-  if (b.plane) {
-    return first_falling_root(c.rho * b.vector.dot(c.e1), c.rho * b.vector.dot(c.e2),
-                              b.offset - b.vector.dot(c.origin), c.end);
-  }
-  const Vec3 w = c.origin - b.vector;
-  return first_falling_root(2.0 * c.rho * w.dot(c.e1), 2.0 * c.rho * w.dot(c.e2),
-                            b.offset * b.offset - w.squaredNorm() - c.rho * c.rho, c.end);
-}
-
-// Outward contact normal of body b at centre position p (the direction its force pushes).
-Vec3 normal_at(const Body& b, const Vec3& p) {
-  return b.plane ? b.vector : Vec3((p - b.vector).normalized());
-}
-
-// A horizontal unit vector (perpendicular to `up`), drawn: the direction a sphere landing exactly
-// on top of another rolls off to.
-Vec3 random_horizontal(const Vec3& up, std::mt19937_64& rng) {
-  const double angle = kTwoPi * unit_draw(rng);
-  const Vec3 a = up.unitOrthogonal();
-  const Vec3 b = up.cross(a);
-  return std::cos(angle) * a + std::sin(angle) * b;
-}
+using namespace deposition;
 
 void check_arguments(const std::vector<double>& radii, const Vec3& box_min, const Vec3& box_max,
                      int down_axis, int down_sign, int dimension, const std::vector<Vec3>& obstacle_positions,
@@ -328,112 +233,22 @@ SequentialDeposition::Drop SequentialDeposition::drop(double r, const Vec3& star
     }
 
     // 2. The curve the supports leave free, downhill from p.
-    Curve curve;
-    double force_a[2] = {0.0, 0.0}, force_b[2] = {0.0, 0.0}, force_c[2] = {0.0, 0.0};
-    int forces = 0;  // support forces that can reach zero along the curve
-    if (m == 0) {
-      curve.origin = p;
-      curve.e1 = down;
-    } else if (m == 1) {
-      const Body b = body(supports[0]);
-      if (b.plane) {  // slide down the face; on the floor: at rest
-        const Vec3 along = down - down.dot(b.vector) * b.vector;
-        if (along.norm() < 1e-12) {
-          out.resting = true;
-          break;
-        }
-        curve.origin = p;
-        curve.e1 = along.normalized();
-      } else {  // roll over the sphere in the vertical plane, down to its equator
-        curve.line = false;
-        curve.origin = b.vector;
-        curve.rho = b.offset;
-        curve.e1 = (p - b.vector).normalized();
-        Vec3 t = down - down.dot(curve.e1) * curve.e1;
-        if (t.norm() < 1e-9) t = random_horizontal(up, rng);  // landed right on top
-        curve.e2 = t.normalized();
-        // Its force, up . n(s), is zero at the equator: there it falls free.
-        curve.end = first_falling_root(up.dot(curve.e1), up.dot(curve.e2), 0.0, kTwoPi);
-        if (!std::isfinite(curve.end)) curve.end = 0.0;
-      }
-    } else {
-      const Body b1 = body(supports[0]);
-      const Body b2 = body(supports[1]);
-      if (b1.plane && b2.plane) {  // along the edge of two faces
-        Vec3 along = b1.vector.cross(b2.vector);
-        if (along.norm() < 1e-12) {  // parallel faces: keep one
-          erase(1);
-          continue;
-        }
-        along.normalize();
-        if (up.dot(along) > 0.0) along = -along;
-        if (std::abs(up.dot(along)) < 1e-12) {
-          out.resting = true;
-          break;
-        }
-        curve.origin = p;
-        curve.e1 = along;
-      } else {
-        // The circle of centres touching both: axis a, centre `origin`, radius rho.
-        curve.line = false;
-        Vec3 a;
-        if (b1.plane || b2.plane) {
-          const Body& face = b1.plane ? b1 : b2;
-          const Body& ball = b1.plane ? b2 : b1;
-          a = face.vector;
-          const double height = face.offset - a.dot(ball.vector);  // m, along a from the centre
-          curve.origin = ball.vector + height * a;
-          curve.rho = std::sqrt(std::max(0.0, ball.offset * ball.offset - height * height));
-        } else {
-          const Vec3 d = b2.vector - b1.vector;
-          const double L = d.norm();
-          a = d / L;
-          const double along = (b1.offset * b1.offset - b2.offset * b2.offset + L * L) / (2.0 * L);
-          curve.origin = b1.vector + along * a;
-          curve.rho = std::sqrt(std::max(0.0, b1.offset * b1.offset - along * along));
-        }
-        if (!(curve.rho > 1e-12 * std::max(b1.offset, b2.offset))) {  // touching at one point
-          erase(1);
-          continue;
-        }
-        const Vec3 radial = p - curve.origin;
-        curve.e1 = (radial - radial.dot(a) * a).normalized();
-        Vec3 t = a.cross(curve.e1);
-        if (up.dot(t) > 0.0) t = -t;
-        if (std::abs(up.dot(t)) < 1e-12 && up.dot(curve.e1) < 0.0) {  // at its lowest point
-          out.resting = true;
-          break;
-        }
-        curve.e2 = t;
-        curve.end = std::atan2(-up.dot(curve.e2), -up.dot(curve.e1));
-        if (curve.end <= 0.0) curve.end += kTwoPi;
-        // Support forces along the circle: n_k = beta_k a + gamma_k r(s), so with
-        // u_a = up . a and u_r(s) = up . r(s), lambda_1 det = gamma_2 u_a - beta_2 u_r(s) and
-        // lambda_2 det = beta_1 u_r(s) - gamma_1 u_a: each zero where A cos s + B sin s = C.
-        double beta[2], gamma[2];
-        const Body* bs[2] = {&b1, &b2};
-        for (int k = 0; k < 2; ++k) {
-          if (bs[k]->plane) {
-            beta[k] = bs[k]->vector.dot(a);
-            gamma[k] = 0.0;
-          } else {
-            beta[k] = (curve.origin - bs[k]->vector).dot(a) / bs[k]->offset;
-            gamma[k] = curve.rho / bs[k]->offset;
-          }
-        }
-        const double sign = beta[0] * gamma[1] - beta[1] * gamma[0] < 0.0 ? -1.0 : 1.0;
-        const double ua = up.dot(a);
-        const double ue1 = up.dot(curve.e1);
-        const double ue2 = up.dot(curve.e2);
-        force_a[0] = -sign * beta[1] * ue1;
-        force_b[0] = -sign * beta[1] * ue2;
-        force_c[0] = -sign * gamma[1] * ua;
-        force_a[1] = sign * beta[0] * ue1;
-        force_b[1] = sign * beta[0] * ue2;
-        force_c[1] = sign * gamma[0] * ua;
-        forces = 2;
-      }
+    Body held[3];
+    for (int k = 0; k < m; ++k) held[k] = body(supports[k]);
+    const FreeMotion motion = free_motion(p, up, held, m, rng);
+    if (motion.kind == FreeMotion::Rest) {
+      out.resting = true;
+      break;
     }
+    if (motion.kind == FreeMotion::Release) {
+      erase(motion.release);
+      continue;
+    }
+    const Curve& curve = motion.curve;
+    const int forces = motion.forces;
+    const double* force_a = motion.force_a;
+    const double* force_b = motion.force_b;
+    const double* force_c = motion.force_c;
 
     // 3. The first event along it: a support letting go, a new contact, the lowest point.
     double s_event = curve.end;

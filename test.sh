@@ -6,7 +6,7 @@
 # TMDEM_SKIP_SANITIZE=1 skips the second build; TMDEM_FUZZ_SECONDS sets the fuzzing budget (60).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-jobs="$(nproc)"
+jobs="$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)"  # cores, whatever OMP_NUM_THREADS says
 # The test programs run OpenMP loops at 1 and 2 threads in-process, two programs at a time:
 # threads that spin at a barrier take the core their partner needs (docs/mechanics.md "Threads"), so
 # idle threads sleep instead, unless the caller chose otherwise.

@@ -16,7 +16,8 @@ export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-passive}"
 export OMP_NUM_THREADS="${OMP_NUM_THREADS:-1}"
 # --with-paraview: ParaView's pvbatch and xvfb, so the ParaView tests (label paraview: the XDMF
 # readers, `tmdem render`) run rather than skip.
-"$root/scripts/setup.sh" --with-paraview
+# --tests-only: the programs ctest runs, not the benchmark programs (scripts/setup.sh).
+"$root/scripts/setup.sh" --with-paraview --tests-only
 # Layering: mechanics and thermal never include each other; coupling rooms include downwards only.
 "$root/scripts/check_layers.sh"
 (cd "$root/build" && ctest --output-on-failure -j "$jobs" --timeout 600 "$@")

@@ -6,7 +6,7 @@
 # TMDEM_SKIP_SANITIZE=1 skips the second build; TMDEM_FUZZ_SECONDS sets the fuzzing budget (60).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-jobs="$(nproc)"
+jobs="$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)"  # cores, whatever OMP_NUM_THREADS says
 # The test programs run OpenMP loops at 1 and 2 threads in-process, two programs at a time:
 # threads that spin at a barrier take the core their partner needs (docs/mechanics.md "Threads"), so
 # idle threads sleep instead, unless the caller chose otherwise.
@@ -16,7 +16,8 @@ export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-passive}"
 export OMP_NUM_THREADS="${OMP_NUM_THREADS:-1}"
 # --with-paraview: ParaView's pvbatch and xvfb, so the ParaView tests (label paraview: the XDMF
 # readers, `tmdem render`) run rather than skip.
-"$root/scripts/setup.sh" --with-paraview
+# --tests-only: the programs ctest runs, not the benchmark programs (scripts/setup.sh).
+"$root/scripts/setup.sh" --with-paraview --tests-only
 # Layering: mechanics and thermal never include each other; coupling rooms include downwards only.
 "$root/scripts/check_layers.sh"
 (cd "$root/build" && ctest --output-on-failure -j "$jobs" --timeout 600 "$@")

@@ -27,11 +27,16 @@ export OMP_NUM_THREADS="${OMP_NUM_THREADS:-1}"
 # stays at -O1 too: with -O0 test code the ASan pass had run only 57 of 383 tests after 6 min
 # (RestoredIntegratorContinuesBitwise2D alone 128 s), against 197 s for all 357 at -O1; likely the
 # linker keeps the tests' unoptimised copies of header inline functions for the libraries too.
-CC=clang-14 CXX=clang++-14 cmake -S "$root" -B "$root/build-asan" -DCMAKE_BUILD_TYPE=Debug \
+# Ninja for a new build folder, as scripts/setup.sh does.
+generator=()
+[ -f "$root/build-asan/CMakeCache.txt" ] || generator=(-G Ninja)
+CC=clang-14 CXX=clang++-14 cmake -S "$root" -B "$root/build-asan" ${generator[@]+"${generator[@]}"} \
+  -DCMAKE_BUILD_TYPE=Debug \
   "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -g1" "-DCMAKE_C_FLAGS_DEBUG=-O1 -g1" -DTMDEM_TEST_CODE_FLAGS=-O1 \
   -DTMDEM_SANITIZE=ON -DTMDEM_FUZZ=ON -DTMDEM_FUZZ_SECONDS="${TMDEM_FUZZ_SECONDS:-60}" >&2
-cmake --build "$root/build-asan" -j "$jobs" --target \
-  test_mechanics test_thermal test_coupling_scene test_coupling_output fuzz_scene fuzz_packing >&2
+# sanitizer_programs: test_mechanics, test_thermal, test_coupling_scene, test_coupling_output,
+# fuzz_scene and fuzz_packing, as one target (tests/CMakeLists.txt says why).
+cmake --build "$root/build-asan" -j "$jobs" --target sanitizer_programs >&2
 export ASAN_OPTIONS="halt_on_error=1:abort_on_error=1:detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1"
 export UBSAN_OPTIONS="halt_on_error=1:abort_on_error=1:print_stacktrace=1"
 cd "$root/build-asan"

@@ -5,12 +5,11 @@
 #include "coupling/output/Hdf5ErrorSilence.h"
 #include "coupling/output/Hdf5Io.h"
 #include "coupling/output/OutputError.h"
+#include "coupling/output/ResultMetadata.h"
 
 namespace tmdem::coupling {
 
 namespace {
-
-constexpr const char* kResultFormat = "tmdem-result-1";
 
 // Row `row` of a dataset [F, N] or [F, N, 3], as `per_row` values.
 std::vector<double> read_frame_row(hid_t group, const char* name, hsize_t row, hsize_t per_row) {

@@ -53,6 +53,29 @@ inline void write_file(const std::string& path, const std::string& text) {
   std::ofstream(path) << text;
 }
 
+// The whole of a text file ("" when it cannot be read).
+inline std::string text_of(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// `value` with 17 significant digits: a --set value that reads back as the same double.
+inline std::string number(double value) {
+  std::ostringstream out;
+  out.precision(17);
+  out << value;
+  return out.str();
+}
+
+// How often `part` occurs in `text` (overlapping occurrences counted).
+inline std::size_t count_of(const std::string& text, const std::string& part) {
+  std::size_t n = 0;
+  for (auto at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
+  return n;
+}
+
 // A 2D copper scene under gravity with dynamic mechanics; tests add the particles and walls.
 inline SceneBuilder copper_drop_scene(double duration_s) {
   return SceneBuilder()

@@ -16,13 +16,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string number(double value) {
-  std::ostringstream out;
-  out.precision(17);
-  out << value;
-  return out.str();
-}
-
 // `example` run to `end_s` in one go, and in segments ending at each of `stops_s` (each
 // restarted from the previous one's checkpoint), all with checkpoints every `interval_s`.
 // `part_dir`, when given, receives the folder of the segmented run (its summary: s.json).

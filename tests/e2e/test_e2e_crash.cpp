@@ -29,13 +29,6 @@ std::string crashing_scene(int crash_at_evaluation) {
             {"fault_injection.crash", 1}});
 }
 
-std::string text_of(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 }  // namespace
 
 TEST(EndToEndCrash, KilledRunLeavesXdmfDescribingExactlyTheFramesOfTheH5) {

@@ -40,12 +40,6 @@ std::string bytes_of(const std::string& path) {
   return text.str();
 }
 
-std::size_t count_of(const std::string& text, const std::string& what) {
-  std::size_t n = 0;
-  for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
-  return n;
-}
-
 // Files in `dir` other than the scene and the program's log.
 std::vector<std::string> outputs_in(const std::string& dir) {
   std::vector<std::string> names;

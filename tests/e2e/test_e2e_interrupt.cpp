@@ -36,13 +36,6 @@ pid_t spawn_tmdem(const std::vector<std::string>& args, const std::string& dir) 
   _exit(127);
 }
 
-std::string text_of(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 std::size_t frames_in_xdmf(const std::string& path) {
   const std::string text = text_of(path);
   std::size_t n = 0;
@@ -115,13 +108,6 @@ TEST(EndToEndInterrupt, SigtermLeavesInterruptedResultSummaryCheckpointAndExit14
   EXPECT_GT(times.size(), frames);
   for (std::size_t f = 1; f < times.size(); ++f) EXPECT_LT(times[f - 1], times[f]) << f;
   EXPECT_NEAR(times.back(), interrupted_at_s + 0.03, 1e-9);
-}
-
-std::string number(double value) {
-  std::ostringstream out;
-  out.precision(17);
-  out << value;
-  return out.str();
 }
 
 // Rows [first, first + count) of a dataset with `width` values per row.

@@ -14,12 +14,6 @@ using namespace tmdem::e2e;
 
 namespace {
 
-std::size_t count_of(const std::string& text, const std::string& part) {
-  std::size_t n = 0;
-  for (auto at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
-  return n;
-}
-
 TEST(EndToEndRunReport, TimingTableAndWarningCountsMatchTheSummary) {
   const auto dir = scratch_dir("run_report");
   // The poured bed at a tight tolerance: many of its 400 steps do not converge.

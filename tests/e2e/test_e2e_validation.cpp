@@ -38,7 +38,7 @@ const Gas kHelium{"helium", 0.152, 1.9e-7, 0.9};
 struct Band {
   double low, high;
 };
-struct Row {
+struct BedRow {
   Solid solid;
   Band air, helium;
   bool pressures = false;  // also k_eff against the air's pressure (glass)
@@ -48,7 +48,7 @@ struct Row {
 };
 
 constexpr double kPeriod = 0.012;  // m
-constexpr double kRadius = 0.001;  // m
+constexpr double kParticleRadius = 0.001;  // m
 
 std::string bed_scene(const Solid& s, const std::string& particles, double piston_y_m,
                       double friction = 0.3) {
@@ -84,10 +84,10 @@ std::vector<std::string> csv_row(const std::string& path) {
   return cells;
 }
 
-class Validation : public ::testing::TestWithParam<Row> {};
+class Validation : public ::testing::TestWithParam<BedRow> {};
 
 TEST_P(Validation, BulkBedInAirAndHeliumAgainstZehnerSchlunderBauer) {
-  const Row& row = GetParam();
+  const BedRow& row = GetParam();
   const auto dir = scratch_dir(std::string("validation_") + row.solid.name + (row.dense ? "_dense" : ""));
   // 1. Lay and settle the bed once under its weight (a piston falling onto it from the box's top
   // would cost far more: its landing shakes the whole column).
@@ -111,7 +111,7 @@ TEST_P(Validation, BulkBedInAirAndHeliumAgainstZehnerSchlunderBauer) {
       std::string x, y;
       std::getline(cells, x, ',');
       std::getline(cells, y, ',');
-      top_m = std::max(top_m, std::stod(y) + kRadius);
+      top_m = std::max(top_m, std::stod(y) + kParticleRadius);
     }
     return top_m;
   };
@@ -162,7 +162,7 @@ TEST_P(Validation, BulkBedInAirAndHeliumAgainstZehnerSchlunderBauer) {
     in.porosity = porosity;
     in.k_solid_W_per_mK = row.solid.conductivity_W_per_mK;
     in.k_fluid_W_per_mK = gas.conductivity_W_per_mK;
-    in.diameter_m = 2.0 * kRadius;
+    in.diameter_m = 2.0 * kParticleRadius;
     in.flattening = flattening;
     in.jump_length_m = pressure_Pa > 0.0 ? 2.0 * (2.0 - gas.accommodation) / gas.accommodation *
                                                gas.mean_free_path_m * 101325.0 / pressure_Pa
@@ -221,10 +221,10 @@ TEST_P(Validation, BulkBedInAirAndHeliumAgainstZehnerSchlunderBauer) {
 //   air 1.14, helium 0.75); 0.62 keeps the commoner case, glass beads in air, inside.
 INSTANTIATE_TEST_SUITE_P(
     Beds, Validation,
-    ::testing::Values(Row{{"glass", 1.0, 6.3e10, 0.2, 2500.0}, {0.8, 1.2}, {0.68, 0.82}, true},
-                      Row{{"alumina", 30.0, 3.7e11, 0.22, 3900.0}, {0.65, 0.8}, {0.8, 1.2}},
-                      Row{{"steel", 50.0, 2.1e11, 0.3, 7800.0}, {0.56, 0.7}, {0.8, 1.2}},
-                      Row{{"glass", 1.0, 6.3e10, 0.2, 2500.0}, {0.8, 1.2}, {0.8, 1.2}, false, true}),
+    ::testing::Values(BedRow{{"glass", 1.0, 6.3e10, 0.2, 2500.0}, {0.8, 1.2}, {0.68, 0.82}, true},
+                      BedRow{{"alumina", 30.0, 3.7e11, 0.22, 3900.0}, {0.65, 0.8}, {0.8, 1.2}},
+                      BedRow{{"steel", 50.0, 2.1e11, 0.3, 7800.0}, {0.56, 0.7}, {0.8, 1.2}},
+                      BedRow{{"glass", 1.0, 6.3e10, 0.2, 2500.0}, {0.8, 1.2}, {0.8, 1.2}, false, true}),
     [](const auto& info) {
       return std::string(info.param.solid.name) + (info.param.dense ? "_dense" : "");
     });

@@ -39,16 +39,16 @@ double cone_overshoot(const ContactProblem& p, const std::vector<Vector3d>& r) {
 // the largest load (the last sweep is a Gauss-Seidel sweep, started next to the exact answer),
 // the subspace steps taken; returns the sweeps.
 int column_solved(const std::vector<double>& masses_kg, double tolerance) {
-  const NscdIntegrator sim = column(masses_kg);
-  SubspaceGaussSeidelSolver solver(tight(tolerance));
+  const NscdIntegrator sim = test::column(masses_kg);
+  SubspaceGaussSeidelSolver solver(test::tight(tolerance));
   const Solved s = solve_cold(sim.problem(), solver);
   EXPECT_TRUE(s.report.converged) << s.report.residual << " after " << s.report.sweeps;
-  expect_column_statics(sim, s.r, 10.0 * tolerance);
+  test::expect_column_statics(sim, s.r, 10.0 * tolerance);
   EXPECT_GT(solver.subspace().accepted(), 0);
   // "nncg_subspace": the same steps kept, so the same statics.
   const Solved conjugate = solve_cold(sim.problem(), "nncg_subspace", tolerance);
   EXPECT_TRUE(conjugate.report.converged) << conjugate.report.residual;
-  expect_column_statics(sim, conjugate.r, 10.0 * tolerance);
+  test::expect_column_statics(sim, conjugate.r, 10.0 * tolerance);
   EXPECT_LE(conjugate.report.sweeps, s.report.sweeps + 2);
   return s.report.sweeps;
 }
@@ -80,7 +80,7 @@ TEST(SubspaceGaussSeidel, UniformColumnsTakeSweepsIndependentOfHeight) {
   }
   EXPECT_LE(sweeps[1], 2 * sweeps[0]) << sweeps[0] << ", " << sweeps[1];
   EXPECT_LE(sweeps[2], 4 * sweeps[0]) << sweeps[0] << ", " << sweeps[1] << ", " << sweeps[2];
-  const NscdIntegrator tall = column(std::vector<double>(40, m));
+  const NscdIntegrator tall = test::column(std::vector<double>(40, m));
   const Solved plain = solve_cold(tall.problem(), "nlgs", tolerance);
   EXPECT_GE(plain.report.sweeps, 10 * sweeps[1]) << plain.report.sweeps << " against " << sweeps[1];
 }
@@ -121,7 +121,7 @@ TEST(SubspaceGaussSeidel, RandomProblemsSolvedToTolerance) {
     for (const std::uint64_t seed : {1u, 2u, 3u}) {
       SCOPED_TRACE(testing::Message() << name << ", seed " << seed);
       const ContactProblem problem = random_contact_problem(3, seed);
-      const auto solver = make_contact_solver(name, tight(tolerance));
+      const auto solver = make_contact_solver(name, test::tight(tolerance));
       std::vector<Vector3d> r(problem.size(), Vector3d::Zero()), m = r, v, w;
       const SolveReport report = solver->solve_with_rolling(problem, r, m, v, w);
       ASSERT_TRUE(report.converged) << report.residual << " after " << report.sweeps;

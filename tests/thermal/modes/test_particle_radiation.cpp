@@ -14,7 +14,7 @@ using namespace tmdem::thermal::testing;
 namespace {
 
 constexpr double kSigma = 5.670374419e-8;
-constexpr double kR = 1e-3;
+constexpr double kSphereR = 1e-3;
 
 ModeSettings pair_radiation(double cutoff = 0.5) {
   ModeSettings s;
@@ -27,8 +27,8 @@ ThermalNetwork two_spheres(double C, double gap_m) {
   ThermalNetwork net;
   net.resize_nodes(2);
   net.heat_capacity_J_per_K = {C, C};
-  net.radius_m = {kR, kR};
-  net.surface_area_m2 = {sphere_area(kR), sphere_area(kR)};
+  net.radius_m = {kSphereR, kSphereR};
+  net.surface_area_m2 = {sphere_area(kSphereR), sphere_area(kSphereR)};
   net.emissivity = {0.8, 0.6};
   net.add_edge(0, 1, 0.0, gap_m, 0.0, false);
   return net;
@@ -37,24 +37,24 @@ ThermalNetwork two_spheres(double C, double gap_m) {
 // sigma eps_eff A F with F = (1 - sqrt(1 - (R/d)^2)) / 2 for equal spheres.
 double pair_G(double gap_m) {
   const double eps = 1.0 / (1.0 / 0.8 + 1.0 / 0.6 - 1.0);
-  const double d = 2.0 * kR + gap_m;
-  const double F = 0.5 * (1.0 - std::sqrt(1.0 - (kR / d) * (kR / d)));
-  return kSigma * eps * sphere_area(kR) * F;
+  const double d = 2.0 * kSphereR + gap_m;
+  const double F = 0.5 * (1.0 - std::sqrt(1.0 - (kSphereR / d) * (kSphereR / d)));
+  return kSigma * eps * sphere_area(kSphereR) * F;
 }
 
 }  // namespace
 
 TEST(ParticleRadiation, PairFlowIsSigmaEpsFATToTheFourth) {
-  auto sys = make_system(two_spheres(1e-2, 0.1 * kR), {"particle_radiation"}, pair_radiation());
+  auto sys = make_system(two_spheres(1e-2, 0.1 * kSphereR), {"particle_radiation"}, pair_radiation());
   std::vector<double> q(2);
   double boundary = 0.0;
   ASSERT_TRUE(sys->heat_flow(std::vector<double>{1000.0, 600.0}, q, boundary));
-  const double G = pair_G(0.1 * kR);
+  const double G = pair_G(0.1 * kSphereR);
   EXPECT_NEAR(q[1], G * (std::pow(1000.0, 4) - std::pow(600.0, 4)), 1e-14 * std::abs(q[1]));
   EXPECT_EQ(q[0], -q[1]);
   EXPECT_EQ(boundary, 0.0);
   // Beyond pair_cutoff the pair does not exchange.
-  auto far = make_system(two_spheres(1e-2, 0.6 * kR), {"particle_radiation"}, pair_radiation());
+  auto far = make_system(two_spheres(1e-2, 0.6 * kSphereR), {"particle_radiation"}, pair_radiation());
   ASSERT_TRUE(far->heat_flow(std::vector<double>{1000.0, 600.0}, q, boundary));
   EXPECT_EQ(q[0], 0.0);
 }
@@ -62,7 +62,7 @@ TEST(ParticleRadiation, PairFlowIsSigmaEpsFATToTheFourth) {
 TEST(ParticleRadiation, TwoSpheresFollowTheClosedForm) {
   // Equal C: T = Tm +- x, C x' = -G (T1^4 - T2^4) = -8 G (Tm^3 x + Tm x^3), a Bernoulli equation:
   // 1/x^2 = (1/x0^2 + b/a) e^{2 a t} - b/a, a = 8 G Tm^3 / C, b = 8 G Tm / C.
-  const double C = 1.5e-2, gap = 0.05 * kR, T1 = 1200.0, T2 = 800.0, t = 100.0;
+  const double C = 1.5e-2, gap = 0.05 * kSphereR, T1 = 1200.0, T2 = 800.0, t = 100.0;
   auto sys = make_system(two_spheres(C, gap), {"particle_radiation"}, pair_radiation());
   const double G = pair_G(gap), Tm = 0.5 * (T1 + T2), x0 = 0.5 * (T1 - T2);
   const double a = 8.0 * G * Tm * Tm * Tm / C, b = 8.0 * G * Tm / C;
@@ -83,7 +83,7 @@ TEST(ParticleRadiation, TwoSpheresFollowTheClosedForm) {
 // emission once: sigma A (-T0^4 + F T1^4 + (1 - F) T_amb^4), F = (1 - sqrt(1 - (R/d)^2)) / 2.
 // (Counting the whole surface to the ambient emitted sigma A (1 + F) T0^4.)
 TEST(ParticleRadiation, AmbientSeesOnlyTheShareTheNeighbourLeavesOpen) {
-  const double gap = 0.1 * kR, Ta = 300.0, T0 = 1000.0, T1 = 600.0;
+  const double gap = 0.1 * kSphereR, Ta = 300.0, T0 = 1000.0, T1 = 600.0;
   ModeSettings s = pair_radiation();
   for (const auto& [key, value] : {std::pair{"ambient_temperature", Ta}, {"between_particles", 1.0},
                                    {"pair_cutoff", 0.5}})
@@ -94,8 +94,8 @@ TEST(ParticleRadiation, AmbientSeesOnlyTheShareTheNeighbourLeavesOpen) {
   std::vector<double> q(2);
   double boundary = 0.0;
   ASSERT_TRUE(sys->heat_flow(std::vector<double>{T0, T1}, q, boundary));
-  const double d = 2.0 * kR + gap, F = 0.5 * (1.0 - std::sqrt(1.0 - (kR / d) * (kR / d)));
-  const double A = sphere_area(kR), Ta4 = std::pow(Ta, 4), T04 = std::pow(T0, 4), T14 = std::pow(T1, 4);
+  const double d = 2.0 * kSphereR + gap, F = 0.5 * (1.0 - std::sqrt(1.0 - (kSphereR / d) * (kSphereR / d)));
+  const double A = sphere_area(kSphereR), Ta4 = std::pow(Ta, 4), T04 = std::pow(T0, 4), T14 = std::pow(T1, 4);
   EXPECT_NEAR(q[0], kSigma * A * (-T04 + F * T14 + (1.0 - F) * Ta4), 1e-14 * kSigma * A * T04);
   EXPECT_NEAR(q[1], kSigma * A * (-T14 + F * T04 + (1.0 - F) * Ta4), 1e-14 * kSigma * A * T04);
   // What leaves the pair is what its open shares exchange with the surroundings.
@@ -107,7 +107,7 @@ TEST(ParticleRadiation, AmbientSeesOnlyTheShareTheNeighbourLeavesOpen) {
   EXPECT_NEAR(J.diagonal_W_per_K[1], -4.0 * kSigma * A * std::pow(T1, 3), 1e-14 * kSigma * A * T04);
 
   // Beyond pair_cutoff, or with between_particles off, each surface sees only the surroundings.
-  auto far_net = two_spheres(1e-2, 0.6 * kR);
+  auto far_net = two_spheres(1e-2, 0.6 * kSphereR);
   far_net.emissivity = {1.0, 1.0};
   auto far = make_system(far_net, {"radiation", "particle_radiation"}, s);
   ASSERT_TRUE(far->heat_flow(std::vector<double>{T0, T1}, q, boundary));
@@ -120,12 +120,12 @@ TEST(ParticleRadiation, AmbientSeesOnlyTheShareTheNeighbourLeavesOpen) {
 }
 
 TEST(ParticleRadiation, JacobianIsExactAndOneSided) {
-  auto sys = make_system(two_spheres(1e-2, 0.1 * kR), {"particle_radiation"}, pair_radiation());
+  auto sys = make_system(two_spheres(1e-2, 0.1 * kSphereR), {"particle_radiation"}, pair_radiation());
   EXPECT_FALSE(sys->symmetric_jacobian());
   const std::vector<double> T{900.0, 500.0};
   JacobianEvaluation J;
   sys->evaluate_jacobian(T, J);
-  const double G = pair_G(0.1 * kR);
+  const double G = pair_G(0.1 * kSphereR);
   EXPECT_NEAR(J.diagonal_W_per_K[0], -4.0 * G * std::pow(900.0, 3), 1e-14);
   EXPECT_NEAR(J.diagonal_W_per_K[1], -4.0 * G * std::pow(500.0, 3), 1e-14);
   EXPECT_NEAR(J.edge_W_per_K[0] + J.edge_ab_W_per_K[0], 4.0 * G * std::pow(500.0, 3), 1e-14);
@@ -148,7 +148,7 @@ TEST(ParticleRadiation, InsulatedBedWithGasAndPairRadiationConservesEnergy) {
   const auto id = [&](int i, int j, int k) { return (k * ny + j) * nx + i; };
   for (int v = 0; v < n; ++v) {
     net.heat_capacity_J_per_K[v] = 1e-2 * (1.0 + 0.1 * (v % 3));
-    net.radius_m[v] = kR * (1.0 - 0.1 * (v % 2));
+    net.radius_m[v] = kSphereR * (1.0 - 0.1 * (v % 2));
     net.surface_area_m2[v] = sphere_area(net.radius_m[v]);
     net.emissivity[v] = 0.7 + 0.05 * (v % 4);
   }
@@ -158,7 +158,7 @@ TEST(ParticleRadiation, InsulatedBedWithGasAndPairRadiationConservesEnergy) {
       for (int i = 0; i < nx; ++i)
         for (const auto& [di, dj, dk] : {std::tuple{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}) {
           if (i + di >= nx || j + dj >= ny || k + dk >= nz) continue;
-          const double gap = 0.1 * kR * double(e++ % 4);
+          const double gap = 0.1 * kSphereR * double(e++ % 4);
           net.add_edge(id(i, j, k), id(i + di, j + dj, k + dk), gap == 0.0 ? 2e-4 : 0.0, gap,
                        gap == 0.0 ? 1e-5 : 0.0, gap == 0.0);
         }

@@ -18,12 +18,11 @@ using namespace tmdem::thermal::testing;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 // Shell of a sphere between the core c r and the surface, over the cone of half-angle theta:
 // integral of dr / (k Omega r^2) = (1/(c r) - 1/r) / (k Omega), Omega = 2 pi (1 - cos theta).
 double cone_shell_K_per_W(double r, double k, double c, double theta) {
-  const double omega = 2.0 * kPi * (1.0 - std::cos(theta));
+  const double omega = 2.0 * std::numbers::pi * (1.0 - std::cos(theta));
   return (1.0 / (c * r) - 1.0 / r) / (k * omega);
 }
 
@@ -36,7 +35,7 @@ struct TwoSpheres {
     net.resize_nodes(2);
     net.heat_capacity_J_per_K = {Ca, Cb};
     net.radius_m = {ra, rb};
-    net.surface_area_m2 = {4 * kPi * ra * ra, 4 * kPi * rb * rb};
+    net.surface_area_m2 = {4 * std::numbers::pi * ra * ra, 4 * std::numbers::pi * rb * rb};
     net.add_edge(0, 1, H, 0.0);
     if (resistance)
       net.shell_resistance_K_sr_per_W = {shell_resistance_K_sr_per_W(ra, ka, c),
@@ -57,11 +56,11 @@ TEST(ParticleResistance, ShellAndConeAgainstTheirDefinitions) {
   // S = (1/(c r) - 1/r) / k: r = 1 mm, k = 1, c = 0.5 gives 1000 K sr/W.
   EXPECT_NEAR(shell_resistance_K_sr_per_W(1e-3, 1.0, 0.5), 1000.0, 1e-9);
   // Equal touching spheres: 30 degrees, Omega = 2 pi (1 - sqrt(3)/2).
-  EXPECT_NEAR(partner_solid_angle_sr(1.0, 2.0), 2 * kPi * (1 - std::sqrt(3.0) / 2), 1e-15);
+  EXPECT_NEAR(partner_solid_angle_sr(1.0, 2.0), 2 * std::numbers::pi * (1 - std::sqrt(3.0) / 2), 1e-15);
   // A partner that fills the view (d <= r_b): a hemisphere, never more.
-  EXPECT_NEAR(partner_solid_angle_sr(2.0, 1.0), 2 * kPi, 1e-15);
+  EXPECT_NEAR(partner_solid_angle_sr(2.0, 1.0), 2 * std::numbers::pi, 1e-15);
   // A far partner: Omega -> pi (r_b/d)^2, no cancellation.
-  EXPECT_NEAR(partner_solid_angle_sr(1.0, 1e8), kPi * 1e-16, 1e-28);
+  EXPECT_NEAR(partner_solid_angle_sr(1.0, 1e8), std::numbers::pi * 1e-16, 1e-28);
 }
 
 // Steady heat between two held spheres equals H_eff dT; the transient difference of two free
@@ -104,7 +103,7 @@ TEST(ParticleResistance, SteadyStateOfAHeldChain) {
   net.add_edge(1, 2, H2);
   net.shell_resistance_K_sr_per_W.assign(3, shell_resistance_K_sr_per_W(r, k, c));
   auto sys = make_system(net, {"contact_conduction"});
-  const double R = cone_shell_K_per_W(r, k, c, kPi / 6.0);
+  const double R = cone_shell_K_per_W(r, k, c, std::numbers::pi / 6.0);
   const double G1 = 1.0 / (1.0 / H1 + 2.0 * R), G2 = 1.0 / (1.0 / H2 + 2.0 * R);
   const auto steady = solve_steady_state(*sys, std::vector<double>{350.0, 300.0, 250.0});
   EXPECT_NEAR(steady.T_K[1], (G1 * 350.0 + G2 * 250.0) / (G1 + G2), 1e-9);
@@ -156,7 +155,7 @@ TEST(ParticleResistance, SeriesOnTheSumOfContactAndGas) {
   auto sys = make_system(net, {"contact_conduction", "gas_conduction"}, s);
   const double Hg = surrounding_layer_conductance_W_per_K({r, r, 0.0, 0.0}, kf, 0.4, 1.0e-7);
   ASSERT_GT(Hg, 0.1 * H);
-  const double R = cone_shell_K_per_W(r, k, c, kPi / 6.0);
+  const double R = cone_shell_K_per_W(r, k, c, std::numbers::pi / 6.0);
   const double H_eff = 1.0 / (1.0 / (H + Hg) + 2.0 * R);
   std::vector<double> T{320.0, 300.0}, q(2);
   double boundary = 0.0;

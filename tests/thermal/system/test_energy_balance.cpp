@@ -64,12 +64,12 @@ MixedScene mixed_scene() {
   return s;
 }
 
-const std::vector<std::string> kAllModes{"contact_conduction", "wall_conduction", "convection",
+const std::vector<std::string> kEveryMode{"contact_conduction", "wall_conduction", "convection",
                                          "radiation", "heat_source"};
 
 class BalanceTest : public ::testing::TestWithParam<IntegratorCase> {};
 
-std::string param_name(const ::testing::TestParamInfo<IntegratorCase>& info) {
+std::string balance_param_name(const ::testing::TestParamInfo<IntegratorCase>& info) {
   return case_name(info.param);
 }
 
@@ -81,7 +81,7 @@ constexpr double kEndTime = 200.0;
 TEST_P(BalanceTest, MixedSceneClosesAtEveryOutput) {
   const auto [integrator, solver] = GetParam();
   auto scene = mixed_scene();
-  auto sys = make_system(scene.net, kAllModes, scene.ms);
+  auto sys = make_system(scene.net, kEveryMode, scene.ms);
   auto integ = make_thermal_integrator(integrator, *sys, tight_settings(solver));
   integ->initialize(0.0, scene.T0, 0.0);
   const double E0 = sys->thermal_energy_J(scene.T0);
@@ -110,7 +110,7 @@ TEST_P(BalanceTest, ClosesThroughRestartsStopTimesAndACheckpointOffset) {
   // from a checkpoint): E_final - E_initial = Q - Q0.
   const auto [integrator, solver] = GetParam();
   auto scene = mixed_scene();
-  auto sys = make_system(scene.net, kAllModes, scene.ms);
+  auto sys = make_system(scene.net, kEveryMode, scene.ms);
   auto s = tight_settings(solver);
   s.stop_at_each_time = true;
   auto integ = make_thermal_integrator(integrator, *sys, s);
@@ -134,7 +134,7 @@ TEST_P(BalanceTest, DefaultTolerancesAreReported) {
   // bounded by 1e-6 (a quadrature that missed a mode would be off by percent, see the control).
   const auto [integrator, solver] = GetParam();
   auto scene = mixed_scene();
-  auto sys = make_system(scene.net, kAllModes, scene.ms);
+  auto sys = make_system(scene.net, kEveryMode, scene.ms);
   IntegratorSettings s;
   s.linear_solver = solver;
   auto integ = make_thermal_integrator(integrator, *sys, s);
@@ -147,7 +147,7 @@ TEST_P(BalanceTest, DefaultTolerancesAreReported) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Integrators, BalanceTest, ::testing::ValuesIn(all_integrator_cases()),
-                         param_name);
+                         balance_param_name);
 
 namespace {
 

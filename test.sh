@@ -55,6 +55,10 @@ cd "$root/build-asan"
 # Nncg.SettledFrictionalPileHasTheFixedPointsOfGaussSeidel 52.2 / 1.2,
 # ActiveSetSweeps.ARestingPileStaysAtRest 54.3 and 54.7 / 1.3 each, and NscdPile's three
 # MechanicalEnergyNeverGrows* 11.5-21.1 / 0.3-0.5 (the pattern had missed their suffixes).
+# Clean-clone test.sh, quiet machine, 2026-11-27: SubspaceGaussSeidel.SettledPileCarriesTheSame
+# TotalNormalImpulseAsNncg 24.5 / 1.4, NscdState.RestoredApgdIntegratorWithRollingFriction
+# ContinuesBitwise 16.9 / 0.4, OutOfReach.FallingCandidatesLeaveTheProblemAndThePileLandsAlike
+# 10.9 / 0.6.
 long_runs='^(NscdPile\.(MechanicalEnergyNeverGrows[A-Za-z0-9]*|TwoDimensionalRunStaysExactlyInPlane|SettlesBelowSettleVelocity)'
 long_runs+='|NscdRest\.(RestingPileStaysAtRestFor10000Steps|FloorCarriesTheWholeWeightOfARestingPile)'
 long_runs+='|SolversOnSettledPile\.SameResidualAndStaticsAsGaussSeidel|NscdEnergy\.SettlingPileAccountCloses'
@@ -62,6 +66,9 @@ long_runs+='|Piston\.RestoredIntegratorContinuesBitwise|RollingFriction\.Settled
 long_runs+='|NscdState\.(RestoredApgdIntegratorContinuesBitwise|RestoredIntegratorContinuesBitwise2D)'
 long_runs+='|BlockGaussSeidel\.(RestingPileStaysAtRestFor10000Steps|SettledFrictionalPileLikeGaussSeidel)'
 long_runs+='|Nncg\.(RestingPileStaysAtRestFor10000Steps|SettledFrictionalPileHasTheFixedPointsOfGaussSeidel)'
+long_runs+='|SubspaceGaussSeidel\.SettledPileCarriesTheSameTotalNormalImpulseAsNncg'
+long_runs+='|NscdState\.RestoredApgdIntegratorWithRollingFrictionContinuesBitwise'
+long_runs+='|OutOfReach\.FallingCandidatesLeaveTheProblemAndThePileLandsAlike'
 long_runs+='|GaussSeidel/ActiveSetSweeps\.ARestingPileStaysAtRest/.*)$'
 # The linear solver "amg" runs hypre, which Debian builds with MPI: OpenMPI's singleton start
 # leaves allocations in its plug-ins (dlclosed at MPI_Finalize, so LeakSanitizer cannot even name

@@ -31,7 +31,9 @@
 //                          largest speed of a sphere with a loaded contact (m/s) and the
 //                          number of spheres at or above settle_velocity; the step's
 //                          kinetic + gravitational energy change and contact dissipation, J;
-//                          the solver tolerance in force (mechanics.fall_tolerance schedule)
+//                          the solver tolerance in force (mechanics.fall_tolerance schedule);
+//                          the network rest test's force change over its window, load
+//                          carriers' mean speed (m/s), load carriers and rattlers
 //   TMDEM_POUR_PROBE_STEP  after this step, re-solve its problem from zero with plain
 //                          symmetric Gauss-Seidel and print where it is slow (SlowModeProbe.h;
 //                          TMDEM_POUR_PROBE_SWEEPS sweeps, default 400)
@@ -164,6 +166,7 @@ void run_pour(benchmark::State& state, bool deposit) {
       contact_sweeps += static_cast<double>(report.sweeps) * static_cast<double>(report.candidates);
       pen_end = report.max_penetration_m;
       wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const bool rested = rest.after_step();
       if (trace) {
         // The fastest sphere: which one, where, how it moves, how many contacts hold it.
         const auto& p = sim->particles();
@@ -192,20 +195,23 @@ void run_pour(benchmark::State& state, bool deposit) {
         }
         const Eigen::Vector3d& x = p.position[fastest];
         const Eigen::Vector3d& u = p.velocity[fastest];
-        std::fprintf(stderr, "%lld %d %.3e %d %d %zu %zu %.3e %.3f %.5f %zu %.1e %.5f %.5f %.5f %.3e %.3e %.3e %d %.3e %d %.4e %.4e %.1e\n",
+        std::fprintf(stderr, "%lld %d %.3e %d %d %zu %zu %.3e %.3f %.5f %zu %.1e %.5f %.5f %.5f %.3e %.3e %.3e %d %.3e %d %.4e %.4e %.1e %.3e %.3e %lld %lld\n",
                      static_cast<long long>(steps), report.sweeps, report.residual,
                      report.converged ? 1 : 0, report.correction_sweeps, report.candidates,
                      report.active_contacts, sim->max_speed(), report.max_travel_m / r_min,
                      report.max_penetration_m / r_min, fastest, p.radius[fastest], x.x(), x.y(),
                      x.z(), u.x(), u.y(), u.z(), touching, held_speed, moving,
-                     report.energy_change_J, report.contact_dissipation_J, report.tolerance);
+                     report.energy_change_J, report.contact_dissipation_J, report.tolerance,
+                     rest.network().force_change(), rest.network().load_speed_m_s(),
+                     static_cast<long long>(rest.network().load_carriers()),
+                     static_cast<long long>(rest.network().rattlers()));
       }
       if (steps == probe_step) {
         bench::print_slow_mode(sim->problem(), static_cast<int>(env_number("TMDEM_POUR_PROBE_SWEEPS", 400)), stderr);
         bench::print_solver_sweeps(sim->problem(), {"nlgs", "nlgs_block", "nncg"}, stderr);
         bench::print_block_ratios(sim->problem(), stderr);
       }
-      if (rest.after_step()) {
+      if (rested) {
         at_rest = true;
         break;
       }

@@ -155,7 +155,9 @@ NscdIntegrator::NscdIntegrator(ParticleSet particles, std::vector<Material> mate
           "stop_travel_fraction must be >= 0 (0: off)");
   stop_speed_m_per_s_ = parameters_.stop_travel_fraction * particles_.min_radius() / parameters_.time_step;
   // Built once with `tolerance`: the position solve stops at max(tolerance, 1e-2) anyway.
-  correction_ = PenetrationCorrection(settings);
+  SolverSettings correction_settings = settings;  // a copy: solver_settings_ stays the solver's
+  correction_settings.full_sweep_every = parameters_.correction_full_sweep_every;
+  correction_ = PenetrationCorrection(correction_settings);
   problem_.dimension = dimension_;
   problem_.particle_count = n;
   problem_.inverse_mass = inverse_mass_;

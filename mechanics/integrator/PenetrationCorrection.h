@@ -25,7 +25,13 @@
 // Solved by Gauss-Seidel ("nlgs" with mu = 0, a frictionless LCP, which always converges),
 // whatever mechanics.solver is, so that no solver's carried state is disturbed, to a relative
 // residual of kTolerance (or mechanics.tolerance if looser): an error of 1% leaves 1% of the
-// corrected depth, which the next correction takes.
+// corrected depth, which the next correction takes. Its sweeps visit every candidate only every
+// NscdParameters::correction_full_sweep_every sweeps (8), and in between the contacts the last
+// full sweep left closed (ActiveContactSet.h): a correction pushes a few hundred contacts of a
+// bed's tens of thousands, and the rest only need checking. On a deposited 10,000 bed (121
+// steps, each corrected, 1 thread) full sweeps took 17.4 s of its 129 s; active-set sweeps 7.6 s
+// of 74.5 s (a trajectory of 100 steps: corrections differ within their tolerance, and so does
+// the bed). Active-set sweeps run on one thread.
 
 #include <memory>
 #include <vector>

@@ -83,6 +83,9 @@ inline NscdIntegrator settled_disk_pile(std::uint64_t seed = 1,
   NscdParameters parameters = nlgs_parameters();
   parameters.tolerance = 1e-8;
   parameters.full_sweep_every = full_sweep_every;
+  // The pile the solver tests were measured on (with active-set corrections the pile settles
+  // elsewhere, and its problem is one on which "nlgs" cold stalls at 1.5e-6 before 1e-8).
+  parameters.correction_full_sweep_every = 1;
   NscdIntegrator sim(std::move(set), {steel(0.5), steel(0.0)}, walls, Eigen::Vector3d(0, -kG, 0), 2,
                      parameters);
   for (int step = 0; step < 5000 && !(step > 10 && sim.max_speed() < 1e-9); ++step) sim.step();

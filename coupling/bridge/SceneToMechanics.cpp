@@ -52,6 +52,7 @@ mechanics::NscdParameters make_nscd_parameters(const Scene& scene) {
   p.tolerance = scene.mechanics.tolerance;
   p.fall_tolerance = scene.mechanics.fall_tolerance;
   p.fall_speed = scene.mechanics.fall_speed_m_per_s;
+  p.fall_share = scene.mechanics.fall_share;
   p.tighten_steps = scene.mechanics.tighten_steps;
   p.stop_travel_fraction = scene.mechanics.stop_travel;
   p.skip_out_of_reach = scene.mechanics.skip_out_of_reach;

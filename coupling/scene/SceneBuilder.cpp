@@ -127,6 +127,7 @@ void SceneBuilder::read_settings() {
     m.tolerance = t.number("tolerance");
     m.fall_tolerance = t.number("fall_tolerance");
     m.fall_speed_m_per_s = t.optional_number("fall_speed").value_or(0.0);  // absent: automatic
+    m.fall_share = t.number("fall_share");
     m.stop_travel = t.number("stop_travel");
     m.skip_out_of_reach = t.boolean("skip_out_of_reach", m.skip_out_of_reach);
     m.static_warm_start = t.boolean("static_warm_start", m.static_warm_start);

@@ -132,6 +132,8 @@ NscdIntegrator::NscdIntegrator(ParticleSet particles, std::vector<Material> mate
   // Validates fall_tolerance, fall_speed and tighten_steps (std::invalid_argument).
   require(parameters_.fall_speed >= 0.0 && std::isfinite(parameters_.fall_speed),
           "fall_speed must be >= 0 (m/s; 0: automatic)");
+  require(parameters_.fall_share >= 0.0 && parameters_.fall_share <= 1.0,
+          "fall_share must be in [0, 1] (0: the fastest particle alone)");
   require(parameters_.fall_travel_fraction > 0.0 && std::isfinite(parameters_.fall_travel_fraction),
           "fall_travel_fraction must be > 0");
   const double fall_speed_m_per_s =
@@ -346,7 +348,12 @@ StepReport NscdIntegrator::step(double h) {
   // Only the schedule reads it (and the cap, while the schedule says falling).
   const double start_speed_m_per_s = schedule_.enabled() ? max_speed() : 0.0;
   report.tolerance = schedule_.enabled()
-                         ? schedule_.tolerance_for_step(start_speed_m_per_s, stats_.steps + 1)
+                         ? schedule_.tolerance_for_step(
+                               // Only a fall's start reads the share's speed.
+                               schedule_.phase() == ToleranceSchedule::Phase::Before
+                                   ? fall_judged_speed()
+                                   : start_speed_m_per_s,
+                               start_speed_m_per_s, stats_.steps + 1)
                          : parameters_.tolerance;
   report.fall = schedule_.falling();
   use_tolerance(report.tolerance);

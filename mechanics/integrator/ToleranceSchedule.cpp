@@ -21,11 +21,12 @@ ToleranceSchedule::ToleranceSchedule(double tolerance, double fall_tolerance,
   if (enabled()) fall_tolerance_ = std::max(fall_tolerance_, tolerance_);
 }
 
-double ToleranceSchedule::tolerance_for_step(double max_speed_m_per_s, std::int64_t step) {
+double ToleranceSchedule::tolerance_for_step(double share_speed_m_per_s, double max_speed_m_per_s,
+                                             std::int64_t step) {
   if (!enabled()) return tolerance_;
   switch (state_.phase) {
     case Phase::Before:
-      if (max_speed_m_per_s >= fall_speed_m_per_s_) state_.phase = Phase::Falling;
+      if (share_speed_m_per_s >= fall_speed_m_per_s_) state_.phase = Phase::Falling;
       break;
     case Phase::Falling:
       if (max_speed_m_per_s < fall_speed_m_per_s_) {

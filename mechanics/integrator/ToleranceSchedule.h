@@ -8,11 +8,17 @@
 // not hold it (nncg at 1e-4: the bed creeps for the whole 5 s settle). docs/mechanics.md "A tolerance
 // schedule".
 //
-// The rule, one-way so that it cannot chatter, judged on the largest particle speed v of the
-// state a step starts from (NscdIntegrator::max_speed(), the settle criterion's speed):
-//   before:  v has not reached fall_speed yet   -> tolerance (tight)
-//   falling: v >= fall_speed                     -> fall_tolerance (or tolerance if looser)
-//   landed:  v < fall_speed after falling        -> tolerance, for the rest of the run
+// The rule, one-way so that it cannot chatter, judged on two speeds of the state a step starts
+// from: v_share, the speed that NscdParameters::fall_share of the moving particles reach (at
+// least one; NscdIntegrator::fall_judged_speed()), and v_max, the largest
+// (NscdIntegrator::max_speed()), each a moving wall's speed if larger:
+//   before:  v_share has not reached fall_speed yet   -> tolerance (tight)
+//   falling: v_share >= fall_speed, until v_max < fall_speed -> fall_tolerance (or tolerance if looser)
+//   landed:  v_max < fall_speed after falling          -> tolerance, for the rest of the run
+// A fall begins when a share of the particles falls, so that the few spheres that always roll
+// down a laid bed's surface do not put the whole bed at fall_tolerance; it ends when the last
+// one has landed, so that a pour is not switched to the tight tolerance while its tail still
+// lands (that switch cost pour_3d 13% more time, three seeds; docs/mechanics.md).
 // A scene whose particles never reach fall_speed is solved at `tolerance` throughout.
 // With tighten_steps N > 1 the landed steps j = 1, 2, ... (j = 1: the first one) use
 // fall_tolerance (tolerance / fall_tolerance)^(j / N) until j = N reaches `tolerance`: the
@@ -43,9 +49,14 @@ class ToleranceSchedule {
   double fall_speed_m_per_s() const { return fall_speed_m_per_s_; }
   // The tolerance while falling: fall_tolerance, or `tolerance` if that is looser.
   double fall_tolerance() const { return fall_tolerance_; }
-  // The tolerance for step number `step` (1-based over the run), which starts from a state whose
-  // largest particle speed is `max_speed_m_per_s`; advances the phase.
-  double tolerance_for_step(double max_speed_m_per_s, std::int64_t step);
+  // The tolerance for step number `step` (1-based over the run), which starts from a state
+  // whose share speed is `share_speed_m_per_s` and largest speed `max_speed_m_per_s` (above);
+  // advances the phase.
+  double tolerance_for_step(double share_speed_m_per_s, double max_speed_m_per_s, std::int64_t step);
+  // The same with one speed for both (a single particle, or fall_share 0).
+  double tolerance_for_step(double max_speed_m_per_s, std::int64_t step) {
+    return tolerance_for_step(max_speed_m_per_s, max_speed_m_per_s, step);
+  }
   Phase phase() const { return state_.phase; }
   bool falling() const { return state_.phase == Phase::Falling; }
   // The first step after the fall (0: not landed yet); `tolerance` from landed_step() +

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 
 #include "mechanics/SameBits.h"
 #include "mechanics/MechanicsTestScenes.h"
@@ -129,6 +130,49 @@ TEST(ToleranceSchedule, LandedStaysLanded) {
     EXPECT_EQ(report.tolerance, 1e-9);
   }
   EXPECT_EQ(sim.tolerance_schedule().landed_step(), n + 2);
+}
+
+// The fall is judged on the speed fall_share of the moving particles reach (at least one), not
+// on the fastest: 200 spheres resting apart on a floor, `fast` of them thrown up at 1 m/s (far
+// above fall_speed, 0.1 m/s). With fall_share 0.01 two fast spheres are the 1% that makes a
+// fall and one is not; with fall_share 0 one is enough (the fastest alone). The fall ends only
+// when the fastest has landed.
+TEST(ToleranceSchedule, FallIsJudgedOnTheShareOfParticlesAtFallSpeed) {
+  const auto make = [](int fast, double share) {
+    NscdParameters p = schedule(1e-9, 1e-3, 0.1);
+    p.time_step = kStep;
+    p.fall_share = share;
+    ParticleSet set;
+    for (int i = 0; i < 200; ++i)
+      set.add(Eigen::Vector3d(3.0 * kRadius * i, kRadius, 0.0), kRadius, sphere_mass(kRadius, kDensity), 0);
+    for (int i = 0; i < fast; ++i) set.velocity[std::size_t(37 * i + 5)] = Eigen::Vector3d(0.0, 1.0, 0.0);
+    return NscdIntegrator(std::move(set), {steel(0.3)}, {Wall::through({0, 0, 0}, {0, 1, 0}, 0)},
+                          Eigen::Vector3d(0, -kG, 0), 3, p);
+  };
+  const auto first_step = [&](int fast, double share) { return make(fast, share).step(); };
+  for (const auto& [fast, share, falls] :
+       {std::tuple{0, 0.01, false}, std::tuple{1, 0.01, false}, std::tuple{2, 0.01, true},
+        std::tuple{5, 0.01, true}, std::tuple{1, 0.0, true}, std::tuple{2, 0.02, false},
+        std::tuple{4, 0.02, true}}) {
+    const StepReport report = first_step(fast, share);
+    EXPECT_EQ(report.fall, falls) << fast << " fast, fall_share " << share;
+    EXPECT_EQ(report.tolerance, falls ? 1e-3 : 1e-9) << fast << " fast, fall_share " << share;
+  }
+  // A fall ends when the fastest particle has landed, not when the share has: one sphere still
+  // at 1 m/s keeps the fall tolerance, and the step after it stops is tight.
+  NscdIntegrator sim = make(5, 0.01);
+  EXPECT_TRUE(sim.step().fall);
+  for (auto& v : sim.particles().velocity) v.setZero();
+  sim.particles().velocity[5] = Eigen::Vector3d(0.0, 1.0, 0.0);
+  EXPECT_TRUE(sim.step().fall);
+  for (auto& v : sim.particles().velocity) v.setZero();
+  const StepReport landed = sim.step();
+  EXPECT_FALSE(landed.fall);
+  EXPECT_EQ(landed.tolerance, 1e-9);
+  EXPECT_EQ(sim.tolerance_schedule().phase(), ToleranceSchedule::Phase::Landed);
+  NscdParameters bad = schedule(1e-9, 1e-3, 0.1);
+  bad.fall_share = 1.5;
+  EXPECT_THROW(dropped_sphere(3, bad), std::invalid_argument);
 }
 
 // Particles that never reach fall_speed are solved at `tolerance` throughout.

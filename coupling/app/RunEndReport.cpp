@@ -97,11 +97,11 @@ void print_run_end(const RunSummary& summary, const Scene& scene, const std::str
         if (ts->tighten_steps > 1)
           out << " (tightening over " << ts->tighten_steps << " steps from step " << ts->tightened_step << ")";
         out << "; the fall ended at t = " << ts->tightened_time_s
-            << " s of mechanics (fewer than mechanics.fall_share of the particles at or above mechanics.fall_speed = " << ts->fall_speed_m_s
+            << " s of mechanics (largest speed below mechanics.fall_speed = " << ts->fall_speed_m_s
             << " m/s)\n";
       }
       else
-        out << " not reached: mechanics.fall_share of the particles stayed at or above mechanics.fall_speed = "
+        out << " not reached: the largest speed never dropped back below mechanics.fall_speed = "
             << ts->fall_speed_m_s << " m/s\n";
     }
   }

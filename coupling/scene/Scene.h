@@ -154,9 +154,9 @@ struct MechanicsSettings {
   std::string solver = mechanics::default_contact_solver();  // mechanics::contact_solver_names()
   // The solver defaults are the mechanics library's (mechanics::NscdParameters).
   double tolerance = mechanics::NscdParameters{}.tolerance;
-  // Tolerance schedule (mechanics::ToleranceSchedule): fall_tolerance while fall_share of the
-  // particles move at or above fall_speed, until they first do not; fall_tolerance 0 =
-  // off; fall_speed 0 = automatic (a tenth of the smallest radius per time step).
+  // Tolerance schedule (mechanics::ToleranceSchedule): fall_tolerance from the first step at
+  // which fall_share of the particles move at or above fall_speed, until the fastest is below;
+  // fall_tolerance 0 = off; fall_speed 0 = automatic (a tenth of the smallest radius per step).
   double fall_tolerance = mechanics::NscdParameters{}.fall_tolerance;
   double fall_speed_m_per_s = mechanics::NscdParameters{}.fall_speed;
   double fall_share = mechanics::NscdParameters{}.fall_share;  // of the moving particles

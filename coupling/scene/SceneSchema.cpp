@@ -359,9 +359,9 @@ std::vector<Section> build_sections() {
                "reactions; docs/mechanics.md \"The defaults\")"),
         number("fall_tolerance", "", kNscd.fall_tolerance, Range::at_least(0.0),
                "tolerance schedule: the solves stop at this tolerance instead of `tolerance` "
-               "while fall_share of the particles move at or above fall_speed (never tighter "
-               "than `tolerance`); once they first do not, `tolerance` holds for "
-               "the rest of the run (one-way; settle and dynamic runs alike). 0: no schedule, "
+               "from the first step at which fall_share of the particles move at or above "
+               "fall_speed (never tighter than `tolerance`); once the fastest particle is below "
+               "fall_speed again, `tolerance` holds for the rest of the run (one-way; settle and dynamic runs alike). 0: no schedule, "
                "`tolerance` for every step. A step counts as converged when it met the "
                "tolerance in force"),
         number("fall_speed", "m/s", std::nullopt, Range::greater(0.0),
@@ -370,9 +370,9 @@ std::vector<Section> build_sections() {
                "radius per time_step (0.05 m/s for 0.5 mm spheres at 1 ms)"),
         number("fall_share", "", kNscd.fall_share, Range::closed(0.0, 1.0),
                "tolerance schedule: the share of the moving particles (at least one) that "
-               "must move at or above fall_speed for the particles to count as falling; 0: the "
-               "fastest alone. A few spheres rolling down a laid bed's surface do not put the "
-               "whole bed at fall_tolerance (docs/mechanics.md \"A tolerance schedule\")"),
+               "must move at or above fall_speed for a fall to begin; 0: the fastest alone. "
+               "A few spheres rolling down a laid bed's surface do not put the whole bed at "
+               "fall_tolerance (docs/mechanics.md \"A tolerance schedule\")"),
         number("stop_travel", "", kNscd.stop_travel_fraction, Range::at_least(0.0),
                "the stop test counts a contact's impulse at most as the one that would move "
                "its bodies by this fraction of the smallest radius per time_step, so that "

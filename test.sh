@@ -3,7 +3,7 @@
 # suite; then build the fast tests and the scene and packing fuzzers with ASan+UBSan (clang) in build-asan/
 # and run them there (labels fast and fuzz; any leak, sanitizer or UB report fails them).
 # Extra arguments go to the first ctest, e.g. ./test.sh -L thermal  or  ./test.sh -LE stability
-# TMDEM_SKIP_SANITIZE=1 skips the second build; TMDEM_FUZZ_SECONDS sets the fuzzing budget (60).
+# TMDEM_SKIP_SANITIZE=1 skips the second build; TMDEM_FUZZ_SECONDS sets the fuzzing budget (45 s).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 jobs="$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)"  # cores, whatever OMP_NUM_THREADS says
@@ -33,7 +33,7 @@ generator=()
 CC=clang-14 CXX=clang++-14 cmake -S "$root" -B "$root/build-asan" ${generator[@]+"${generator[@]}"} \
   -DCMAKE_BUILD_TYPE=Debug \
   "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -g1" "-DCMAKE_C_FLAGS_DEBUG=-O1 -g1" -DTMDEM_TEST_CODE_FLAGS=-O1 \
-  -DTMDEM_SANITIZE=ON -DTMDEM_FUZZ=ON -DTMDEM_FUZZ_SECONDS="${TMDEM_FUZZ_SECONDS:-60}" >&2
+  -DTMDEM_SANITIZE=ON -DTMDEM_FUZZ=ON -DTMDEM_FUZZ_SECONDS="${TMDEM_FUZZ_SECONDS:-45}" >&2
 # sanitizer_programs: test_mechanics, test_thermal, test_coupling_scene, test_coupling_output,
 # fuzz_scene and fuzz_packing, as one target (tests/CMakeLists.txt says why).
 cmake --build "$root/build-asan" -j "$jobs" --target sanitizer_programs >&2

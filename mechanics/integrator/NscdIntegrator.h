@@ -110,7 +110,7 @@ class NscdIntegrator {
   // The speed the tolerance schedule judges a fall on, m/s: the fall_share quantile of the
   // moving particles' centre speeds (the k-th largest, k = max(1, ceil(fall_share n))), or a
   // moving wall's speed if larger.
-  double fall_judged_speed();
+  double fall_judged_speed() const;
 
   const ParticleSet& particles() const { return particles_; }
   // Mutable access (e.g. restoring a checkpoint). Call invalidate_contacts() after moving
@@ -170,7 +170,7 @@ class NscdIntegrator {
   std::vector<Eigen::Vector3d> body_velocity_, body_angular_velocity_;
   std::vector<double> lookahead_;
   std::vector<double> wall_lookahead_;  // m; empty when no wall moves
-  std::vector<double> speed_;           // fall_judged_speed's work space, m/s
+  mutable std::vector<double> speed_;   // fall_judged_speed's work space, m/s
   bool has_piston_ = false;
   bool static_start_pending_ = true;  // the next step is the first, and knows no forces
   double slop_m_ = 0.0;  // penetration slop (NscdParameters), m

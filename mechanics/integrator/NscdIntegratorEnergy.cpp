@@ -1,5 +1,5 @@
 // NscdIntegrator's energy account and its diagnostics (kinetic and potential energy, largest
-// speed): read-only views of the state, apart from the step code.
+// speed, the speed a fall is judged on): read-only views of the state, apart from the step code.
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -71,17 +71,19 @@ double NscdIntegrator::max_speed() const {
   return speed;
 }
 
-double NscdIntegrator::fall_judged_speed() {
+double NscdIntegrator::fall_judged_speed() const {
   speed_.clear();
   for (std::size_t i = 0; i < particles_.size(); ++i) {
     if (inverse_mass_[i] != 0.0) speed_.push_back(particles_.velocity[i].norm());
   }
   double speed = 0.0;
   if (!speed_.empty()) {
-    const auto share = static_cast<std::size_t>(std::ceil(parameters_.fall_share * double(speed_.size())));
+    const auto share =
+        static_cast<std::size_t>(std::ceil(parameters_.fall_share * double(speed_.size())));
     const std::size_t k = std::clamp<std::size_t>(share, 1, speed_.size());
     // The k-th largest: O(n), no allocation once speed_ holds n.
-    std::nth_element(speed_.begin(), speed_.begin() + std::ptrdiff_t(k - 1), speed_.end(), std::greater<>());
+    std::nth_element(speed_.begin(), speed_.begin() + std::ptrdiff_t(k - 1), speed_.end(),
+                     std::greater<>());
     speed = speed_[k - 1];
   }
   for (const auto& wall : walls_) speed = std::max(speed, std::abs(wall.velocity_m_per_s));

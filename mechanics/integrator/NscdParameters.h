@@ -33,12 +33,12 @@ struct NscdParameters {
   // for examples/pour_3d.toml's 0.5 mm spheres at 1 ms).
   double fall_speed = 0.0;
   double fall_travel_fraction = 0.1;
-  // The fall is judged on the speed that this share of the moving particles reach (at least
-  // one particle; 0: the fastest alone), not on the fastest: in a bed laid by deposition a
-  // few surface spheres always roll (20-40 of 100,000 above 0.1 m/s), and judged on the
-  // fastest the whole bed sat at fall_tolerance, crept, and a 100,000 bed never came to rest
-  // (docs/mechanics.md "A tolerance schedule"). A pour's fill falls as a whole: 1% of it
-  // lands steps after its last few percent.
+  // A fall begins when this share of the moving particles (at least one; 0: the fastest
+  // alone) reach fall_speed, and ends, as before, when the fastest is below it: in a bed laid
+  // by deposition a few surface spheres always roll (20-40 of 100,000 above 0.1 m/s), and
+  // judged on the fastest the whole bed sat at fall_tolerance, crept, and a 100,000 bed did
+  // not come to rest in 1,100 s (429 s with the share; docs/mechanics.md "A tolerance
+  // schedule"). A pour's fill falls as a whole and starts its fall as before.
   double fall_share = 0.01;
   // The stop test counts a contact's impulse at most as the one that moves its bodies by this
   // fraction of the smallest radius per time step (ContactProblem::stop_speed; 0: off, every

@@ -13,7 +13,8 @@
 // least one; NscdIntegrator::fall_judged_speed()), and v_max, the largest
 // (NscdIntegrator::max_speed()), each a moving wall's speed if larger:
 //   before:  v_share has not reached fall_speed yet   -> tolerance (tight)
-//   falling: v_share >= fall_speed, until v_max < fall_speed -> fall_tolerance (or tolerance if looser)
+//   falling: from v_share >= fall_speed until v_max < fall_speed
+//                                                    -> fall_tolerance (or tolerance if looser)
 //   landed:  v_max < fall_speed after falling          -> tolerance, for the rest of the run
 // A fall begins when a share of the particles falls, so that the few spheres that always roll
 // down a laid bed's surface do not put the whole bed at fall_tolerance; it ends when the last

@@ -34,7 +34,8 @@ const nlohmann::json& section(const nlohmann::json& object, const char* key) {
 constexpr std::pair<const char*, double ToleranceScheduleSummary::*> kScheduleNumbers[] = {
     {"tolerance", &ToleranceScheduleSummary::tolerance},
     {"fall_tolerance", &ToleranceScheduleSummary::fall_tolerance},
-    {"fall_speed_m_s", &ToleranceScheduleSummary::fall_speed_m_s}};
+    {"fall_speed_m_s", &ToleranceScheduleSummary::fall_speed_m_s},
+    {"fall_share", &ToleranceScheduleSummary::fall_share}};
 constexpr std::pair<const char*, std::int64_t ToleranceScheduleSummary::*> kScheduleCounts[] = {
     {"fall_steps", &ToleranceScheduleSummary::fall_steps},
     {"fall_unconverged_steps", &ToleranceScheduleSummary::fall_unconverged_steps},

@@ -21,6 +21,7 @@ struct ToleranceScheduleSummary {
   double tolerance = 0.0;             // mechanics.tolerance
   double fall_tolerance = 0.0;        // mechanics.fall_tolerance
   double fall_speed_m_s = 0.0;        // mechanics.fall_speed
+  double fall_share = 0.0;            // mechanics.fall_share: of the particles, to begin a fall
   std::int64_t fall_steps = 0;        // steps solved at fall_tolerance
   std::int64_t fall_unconverged_steps = 0;
   std::int64_t tighten_steps = 1;     // mechanics.tighten_steps: `tolerance` from

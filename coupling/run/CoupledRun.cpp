@@ -335,6 +335,7 @@ void CoupledRun::fill_summary() {
       // In force: the fall speed may be automatic, the fall tolerance no tighter than tolerance.
       ts.fall_tolerance = nscd_->tolerance_schedule().fall_tolerance();
       ts.fall_speed_m_s = nscd_->tolerance_schedule().fall_speed_m_per_s();
+      ts.fall_share = scene_.mechanics.fall_share;
       ts.fall_steps = ms.fall_steps;
       ts.fall_unconverged_steps = ms.fall_unconverged_steps;
       ts.tighten_steps = scene_.mechanics.tighten_steps;

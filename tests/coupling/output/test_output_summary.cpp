@@ -125,12 +125,13 @@ TEST(RunSummary, ToleranceScheduleBlockRoundTrips) {
   ts.tolerance = 1e-5;
   ts.fall_tolerance = 1e-4;
   ts.fall_speed_m_s = 0.05;
+  ts.fall_share = 0.01;
   ts.fall_steps = 200;
   ts.fall_unconverged_steps = 1;
   s.mechanics.tolerance_schedule = ts;
   nlohmann::json j = nlohmann::json::parse(s.to_json().dump());
   const auto& block = j["mechanics"]["tolerance_schedule"];
-  EXPECT_EQ(block.size(), 9u);
+  EXPECT_EQ(block.size(), 10u);
   EXPECT_FALSE(block["tightened"].get<bool>());
   EXPECT_TRUE(block["tightened_step"].is_null());
   EXPECT_TRUE(block["tightened_time_s"].is_null());
@@ -144,6 +145,7 @@ TEST(RunSummary, ToleranceScheduleBlockRoundTrips) {
   EXPECT_EQ(j["mechanics"]["tolerance_schedule"]["tightened_step"].get<std::int64_t>(), 207);
   EXPECT_EQ(j["mechanics"]["tolerance_schedule"]["tightened_time_s"].get<double>(), 0.206);
   EXPECT_EQ(j["mechanics"]["tolerance_schedule"]["fall_speed_m_s"].get<double>(), 0.05);
+  EXPECT_EQ(j["mechanics"]["tolerance_schedule"]["fall_share"].get<double>(), 0.01);
   const RunSummary r = RunSummary::from_json(j);
   ASSERT_TRUE(r.mechanics.tolerance_schedule.has_value());
   EXPECT_EQ(r.mechanics.tolerance_schedule->tightened_step, 207);

@@ -361,9 +361,9 @@ std::vector<Section> build_sections() {
                "tolerance schedule: the solves stop at this tolerance instead of `tolerance` "
                "from the first step at which fall_share of the particles move at or above "
                "fall_speed (never tighter than `tolerance`); once the fastest particle is below "
-               "fall_speed again, `tolerance` holds for the rest of the run (one-way; settle and dynamic runs alike). 0: no schedule, "
-               "`tolerance` for every step. A step counts as converged when it met the "
-               "tolerance in force"),
+               "fall_speed again, `tolerance` holds for the rest of the run (one-way; settle and "
+               "dynamic runs alike). 0: no schedule, `tolerance` for every step. A step counts "
+               "as converged when it met the tolerance in force"),
         number("fall_speed", "m/s", std::nullopt, Range::greater(0.0),
                "tolerance schedule: the particle speed at or above which a particle "
                "counts as falling (fall_tolerance applies); absent: a tenth of the smallest "

@@ -28,8 +28,9 @@
 // corrected depth, which the next correction takes. Its sweeps visit every candidate only every
 // NscdParameters::correction_full_sweep_every sweeps (8), and in between the contacts the last
 // full sweep left closed (ActiveContactSet.h): a correction pushes a few hundred contacts of a
-// bed's tens of thousands, and the rest only need checking. On a deposited 10,000 bed (every
-// step corrected, 1 thread) full sweeps took 17.4 s of its 129 s (121 steps, 144 ms a step);
+// bed's tens of thousands, and the rest only need checking. On a deposited 10,000 bed solved
+// at the fall tolerance (before a fall needed NscdParameters::fall_share; every step corrected,
+// 1 thread) full sweeps took 17.4 s of its 129 s (121 steps, 144 ms a step);
 // active-set sweeps 9.4 s of 81 s (a trajectory of 100 steps, 94 ms a step: corrections differ
 // within their tolerance, and so does the bed). Active-set sweeps run on one thread: on 2
 // threads the full slab sweeps had taken 8.8 s (72 ms a step) and these take 9.5 s (94 ms).

@@ -54,10 +54,6 @@ class ToleranceSchedule {
   // whose share speed is `share_speed_m_per_s` and largest speed `max_speed_m_per_s` (above);
   // advances the phase.
   double tolerance_for_step(double share_speed_m_per_s, double max_speed_m_per_s, std::int64_t step);
-  // The same with one speed for both (a single particle, or fall_share 0).
-  double tolerance_for_step(double max_speed_m_per_s, std::int64_t step) {
-    return tolerance_for_step(max_speed_m_per_s, max_speed_m_per_s, step);
-  }
   Phase phase() const { return state_.phase; }
   bool falling() const { return state_.phase == Phase::Falling; }
   // The first step after the fall (0: not landed yet); `tolerance` from landed_step() +

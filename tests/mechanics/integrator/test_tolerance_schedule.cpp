@@ -307,5 +307,5 @@ TEST(ToleranceSchedule, AutomaticFallSpeedAndNeverTighterThanTolerance) {
   EXPECT_DOUBLE_EQ(sim.tolerance_schedule().fall_speed_m_per_s(), 0.25 * kRadius / kStep);
   EXPECT_EQ(sim.tolerance_schedule().fall_tolerance(), 1e-3);
   EXPECT_EQ(ToleranceSchedule(1e-4, 1e-6, 0.1).fall_tolerance(), 1e-4);
-  EXPECT_EQ(ToleranceSchedule(1e-4, 1e-6, 0.1).tolerance_for_step(1.0, 1), 1e-4);  // falling
+  EXPECT_EQ(ToleranceSchedule(1e-4, 1e-6, 0.1).tolerance_for_step(1.0, 1.0, 1), 1e-4);  // falling
 }

@@ -10,11 +10,13 @@
 // coupling to every reaction held fixed) and W_AA = H_A^T M^-1 H_A the Delassus operator
 // restricted to them, assembled sparse (3x3 blocks between contacts sharing a mobile body; a
 // piston takes normal impulses only, ContactKinematics.h):
-//   - sticking contacts (r_n > 0, |r_t| < stick_fraction mu r_n), and open ones that are closing
-//     (r = 0, u_n < 0: the load the sweeps have not carried to them yet): all three components
-//     (two in 2D), u_c = 0;
+//   - sticking contacts (r_n > 0, |r_t| < stick_fraction mu r_n): all three components (two in
+//     2D), u_c = 0;
 //   - sliding contacts (|r_t| = mu r_n to round-off): the normal component only, u_n = 0, the
 //     tangential impulse held in its direction and rescaled to mu r_n afterwards;
+//   - open contacts that are closing or resting (r = 0, u_n <= 1e-9 of the fastest free speed:
+//     the load the sweeps have not carried to them yet): the normal component only; the
+//     projection leaving one open is no change of status;
 //   - open contacts (r_n = 0), contacts just inside the cone's edge and the rolling impulses
 //     (ContactProblem::rolling) are held fixed (the sweeps solve them).
 // A hyperstatic bed makes W_AA singular, and the position terms of a closed loop of contacts

@@ -66,10 +66,11 @@ TEST(SubspaceGaussSeidel, IsRegisteredByName) {
 
 // Uniform columns of 10, 40 and 160 spheres: "nlgs" needs sweeps growing with the height
 // (a chain's slowest mode: 667, 7,957 and stalled at 7,286; "nncg" 134, 472, 1,491, measured),
-// the subspace step solves the closed chain at once (3, 3 and 9 sweeps, measured: from cold a
-// sweep pair closes about 42 contacts of the tall column, so its active set is found in four
-// steps). Issue 24's target, at most 2x the sweeps for 16x the height, is met from 10 to 40
-// layers and missed (3x) at 160; asserted here: at most 4x, and a tenth of "nlgs"'s at 40.
+// the subspace step solves the closed chain at once (3 sweeps at every height, measured; from
+// cold a sweep pair carries the load up only about 42 contacts before the velocity increments
+// fall below round-off, and the resting contacts above join the active set all the same).
+// Issue 24's target, at most 2x the sweeps for 16x the height, asserted, and a tenth of
+// "nlgs"'s at 40.
 TEST(SubspaceGaussSeidel, UniformColumnsTakeSweepsIndependentOfHeight) {
   constexpr double tolerance = 1e-8;
   const double m = sphere_mass(kRadius, kDensity);
@@ -79,7 +80,7 @@ TEST(SubspaceGaussSeidel, UniformColumnsTakeSweepsIndependentOfHeight) {
     sweeps.push_back(column_solved(std::vector<double>(static_cast<std::size_t>(layers), m), tolerance));
   }
   EXPECT_LE(sweeps[1], 2 * sweeps[0]) << sweeps[0] << ", " << sweeps[1];
-  EXPECT_LE(sweeps[2], 4 * sweeps[0]) << sweeps[0] << ", " << sweeps[1] << ", " << sweeps[2];
+  EXPECT_LE(sweeps[2], 2 * sweeps[0]) << sweeps[0] << ", " << sweeps[1] << ", " << sweeps[2];
   const NscdIntegrator tall = test::column(std::vector<double>(40, m));
   const Solved plain = solve_cold(tall.problem(), "nlgs", tolerance);
   EXPECT_GE(plain.report.sweeps, 10 * sweeps[1]) << plain.report.sweeps << " against " << sweeps[1];

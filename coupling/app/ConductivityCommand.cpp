@@ -48,7 +48,8 @@ int run_conductivity_command(const Scene& scene, const ConductivityCommandOption
       log << "warning: heat in (" << r.heat_hot_W << " W) and heat out (" << r.heat_cold_W
           << " W) differ by " << r.balance_rel
           << " relative: some mode exchanges heat with the surroundings, a source or a held "
-             "particle" << std::endl;
+             "particle (a bed enclosed between the two walls radiates to nothing else: "
+             "[radiation] surroundings = false)" << std::endl;
 
   const bool written =
       csv.write([&](std::ostream& f) { write_conductivity_csv(f, results); }, log, options.quiet);

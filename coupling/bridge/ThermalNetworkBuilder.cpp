@@ -183,6 +183,7 @@ void ThermalNetworkBuilder::add_wall_edge(thermal::ThermalNetwork& edges, std::i
   edges.add_wall_edge(std::int32_t(i), *scene_.walls[wall].temperature_K, H, wall_table_[wall],
                       gap_m, contact_radius_m, contact);
   if (temperature_dependent_) edges.wall_material.push_back(scene_.walls[wall].material);
+  edges.wall_emissivity.push_back(scene_.materials[std::size_t(scene_.walls[wall].material)].emissivity);
 }
 
 bool ThermalNetworkBuilder::contact_carries_heat(std::int64_t j) const {

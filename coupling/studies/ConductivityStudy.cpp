@@ -47,6 +47,7 @@ thermal::ThermalNetwork with_wall_edges_of(const thermal::ThermalNetwork& net,
       // The kept edge keeps the full network's series factor (the particle's own resistance),
       // so the filtered flows add up to the system's.
       if (!net.wall_series_factor.empty()) out.wall_series_factor.push_back(net.wall_series_factor[w]);
+      if (!net.wall_emissivity.empty()) out.wall_emissivity.push_back(net.wall_emissivity[w]);
     }
   return out;
 }

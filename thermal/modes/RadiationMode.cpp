@@ -3,12 +3,13 @@
 // d q_i / d T_i = -4 eps_i sigma A_i f_i T_i^3 for the Jacobian.
 //
 // f_i is the share of particle i's radiation that reaches the surroundings: 1, or with
-// [radiation] between_particles = true, 1 - sum_j F_ij over its radiating neighbours j
-// (F_ij = (1 - sqrt(1 - (r_j / d_ij)^2)) / 2, the view factor ParticleRadiationMode uses),
-// clamped at 0. What meets a neighbour is exchanged with it by the pair mode and must not also
-// leave to the surroundings: for black spheres the two modes then account for each surface's
-// emission exactly once. Walls do not shade (they exchange no radiation in the model).
+// [radiation] between_particles = true what its radiating neighbours and walls leave open
+// (RadiationShares, PairRadiationGeometry.h). What meets a neighbour or a wall is exchanged
+// with it by the pair mode and must not also leave to the surroundings: for black spheres the
+// two modes then account for each surface's emission exactly once. Built only while
+// [radiation] surroundings = true.
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "thermal/modes/ModeDescription.h"
@@ -22,23 +23,14 @@ class RadiationMode final : public HeatTransferMode {
   explicit RadiationMode(const ModeParameters& p)
       : ambient_K_(p["ambient_temperature"]),
         pairs_(p["between_particles"] != 0.0),
+        walls_(p["walls"] != 0.0),
         reach_(p["pair_cutoff"]) {}
 
   std::string_view name() const override { return "radiation"; }
 
   void update_geometry(const ThermalNetwork& net) override {
     if (!pairs_) return;  // every share is 1
-    open_share_.assign(net.node_count(), 1.0);
-    {
-      for (std::size_t e = 0; e < net.edge_count(); ++e) {
-        if (!radiating_pair(net, e, reach_)) continue;
-        const auto a = net.edge_a[e], b = net.edge_b[e];
-        const double d = pair_distance_m(net, e);
-        open_share_[a] -= point_view_factor(net.radius_m[b], d);
-        open_share_[b] -= point_view_factor(net.radius_m[a], d);
-      }
-      for (double& f : open_share_) f = std::max(f, 0.0);
-    }
+    open_share_ = radiation_shares(net, reach_, walls_, false).open_share;
     cached_edge_a_ = net.edge_a;
     cached_edge_b_ = net.edge_b;
   }
@@ -73,7 +65,8 @@ class RadiationMode final : public HeatTransferMode {
 
  private:
   RadiationMode(const RadiationMode& settings, const ThermalNetwork& net)
-      : ambient_K_(settings.ambient_K_), pairs_(settings.pairs_), reach_(settings.reach_) {
+      : ambient_K_(settings.ambient_K_), pairs_(settings.pairs_), walls_(settings.walls_),
+        reach_(settings.reach_) {
     update_geometry(net);
   }
   double open_share(std::size_t i) const { return pairs_ ? open_share_[i] : 1.0; }
@@ -84,6 +77,7 @@ class RadiationMode final : public HeatTransferMode {
 
   double ambient_K_;
   bool pairs_;    // [radiation] between_particles: neighbours shade the surroundings
+  bool walls_;    // [radiation] walls: so do the isothermal walls within reach
   double reach_;  // [radiation] pair_cutoff, fraction of the smaller radius
   std::vector<double> open_share_;  // f_i, per node of the current geometry
   std::vector<std::int32_t> cached_edge_a_, cached_edge_b_;  // that geometry
@@ -95,7 +89,7 @@ const ModeDescription& radiation_mode() {
   static const ModeDescription mode{
       .name = "radiation",
       .summary = "radiation to the surroundings, eps_i sigma 4 pi r^2 f_i (T_amb^4 - T_i^4), f_i "
-                 "the share not seen by radiating neighbours",
+                 "the share not seen by radiating neighbours and walls",
       .effect = "radiation",
       .effect_description = "particle-ambient radiation, see [radiation]",
       .section = "radiation",
@@ -108,7 +102,18 @@ const ModeDescription& radiation_mode() {
                                      "particle's material",
                       .bounds_temperature = true},
                      between_particles_parameter(),
-                     pair_cutoff_parameter()},
+                     pair_cutoff_parameter(),
+                     walls_parameter(),
+                     surroundings_parameter()},
+      .enabled_by = "surroundings",
+      .check = [](const ModeParameters& p) -> std::optional<ParameterProblem> {
+        if (p["surroundings"] == 0.0 && p["between_particles"] == 0.0)
+          return ParameterProblem{"surroundings",
+                                  "false with between_particles = false leaves radiation nothing "
+                                  "to exchange: set between_particles = true (an enclosed bed), "
+                                  "or effects.radiation = false"};
+        return std::nullopt;
+      },
       .make = [](const ModeParameters& p) -> std::unique_ptr<HeatTransferMode> {
         return std::make_unique<RadiationMode>(p);
       },

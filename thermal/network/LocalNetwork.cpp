@@ -99,6 +99,7 @@ LocalNetwork extract_local_network(const ThermalNetwork& g, const NetworkPartiti
                     g.wall_conductance_W_per_K[w], g.wall_schedule[w], g.wall_gap_m[w],
                     g.wall_contact_radius_m[w], g.wall_in_contact[w] != 0);
     if (!g.wall_material.empty()) l.wall_material.push_back(g.wall_material[w]);
+    if (!g.wall_emissivity.empty()) l.wall_emissivity.push_back(g.wall_emissivity[w]);
   }
   // Flux walls (WallFluxMode: q_i = P_w H_iw / sum_k H_kw): local power P_w times this
   // process's share of sum_k H_kw, so that the local sum divides it back to the global split.

@@ -42,6 +42,7 @@ void ThermalNetwork::clear_wall_edges() {
   wall_gap_m.clear();
   wall_contact_radius_m.clear();
   wall_in_contact.clear();
+  wall_emissivity.clear();
   wall_series_factor.clear();
 }
 
@@ -173,6 +174,10 @@ void ThermalNetwork::validate() const {
       fail("the particle's own resistance needs constant conductivities (the contact law "
            "follows k(T))");
   }
+  if (!wall_emissivity.empty() && wall_emissivity.size() != wall_node.size())
+    fail("wall emissivities are not one per wall edge");
+  for (const double e : wall_emissivity)
+    if (!(e >= 0.0 && e <= 1.0)) fail("a wall edge has emissivity " + std::to_string(e) + " (need 0..1)");
   if (!edge_series_factor.empty() && edge_series_factor.size() != edge_a.size())
     fail("edge series factors are not one per edge");
   if (!wall_series_factor.empty() && wall_series_factor.size() != wall_node.size())

@@ -37,6 +37,9 @@ struct ThermalNetwork {
   std::vector<double> wall_gap_m;             // signed distance to the plane - r
   std::vector<double> wall_contact_radius_m;
   std::vector<std::uint8_t> wall_in_contact;
+  // The wall's emissivity, 0..1, per wall edge (pair radiation with walls). Empty: the walls
+  // exchange no radiation (networks filled by hand).
+  std::vector<double> wall_emissivity;
   // Wall temperatures that follow a table in time (K against s, piecewise linear, clamped):
   // per wall edge the table's index, -1 for a constant wall. apply_time writes the tables'
   // values at t into wall_temperature_K.

@@ -53,6 +53,7 @@ void ThermalSystem::replace_edges(const ThermalNetwork& edges) {
   network_.wall_contact_radius_m = edges.wall_contact_radius_m;
   network_.wall_in_contact = edges.wall_in_contact;
   network_.wall_material = edges.wall_material;
+  network_.wall_emissivity = edges.wall_emissivity;
   network_.dissipation_a = edges.dissipation_a;
   network_.dissipation_b = edges.dissipation_b;
   network_.dissipation_W = edges.dissipation_W;

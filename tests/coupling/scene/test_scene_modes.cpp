@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <string>
 
+#include "coupling/scene/HeatModes.h"
 #include "coupling/scene/SceneSchema.h"
 #include "tests/coupling/SceneTestUtil.h"
 #include "thermal/modes/ModeRegistry.h"
@@ -75,6 +76,23 @@ TEST(SceneModes, BadModeValueNamesKeyPathAndDeclaredRange) {
                      {"radiation.ambient_temperature", "must be >= 0", "(got -1)"});
   // Off: the range is not enforced, the section is accepted and ignored (contract section 2).
   EXPECT_NO_THROW(load_scene_text(kBaseScene, "test.toml", {"convection.fluid_temperature=0"}));
+}
+
+// [radiation] surroundings = false (an enclosed bed): the ambient mode is not built, pair
+// radiation is; with pair radiation off too nothing would exchange, and the scene says so.
+TEST(SceneModes, EnclosedRadiationBuildsNoAmbientModeAndNeedsPairRadiation) {
+  const auto& ambient = *thermal::find_heat_transfer_mode("radiation");
+  const auto& pairs = *thermal::find_heat_transfer_mode("particle_radiation");
+  const Scene open = load_scene_text(kBaseScene, "test.toml", {"effects.radiation=true"});
+  EXPECT_TRUE(mode_enabled(open, ambient));
+  EXPECT_FALSE(mode_enabled(open, pairs));
+  const Scene enclosed = load_scene_text(
+      kBaseScene, "test.toml",
+      {"effects.radiation=true", "radiation.between_particles=true", "radiation.surroundings=false"});
+  EXPECT_FALSE(mode_enabled(enclosed, ambient));
+  EXPECT_TRUE(mode_enabled(enclosed, pairs));
+  expect_scene_error(kBaseScene, {"effects.radiation=true", "radiation.surroundings=false"},
+                     {"radiation.surroundings", "nothing to exchange", "between_particles = true"});
 }
 
 TEST(SceneModes, UnknownEffectAndModeKeyListTheValidOnes) {

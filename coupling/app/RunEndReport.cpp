@@ -32,8 +32,9 @@ std::vector<WarningCount> warning_counts(const RunSummary& summary) {
        "raise mechanics.max_iterations or loosen mechanics.tolerance; the step goes on with the "
        "last iterate"},
       {"contact solve stalled", m.stalled_steps,
-       "no progress for 500 sweeps, typical of frictional piles creeping on a plateau; a higher "
-       "mechanics.max_iterations converges them (docs/mechanics.md)"}};
+       "no 10% gain over the stall window (500 sweeps; nncg 4,000, then restarted from the "
+       "stalled reactions up to 3 times), typical of frictional piles creeping on a plateau "
+       "(docs/mechanics.md \"Stopping\")"}};
   std::erase_if(kinds, [](const WarningCount& k) { return k.count <= 0; });
   return kinds;
 }

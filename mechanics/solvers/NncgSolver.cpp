@@ -150,7 +150,7 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& given,
   support_.clear();
   sliced_run_ = sliced;
   scan_support(problem, r, m);
-  steps_ = damped_ = drifted_ = 0;
+  steps_ = damped_ = drifted_ = restarts_ = 0;
   subspace_.start_solve();
   // The sweeps (GaussSeidelSweep.h) put each visited contact that carries a reaction into the
   // support and, after each backward sweep, take the conjugate step. Coloured and slab sweeps
@@ -208,10 +208,26 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& given,
     options.parallel = true;
   }
   const GaussSeidelSweepState state{problem, r, m, velocity, angular_velocity};
-  const SolveReport report =
-      coloured ? sweep_.solve<GaussSeidelSweep::Order::colour>(settings_, options, state, hooks)
-      : sliced ? sweep_.solve<GaussSeidelSweep::Order::slab>(settings_, options, state, hooks)
-               : sweep_.solve<GaussSeidelSweep::Order::index>(settings_, options, state, hooks);
+  auto run = [&](const SolverSettings& settings) {
+    return coloured ? sweep_.solve<GaussSeidelSweep::Order::colour>(settings, options, state, hooks)
+           : sliced ? sweep_.solve<GaussSeidelSweep::Order::slab>(settings, options, state, hooks)
+                    : sweep_.solve<GaussSeidelSweep::Order::index>(settings, options, state, hooks);
+  };
+  SolveReport report = run(settings_);
+  // A stall (Options::stall_restarts): the direction the pairs built has stopped helping; the
+  // sweeps start again from the stalled reactions with none, with what is left of the budget.
+  for (int restarts = 0; restarts < options_.stall_restarts && report.stalled &&
+                         report.sweeps < settings_.max_iterations;
+       ++restarts) {
+    restart(problem, r, m);
+    hooks.previous = 0.0;
+    SolverSettings rest = settings_;
+    rest.max_iterations = settings_.max_iterations - report.sweeps;
+    SolveReport more = run(rest);
+    more.sweeps += report.sweeps;
+    report = more;
+    ++restarts_;
+  }
   if (coloured) ordered_.store(given_r, given_m, parallel);
   if (sliced) sliced_.store(given_r, given_m, true);
   return report;

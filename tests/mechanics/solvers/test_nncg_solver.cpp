@@ -216,6 +216,7 @@ TEST(Nncg, ColumnInAirPlateauConvergesWithItsOwnPatience) {
   const ContactProblemFile f = example_problem("nncg_plateau_column_in_air.txt");
   NncgSolver::Options shared;
   shared.stall_patience = 1;
+  shared.stall_restarts = 0;
   const Solved stopped = solve_warm(f, 10000, shared);
   EXPECT_TRUE(stopped.report.stalled);
   EXPECT_FALSE(stopped.report.converged);

@@ -42,6 +42,8 @@ import sys
 import tempfile
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
+# Every generated table states "1 thread": its runs get one, whatever the caller's environment.
+os.environ["OMP_NUM_THREADS"] = "1"
 TIMING = "[timing]"
 
 

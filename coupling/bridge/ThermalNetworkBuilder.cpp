@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "coupling/bridge/LineOfSight.h"
 #include "coupling/bridge/SceneToMechanics.h"
 #include "coupling/scene/HeatModes.h"
 #include "mechanics/model/PairIndex.h"
@@ -21,6 +22,7 @@ ThermalNetworkBuilder::ThermalNetworkBuilder(const Scene& scene)
       law_(thermal::conductance_law_from_name(scene.thermal.conductance)),
       contacts_carry_heat_(contacts_carry_heat(scene.effects)),
       near_reach_(near_pair_reach(scene)),
+      line_of_sight_(needs_line_of_sight(scene)),
       temperature_dependent_(std::any_of(scene.materials.begin(), scene.materials.end(),
                                          [](const Material& m) { return m.temperature_dependent(); })) {
   std::int32_t tables = 0, fluxes = 0;
@@ -212,6 +214,7 @@ void ThermalNetworkBuilder::build_edges_with_gaps(ContactList& contacts,
     if (!contact_pairs.count({p.i, p.j}) &&
         (!mechanics::is_wall(p.j) || scene_.walls[mechanics::wall_index(p.j)].temperature_K))
       add_gap_edge(edges, p.i, p.j, 0.0, 0.0, false, geometry, walls);
+  if (line_of_sight_) edges.edge_shadowed = shadowed_edges(edges, geometry);
 }
 
 void ThermalNetworkBuilder::add_near_pairs(const ContactList& contacts,
@@ -254,6 +257,7 @@ void ThermalNetworkBuilder::build_pattern_edges(ContactList& pattern, const Cont
     pattern.conductance_W_per_K[p] = H;
     add_gap_edge(edges, i, j, H, F, contact, geometry, walls);
   }
+  if (line_of_sight_) edges.edge_shadowed = shadowed_edges(edges, geometry);
 }
 
 std::vector<std::string> ThermalNetworkBuilder::mode_names(

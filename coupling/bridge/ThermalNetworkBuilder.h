@@ -67,6 +67,7 @@ class ThermalNetworkBuilder {
   thermal::ConductanceLawKind law_;
   bool contacts_carry_heat_;  // some switched-on mode reads the contact conductances
   double near_reach_;         // fraction of the smaller radius; 0: contacts only
+  bool line_of_sight_;        // some enabled mode needs the shadowed near pairs marked
 
   void build_edges_with_gaps(ContactList& contacts, thermal::ThermalNetwork& edges,
                              const mechanics::ParticleSet& geometry) const;

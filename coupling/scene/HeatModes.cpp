@@ -24,6 +24,12 @@ double near_pair_reach(const Scene& scene) {
   return reach;
 }
 
+bool needs_line_of_sight(const Scene& scene) {
+  for (const auto* mode : thermal::heat_transfer_modes())
+    if (mode->needs_line_of_sight && mode_enabled(scene, *mode)) return true;
+  return false;
+}
+
 bool contacts_carry_heat(const Effects& effects) {
   for (const auto* mode : thermal::heat_transfer_modes())
     if (mode->uses_contact_conductance && switched_on(effects, *mode)) return true;

@@ -18,6 +18,10 @@ bool mode_enabled(const Scene& scene, const thermal::ModeDescription& mode);
 // near pairs.
 double near_pair_reach(const Scene& scene);
 
+// Some enabled mode needs to know which near pairs see each other
+// (ModeDescription::needs_line_of_sight).
+bool needs_line_of_sight(const Scene& scene);
+
 // Some switched-on mode reads the contact conductances: contacts become network edges.
 bool contacts_carry_heat(const Effects& effects);
 

@@ -108,6 +108,10 @@ struct ModeDescription {
   // pair) whose gap is at most that fraction, with its gap (thermal/network/ThermalNetwork.h). Near
   // pairs come from a cell-grid search of the packing (frozen: once; dynamic: every step).
   std::string_view near_pair_reach{};
+  // True for modes that need to know which near pairs see each other: the network then marks
+  // the pairs whose centre-to-centre line a third particle crosses
+  // (ThermalNetwork::edge_shadowed).
+  bool needs_line_of_sight = false;
   // Key of a boolean parameter that must be true for the mode to be built ("" = none), for a
   // mode that shares its effects switch and section with another (pair radiation).
   std::string_view enabled_by{};

@@ -22,12 +22,13 @@ inline double point_view_factor(double r_m, double d_m) {
   return 0.5 * (1.0 - std::sqrt(1.0 - s * s));
 }
 
-// Edge e exchanges radiation: its gap is at most `reach` times the smaller radius and both
-// surfaces emit.
+// Edge e exchanges radiation: its gap is at most `reach` times the smaller radius, both
+// surfaces emit, and no third particle crosses the line between their centres.
 inline bool radiating_pair(const ThermalNetwork& net, std::size_t e, double reach) {
   const auto a = net.edge_a[e], b = net.edge_b[e];
   return net.edge_gap_m[e] <= reach * std::min(net.radius_m[a], net.radius_m[b]) &&
-         net.emissivity[a] > 0.0 && net.emissivity[b] > 0.0;
+         net.emissivity[a] > 0.0 && net.emissivity[b] > 0.0 &&
+         (net.edge_shadowed.empty() || net.edge_shadowed[e] == 0);
 }
 
 // Centre-to-centre distance of edge e, m.
@@ -114,9 +115,10 @@ inline ModeParameter pair_cutoff_parameter() {
   return {.key = "pair_cutoff",
           .unit = "",
           .default_value = 0.5,
-          .range = ParameterRange::open_closed(0.0, 2.0),
+          .range = ParameterRange::open_closed(0.0, 6.0),
           .description = "largest gap of a radiating pair or particle-wall pair, as a fraction of "
-                         "the smaller radius (no shadowing: keep it small)"};
+                         "the smaller radius; a pair whose centre line a third particle crosses "
+                         "does not exchange (4 for an enclosed bed: docs/validation.md)"};
 }
 
 inline ModeParameter walls_parameter() {

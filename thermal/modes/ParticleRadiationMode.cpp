@@ -7,8 +7,9 @@
 // average makes G symmetric, so every pair conserves energy exactly. s_a is 1, or in an
 // enclosed bed ([radiation] surroundings = false) the scale that makes a's view factors sum to
 // 1 (PairRadiationGeometry.h). A wall within reach takes q_a += sigma eps_eff A_a F_aw
-// (T_w^4 - T_a^4), F_aw the wall share of PairRadiationGeometry.h. No shadowing by third
-// particles: pairs beyond [radiation] pair_cutoff are left out. What meets a neighbour or a wall
+// (T_w^4 - T_a^4), F_aw the wall share of PairRadiationGeometry.h. Pairs beyond [radiation]
+// pair_cutoff, and pairs whose centre line a third particle crosses (ThermalNetwork::
+// edge_shadowed, coupling/bridge/LineOfSight.h), are left out. What meets a neighbour or a wall
 // does not also reach the surroundings (RadiationMode.cpp). Exact Jacobian, one-sided:
 // d q_a / d T_b = 4 G T_b^3, d q_b / d T_a = 4 G T_a^3. docs/heat-modes.md "Radiation to the
 // surroundings and between particles".
@@ -138,6 +139,7 @@ const ModeDescription& particle_radiation_mode() {
       .parameters = {between_particles_parameter(), pair_cutoff_parameter(), walls_parameter(),
                      surroundings_parameter()},
       .near_pair_reach = "pair_cutoff",
+      .needs_line_of_sight = true,
       .enabled_by = "between_particles",
       .make = [](const ModeParameters& p) -> std::unique_ptr<HeatTransferMode> {
         return std::make_unique<ParticleRadiationMode>(p);

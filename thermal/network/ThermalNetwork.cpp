@@ -23,6 +23,7 @@ void ThermalNetwork::clear_edges() {
   edge_gap_m.clear();
   edge_contact_radius_m.clear();
   edge_in_contact.clear();
+  edge_shadowed.clear();
   edge_series_factor.clear();
   clear_wall_edges();
   flux_node.clear();
@@ -174,6 +175,8 @@ void ThermalNetwork::validate() const {
       fail("the particle's own resistance needs constant conductivities (the contact law "
            "follows k(T))");
   }
+  if (!edge_shadowed.empty() && edge_shadowed.size() != edge_a.size())
+    fail("edge shadow marks are not one per edge");
   if (!wall_emissivity.empty() && wall_emissivity.size() != wall_node.size())
     fail("wall emissivities are not one per wall edge");
   for (const double e : wall_emissivity)

@@ -29,6 +29,10 @@ struct ThermalNetwork {
   std::vector<double> edge_gap_m;             // surface gap |x_a - x_b| - r_a - r_b; < 0 overlap
   std::vector<double> edge_contact_radius_m;  // Hertz contact radius (0: no force, or near pair)
   std::vector<std::uint8_t> edge_in_contact;  // 1: a contact of the mechanics (or geometry)
+  // 1: a third particle crosses the line between the pair's centres (pair radiation does not
+  // pass). Filled only for a mode that needs it (ModeDescription::needs_line_of_sight); empty:
+  // every pair sees the other.
+  std::vector<std::uint8_t> edge_shadowed;
 
   // Particle-wall edges, isothermal walls only (adiabatic walls carry no heat, so no edge).
   std::vector<std::int32_t> wall_node;

@@ -49,6 +49,7 @@ void ThermalSystem::replace_edges(const ThermalNetwork& edges) {
   network_.edge_gap_m = edges.edge_gap_m;
   network_.edge_contact_radius_m = edges.edge_contact_radius_m;
   network_.edge_in_contact = edges.edge_in_contact;
+  network_.edge_shadowed = edges.edge_shadowed;
   network_.wall_gap_m = edges.wall_gap_m;
   network_.wall_contact_radius_m = edges.wall_contact_radius_m;
   network_.wall_in_contact = edges.wall_in_contact;

@@ -145,3 +145,26 @@ TEST(WallRadiation, EnclosedViewFactorsSumToOneAndConserveEnergy) {
   EXPECT_NEAR(q[0], kWallSigma * wall_test_eps(eps, eps) * A * wall_test_F(gap) * (wall_test_p4(T[1]) - wall_test_p4(T[0])),
               1e-14 * G * wall_test_p4(T[0]));
 }
+
+TEST(WallRadiation, AShadowedPairNeitherExchangesNorTakesAShare) {
+  // The row 0-1-2 with an extra edge 0-2 (as a near pair round sphere 1 would be): marked
+  // shadowed, the flows are the row's own; unmarked, the pair exchanges and the shares change.
+  const double gap = 0.1 * kWallR, eps = 0.9;
+  const std::vector<double> T{1100.0, 900.0, 700.0};
+  std::vector<double> row_q(3), q(3);
+  double boundary = 0.0;
+  auto row = make_system(wall_test_spheres(3, eps, gap), {"particle_radiation"},
+                         wall_test_settings(true, false));
+  ASSERT_TRUE(row->heat_flow(T, row_q, boundary));
+  for (const bool shadowed : {true, false}) {
+    auto net = wall_test_spheres(3, eps, gap);
+    net.add_edge(0, 2, 0.0, 0.3 * kWallR, 0.0, false);
+    net.edge_shadowed = {0, 0, std::uint8_t(shadowed ? 1 : 0)};
+    auto sys = make_system(net, {"particle_radiation"}, wall_test_settings(true, false));
+    ASSERT_TRUE(sys->heat_flow(T, q, boundary));
+    for (std::size_t i = 0; i < 3; ++i) {
+      if (shadowed) EXPECT_EQ(q[i], row_q[i]) << i;
+      else EXPECT_NE(q[i], row_q[i]) << i;
+    }
+  }
+}

@@ -159,6 +159,7 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& given,
     NncgSolver& solver;
     bool scan = false;  // the support by a scan after each pair
     double previous = 0.0;  // |d|^2 of the last sweep pair; 0: no direction yet
+    int max_sweeps = 0;     // of the current run of sweeps: its last is never followed by a step
 
     void after_visit(const GaussSeidelSweepState& state, std::size_t c) {
       if (!scan) solver.enter(state.problem, c, state.r, state.m);
@@ -167,7 +168,7 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& given,
     // directions are built on. The solve only stops before a step (GaussSeidelSweep stops
     // right after a sweep), so it returns a sweep's reactions.
     void after_sweep(const GaussSeidelSweepState& state, const SolveReport& report, bool forward) {
-      if (forward || report.sweeps >= solver.settings_.max_iterations) return;
+      if (forward || report.sweeps >= max_sweeps) return;
       // A contact that opened and closed again within the pair has d = 0: a scan at the pair's
       // end misses nothing.
       if (scan) solver.scan_support(state.problem, state.r, state.m);
@@ -209,6 +210,7 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& given,
   }
   const GaussSeidelSweepState state{problem, r, m, velocity, angular_velocity};
   auto run = [&](const SolverSettings& settings) {
+    hooks.max_sweeps = settings.max_iterations;
     return coloured ? sweep_.solve<GaussSeidelSweep::Order::colour>(settings, options, state, hooks)
            : sliced ? sweep_.solve<GaussSeidelSweep::Order::slab>(settings, options, state, hooks)
                     : sweep_.solve<GaussSeidelSweep::Order::index>(settings, options, state, hooks);

@@ -225,6 +225,18 @@ TEST(Nncg, ColumnInAirPlateauConvergesWithItsOwnPatience) {
   ASSERT_TRUE(solved.report.converged) << solved.report.residual << " after " << solved.report.sweeps;
   EXPECT_GT(solved.report.sweeps, stopped.report.sweeps + 500);  // through the plateau
   expect_solved(f, solved);
+  // Restarted after its stalls (Options::stall_restarts) until the budget runs out, the solve
+  // still returns a sweep's reactions, never a conjugate step's extrapolation: every one in
+  // its cone, for budgets ending on a forward and on a backward sweep.
+  shared.stall_restarts = 3;
+  for (const int budget : {1500, 1501}) {
+    const Solved restarted = solve_warm(f, budget, shared);
+    if (restarted.report.converged) continue;
+    EXPECT_EQ(restarted.report.sweeps, budget);
+    double largest = 0.0;
+    for (const Vector3d& r : restarted.r) largest = std::max(largest, r.norm());
+    EXPECT_LE(cone_excess(f.problem, restarted.r), 1e-12 * largest) << budget;
+  }
 }
 
 // A settle step of the 2D bed_in_air (99 contacts, tolerance 1e-6): the pairs' change stays the

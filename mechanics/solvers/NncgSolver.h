@@ -65,7 +65,7 @@ class NncgSolver final : public ContactSolver {
     // paper's restart), at most this many times, each with a whole stall window, within
     // max_iterations. Over the 32 runs above (seeds 1-8) 6 steps stalled; with 3 restarts 3
     // of them converge and 3 run to max_iterations (10,000 sweeps at 2.5-5x the tolerance),
-    // for 1.2% more sweeps in all; 20 restarts with windows of 500-2,000 sweeps did no better
+    // for 1.3% more sweeps in all; 20 restarts with windows of 500-2,000 sweeps did no better
     // (measured 2026-11-27).
     int stall_restarts = 3;
     double drift_ratio = 1.003; // 1 < |d_{k+1}|^2 / |d_k|^2 <= this: beta = 1

@@ -218,9 +218,9 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& given,
   SolveReport report = run(settings_);
   // A stall (Options::stall_restarts): the direction the pairs built has stopped helping; the
   // sweeps start again from the stalled reactions with none, with what is left of the budget.
-  for (int restarts = 0; restarts < options_.stall_restarts && report.stalled &&
-                         report.sweeps < settings_.max_iterations;
-       ++restarts) {
+  for (; restarts_ < options_.stall_restarts && report.stalled &&
+         report.sweeps < settings_.max_iterations;
+       ++restarts_) {
     restart(problem, r, m);
     hooks.previous = 0.0;
     SolverSettings rest = settings_;
@@ -228,7 +228,6 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& given,
     SolveReport more = run(rest);
     more.sweeps += report.sweeps;
     report = more;
-    ++restarts_;
   }
   if (coloured) ordered_.store(given_r, given_m, parallel);
   if (sliced) sliced_.store(given_r, given_m, true);

@@ -121,7 +121,8 @@ double ThermalNetworkBuilder::conductance_W_per_K(std::int64_t i, std::int64_t j
                                                   double normal_force_N) const {
   if (law_ == thermal::ConductanceLawKind::Constant)
     return scene_.thermal.constant_conductance_W_per_K;
-  return thermal::hertz_conductance_W_per_K(body(i), body(j), normal_force_N);
+  return thermal::hertz_conductance_W_per_K(body(i), body(j), normal_force_N,
+                                            scene_.thermal.contact_flattening);
 }
 
 void ThermalNetworkBuilder::build_edges(ContactList& contacts, thermal::ThermalNetwork& edges,
@@ -163,7 +164,10 @@ void ThermalNetworkBuilder::add_gap_edge(thermal::ThermalNetwork& edges, std::in
                                          const std::vector<mechanics::Wall>& walls) const {
   const auto& x = geometry.position;
   const auto& r = geometry.radius;
-  const double a = contact ? thermal::hertz_contact_radius_m(body(i), body(j), force_N) : 0.0;
+  // The gas sees the same solid disc as the contact conductance (flattened or not).
+  const double a = contact ? thermal::hertz_contact_radius_m(body(i), body(j), force_N,
+                                                             scene_.thermal.contact_flattening)
+                           : 0.0;
   const auto si = std::size_t(i);
   if (!mechanics::is_wall(j)) {
     const double gap = geometry.branch(si, std::size_t(j)).norm() - r[si] - r[std::size_t(j)];

@@ -186,6 +186,8 @@ struct ThermalSettings {
   double explicit_step_s = 0.0;        // 0 = largest stable step
   std::string conductance = "hertz";   // hertz | constant
   double constant_conductance_W_per_K = 1.0e-4;
+  // Hertz law: a loaded contact's spot radius is at least contact_flattening x R* (0: Hertz).
+  double contact_flattening = 0.0;
   // The particle's own resistance in series with its contact and gas paths
   // (thermal/modes/ParticleResistance.h): "off" | "isothermal_core"; core radius c r.
   std::string particle_resistance = "off";

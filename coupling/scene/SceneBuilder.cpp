@@ -158,6 +158,11 @@ void SceneBuilder::read_settings() {
     th.explicit_step_s = t.number("explicit_step");
     th.conductance = t.choice("conductance");
     th.constant_conductance_W_per_K = t.number("constant_conductance");
+    th.contact_flattening = t.number("contact_flattening");
+    if (th.contact_flattening > 0.0 && th.conductance != "hertz")
+      t.fail("contact_flattening", "flattens the Hertz contact spot, but conductance = \"" +
+                                       th.conductance + "\" does not use one; set "
+                                       "conductance = \"hertz\" or contact_flattening = 0");
     th.particle_resistance = t.choice("particle_resistance");
     th.core_fraction = t.number("core_fraction");
     // The shell's resistance is a constant conductance only for constant k; with any table and

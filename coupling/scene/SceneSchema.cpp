@@ -437,6 +437,11 @@ std::vector<Section> build_sections() {
                "constant_conductance"),
         number("constant_conductance", "W/K", 1.0e-4, Range::greater(0.0),
                "H of every contact when conductance = \"constant\""),
+        number("contact_flattening", "", 0.0, Range::closed(0.0, 1.0),
+               "conductance = \"hertz\": a loaded contact conducts through a spot of radius at "
+               "least contact_flattening x R* (R* = r1 r2 / (r1 + r2); a wall: r), the flattened "
+               "contact of rough or deformed beads (ZSB's flattening term); 0 = the Hertz radius "
+               "(docs/heat-modes.md \"Flattened contacts\")"),
         choice("particle_resistance", "off", {"off", "isothermal_core"},
                "the particle's own resistance: \"isothermal_core\" puts the solid shell between "
                "an isothermal core (radius core_fraction x r) and the surface in series with the "

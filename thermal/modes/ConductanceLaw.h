@@ -16,11 +16,15 @@ struct ContactBody {
 
 // Hertz contact radius a = (3 F R* / (4 E*))^(1/3), m; 1/R* = 1/R1 + 1/R2,
 // 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2. A non-positive force gives a = 0.
-double hertz_contact_radius_m(const ContactBody& b1, const ContactBody& b2, double normal_force_N);
+// flattening f >= 0: a loaded contact's spot is at least f R* (a = max(a_Hertz, f R*)), the
+// flattened contact of rough or plastically deformed beads that the Zehner-Schlunder-Bauer
+// correlation's flattening term stands for (docs/heat-modes.md "Flattened contacts").
+double hertz_contact_radius_m(const ContactBody& b1, const ContactBody& b2, double normal_force_N,
+                              double flattening = 0.0);
 
 // H = 2 k a with k the harmonic mean 2 k1 k2 / (k1 + k2), W/K.
 double hertz_conductance_W_per_K(const ContactBody& b1, const ContactBody& b2,
-                                 double normal_force_N);
+                                 double normal_force_N, double flattening = 0.0);
 
 enum class ConductanceLawKind { Hertz, Constant };
 

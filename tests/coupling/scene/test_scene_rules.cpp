@@ -124,6 +124,21 @@ TEST(SceneRules, MaterialPropertiesPositive) {
   }
 }
 
+// thermal.contact_flattening: 0 by default, in [0, 1], and only with the Hertz law (the constant
+// law has no spot to flatten), naming the key.
+TEST(SceneRules, ContactFlatteningKey) {
+  EXPECT_EQ(load_scene_text(kBaseScene, "t").thermal.contact_flattening, 0.0);
+  EXPECT_EQ(load_scene_text(kBaseScene, "t", {"thermal.contact_flattening=0.025"}).thermal.contact_flattening,
+            0.025);
+  for (const char* f : {"-0.1", "1.5"})
+    expect_scene_error(kBaseScene, {std::string("thermal.contact_flattening=") + f},
+                       {"thermal.contact_flattening"});
+  expect_scene_error(kBaseScene, {"thermal.contact_flattening=0.025", "thermal.conductance=\"constant\""},
+                     {"thermal.contact_flattening", "constant", "hertz"});
+  // 0 with the constant law is fine.
+  EXPECT_NO_THROW(load_scene_text(kBaseScene, "t", {"thermal.contact_flattening=0.0", "thermal.conductance=\"constant\""}));
+}
+
 // thermal.particle_resistance ("off" by default) and thermal.core_fraction in (0, 1); refused
 // with a conductivity table (the shell would follow k(T)), naming the key and the material.
 TEST(SceneRules, ParticleResistanceKeys) {

@@ -49,7 +49,8 @@ thermal::ThermalNetwork ThermalNetworkBuilder::nodes() const {
   if (temperature_dependent_) add_material_tables(net);
   // The particle's own resistance: each shell per unit solid angle (the scene refuses it with
   // conductivity tables; ThermalNetwork::validate refuses it with a k(T) contact law).
-  if (scene_.thermal.particle_resistance == "isothermal_core") {
+  if (scene_.thermal.particle_resistance != "off") {
+    net.gas_shells_per_ray = scene_.thermal.particle_resistance == "isothermal_core_rays";
     net.shell_resistance_K_sr_per_W.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
       const auto& p = scene_.particles[i];

@@ -189,7 +189,7 @@ struct ThermalSettings {
   // Hertz law: a loaded contact's spot radius is at least contact_flattening x R* (0: Hertz).
   double contact_flattening = 0.0;
   // The particle's own resistance in series with its contact and gas paths
-  // (thermal/modes/ParticleResistance.h): "off" | "isothermal_core"; core radius c r.
+  // (thermal/modes/ParticleResistance.h): "off" | "isothermal_core" | "isothermal_core_rays"; core radius c r.
   std::string particle_resistance = "off";
   double core_fraction = 0.5;
   // Dynamic runs (extension): how the implicit integrators follow the moving packing.

@@ -165,6 +165,15 @@ void SceneBuilder::read_settings() {
                                        "conductance = \"hertz\" or contact_flattening = 0");
     th.particle_resistance = t.choice("particle_resistance");
     th.core_fraction = t.number("core_fraction");
+    // The rays are the surrounding layer's; the Vargas-McCarthy closed form has none.
+    if (th.particle_resistance == "isothermal_core_rays")
+      if (const auto* gas = thermal::find_heat_transfer_mode("gas_conduction");
+          gas != nullptr && switched_on(scene_.effects, *gas) &&
+          thermal::resolve_mode_parameters(*gas, scene_.heat_modes).choice("model") != "surrounding_layer")
+        t.fail("particle_resistance",
+               "\"isothermal_core_rays\" integrates the shells along the surrounding layer's rays, "
+               "but fluid.model is \"vargas_mccarthy\"; set fluid.model = \"surrounding_layer\" or "
+               "particle_resistance = \"isothermal_core\"");
     // The shell's resistance is a constant conductance only for constant k; with any table and
     // the Hertz law the contacts follow the Kirchhoff form (KirchhoffContactFlow.h), not handled.
     if (th.particle_resistance != "off")

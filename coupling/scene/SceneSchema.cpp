@@ -442,12 +442,14 @@ std::vector<Section> build_sections() {
                "least contact_flattening x R* (R* = r1 r2 / (r1 + r2); a wall: r), the flattened "
                "contact of rough or deformed beads (ZSB's flattening term); 0 = the Hertz radius "
                "(docs/heat-modes.md \"Flattened contacts\")"),
-        choice("particle_resistance", "off", {"off", "isothermal_core"},
+        choice("particle_resistance", "off", {"off", "isothermal_core", "isothermal_core_rays"},
                "the particle's own resistance: \"isothermal_core\" puts the solid shell between "
                "an isothermal core (radius core_fraction x r) and the surface in series with the "
                "summed contact and gas conductance of every pair, H' = 1 / (1/H + R_a + R_b), "
                "R = (1/(c r) - 1/r) / (k Omega) over the cone Omega that the partner (a wall: "
-               "the mirror image) subtends; needs constant conductivities "
+               "the mirror image) subtends; \"isothermal_core_rays\" keeps that for the contacts "
+               "and lets the surrounding layer's gas cross the shells ray by ray, each ray's "
+               "shell in series with its own gas; needs constant conductivities "
                "(docs/heat-modes.md \"The particle's own resistance\")"),
         number("core_fraction", "", 0.5, Range::open(0.0, 1.0),
                "particle_resistance = \"isothermal_core\": radius of the isothermal core as a "

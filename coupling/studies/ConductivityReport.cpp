@@ -38,6 +38,15 @@ void print_conductivity_report(std::ostream& out, const ConductivityResult& r) {
     out << "Zehner-Schlunder-Bauer at this porosity (flattening 0.0077, the gas's jump length): "
         << *r.zsb_W_per_mK << " W/(m K), k_eff / ZSB = " << r.k_eff_W_per_mK / *r.zsb_W_per_mK
         << " (docs/validation.md)\n";
+  if (r.k_bulk_W_per_mK) {
+    out << "bulk (" << r.bulk_particles << " particles more than " << r.bulk_margin_m
+        << " m from both walls): porosity " << *r.porosity_bulk << std::setprecision(8)
+        << ", k_bulk = " << *r.k_bulk_W_per_mK << " W/(m K)" << std::setprecision(6);
+    if (r.zsb_bulk_W_per_mK)
+      out << ", ZSB at that porosity " << *r.zsb_bulk_W_per_mK << " W/(m K), k_bulk / ZSB = "
+          << *r.k_bulk_W_per_mK / *r.zsb_bulk_W_per_mK;
+    out << "\n";
+  }
 }
 
 void write_conductivity_csv(std::ostream& out, const std::vector<ConductivityResult>& results) {
@@ -45,7 +54,7 @@ void write_conductivity_csv(std::ostream& out, const std::vector<ConductivityRes
          "length_m,area_m2,T_hot_K,T_cold_K,particles,contacts,wall_contacts,floating_particles";
   const auto modes = thermal::heat_transfer_modes();
   for (const auto* mode : modes) out << ",share_" << mode->name;
-  out << "\n";
+  out << ",k_bulk_W_per_mK,porosity_bulk\n";
   for (const auto& r : results) {
     out << (r.pressure_Pa ? shortest_number(*r.pressure_Pa) : std::string()) << ","
         << shortest_number(r.k_eff_W_per_mK) << "," << shortest_number(r.heat_hot_W) << ","
@@ -60,7 +69,9 @@ void write_conductivity_csv(std::ostream& out, const std::vector<ConductivityRes
         if (m.mode == mode->name) share = m.share;
       out << "," << shortest_number(share);
     }
-    out << "\n";
+    // Empty where the bed has no bulk to measure (ConductivityResult::k_bulk_W_per_mK).
+    out << "," << (r.k_bulk_W_per_mK ? shortest_number(*r.k_bulk_W_per_mK) : std::string()) << ","
+        << (r.porosity_bulk ? shortest_number(*r.porosity_bulk) : std::string()) << "\n";
   }
 }
 

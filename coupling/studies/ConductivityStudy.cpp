@@ -164,10 +164,11 @@ namespace {
 // ZSB beside k_eff (docs/validation.md) for a bed in a gas of one solid with a constant
 // conductivity: at the study's porosity, the particles' mean diameter, the gas mode's
 // conductivity and jump length, and the VDI's flattening coefficient for spheres.
-std::optional<double> zehner_schlunder_bauer_of(const Scene& scene, const ConductivityResult& r) {
+std::optional<double> zehner_schlunder_bauer_of(const Scene& scene, const ConductivityResult& r,
+                                                double porosity) {
   const bool gas = std::any_of(r.modes.begin(), r.modes.end(),
                                [](const ModeShare& m) { return m.mode == "gas_conduction"; });
-  if (!gas || scene.particles.empty() || !(r.porosity > 0.0 && r.porosity < 1.0)) return std::nullopt;
+  if (!gas || scene.particles.empty() || !(porosity > 0.0 && porosity < 1.0)) return std::nullopt;
   const int material = scene.particles.front().material;
   double diameter_sum_m = 0.0;
   for (const auto& p : scene.particles) {
@@ -180,7 +181,7 @@ std::optional<double> zehner_schlunder_bauer_of(const Scene& scene, const Conduc
   if (mode == nullptr) return std::nullopt;
   const thermal::ModeParameters fluid = thermal::resolve_mode_parameters(*mode, scene.heat_modes);
   ZehnerSchlunderBauerInput in;
-  in.porosity = r.porosity;
+  in.porosity = porosity;
   in.k_solid_W_per_mK = solid.conductivity_W_per_mK;
   in.k_fluid_W_per_mK = fluid["conductivity"];
   in.diameter_m = diameter_sum_m / double(scene.particles.size());
@@ -188,6 +189,50 @@ std::optional<double> zehner_schlunder_bauer_of(const Scene& scene, const Conduc
   in.jump_length_m =
       thermal::gas_jump_length_m(fluid["pressure"], fluid["mean_free_path"], fluid["accommodation"]);
   return zehner_schlunder_bauer(in).k_eff_W_per_mK;
+}
+
+// Volume of the sphere (centre c, radius rho) between the planes s = a and s = b, m^3:
+// pi * integral of (rho^2 - (s - c)^2) ds over the part of [a, b] the sphere spans.
+double sphere_volume_in_slab_m3(double c, double rho, double a, double b) {
+  const double lo = std::max(a, c - rho) - c, hi = std::min(b, c + rho) - c;
+  if (!(hi > lo)) return 0.0;
+  const auto primitive = [rho](double u) { return rho * rho * u - u * u * u / 3.0; };
+  return std::numbers::pi * (primitive(hi) - primitive(lo));
+}
+
+// ConductivityResult's bulk figures from the steady temperatures; x: each particle's distance
+// from the hot wall along the axis, m.
+void measure_bulk(const Scene& scene, const std::vector<double>& x,
+                  const std::vector<std::uint8_t>& floating, ConductivityResult& r) {
+  const std::size_t n = scene.particles.size();
+  if (n == 0) return;
+  double diameter_sum_m = 0.0;
+  for (const auto& p : scene.particles) diameter_sum_m += 2.0 * p.radius_m;
+  r.bulk_margin_m = 2.0 * diameter_sum_m / double(n);
+  const double a = r.bulk_margin_m, b = r.length_m - r.bulk_margin_m;
+  if (!(b > a)) return;
+  double solid_m3 = 0.0, sx = 0.0, sT = 0.0, sxx = 0.0, sxT = 0.0;
+  std::size_t m = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    solid_m3 += sphere_volume_in_slab_m3(x[i], scene.particles[i].radius_m, a, b);
+    if (!(x[i] > a && x[i] < b) || (i < floating.size() && floating[i])) continue;
+    ++m;
+    sx += x[i];
+    sT += r.T_K[i];
+  }
+  r.bulk_particles = m;
+  if (m < 20) return;
+  const double x_mean = sx / double(m), T_mean = sT / double(m);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!(x[i] > a && x[i] < b) || (i < floating.size() && floating[i])) continue;
+    sxx += (x[i] - x_mean) * (x[i] - x_mean);
+    sxT += (x[i] - x_mean) * (r.T_K[i] - T_mean);
+  }
+  const double slope_K_per_m = sxT / sxx;
+  if (!(slope_K_per_m < 0.0)) return;  // no gradient from hot to cold: nothing to measure
+  r.porosity_bulk = 1.0 - solid_m3 / (r.area_m2 * (b - a));
+  r.k_bulk_W_per_mK = r.heat_hot_W / r.area_m2 / -slope_K_per_m;
+  r.zsb_bulk_W_per_mK = zehner_schlunder_bauer_of(scene, r, *r.porosity_bulk);
 }
 
 ConductivityResult measure_conductivity(const Scene& scene, const FrozenThermalProblem& problem,
@@ -271,7 +316,8 @@ ConductivityResult measure_conductivity(const Scene& scene, const FrozenThermalP
     r.modes[m].share = r.heat_cold_W != 0.0 ? transport_Wm[m] / (r.length_m * r.heat_cold_W) : 0.0;
   r.balance_rel = r.heat_hot_W != 0.0 ? std::abs(r.heat_hot_W - r.heat_cold_W) / std::abs(r.heat_hot_W) : 0.0;
   r.k_eff_W_per_mK = r.heat_hot_W * r.length_m / (r.area_m2 * (r.T_hot_K - r.T_cold_K));
-  r.zsb_W_per_mK = zehner_schlunder_bauer_of(scene, r);
+  r.zsb_W_per_mK = zehner_schlunder_bauer_of(scene, r, r.porosity);
+  measure_bulk(scene, x, steady.floating, r);
   return r;
 }
 

@@ -68,6 +68,14 @@ struct ConductivityResult {
   // Zehner-Schlunder-Bauer at this porosity, for a bed of one solid in a gas (gas_conduction on,
   // constant conductivity): the reference of docs/validation.md. W/(m K).
   std::optional<double> zsb_W_per_mK;
+  // The bulk, away from the walls' ordered layers: the particles whose centres lie more than
+  // bulk_margin_m (two mean diameters) from both walls. k_bulk = (Q / A) / |dT/dx| with dT/dx
+  // the least-squares slope of their steady temperatures against their distance from the hot
+  // wall (rattlers left out), and the porosity of the slab between the two margins (the sphere
+  // volume inside it, exactly). Empty when fewer than 20 particles lie in that slab.
+  double bulk_margin_m = 0.0;
+  std::size_t bulk_particles = 0;
+  std::optional<double> k_bulk_W_per_mK, porosity_bulk, zsb_bulk_W_per_mK;
   std::vector<double> T_K;        // steady temperatures
 };
 

@@ -46,14 +46,14 @@ class GasConductionMode final : public HeatTransferMode {
     const auto* held = net.held.data();
     for (std::size_t e = 0; e < H_edge_.size(); ++e) {
       const auto a = net.edge_a[e], b = net.edge_b[e];
-      const double flow_into_a = H_edge_[e] * net.edge_factor(e) * (T[b] - T[a]);
+      const double flow_into_a = H_edge_[e] * edge_factor(net, e) * (T[b] - T[a]);
       q[a] += flow_into_a;
       q[b] -= flow_into_a;
       if (held[a] != held[b]) boundary_W += held[a] ? -flow_into_a : flow_into_a;
     }
     for (std::size_t w = 0; w < H_wall_.size(); ++w) {
       const auto i = net.wall_node[w];
-      const double flow = H_wall_[w] * net.wall_factor(w) * (net.wall_temperature_K[w] - T[i]);
+      const double flow = H_wall_[w] * wall_factor(net, w) * (net.wall_temperature_K[w] - T[i]);
       q[i] += flow;
       if (!held[i]) boundary_W += flow;
     }
@@ -64,19 +64,21 @@ class GasConductionMode final : public HeatTransferMode {
                     JacobianView J) const override {
     if (!is_cached(net)) return GasConductionMode(*this, net).add_jacobian(net, T, J);
     for (std::size_t e = 0; e < H_edge_.size(); ++e) {
-      const double h = H_edge_[e] * net.edge_factor(e);
+      const double h = H_edge_[e] * edge_factor(net, e);
       J.edge_W_per_K[e] += h;
       J.diagonal_W_per_K[net.edge_a[e]] -= h;
       J.diagonal_W_per_K[net.edge_b[e]] -= h;
     }
     for (std::size_t w = 0; w < H_wall_.size(); ++w)
-      J.diagonal_W_per_K[net.wall_node[w]] -= H_wall_[w] * net.wall_factor(w);
+      J.diagonal_W_per_K[net.wall_node[w]] -= H_wall_[w] * wall_factor(net, w);
   }
 
   // The gas shares the solid near the contact with contact conduction: its H_g joins the pair's
-  // sum before the particle's own resistance is put in series (ParticleResistance.h).
+  // sum before the particle's own resistance is put in series (ParticleResistance.h). With the
+  // shells per ray the gas holds its own shells and stays out of that sum.
   bool add_pair_conductance(const ThermalNetwork& net, std::span<double> edge_W_per_K,
                             std::span<double> wall_W_per_K) const override {
+    if (net.gas_shells_per_ray) return true;
     if (!is_cached(net)) return GasConductionMode(*this, net).add_pair_conductance(net, edge_W_per_K, wall_W_per_K);
     for (std::size_t e = 0; e < H_edge_.size(); ++e) edge_W_per_K[e] += H_edge_[e];
     for (std::size_t w = 0; w < H_wall_.size(); ++w) wall_W_per_K[w] += H_wall_[w];
@@ -84,6 +86,14 @@ class GasConductionMode final : public HeatTransferMode {
   }
 
  private:
+  // The lumped shells' factor (ParticleResistance.h), or 1 where the gas holds its shells per ray.
+  static double edge_factor(const ThermalNetwork& net, std::size_t e) {
+    return net.gas_shells_per_ray ? 1.0 : net.edge_factor(e);
+  }
+  static double wall_factor(const ThermalNetwork& net, std::size_t w) {
+    return net.gas_shells_per_ray ? 1.0 : net.wall_factor(w);
+  }
+
   // A view of the system's network with some wall edges left out (the conductivity study's
   // per-wall flows) keeps the system's shares, so its flows add up to the system's; any other
   // network is counted afresh.
@@ -115,8 +125,13 @@ class GasConductionMode final : public HeatTransferMode {
   }
 
   GasGap edge_gap(const ThermalNetwork& net, std::size_t e) const {
-    return {net.radius_m[net.edge_a[e]], net.radius_m[net.edge_b[e]], net.edge_gap_m[e],
-            net.edge_contact_radius_m[e]};
+    GasGap g{net.radius_m[net.edge_a[e]], net.radius_m[net.edge_b[e]], net.edge_gap_m[e],
+             net.edge_contact_radius_m[e]};
+    if (net.gas_shells_per_ray) {
+      g.shell_gap_a_m = shell_gap_m(net, net.edge_a[e]);
+      g.shell_gap_b_m = shell_gap_m(net, net.edge_b[e]);
+    }
+    return g;
   }
 
   GasGap wall_gap(const ThermalNetwork& net, std::size_t w) const {
@@ -124,7 +139,14 @@ class GasConductionMode final : public HeatTransferMode {
     g.radius_a_m = net.radius_m[net.wall_node[w]];
     g.gap_m = net.wall_gap_m[w];
     g.contact_radius_m = net.wall_contact_radius_m[w];
+    if (net.gas_shells_per_ray) g.shell_gap_a_m = shell_gap_m(net, net.wall_node[w]);
     return g;
+  }
+
+  // Node i's shell as a gas thickness on its axial ray, k_f S r^2 (GasGap::shell_gap_a_m), m.
+  double shell_gap_m(const ThermalNetwork& net, std::int32_t i) const {
+    const double r = net.radius_m[std::size_t(i)];
+    return k_f_W_per_mK_ * net.shell_resistance_K_sr_per_W[std::size_t(i)] * r * r;
   }
 
   // layer_share = "equal_solid_angle": per particle the number z of its pairs (particles and

@@ -19,6 +19,15 @@ double thickness(const GasGap& g, double r) {
   return g.gap_m + sag(g.radius_a_m, r) + sag(g.radius_b_m, r);
 }
 
+// The shells' gas-equivalent thickness on the ray at r from the axis, m (0 without shells).
+double shell_thickness(const GasGap& g, double r) {
+  double t = 0.0;
+  if (g.shell_gap_a_m > 0.0) t += g.shell_gap_a_m * (1.0 - sag(g.radius_a_m, r) / g.radius_a_m);
+  if (g.shell_gap_b_m > 0.0 && !std::isinf(g.radius_b_m))
+    t += g.shell_gap_b_m * (1.0 - sag(g.radius_b_m, r) / g.radius_b_m);
+  return t;
+}
+
 // G7K15 (QUADPACK) on [a, b]: the Kronrod estimate and |Kronrod - Gauss|.
 template <class F>
 void kronrod(F&& f, double a, double b, double& value, double& error) {
@@ -115,13 +124,25 @@ double surrounding_layer_conductance_W_per_K(const GasGap& g, double k_f, double
     }
   }
   const double pi = std::numbers::pi;
-  double H = pi * (r_k * r_k - r_in * r_in) / (min_gap_m + jump_length_m);
+  const bool shells = g.shell_gap_a_m > 0.0 || g.shell_gap_b_m > 0.0;
+  double H = 0.0;
+  if (!shells) {
+    H = pi * (r_k * r_k - r_in * r_in) / (min_gap_m + jump_length_m);
+  } else if (r_k > r_in) {
+    // Constant gas thickness L_min, but the shells thin towards the rim: integrated.
+    const auto f = [&](double r) {
+      return 2.0 * pi * r / (min_gap_m + jump_length_m + shell_thickness(g, r));
+    };
+    double estimate = 0.0, error = 0.0;
+    kronrod(f, r_in, r_k, estimate, error);
+    H = adaptive(f, r_in, r_k, 1e-13 * std::abs(estimate), 0);
+  }
   if (r_out > r_k) {
     // r = r_min sin(theta) removes the square-root end point at r = r_min.
     const auto f = [&](double theta) {
       const double r = r_min * std::sin(theta);
       return 2.0 * pi * r * r_min * std::cos(theta) /
-             (std::max(min_gap_m, thickness(g, r)) + jump_length_m);
+             (std::max(min_gap_m, thickness(g, r)) + jump_length_m + shell_thickness(g, r));
     };
     const double t0 = std::asin(std::min(r_k / r_min, 1.0));
     const double t1 = std::asin(std::min(r_out / r_min, 1.0));

@@ -12,6 +12,12 @@ struct GasGap {
   double radius_b_m = std::numeric_limits<double>::infinity();  // infinity: a plane wall
   double gap_m = 0.0;             // surface gap; < 0 for an overlap
   double contact_radius_m = 0.0;  // radius of the solid contact disc (0: point or no contact)
+  // The particles' own resistance resolved per ray (thermal.particle_resistance =
+  // "isothermal_core_rays"): each sphere's shell as the gas thickness that conducts like it on
+  // the ray through the axis, k_f S R^2 (S in K sr/W, ParticleResistance.h); on the ray at r
+  // from the axis it is that times cos theta = sqrt(1 - (r/R)^2). 0: no shell (a wall has none).
+  double shell_gap_a_m = 0.0;
+  double shell_gap_b_m = 0.0;
 };
 
 // Surrounding fluid layer (Rong & Horio 1999; Musser 2011; Morris et al. 2016): heat flows
@@ -23,6 +29,8 @@ struct GasGap {
 // other body (at most r_min). Zero once the gap exceeds the layer. Evaluated as the exact
 // constant-S part plus adaptive Gauss-Kronrod (G7K15) in r = r_min sin(theta), relative
 // accuracy about 1e-12.
+// With shells (GasGap::shell_gap_a_m, shell_gap_b_m) each ray also crosses both solid shells in
+// series: 1 / (max(L_min, S(r)) + l + t_a cos theta_a(r) + t_b cos theta_b(r)).
 // A rarefied gas (Smoluchowski): the gas meets each surface with a temperature jump, as if the
 // gap were wider by the jump length l (both surfaces together), so 1 / max(L_min, S(r)) becomes
 // 1 / (max(L_min, S(r)) + l); l = 0: continuum (gas_jump_length_m, below).

@@ -80,6 +80,7 @@ LocalNetwork extract_local_network(const ThermalNetwork& g, const NetworkPartiti
   l.node_material = pick(g.node_material, out.node);
   l.mass_kg = pick(g.mass_kg, out.node);
   l.shell_resistance_K_sr_per_W = pick(g.shell_resistance_K_sr_per_W, out.node);
+  l.gas_shells_per_ray = g.gas_shells_per_ray;
   l.isothermal_walls = g.isothermal_walls;
   l.wall_temperature_tables = g.wall_temperature_tables;
   l.material_conductivity = g.material_conductivity;

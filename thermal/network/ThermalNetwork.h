@@ -72,10 +72,14 @@ struct ThermalNetwork {
   bool conductance_follows_conductivity = false;
 
   // The particle's own thermal resistance (docs/heat-modes.md "The particle's own resistance"):
-  // empty unless thermal.particle_resistance = "isothermal_core". Per node, the resistance of
+  // empty when thermal.particle_resistance = "off". Per node, the resistance of
   // its solid shell between the isothermal core (radius c r) and the surface per unit solid
   // angle, (1/(c r) - 1/r) / k, K sr/W. Node data; needs constant conductivities.
   std::vector<double> shell_resistance_K_sr_per_W;
+  // "isothermal_core_rays": the gas modes integrate the shells ray by ray with the gas
+  // (GasGap::shell_gap_a_m) and stay out of the lumped series factors below, which then hold
+  // the contact paths alone.
+  bool gas_shells_per_ray = false;
   // Derived from the above and the modes' pair conductances by thermal::update_series_factors
   // (ThermalSystem calls it whenever the edges change): per particle edge and per isothermal-wall
   // edge, the factor H'/H = 1 / (1 + H_pair (R_a + R_b)) that puts the particles' shells in

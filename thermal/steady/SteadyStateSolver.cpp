@@ -72,7 +72,11 @@ SteadyState solve_steady_state(const ThermalSystem& system, std::span<const doub
   JacobianEvaluation J;
   system.evaluate_jacobian(out.T_K, J);
   const auto solved = solved_nodes(system, J);
-  for (std::size_t i = 0; i < n; ++i) out.floating_particles += !net.held[i] && !solved[i];
+  out.floating.assign(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    out.floating[i] = !net.held[i] && !solved[i];
+    out.floating_particles += out.floating[i];
+  }
 
   const bool amg = options.linear_solver == LinearSolverKind::Amg;
   if (amg && !system.symmetric_jacobian())

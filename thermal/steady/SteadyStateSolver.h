@@ -11,6 +11,7 @@
 // held particle or a node that exchanges heat with the outside) and kept at their starting
 // temperature; the result counts them.
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -42,6 +43,7 @@ struct SteadyState {
   double max_correction_K = 0.0;   // of the last Newton step
   double max_residual_W = 0.0;     // largest |q_i| over the free, anchored particles at T_K
   std::size_t floating_particles = 0;  // kept at their starting temperature (see above)
+  std::vector<std::uint8_t> floating;  // per particle: 1 for those (0 for the solved and held)
 };
 
 // From the starting temperatures T0_K (held particles' values are kept). Throws

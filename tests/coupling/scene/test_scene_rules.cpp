@@ -150,7 +150,15 @@ TEST(SceneRules, ParticleResistanceKeys) {
   EXPECT_EQ(on.thermal.particle_resistance, "isothermal_core");
   EXPECT_EQ(on.thermal.core_fraction, 0.3);
   expect_scene_error(kBaseScene, {"thermal.particle_resistance=\"shell\""},
-                     {"thermal.particle_resistance", "shell", "isothermal_core"});
+                     {"thermal.particle_resistance", "shell", "isothermal_core", "isothermal_core_rays"});
+  // The rays are the surrounding layer's: refused with the Vargas-McCarthy gas, naming both keys.
+  EXPECT_NO_THROW(load_scene_text(kBaseScene, "t",
+                                  {"thermal.particle_resistance=\"isothermal_core_rays\"",
+                                   "effects.gas_conduction=true", "fluid.model=\"surrounding_layer\""}));
+  expect_scene_error(kBaseScene,
+                     {"thermal.particle_resistance=\"isothermal_core_rays\"", "effects.gas_conduction=true",
+                      "fluid.model=\"vargas_mccarthy\""},
+                     {"thermal.particle_resistance", "fluid.model", "vargas_mccarthy"});
   for (const char* c : {"0.0", "1.0", "1.5"})
     expect_scene_error(kBaseScene, {std::string("thermal.core_fraction=") + c}, {"thermal.core_fraction"});
   expect_scene_error(kBaseScene,

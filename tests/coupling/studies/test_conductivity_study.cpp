@@ -96,6 +96,30 @@ TEST(ConductivityStudy, SimpleCubicLatticeIsSeriesResistances) {
   }
 }
 
+// The bulk (centres more than two diameters from both walls) of a simple cubic lattice: the
+// layers between the planes at 2 d and L - 2 d, whole spheres (the planes fall between layers),
+// so porosity_bulk = 1 - pi/6, and the interior gradient dT/d per layer of H dT per column:
+// k_bulk = H / d exactly, without the two wall contacts that k_eff = H / d n_y / (n_y + 1) has.
+TEST(ConductivityStudy, BulkOfALatticeLeavesTheWallContactsOut) {
+  const int nx = 4, ny = 10, nz = 3;
+  auto progress = quiet_progress();
+  const auto r = run_conductivity_study(
+      load_scene_text(lattice_between_walls(nx, ny, nz, 310.0, 290.0), "bulk"), progress);
+  EXPECT_NEAR(r.bulk_margin_m, 2.0 * kD, 1e-15);
+  EXPECT_EQ(r.bulk_particles, std::size_t(nx * nz * (ny - 4)));
+  ASSERT_TRUE(r.k_bulk_W_per_mK && r.porosity_bulk);
+  EXPECT_NEAR(*r.k_bulk_W_per_mK, kH / kD, 1e-9 * kH / kD);
+  EXPECT_NEAR(r.k_eff_W_per_mK, kH / kD * ny / (ny + 1.0), 1e-12 * kH / kD);
+  EXPECT_NEAR(*r.porosity_bulk, 1.0 - std::numbers::pi / 6.0, 1e-12);
+  EXPECT_FALSE(r.zsb_bulk_W_per_mK);  // no gas: no ZSB
+  // Too thin a bed for a bulk (fewer than 20 particles beyond the margins): none.
+  const auto thin = run_conductivity_study(
+      load_scene_text(lattice_between_walls(3, 5, 3, 310.0, 290.0), "thin"), progress);
+  EXPECT_EQ(thin.bulk_particles, 9u);
+  EXPECT_FALSE(thin.k_bulk_W_per_mK);
+  EXPECT_FALSE(thin.porosity_bulk);
+}
+
 // The steady state agrees with a long CVODE run of the same scene (integrated far past the
 // slowest time constant) to the integrator's tolerance.
 TEST(ConductivityStudy, SteadyStateMatchesLongTransient) {

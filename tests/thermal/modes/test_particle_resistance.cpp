@@ -4,7 +4,9 @@
 // exact Jacobian and affine reference, and "off" giving today's values bit for bit.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
@@ -139,20 +141,31 @@ TEST(ParticleResistance, WallPathHasTheParticleShellOnly) {
   EXPECT_NEAR(affine.constant_W[0], H_eff * Tw, 1e-12 * H_eff * Tw);
 }
 
-// Contact and gas share the solid near the contact: the shells are in series with H + H_g, not
-// with each separately; each mode carries its part f H, f H_g of that one H'.
-TEST(ParticleResistance, SeriesOnTheSumOfContactAndGas) {
-  const double r = 1e-3, k = 1.0, c = 0.5, H = 1.5e-3, kf = 0.0262;
+namespace {
+
+// Two equal touching spheres (radius r, conductivity k, core c r) joined by contact H, in a gas
+// of conductivity kf (surrounding layer), the shells lumped or per ray.
+auto touching_pair_in_gas(double r, double k, double c, double H, double kf, bool rays) {
   ThermalNetwork net;
   net.resize_nodes(2);
   net.heat_capacity_J_per_K = {1e-3, 1e-3};
   net.radius_m = {r, r};
   net.add_edge(0, 1, H, 0.0, 0.0, true);
   net.shell_resistance_K_sr_per_W.assign(2, shell_resistance_K_sr_per_W(r, k, c));
+  net.gas_shells_per_ray = rays;
   ModeSettings s;
   s.set("gas_conduction", "conductivity", kf);
   s.set("gas_conduction", "model", 1.0);  // choice index 1: surrounding_layer
-  auto sys = make_system(net, {"contact_conduction", "gas_conduction"}, s);
+  return make_system(net, {"contact_conduction", "gas_conduction"}, s);
+}
+
+}  // namespace
+
+// Contact and gas share the solid near the contact: the shells are in series with H + H_g, not
+// with each separately; each mode carries its part f H, f H_g of that one H'.
+TEST(ParticleResistance, SeriesOnTheSumOfContactAndGas) {
+  const double r = 1e-3, k = 1.0, c = 0.5, H = 1.5e-3, kf = 0.0262;
+  auto sys = touching_pair_in_gas(r, k, c, H, kf, false);
   const double Hg = surrounding_layer_conductance_W_per_K({r, r, 0.0, 0.0}, kf, 0.4, 1.0e-7);
   ASSERT_GT(Hg, 0.1 * H);
   const double R = cone_shell_K_per_W(r, k, c, std::numbers::pi / 6.0);
@@ -200,4 +213,71 @@ TEST(ParticleResistance, RefusedWithConductanceFollowingConductivity) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("constant conductivities"), std::string::npos) << e.what();
   }
+}
+
+namespace {
+
+// The rays' conductance written here by the midpoint rule over the disk, in r itself (the
+// implementation integrates in theta, adaptively): k_f sum 2 pi r dr / (max(L_min, S) + l + shells).
+double rays_midpoint_W_per_K(double ra, double rb, double gap, double kf, double r_in,
+                             double r_out, double min_gap, double jump, double ta, double tb) {
+  const int n = 400000;
+  const double dr = (r_out - r_in) / n;
+  double H = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double r = r_in + (i + 0.5) * dr;
+    const double ca = std::sqrt(1.0 - (r / ra) * (r / ra));
+    const double cb = std::isinf(rb) ? 0.0 : std::sqrt(1.0 - (r / rb) * (r / rb));
+    const double S = gap + ra * (1.0 - ca) + (std::isinf(rb) ? 0.0 : rb * (1.0 - cb));
+    H += 2.0 * std::numbers::pi * r * dr / (std::max(min_gap, S) + jump + ta * ca + tb * cb);
+  }
+  return kf * H;
+}
+
+}  // namespace
+
+// "isothermal_core_rays": each ray of the surrounding layer crosses both shells in series with
+// its gas, as a gas thickness k_f S R^2 cos theta (GasGap::shell_gap_a_m). Against the midpoint
+// rule for touching spheres of two sizes (r_out = r_min: the layer reaches round the smaller one)
+// with a contact disc, and for a sphere on a wall (no shell on the wall's side).
+TEST(ParticleResistance, RaysCrossTheShellsInSeriesWithTheGas) {
+  const double kf = 0.152, min_gap = 1e-7, jump = 2e-7;
+  const double ra = 1e-3, rb = 0.6e-3, ta = 9e-5, tb = 4e-5, a = 2e-5;
+  GasGap pair{ra, rb, 0.0, a};
+  pair.shell_gap_a_m = ta;
+  pair.shell_gap_b_m = tb;
+  const double layer = 10.0;  // the whole smaller hemisphere inside the layer
+  const double H = surrounding_layer_conductance_W_per_K(pair, kf, layer, min_gap, jump);
+  EXPECT_NEAR(H, rays_midpoint_W_per_K(ra, rb, 0.0, kf, a, rb, min_gap, jump, ta, tb), 1e-6 * H);
+  // The shells lower the conductance, the more the thicker they are.
+  const double without = surrounding_layer_conductance_W_per_K({ra, rb, 0.0, a}, kf, layer, min_gap, jump);
+  EXPECT_LT(H, 0.8 * without);
+  GasGap wall{ra, std::numeric_limits<double>::infinity(), 1e-5, 0.0};
+  wall.shell_gap_a_m = ta;
+  wall.shell_gap_b_m = tb;  // a wall has no shell: ignored
+  const double r_out = std::sqrt(std::pow(ra + 0.4 * ra, 2) - std::pow(ra + 1e-5, 2));
+  const double Hw = surrounding_layer_conductance_W_per_K(wall, kf, 0.4, min_gap, 0.0);
+  EXPECT_NEAR(Hw, rays_midpoint_W_per_K(ra, std::numeric_limits<double>::infinity(), 1e-5, kf, 0.0, r_out,
+                                        min_gap, 0.0, ta, 0.0), 1e-6 * Hw);
+}
+
+// With the shells per ray the gas holds its own shells and stays out of the lumped series:
+// the pair carries H / (1 + H (R_a + R_b)) + H_g(rays), H_g with t = k_f S r^2 on each side.
+TEST(ParticleResistance, RaysLeaveTheLumpedShellsToTheContactAlone) {
+  const double r = 1e-3, k = 1.0, c = 0.65, H = 1.5e-3, kf = 0.0262;
+  auto sys = touching_pair_in_gas(r, k, c, H, kf, true);
+  GasGap g{r, r, 0.0, 0.0};
+  g.shell_gap_a_m = g.shell_gap_b_m = kf * (1.0 / (c * r) - 1.0 / r) / k * r * r;
+  const double Hg = surrounding_layer_conductance_W_per_K(g, kf, 0.4, 1.0e-7);
+  const double R = cone_shell_K_per_W(r, k, c, std::numbers::pi / 6.0);
+  const double H_eff = H / (1.0 + 2.0 * R * H) + Hg;
+  std::vector<double> T{320.0, 300.0}, q(2);
+  double boundary = 0.0;
+  ASSERT_TRUE(sys->heat_flow(T, q, boundary));
+  EXPECT_NEAR(q[0], -H_eff * 20.0, 1e-11 * H_eff * 20.0);
+  EXPECT_NEAR(q[1], H_eff * 20.0, 1e-11 * H_eff * 20.0);
+  JacobianEvaluation J;
+  sys->evaluate_jacobian(T, J);
+  EXPECT_NEAR(J.edge_W_per_K[0], H_eff, 1e-14 * H_eff);
+  EXPECT_NEAR(J.diagonal_W_per_K[0], -H_eff, 1e-14 * H_eff);
 }

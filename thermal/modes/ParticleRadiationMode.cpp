@@ -13,6 +13,11 @@
 // does not also reach the surroundings (RadiationMode.cpp). Exact Jacobian, one-sided:
 // d q_a / d T_b = 4 G T_b^3, d q_b / d T_a = 4 G T_a^3. docs/heat-modes.md "Radiation to the
 // surroundings and between particles".
+// With the particle's own resistance (ThermalNetwork::shell_resistance_K_sr_per_W) the shells
+// stand in series with the exchange: G (T_b^4 - T_a^4) = h (T_b - T_a) with the secant
+// conductance h = G (T_a^2 + T_b^2) (T_a + T_b), and the flow becomes h (T_b - T_a) / (1 + h R),
+// R = R_a + R_b the shells over the partner's cone (a wall: R_a over the mirror's), as for the
+// contacts (ParticleResistance.h); its Jacobian is exact.
 #include <cmath>
 #include <memory>
 #include <numbers>
@@ -20,6 +25,7 @@
 
 #include "thermal/modes/ModeDescription.h"
 #include "thermal/modes/PairRadiationGeometry.h"
+#include "thermal/modes/ParticleResistance.h"
 
 namespace tmdem::thermal {
 namespace {
@@ -59,8 +65,7 @@ class ParticleRadiationMode final : public HeatTransferMode {
       const auto a = net.edge_a[e], b = net.edge_b[e];
       // Below 0 K T^4 would pump heat the wrong way: a recoverable failure (smaller step).
       if (!(T[a] > 0.0) || !(T[b] > 0.0)) return false;
-      const double ta2 = T[a] * T[a], tb2 = T[b] * T[b];
-      const double flow_into_a = G_[e] * (tb2 * tb2 - ta2 * ta2);
+      const double flow_into_a = exchange(G_[e], T[a], T[b], pair_shells(net, e)).W;
       q[a] += flow_into_a;
       q[b] -= flow_into_a;
       if (held[a] != held[b]) boundary_W += held[a] ? -flow_into_a : flow_into_a;
@@ -71,8 +76,7 @@ class ParticleRadiationMode final : public HeatTransferMode {
       if (G == 0.0) continue;
       const auto i = net.wall_node[w];
       if (!(T[i] > 0.0)) return false;
-      const double ti2 = T[i] * T[i], tw2 = net.wall_temperature_K[w] * net.wall_temperature_K[w];
-      const double flow = G * (tw2 * tw2 - ti2 * ti2);
+      const double flow = exchange(G, T[i], net.wall_temperature_K[w], wall_shells(net, w)).W;
       q[i] += flow;
       if (!held[i]) boundary_W += flow;
     }
@@ -86,21 +90,46 @@ class ParticleRadiationMode final : public HeatTransferMode {
       if (G_[e] == 0.0) continue;
       const auto a = net.edge_a[e], b = net.edge_b[e];
       const double ta = T[a] > 0.0 ? T[a] : 0.0, tb = T[b] > 0.0 ? T[b] : 0.0;
-      const double da = 4.0 * G_[e] * ta * ta * ta, db = 4.0 * G_[e] * tb * tb * tb;
-      J.diagonal_W_per_K[a] -= da;
-      J.diagonal_W_per_K[b] -= db;
-      J.edge_ab_W_per_K[e] += db;
-      J.edge_ba_W_per_K[e] += da;
+      // q_a = W(T_a, T_b), q_b = -W.
+      const Exchange x = exchange(G_[e], ta, tb, pair_shells(net, e));
+      J.diagonal_W_per_K[a] += x.dW_dTa;
+      J.diagonal_W_per_K[b] -= x.dW_dTb;
+      J.edge_ab_W_per_K[e] += x.dW_dTb;
+      J.edge_ba_W_per_K[e] -= x.dW_dTa;
     }
     if (!walls_) return;
     for (std::size_t w = 0; w < net.wall_edge_count(); ++w) {
       const auto i = net.wall_node[w];
       const double t = T[i] > 0.0 ? T[i] : 0.0;
-      J.diagonal_W_per_K[i] -= 4.0 * wall_G(net, w) * t * t * t;
+      J.diagonal_W_per_K[i] += exchange(wall_G(net, w), t, net.wall_temperature_K[w], wall_shells(net, w)).dW_dTa;
     }
   }
 
  private:
+  // G (T_b^4 - T_a^4) through shells of resistance R (K/W; 0: none) in series, into a, and its
+  // derivatives by T_a and T_b. With R = 0 the flow is G (T_b^4 - T_a^4) itself.
+  struct Exchange {
+    double W, dW_dTa, dW_dTb;
+  };
+  static Exchange exchange(double G, double Ta, double Tb, double R) {
+    const double ta2 = Ta * Ta, tb2 = Tb * Tb;
+    if (R == 0.0) return {G * (tb2 * tb2 - ta2 * ta2), -(4.0 * G * Ta * Ta * Ta), 4.0 * G * Tb * Tb * Tb};
+    const double s2 = ta2 + tb2, s1 = Ta + Tb, dT = Tb - Ta;
+    const double h = G * s2 * s1;                  // secant conductance, W/K
+    const double f = 1.0 / (1.0 + h * R);          // the shells' factor
+    const double dg_dh = f * f;                    // d(h f)/dh
+    const double dh_dTa = G * (2.0 * Ta * s1 + s2), dh_dTb = G * (2.0 * Tb * s1 + s2);
+    return {h * f * dT, dg_dh * dh_dTa * dT - h * f, dg_dh * dh_dTb * dT + h * f};
+  }
+  // Shell resistances in series with pair e and wall edge w, K/W (0 without shells).
+  static double pair_shells(const ThermalNetwork& net, std::size_t e) {
+    if (net.shell_resistance_K_sr_per_W.empty()) return 0.0;
+    return edge_shell_resistance_K_per_W(net, e, true) + edge_shell_resistance_K_per_W(net, e, false);
+  }
+  static double wall_shells(const ThermalNetwork& net, std::size_t w) {
+    return net.shell_resistance_K_sr_per_W.empty() ? 0.0 : wall_shell_resistance_K_per_W(net, w);
+  }
+
   ParticleRadiationMode(const ParticleRadiationMode& settings, const ThermalNetwork& net)
       : reach_(settings.reach_), walls_(settings.walls_), enclosed_(settings.enclosed_) {
     update_geometry(net);

@@ -180,3 +180,38 @@ TEST(ParticleRadiation, InsulatedBedWithGasAndPairRadiationConservesEnergy) {
     EXPECT_LT(std::abs(E1 - E0) / E0, 1e-13) << integrator;
   }
 }
+
+// With the particle's own resistance the shells stand in series with the exchange: the secant
+// conductance h = G (T_a^2 + T_b^2)(T_a + T_b), so that h (T_b - T_a) = G (T_b^4 - T_a^4), in
+// series with R_a + R_b over the partners' cones: flow h dT / (1 + h R). Against that closed
+// form (cones by asin here), energy conserved, and the Jacobian against central differences.
+TEST(ParticleRadiation, ShellsStandInSeriesWithTheExchange) {
+  const double gap = 0.1 * kSphereR, k = 1.0, c = 0.65;
+  ThermalNetwork net = two_spheres(1e-2, gap);
+  net.shell_resistance_K_sr_per_W.assign(2, (1.0 / (c * kSphereR) - 1.0 / kSphereR) / k);
+  auto sys = make_system(net, {"particle_radiation"}, pair_radiation());
+  const double theta = std::asin(kSphereR / (2.0 * kSphereR + gap));
+  const double R_side = (1.0 / (c * kSphereR) - 1.0 / kSphereR) / (k * 2.0 * std::numbers::pi * (1.0 - std::cos(theta)));
+  const double G = pair_G(gap);
+  const auto flow_into_0 = [&](double T0, double T1) {
+    const double h = G * (T0 * T0 + T1 * T1) * (T0 + T1);
+    return h * (T1 - T0) / (1.0 + h * 2.0 * R_side);
+  };
+  std::vector<double> q(2);
+  double boundary = 0.0;
+  ASSERT_TRUE(sys->heat_flow(std::vector<double>{1000.0, 600.0}, q, boundary));
+  EXPECT_NEAR(q[0], flow_into_0(1000.0, 600.0), 1e-13 * std::abs(q[0]));
+  EXPECT_EQ(q[0], -q[1]);
+  // The shells take a visible part: h R is about 0.07 for this glass pair at 1000 and 600 K.
+  EXPECT_LT(std::abs(q[0]), 0.95 * G * (std::pow(1000.0, 4) - std::pow(600.0, 4)));
+  JacobianEvaluation J;
+  const std::vector<double> T{900.0, 500.0};
+  sys->evaluate_jacobian(T, J);
+  const double step = 1e-3;
+  const double d00 = (flow_into_0(T[0] + step, T[1]) - flow_into_0(T[0] - step, T[1])) / (2 * step);
+  const double d01 = (flow_into_0(T[0], T[1] + step) - flow_into_0(T[0], T[1] - step)) / (2 * step);
+  EXPECT_NEAR(J.diagonal_W_per_K[0], d00, 1e-7 * std::abs(d00));
+  EXPECT_NEAR(J.edge_W_per_K[0] + J.edge_ab_W_per_K[0], d01, 1e-7 * std::abs(d01));
+  EXPECT_NEAR(J.diagonal_W_per_K[1], -d01, 1e-7 * std::abs(d01));  // q_1 = -q_0
+  EXPECT_NEAR(J.edge_W_per_K[0] + J.edge_ba_W_per_K[0], -d00, 1e-7 * std::abs(d00));
+}

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "support/SceneBuilder.h"
+#include "support/ScratchDir.h"
 
 namespace tmdem::e2e {
 
@@ -41,12 +42,9 @@ inline ProgramResult run_tmdem(const std::string& args, const std::string& workd
   return r;
 }
 
-// A fresh empty folder per test.
+// A fresh empty folder per test, removed once the test passes (support/ScratchDir.h).
 inline std::string scratch_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("tmdem_e2e_" + name + "_" + std::to_string(::getpid()));
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir.string();
+  return tmdem::test::scratch_folder("tmdem_e2e_", name);
 }
 
 inline void write_file(const std::string& path, const std::string& text) {

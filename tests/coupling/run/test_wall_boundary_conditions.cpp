@@ -13,6 +13,7 @@
 #include "coupling/scene/SceneError.h"
 #include "coupling/scene/SceneLoader.h"
 #include "support/SceneBuilder.h"
+#include "support/ScratchDir.h"
 #include "thermal/integrators/IntegratorRegistry.h"
 #include "thermal/modes/ModeRegistry.h"
 
@@ -27,11 +28,7 @@ ProgressReporter quiet_progress() {
 }
 
 std::string scratch(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("tmdem_wall_bc_" + name + "_" + std::to_string(::getpid()));
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir.string();
+  return tmdem::test::scratch_folder("tmdem_wall_bc_", name);
 }
 
 // A 3 x 2 x 2 lattice on a floor with an imposed flux, every other boundary adiabatic: all the

@@ -78,7 +78,7 @@ class GasConductionMode final : public HeatTransferMode {
   // shells per ray the gas holds its own shells and stays out of that sum.
   bool add_pair_conductance(const ThermalNetwork& net, std::span<double> edge_W_per_K,
                             std::span<double> wall_W_per_K) const override {
-    if (net.gas_shells_per_ray) return true;
+    if (rays(net)) return true;
     if (!is_cached(net)) return GasConductionMode(*this, net).add_pair_conductance(net, edge_W_per_K, wall_W_per_K);
     for (std::size_t e = 0; e < H_edge_.size(); ++e) edge_W_per_K[e] += H_edge_[e];
     for (std::size_t w = 0; w < H_wall_.size(); ++w) wall_W_per_K[w] += H_wall_[w];
@@ -86,12 +86,17 @@ class GasConductionMode final : public HeatTransferMode {
   }
 
  private:
-  // The lumped shells' factor (ParticleResistance.h), or 1 where the gas holds its shells per ray.
-  static double edge_factor(const ThermalNetwork& net, std::size_t e) {
-    return net.gas_shells_per_ray ? 1.0 : net.edge_factor(e);
+  // The shells per ray are the surrounding layer's; the Vargas-McCarthy closed form has no rays
+  // and keeps the lumped shells (the scene refuses that pairing; a network built by hand gets it).
+  bool rays(const ThermalNetwork& net) const {
+    return net.gas_shells_per_ray && model_ == GasModel::SurroundingLayer;
   }
-  static double wall_factor(const ThermalNetwork& net, std::size_t w) {
-    return net.gas_shells_per_ray ? 1.0 : net.wall_factor(w);
+  // The lumped shells' factor (ParticleResistance.h), or 1 where the gas holds its shells per ray.
+  double edge_factor(const ThermalNetwork& net, std::size_t e) const {
+    return rays(net) ? 1.0 : net.edge_factor(e);
+  }
+  double wall_factor(const ThermalNetwork& net, std::size_t w) const {
+    return rays(net) ? 1.0 : net.wall_factor(w);
   }
 
   // A view of the system's network with some wall edges left out (the conductivity study's
@@ -127,7 +132,7 @@ class GasConductionMode final : public HeatTransferMode {
   GasGap edge_gap(const ThermalNetwork& net, std::size_t e) const {
     GasGap g{net.radius_m[net.edge_a[e]], net.radius_m[net.edge_b[e]], net.edge_gap_m[e],
              net.edge_contact_radius_m[e]};
-    if (net.gas_shells_per_ray) {
+    if (rays(net)) {
       g.shell_gap_a_m = shell_gap_m(net, net.edge_a[e]);
       g.shell_gap_b_m = shell_gap_m(net, net.edge_b[e]);
     }
@@ -139,7 +144,7 @@ class GasConductionMode final : public HeatTransferMode {
     g.radius_a_m = net.radius_m[net.wall_node[w]];
     g.gap_m = net.wall_gap_m[w];
     g.contact_radius_m = net.wall_contact_radius_m[w];
-    if (net.gas_shells_per_ray) g.shell_gap_a_m = shell_gap_m(net, net.wall_node[w]);
+    if (rays(net)) g.shell_gap_a_m = shell_gap_m(net, net.wall_node[w]);
     return g;
   }
 

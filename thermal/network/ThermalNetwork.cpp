@@ -175,6 +175,8 @@ void ThermalNetwork::validate() const {
       fail("the particle's own resistance needs constant conductivities (the contact law "
            "follows k(T))");
   }
+  if (gas_shells_per_ray && shell_resistance_K_sr_per_W.empty())
+    fail("the gas's shells per ray need the shell resistances (particle_resistance is off)");
   if (!edge_shadowed.empty() && edge_shadowed.size() != edge_a.size())
     fail("edge shadow marks are not one per edge");
   if (!wall_emissivity.empty() && wall_emissivity.size() != wall_node.size())

@@ -281,3 +281,15 @@ TEST(ParticleResistance, RaysLeaveTheLumpedShellsToTheContactAlone) {
   EXPECT_NEAR(J.edge_W_per_K[0], H_eff, 1e-14 * H_eff);
   EXPECT_NEAR(J.diagonal_W_per_K[0], -H_eff, 1e-14 * H_eff);
 }
+
+// The gas's shells per ray without shell resistances (a network built by hand): refused.
+TEST(ParticleResistance, RaysWithoutShellsAreRefused) {
+  auto net = TwoSpheres{}.network(false);
+  net.gas_shells_per_ray = true;
+  try {
+    net.validate();
+    FAIL() << "accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("shells per ray"), std::string::npos) << e.what();
+  }
+}

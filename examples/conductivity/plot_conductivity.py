@@ -2,7 +2,7 @@
 """Plot the CSV of `tmdem study conductivity` (columns: docs/conductivity-study.md).
 
 With loads (pressure_Pa filled): k_eff against pressure on log-log axes, with the fitted power
-law exponent. Without: the share of the heat transport each mode carries, one bar group per row.
+law exponent (and k_bulk where the bed has a bulk). Without: the share of the heat transport each mode carries, one bar group per row.
 
     /usr/bin/python3 examples/conductivity/plot_conductivity.py k.csv [-o k.png]
 """
@@ -30,7 +30,11 @@ def main():
     if loaded:
         p = [float(r["pressure_Pa"]) for r in loaded]
         k = [float(r["k_eff_W_per_mK"]) for r in loaded]
-        ax.loglog(p, k, "o-", label="tmdem")
+        ax.loglog(p, k, "o-", label="tmdem, between the walls")
+        # The bulk (docs/conductivity-study.md "The bulk"), where the bed is deep enough to have one.
+        bulk = [(v, float(r["k_bulk_W_per_mK"])) for v, r in zip(p, loaded) if r.get("k_bulk_W_per_mK")]
+        if bulk:
+            ax.loglog([v for v, _ in bulk], [b for _, b in bulk], "s-", label="tmdem, bulk")
         # Hertz at a fixed contact network: every conductance goes as F^(1/3).
         ax.loglog(p, [k[0] * (v / p[0]) ** (1.0 / 3.0) for v in p], "--", color="gray",
                   label="p^(1/3) through the first point")
@@ -50,7 +54,9 @@ def main():
             ax.bar([j + i * width for j in range(len(modes))],
                    [float(r["share_" + m]) for m in modes], width,
                    label=f"k_eff = {float(r['k_eff_W_per_mK']):.4g} W/(m K), "
-                         f"porosity {float(r['porosity']):.3f}")
+                         f"porosity {float(r['porosity']):.3f}"
+                         + (f"; bulk {float(r['k_bulk_W_per_mK']):.4g}"
+                            if r.get("k_bulk_W_per_mK") else ""))
         ax.set_xticks(range(len(modes)))
         ax.set_xticklabels(modes)
         ax.set_ylabel("share of the heat transport")

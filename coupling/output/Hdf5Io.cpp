@@ -240,7 +240,7 @@ std::vector<double> read_double_array_attribute(hid_t object, const char* name) 
 
 Hdf5Handle create_dataset(hid_t location, const char* name, hid_t file_type,
                           const std::vector<hsize_t>& dims, hsize_t chunk_rows,
-                          const char* units) {
+                          const char* units, bool compress) {
   const std::string what = std::string("dataset ") + name;
   std::vector<hsize_t> max_dims = dims;
   Hdf5Handle properties(check_id(H5Pcreate(H5P_DATASET_CREATE), what), H5Pclose);
@@ -252,7 +252,7 @@ Hdf5Handle create_dataset(hid_t location, const char* name, hid_t file_type,
     check_ok(H5Pset_chunk(properties.get(), static_cast<int>(chunk.size()), chunk.data()), what);
     // Level 1: nearly all of deflate's gain on these arrays (zero velocities of a frozen bed,
     // repeated contact rows, int64 pairs) at a fraction of the time of higher levels.
-    if (H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0) {
+    if (compress && H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0) {
       check_ok(H5Pset_shuffle(properties.get()), what);
       check_ok(H5Pset_deflate(properties.get(), 1), what);
     }

@@ -48,10 +48,11 @@ std::vector<double> read_double_array_attribute(hid_t object, const char* name);
 
 // Dataset with a "units" attribute. Extendible (chunked, first dimension unlimited) and
 // compressed (shuffle + deflate level 1, when the HDF5 library has deflate) when chunk_rows > 0,
-// else fixed size and uncompressed.
+// else fixed size and uncompressed. compress = false keeps a chunked dataset unfiltered: its
+// chunks keep their size and place when rows are appended to them (see ResultFrames.cpp).
 Hdf5Handle create_dataset(hid_t location, const char* name, hid_t file_type,
                           const std::vector<hsize_t>& dims, hsize_t chunk_rows,
-                          const char* units);
+                          const char* units, bool compress = true);
 Hdf5Handle open_dataset(hid_t location, const char* name);
 std::vector<hsize_t> dataset_dims(hid_t dataset);
 hsize_t dataset_rows(hid_t dataset);

@@ -7,7 +7,12 @@
 namespace tmdem::coupling {
 namespace {
 
-constexpr hsize_t kFrameChunk = 1024;  // rows per chunk of the [F] datasets
+// Rows per chunk of the [F] datasets. Every frame rewrites their last chunk, so they are stored
+// unfiltered: a compressed chunk changes size and moves on each rewrite, and a run killed
+// mid-rewrite (SIGKILL, power loss) left frames/time unreadable ("inflate() failed") for the
+// restart from its last checkpoint. An unfiltered chunk is rewritten in place, its earlier rows
+// with the same bytes. 8 kB per chunk, so compression saved little.
+constexpr hsize_t kFrameChunk = 1024;
 constexpr const char* kGeometryBlocks = "/frames/blocks";  // BlockSeries of shared geometry
 
 }  // namespace
@@ -18,7 +23,7 @@ void ResultFrames::create(hid_t file, std::size_t particles, std::size_t walls,
   file_ = file;
   Hdf5Handle frames = hdf5::create_group(file, "frames");
   const hid_t g = frames.get();
-  time_ = hdf5::create_dataset(g, "time", H5T_IEEE_F64LE, {0}, kFrameChunk, "s");
+  time_ = hdf5::create_dataset(g, "time", H5T_IEEE_F64LE, {0}, kFrameChunk, "s", false);
   if (shared_geometry && n > 0) {
     constexpr auto kRow = BlockSeries::Rows::OnePerBlock;
     position_blocks_.create(file, "/frames/position", kGeometryBlocks, H5T_IEEE_F64LE, {n, 3},
@@ -32,10 +37,10 @@ void ResultFrames::create(hid_t file, std::size_t particles, std::size_t walls,
     velocity_ = hdf5::create_dataset(g, "velocity", H5T_IEEE_F64LE, {0, n, 3}, 1, "m/s");
   }
   temperature_ = hdf5::create_dataset(g, "temperature", H5T_IEEE_F64LE, {0, n}, 1, "K");
-  thermal_energy_ = hdf5::create_dataset(g, "thermal_energy", H5T_IEEE_F64LE, {0}, kFrameChunk, "J");
-  boundary_heat_ = hdf5::create_dataset(g, "boundary_heat", H5T_IEEE_F64LE, {0}, kFrameChunk, "J");
+  thermal_energy_ = hdf5::create_dataset(g, "thermal_energy", H5T_IEEE_F64LE, {0}, kFrameChunk, "J", false);
+  boundary_heat_ = hdf5::create_dataset(g, "boundary_heat", H5T_IEEE_F64LE, {0}, kFrameChunk, "J", false);
   contact_offset_ =
-      hdf5::create_dataset(g, "contact_offset", H5T_STD_I64LE, {0}, kFrameChunk, "1");
+      hdf5::create_dataset(g, "contact_offset", H5T_STD_I64LE, {0}, kFrameChunk, "1", false);
   if (walls > 0)
     wall_position_ =
         hdf5::create_dataset(g, "wall_position", H5T_IEEE_F64LE, {0, hsize_t(walls), 3}, 1, "m");

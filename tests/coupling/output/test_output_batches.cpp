@@ -39,6 +39,17 @@ PendingFrame frame(std::size_t f) {
   return s;
 }
 
+// The header of the two particles of frame().
+ResultHeader two_particle_header() {
+  ResultHeader header;
+  header.scene_toml = "format = \"tmdem-scene-1\"\n";
+  header.radius_m = {1e-3, 1e-3};
+  header.mass_kg = {1e-5, 1e-5};
+  header.heat_capacity_J_per_K = {0.01, 0.01};
+  header.material = {0, 0};
+  return header;
+}
+
 }  // namespace
 
 TEST(ResultWriterBatches, XdmfAlwaysListsTheStoredFramesAndFlushStoresTheRest) {
@@ -46,12 +57,7 @@ TEST(ResultWriterBatches, XdmfAlwaysListsTheStoredFramesAndFlushStoresTheRest) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   const std::string path = (dir / "r.h5").string();
-  ResultHeader header;
-  header.scene_toml = "format = \"tmdem-scene-1\"\n";
-  header.radius_m = {1e-3, 1e-3};
-  header.mass_kg = {1e-5, 1e-5};
-  header.heat_capacity_J_per_K = {0.01, 0.01};
-  header.material = {0, 0};
+  const ResultHeader header = two_particle_header();
   const std::size_t total = 1100;
   {
     ResultWriter writer(path, header, true);
@@ -95,5 +101,60 @@ TEST(ResultWriterBatches, XdmfAlwaysListsTheStoredFramesAndFlushStoresTheRest) {
       ASSERT_EQ(force[std::size_t(offset[f])], double(f)) << f;
     }
   }
+  std::filesystem::remove_all(dir);
+}
+
+namespace {
+
+// File address of the first chunk of `dataset` in the result file at `path`, and its filters.
+std::pair<haddr_t, int> first_chunk(const std::string& path, const char* dataset) {
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  const hid_t d = H5Dopen2(file, dataset, H5P_DEFAULT);
+  const hid_t plist = H5Dget_create_plist(d);
+  const int filters = H5Pget_nfilters(plist);
+  const hsize_t origin[1] = {0};
+  unsigned mask = 0;
+  haddr_t address = HADDR_UNDEF;
+  hsize_t size = 0;
+  H5Dget_chunk_info_by_coord(d, origin, &mask, &address, &size);
+  H5Pclose(plist);
+  H5Dclose(d);
+  H5Fclose(file);
+  return {address, filters};
+}
+
+}  // namespace
+
+// The [F] datasets (one row per frame) get a row in their last chunk with every frame. They are
+// unfiltered, so that chunk keeps its place: a run killed while rewriting it leaves the rows of
+// earlier frames as they were, for the restart from the last checkpoint (a compressed chunk
+// moved on each rewrite, and a SIGKILL once left /frames/time unreadable).
+TEST(ResultWriterBatches, PerFrameRowsAreRewrittenInPlace) {
+  const auto dir = std::filesystem::temp_directory_path() / ("tmdem-inplace-" + std::to_string(getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "r.h5").string();
+  const ResultHeader header = two_particle_header();
+  {
+    ResultWriter writer(path, header, true);
+    for (std::size_t f = 0; f < 10; ++f) writer.write_frame(frame(f).view());
+    writer.finish("ok");
+  }
+  const char* per_frame[] = {"/frames/time", "/frames/thermal_energy", "/frames/boundary_heat",
+                             "/frames/contact_offset"};
+  std::vector<haddr_t> before;
+  for (const char* d : per_frame) {
+    const auto [address, filters] = first_chunk(path, d);
+    EXPECT_EQ(filters, 0) << d;
+    EXPECT_NE(address, HADDR_UNDEF) << d;
+    before.push_back(address);
+  }
+  {
+    ResultWriter writer = ResultWriter::reopen(path, 10);
+    for (std::size_t f = 10; f < 40; ++f) writer.write_frame(frame(f).view());
+    writer.finish("ok");
+  }
+  for (std::size_t i = 0; i < before.size(); ++i)
+    EXPECT_EQ(first_chunk(path, per_frame[i]).first, before[i]) << per_frame[i];
   std::filesystem::remove_all(dir);
 }

@@ -68,6 +68,19 @@ void write_contents(hid_t file, const CheckpointState& s) {
     Hdf5Handle thermal = hdf5::create_group(file, "thermal");
     hdf5::write_array(thermal.get(), "pattern_pair", s.thermal_pattern_pair, 2, "1");
   }
+  if (!s.result_contact_tail.empty()) {
+    const ContactTail& t = s.result_contact_tail;
+    Hdf5Handle tail = hdf5::create_group(file, "result_contact_tail");
+    hdf5::write_int64_attribute(tail.get(), "start", t.start);
+    hdf5::write_int64_attribute(tail.get(), "rows", t.rows);
+    if (!t.pair.empty()) hdf5::write_array(tail.get(), "pair", t.pair, 2, "1");
+    if (!t.normal_force_N.empty()) hdf5::write_array(tail.get(), "normal_force", t.normal_force_N, 0, "N");
+    if (!t.tangential_force_N.empty())
+      hdf5::write_array(tail.get(), "tangential_force", t.tangential_force_N, 3, "N");
+    if (!t.conductance_W_per_K.empty())
+      hdf5::write_array(tail.get(), "conductance", t.conductance_W_per_K, 0, "W/K");
+    if (!t.heat_flow_W.empty()) hdf5::write_array(tail.get(), "heat_flow", t.heat_flow_W, 0, "W");
+  }
   Hdf5Handle extra = hdf5::create_group(file, "extra");
   for (const auto& [name, value] : s.extra) {
     Hdf5Handle space(hdf5::check_id(H5Screate(H5S_SCALAR), name), H5Sclose);
@@ -141,6 +154,19 @@ CheckpointState read_contents(hid_t file) {
   if (hdf5::exists(file, "thermal")) {
     Hdf5Handle thermal = hdf5::open_group(file, "thermal");
     s.thermal_pattern_pair = hdf5::read_int64_array(thermal.get(), "pattern_pair", 2);
+  }
+  if (hdf5::exists(file, "result_contact_tail")) {
+    Hdf5Handle tail = hdf5::open_group(file, "result_contact_tail");
+    ContactTail& t = s.result_contact_tail;
+    require(hdf5::read_int64_attribute(tail.get(), "start", t.start), "result_contact_tail/start");
+    require(hdf5::read_int64_attribute(tail.get(), "rows", t.rows), "result_contact_tail/rows");
+    const hid_t g = tail.get();
+    if (hdf5::exists(g, "pair")) t.pair = hdf5::read_int64_array(g, "pair", 2);
+    if (hdf5::exists(g, "normal_force")) t.normal_force_N = hdf5::read_double_array(g, "normal_force", 0);
+    if (hdf5::exists(g, "tangential_force"))
+      t.tangential_force_N = hdf5::read_double_array(g, "tangential_force", 3);
+    if (hdf5::exists(g, "conductance")) t.conductance_W_per_K = hdf5::read_double_array(g, "conductance", 0);
+    if (hdf5::exists(g, "heat_flow")) t.heat_flow_W = hdf5::read_double_array(g, "heat_flow", 0);
   }
   if (hdf5::exists(file, "extra")) {
     Hdf5Handle extra = hdf5::open_group(file, "extra");

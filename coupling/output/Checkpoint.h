@@ -12,7 +12,9 @@
 // solver_state [S], wall_point [W,3] m, wall_velocity [W] m/s, reference_wall_point [W,3] m:
 // the mechanics' MechanicsState; the wall datasets may be absent: walls as built) when the packing moves, and /thermal/pattern_pair [P,2] (a dynamic
 // run's sticky edge set), /settled_wall_point [W,3] m (a settled run: the walls where settling
-// left them; absent: where the scene puts them). The integrators' and the mechanics' counters
+// left them; absent: where the scene puts them), /result_contact_tail (attributes start, rows;
+// datasets pair [T,2], normal_force, tangential_force [T,3], conductance, heat_flow, each
+// present when the result file stores it as a plain dataset: ContactTail.h). The integrators' and the mechanics' counters
 // are /extra scalars.
 // A checkpoint without tangential_force or normal_force (written before they existed) reads as
 // tangential force 0 and normal force impulse / time step; without /mechanics or /thermal it
@@ -25,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "coupling/output/ContactTail.h"
 #include "coupling/output/OutputError.h"
 
 namespace tmdem::coupling {
@@ -60,6 +63,9 @@ struct CheckpointState {
   std::vector<std::int64_t> thermal_pattern_pair;    // P*2, dynamic runs
   // W*3, a settled run's walls where settling left them (pistons move), or empty: the scene's.
   std::vector<double> settled_wall_point_m;
+  // The result file's contacts in their last chunk (ContactTail.h), or empty: a restart writes
+  // them again, whatever a crash left of that chunk.
+  ContactTail result_contact_tail;
   std::map<std::string, double> extra;               // free-form named scalars for the run loop
 };
 

@@ -22,6 +22,16 @@ hsize_t contact_chunk_rows(std::size_t particles) {
   return rows;
 }
 
+// f(part, the tail's vector of that part, its memory type) for the five parts in parts() order.
+template <class Parts, class Tail, class F>
+void with_tail_vectors(const Parts& parts, Tail& t, F&& f) {
+  f(parts[0], t.pair, H5T_NATIVE_INT64);
+  f(parts[1], t.normal_force_N, H5T_NATIVE_DOUBLE);
+  f(parts[2], t.tangential_force_N, H5T_NATIVE_DOUBLE);
+  f(parts[3], t.conductance_W_per_K, H5T_NATIVE_DOUBLE);
+  f(parts[4], t.heat_flow_W, H5T_NATIVE_DOUBLE);
+}
+
 }  // namespace
 
 void ResultContacts::create(hid_t file, std::size_t particles, bool stored,
@@ -147,6 +157,62 @@ void ResultContacts::cut_back(std::int64_t rows) {
       hdf5::set_rows(dataset->get(), static_cast<hsize_t>(rows));
     }
   }
+}
+
+std::vector<ResultContacts::Part> ResultContacts::parts() const {
+  return {{&pair_, &pair_blocks_, 2},
+          {&normal_force_, &normal_force_blocks_, 1},
+          {&tangential_force_, &tangential_force_blocks_, 3},
+          {&conductance_, &conductance_blocks_, 1},
+          {&heat_flow_, nullptr, 1}};
+}
+
+hsize_t ResultContacts::last_chunk_start(const Hdf5Handle& dataset, hsize_t rows) {
+  Hdf5Handle plist(hdf5::check_id(H5Dget_create_plist(dataset.get()), "contact dataset"), H5Pclose);
+  hsize_t chunk[3] = {0, 0, 0};
+  if (H5Pget_layout(plist.get()) != H5D_CHUNKED ||
+      H5Pget_chunk(plist.get(), 3, chunk) < 1 || chunk[0] == 0)
+    return rows;  // not chunked: nothing is rewritten
+  return rows == 0 ? 0 : (rows - 1) / chunk[0] * chunk[0];
+}
+
+ContactTail ResultContacts::tail(std::int64_t rows) const {
+  ContactTail t;
+  t.rows = rows;
+  t.start = rows;
+  for (const Part& p : parts())
+    if (p.dataset->valid() && (p.blocks == nullptr || !p.blocks->active()))
+      t.start = std::min<std::int64_t>(t.start, std::int64_t(last_chunk_start(*p.dataset, hsize_t(rows))));
+  const hsize_t n = hsize_t(rows - t.start);
+  const auto read = [&](const Part& p, auto& out, hid_t type) {
+    if (!p.dataset->valid() || (p.blocks != nullptr && p.blocks->active()) || n == 0) return;
+    out.resize(n * p.columns);
+    hdf5::read_rows(p.dataset->get(), hsize_t(t.start), n, out.data(), type);
+  };
+  with_tail_vectors(parts(), t, read);
+  return t;
+}
+
+void ResultContacts::restore(const ContactTail& tail) {
+  if (tail.empty()) return;
+  if (tail.rows != rows())
+    throw std::invalid_argument("contact tail of " + std::to_string(tail.rows) + " rows for " +
+                                std::to_string(rows()) + " stored contacts");
+  const auto put = [&](const Part& p, const auto& values, hid_t type) {
+    if (!p.dataset->valid() || (p.blocks != nullptr && p.blocks->active())) return;
+    const hsize_t start = last_chunk_start(*p.dataset, hsize_t(tail.rows));
+    if (start >= hsize_t(tail.rows)) return;
+    if (std::int64_t(start) < tail.start ||
+        values.size() != hsize_t(tail.rows - tail.start) * p.columns)
+      throw std::invalid_argument("contact tail from row " + std::to_string(tail.start) +
+                                  " does not cover the last chunk from row " + std::to_string(start));
+    // Shrinking past the chunk drops it, whatever its bytes; the rows go into a fresh chunk.
+    hdf5::set_rows(p.dataset->get(), start);
+    hdf5::set_rows(p.dataset->get(), hsize_t(tail.rows));
+    hdf5::write_rows(p.dataset->get(), start, hsize_t(tail.rows) - start,
+                     values.data() + (start - hsize_t(tail.start)) * p.columns, type);
+  };
+  with_tail_vectors(parts(), tail, put);
 }
 
 void ResultContacts::close() {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "coupling/output/BlockSeries.h"
+#include "coupling/output/ContactTail.h"
 #include "coupling/output/Hdf5Handle.h"
 #include "coupling/output/ResultWriter.h"
 
@@ -33,9 +34,24 @@ class ResultContacts {
   // frame has none.
   void append(std::int64_t first, const FrameView& frame);
   void cut_back(std::int64_t rows);
+  // The rows [start, rows) of every plain dataset, start the first row of the earliest last
+  // chunk among them (ContactTail.h).
+  ContactTail tail(std::int64_t rows) const;
+  // Drops each plain dataset's last chunk and writes its rows again from `tail`; the datasets
+  // hold tail.rows rows (after cut_back). std::invalid_argument if the tail does not fit.
+  void restore(const ContactTail& tail);
   void close();
 
  private:
+  // Each dataset with its block series (nullptr: heat_flow has none) and columns.
+  struct Part {
+    const Hdf5Handle* dataset;
+    const BlockSeries* blocks;
+    hsize_t columns;
+  };
+  std::vector<Part> parts() const;
+  // A plain (growing, not a block series) dataset's first row of the chunk that holds `rows - 1`.
+  static hsize_t last_chunk_start(const Hdf5Handle& dataset, hsize_t rows);
   // Writes c rows at row `at` of `dataset`, or block at / c of `blocks` when it is active.
   void write(const Hdf5Handle& dataset, BlockSeries& blocks, hsize_t at, hsize_t c,
              const void* data, hid_t memory_type);

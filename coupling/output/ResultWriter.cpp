@@ -303,6 +303,10 @@ ResultWriter ResultWriter::reopen(const std::string& path, std::size_t keep_fram
     w.contacts.open(w.file.get());
     w.frames.cut_back(keep_frames);
     w.contacts.cut_back(w.contact_rows);
+    // A crash while the last chunk was rewritten may have left its rows unreadable: write them
+    // again from the checkpoint (a checkpoint without them leaves the chunk as it is).
+    if (match != nullptr && match->contact_tail != nullptr && match->contact_tail->rows == w.contact_rows)
+      w.contacts.restore(*match->contact_tail);
     w.views.open(w.file.get(), w.particles);
     w.views.cut_back(w.file.get(), keep_frames);
     w.rebuild_views(keep_frames);
@@ -387,6 +391,16 @@ std::size_t ResultWriter::frames() const {
   return impl_ ? impl_->times.size() + impl_->pending.size() : 0;
 }
 std::size_t ResultWriter::stored_frames() const { return impl_ ? impl_->times.size() : 0; }
+
+ContactTail ResultWriter::contact_tail() const {
+  if (!impl_ || impl_->finished) return {};
+  Hdf5ErrorSilence silence;
+  try {
+    return impl_->contacts.tail(impl_->contact_rows);
+  } catch (const Hdf5Failure& e) {
+    throw OutputError("cannot read the contacts of result file '" + impl_->path + "': " + e.what());
+  }
+}
 std::size_t ResultWriter::particles() const { return impl_ ? impl_->particles : 0; }
 bool ResultWriter::finished() const { return !impl_ || impl_->finished; }
 const std::string& ResultWriter::path() const {

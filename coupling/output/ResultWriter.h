@@ -50,6 +50,7 @@
 #include <string_view>
 #include <vector>
 
+#include "coupling/output/ContactTail.h"
 #include "coupling/output/OutputError.h"
 
 namespace tmdem::coupling {
@@ -111,6 +112,9 @@ struct RestartMatch {
   std::string scene_toml;        // the checkpoint's scene: must equal the file's "scene"
   double checkpoint_time_s = 0;  // the last kept frame may not lie after it
   std::string next_scene_toml;   // written as "scene" once the checks pass (empty: kept)
+  // The contacts' last chunk as the checkpoint saw it (ContactTail.h; nullptr or empty: none),
+  // written again once the file is cut back.
+  const ContactTail* contact_tail = nullptr;
 };
 
 enum class ExistingResult { Refuse, Overwrite };
@@ -148,6 +152,8 @@ class ResultWriter {
   void write_frame(const FrameView& frame);
   // Stores the frames waiting for their batch now (e.g. before a checkpoint counts them).
   void flush();
+  // The stored contacts' last chunk (ContactTail.h), for a checkpoint; call after flush().
+  ContactTail contact_tail() const;
 
   // status is "ok", "failed" or "interrupted" (std::invalid_argument otherwise). Sets the root attribute,
   // closes the file and writes RESULT.xdmf. A second call does nothing. Throws OutputError.

@@ -390,6 +390,7 @@ void CoupledRun::open_result_file() {
     match.scene_toml = restart_->scene_toml;
     match.checkpoint_time_s = restart_->time_s;
     match.next_scene_toml = scene_.resolved_toml;
+    match.contact_tail = &restart_->result_contact_tail;
     writer_.emplace(ResultWriter::reopen(options_.output_path,
                                          std::size_t(restart_->frames_written), &match));
   } else {

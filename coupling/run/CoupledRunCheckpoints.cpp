@@ -94,6 +94,7 @@ void CoupledRun::checkpoint(double t_s) {
   if (writes_files_) {
     writer_->flush();  // the checkpoint counts frames the .h5 holds
     cs.frames_written = std::int64_t(writer_->stored_frames());
+    cs.result_contact_tail = writer_->contact_tail();
   }
   store_contacts(contacts_, scene_.mechanics.time_step_s, cs);
   if (dynamic_network_) cs.thermal_pattern_pair = dynamic_network_->pattern_pairs();

@@ -158,3 +158,84 @@ TEST(ResultWriterBatches, PerFrameRowsAreRewrittenInPlace) {
     EXPECT_EQ(first_chunk(path, per_frame[i]).first, before[i]) << per_frame[i];
   std::filesystem::remove_all(dir);
 }
+
+namespace {
+
+// Overwrites the bytes of the first chunk of `dataset` with 0xff, as a crash in the middle of
+// its rewrite may leave them.
+void garble_first_chunk(const std::string& path, const char* dataset) {
+  haddr_t address = HADDR_UNDEF;
+  hsize_t size = 0;
+  {
+    const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    const hid_t d = H5Dopen2(file, dataset, H5P_DEFAULT);
+    const hsize_t origin[2] = {0, 0};
+    unsigned mask = 0;
+    H5Dget_chunk_info_by_coord(d, origin, &mask, &address, &size);
+    H5Dclose(d);
+    H5Fclose(file);
+  }
+  ASSERT_NE(address, HADDR_UNDEF) << dataset;
+  std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
+  f.seekp(std::streamoff(address));
+  const std::string garbage(size, '\xff');
+  f.write(garbage.data(), std::streamsize(size));
+}
+
+}  // namespace
+
+// A crash while the contacts' last chunk was rewritten can leave its rows unreadable. The
+// checkpoint's copy of that chunk (ResultWriter::contact_tail) is written again by the restart:
+// here the chunk is garbled by hand after the checkpoint, and the restarted file holds every
+// contact as written.
+TEST(ResultWriterBatches, RestartWritesTheContactsLastChunkAgainFromTheCheckpoint) {
+  const auto dir = std::filesystem::temp_directory_path() / ("tmdem-tail-" + std::to_string(getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "r.h5").string();
+  const ResultHeader header = two_particle_header();
+  tmdem::coupling::ContactTail tail;
+  {
+    ResultWriter writer(path, header, true);
+    for (std::size_t f = 0; f < 10; ++f) writer.write_frame(frame(f).view());
+    writer.flush();
+    tail = writer.contact_tail();
+    writer.finish("ok");
+  }
+  EXPECT_EQ(tail.start, 0);
+  EXPECT_EQ(tail.rows, 4);  // frames 0, 3, 6 and 9 have a contact
+  ASSERT_EQ(tail.normal_force_N.size(), 4u);
+  for (const char* d : {"/contacts/normal_force", "/contacts/pair"}) garble_first_chunk(path, d);
+  {
+    H5::H5File file(path, H5F_ACC_RDONLY);
+    std::vector<double> force(4);
+    EXPECT_ANY_THROW(file.openDataSet("/contacts/normal_force").read(force.data(), H5::PredType::NATIVE_DOUBLE))
+        << "the garbled chunk must be unreadable for this test to mean anything";
+  }
+  tmdem::coupling::RestartMatch match;
+  match.particles = 2;
+  match.scene_toml = header.scene_toml;
+  match.checkpoint_time_s = 9.0;
+  match.contact_tail = &tail;
+  {
+    ResultWriter writer = ResultWriter::reopen(path, 10, &match);
+    for (std::size_t f = 10; f < 20; ++f) writer.write_frame(frame(f).view());
+    writer.finish("ok");
+  }
+  H5::H5File file(path, H5F_ACC_RDONLY);
+  std::vector<long long> offset(21), pair(2 * 7);
+  file.openDataSet("/frames/contact_offset").read(offset.data(), H5::PredType::NATIVE_LLONG);
+  ASSERT_EQ(offset.back(), 7);
+  std::vector<double> force(7);
+  file.openDataSet("/contacts/normal_force").read(force.data(), H5::PredType::NATIVE_DOUBLE);
+  file.openDataSet("/contacts/pair").read(pair.data(), H5::PredType::NATIVE_LLONG);
+  for (std::size_t f = 0; f < 20; ++f) {
+    ASSERT_EQ(offset[f + 1] - offset[f], f % 3 == 0 ? 1 : 0) << f;
+    if (f % 3 != 0) continue;
+    const auto row = std::size_t(offset[f]);
+    EXPECT_EQ(force[row], double(f)) << f;
+    EXPECT_EQ(pair[2 * row], 0) << f;
+    EXPECT_EQ(pair[2 * row + 1], 1) << f;
+  }
+  std::filesystem::remove_all(dir);
+}

@@ -56,6 +56,13 @@ void expect_equal(const CheckpointState& a, const CheckpointState& b) {
   EXPECT_EQ(a.candidate_rolling_torque_Nm, b.candidate_rolling_torque_Nm);
   EXPECT_EQ(a.contact_solver_state, b.contact_solver_state);
   EXPECT_EQ(a.thermal_pattern_pair, b.thermal_pattern_pair);
+  EXPECT_EQ(a.result_contact_tail.start, b.result_contact_tail.start);
+  EXPECT_EQ(a.result_contact_tail.rows, b.result_contact_tail.rows);
+  EXPECT_EQ(a.result_contact_tail.pair, b.result_contact_tail.pair);
+  EXPECT_EQ(a.result_contact_tail.normal_force_N, b.result_contact_tail.normal_force_N);
+  EXPECT_EQ(a.result_contact_tail.tangential_force_N, b.result_contact_tail.tangential_force_N);
+  EXPECT_EQ(a.result_contact_tail.conductance_W_per_K, b.result_contact_tail.conductance_W_per_K);
+  EXPECT_EQ(a.result_contact_tail.heat_flow_W, b.result_contact_tail.heat_flow_W);
 }
 
 // sample_checkpoint() plus what a bitwise restart of a moving packing needs.
@@ -71,6 +78,11 @@ CheckpointState sample_with_mechanics() {
   s.candidate_rolling_torque_Nm = {0, 0, 0, 1e-9, 0, -2e-9, 0, 0, 0, 0, 0, 0, 3.0 / 7.0, 1e-300, 0};
   s.thermal_pattern_pair = {0, -1, 0, 1, 1, 2};
   s.contact_solver_state = {1.7976931348623157e308 / 3.0};
+  // The result file's contacts in their last chunk: rows 256 and 257 (frozen pairs and forces
+  // stored as block series leave their vectors empty).
+  s.result_contact_tail.start = 256;
+  s.result_contact_tail.rows = 258;
+  s.result_contact_tail.heat_flow_W = {1.0 / 3.0, -2e-300};
   return s;
 }
 
@@ -111,6 +123,7 @@ TEST(Checkpoint, RoundTripWithMechanicsStateAndPattern) {
   EXPECT_FALSE(older.has_mechanics);
   EXPECT_TRUE(older.contact_normal_force_N.empty());
   EXPECT_TRUE(older.thermal_pattern_pair.empty());
+  EXPECT_TRUE(older.result_contact_tail.empty());
 }
 
 TEST(Checkpoint, RejectsMechanicsStateOfOtherSizes) {

@@ -164,17 +164,22 @@ namespace {
 // ZSB beside k_eff (docs/validation.md) for a bed in a gas of one solid with a constant
 // conductivity: at the study's porosity, the particles' mean diameter, the gas mode's
 // conductivity and jump length, and the VDI's flattening coefficient for spheres.
+// The particles' mean diameter, m (0 without particles).
+double mean_diameter_m(const Scene& scene) {
+  if (scene.particles.empty()) return 0.0;
+  double sum_m = 0.0;
+  for (const auto& p : scene.particles) sum_m += 2.0 * p.radius_m;
+  return sum_m / double(scene.particles.size());
+}
+
 std::optional<double> zehner_schlunder_bauer_of(const Scene& scene, const ConductivityResult& r,
                                                 double porosity) {
   const bool gas = std::any_of(r.modes.begin(), r.modes.end(),
                                [](const ModeShare& m) { return m.mode == "gas_conduction"; });
   if (!gas || scene.particles.empty() || !(porosity > 0.0 && porosity < 1.0)) return std::nullopt;
   const int material = scene.particles.front().material;
-  double diameter_sum_m = 0.0;
-  for (const auto& p : scene.particles) {
+  for (const auto& p : scene.particles)
     if (p.material != material) return std::nullopt;
-    diameter_sum_m += 2.0 * p.radius_m;
-  }
   const Material& solid = scene.materials[std::size_t(material)];
   if (solid.temperature_dependent()) return std::nullopt;
   const auto* mode = thermal::find_heat_transfer_mode("gas_conduction");
@@ -184,7 +189,7 @@ std::optional<double> zehner_schlunder_bauer_of(const Scene& scene, const Conduc
   in.porosity = porosity;
   in.k_solid_W_per_mK = solid.conductivity_W_per_mK;
   in.k_fluid_W_per_mK = fluid["conductivity"];
-  in.diameter_m = diameter_sum_m / double(scene.particles.size());
+  in.diameter_m = mean_diameter_m(scene);
   in.flattening = 0.0077;
   in.jump_length_m =
       thermal::gas_jump_length_m(fluid["pressure"], fluid["mean_free_path"], fluid["accommodation"]);
@@ -206,9 +211,7 @@ void measure_bulk(const Scene& scene, const std::vector<double>& x,
                   const std::vector<std::uint8_t>& floating, ConductivityResult& r) {
   const std::size_t n = scene.particles.size();
   if (n == 0) return;
-  double diameter_sum_m = 0.0;
-  for (const auto& p : scene.particles) diameter_sum_m += 2.0 * p.radius_m;
-  r.bulk_margin_m = 2.0 * diameter_sum_m / double(n);
+  r.bulk_margin_m = 2.0 * mean_diameter_m(scene);
   const double a = r.bulk_margin_m, b = r.length_m - r.bulk_margin_m;
   if (!(b > a)) return;
   double solid_m3 = 0.0, sx = 0.0, sT = 0.0, sxx = 0.0, sxT = 0.0;

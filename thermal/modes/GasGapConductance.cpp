@@ -54,6 +54,18 @@ void kronrod(F&& f, double a, double b, double& value, double& error) {
 }
 
 template <class F>
+double adaptive(F&& f, double a, double b, double tolerance, int depth);
+
+// The integral of f over [a, b] to a relative 1e-13 of the larger of its first estimate and
+// `scale` (what it is added to).
+template <class F>
+double integrate(F&& f, double a, double b, double scale = 0.0) {
+  double estimate = 0.0, error = 0.0;
+  kronrod(f, a, b, estimate, error);
+  return adaptive(f, a, b, 1e-13 * std::max(std::abs(estimate), scale), 0);
+}
+
+template <class F>
 double adaptive(F&& f, double a, double b, double tolerance, int depth) {
   double value = 0.0, error = 0.0;
   kronrod(f, a, b, value, error);
@@ -133,9 +145,7 @@ double surrounding_layer_conductance_W_per_K(const GasGap& g, double k_f, double
     const auto f = [&](double r) {
       return 2.0 * pi * r / (min_gap_m + jump_length_m + shell_thickness(g, r));
     };
-    double estimate = 0.0, error = 0.0;
-    kronrod(f, r_in, r_k, estimate, error);
-    H = adaptive(f, r_in, r_k, 1e-13 * std::abs(estimate), 0);
+    H = integrate(f, r_in, r_k);
   }
   if (r_out > r_k) {
     // r = r_min sin(theta) removes the square-root end point at r = r_min.
@@ -146,9 +156,7 @@ double surrounding_layer_conductance_W_per_K(const GasGap& g, double k_f, double
     };
     const double t0 = std::asin(std::min(r_k / r_min, 1.0));
     const double t1 = std::asin(std::min(r_out / r_min, 1.0));
-    double estimate = 0.0, error = 0.0;
-    kronrod(f, t0, t1, estimate, error);
-    H += adaptive(f, t0, t1, 1e-13 * std::max(std::abs(estimate), H), 0);
+    H += integrate(f, t0, t1, H);
   }
   return k_f * H;
 }

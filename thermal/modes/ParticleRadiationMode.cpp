@@ -40,6 +40,13 @@ class ParticleRadiationMode final : public HeatTransferMode {
 
   void update_geometry(const ThermalNetwork& net) override {
     shares_ = radiation_shares(net, reach_, walls_, enclosed_);
+    // The shells in series depend on the geometry only: once per edge set, not per evaluation.
+    R_.clear();
+    if (!net.shell_resistance_K_sr_per_W.empty()) {
+      R_.resize(net.edge_count());
+      for (std::size_t e = 0; e < net.edge_count(); ++e)
+        R_[e] = edge_shell_resistance_K_per_W(net, e, true) + edge_shell_resistance_K_per_W(net, e, false);
+    }
     G_.assign(net.edge_count(), 0.0);
     const double pi = std::numbers::pi;
     for (std::size_t e = 0; e < net.edge_count(); ++e) {
@@ -65,7 +72,7 @@ class ParticleRadiationMode final : public HeatTransferMode {
       const auto a = net.edge_a[e], b = net.edge_b[e];
       // Below 0 K T^4 would pump heat the wrong way: a recoverable failure (smaller step).
       if (!(T[a] > 0.0) || !(T[b] > 0.0)) return false;
-      const double flow_into_a = exchange(G_[e], T[a], T[b], pair_shells(net, e)).W;
+      const double flow_into_a = exchange(G_[e], T[a], T[b], pair_shells(e)).W;
       q[a] += flow_into_a;
       q[b] -= flow_into_a;
       if (held[a] != held[b]) boundary_W += held[a] ? -flow_into_a : flow_into_a;
@@ -91,7 +98,7 @@ class ParticleRadiationMode final : public HeatTransferMode {
       const auto a = net.edge_a[e], b = net.edge_b[e];
       const double ta = T[a] > 0.0 ? T[a] : 0.0, tb = T[b] > 0.0 ? T[b] : 0.0;
       // q_a = W(T_a, T_b), q_b = -W.
-      const Exchange x = exchange(G_[e], ta, tb, pair_shells(net, e));
+      const Exchange x = exchange(G_[e], ta, tb, pair_shells(e));
       J.diagonal_W_per_K[a] += x.dW_dTa;
       J.diagonal_W_per_K[b] -= x.dW_dTb;
       J.edge_ab_W_per_K[e] += x.dW_dTb;
@@ -121,11 +128,9 @@ class ParticleRadiationMode final : public HeatTransferMode {
     const double dh_dTa = G * (2.0 * Ta * s1 + s2), dh_dTb = G * (2.0 * Tb * s1 + s2);
     return {h * f * dT, dg_dh * dh_dTa * dT - h * f, dg_dh * dh_dTb * dT + h * f};
   }
-  // Shell resistances in series with pair e and wall edge w, K/W (0 without shells).
-  static double pair_shells(const ThermalNetwork& net, std::size_t e) {
-    if (net.shell_resistance_K_sr_per_W.empty()) return 0.0;
-    return edge_shell_resistance_K_per_W(net, e, true) + edge_shell_resistance_K_per_W(net, e, false);
-  }
+  // Shell resistances in series with pair e and wall edge w, K/W (0 without shells). The wall's
+  // is evaluated per call, as wall_G, so that a study's copy with fewer wall edges gets its own.
+  double pair_shells(std::size_t e) const { return R_.empty() ? 0.0 : R_[e]; }
   static double wall_shells(const ThermalNetwork& net, std::size_t w) {
     return net.shell_resistance_K_sr_per_W.empty() ? 0.0 : wall_shell_resistance_K_per_W(net, w);
   }
@@ -151,6 +156,7 @@ class ParticleRadiationMode final : public HeatTransferMode {
   bool enclosed_;          // [radiation] surroundings = false
   RadiationShares shares_;  // per node, of the current geometry
   std::vector<double> G_;  // W/K^4, per edge of the current geometry
+  std::vector<double> R_;  // K/W, the shells in series per edge (empty: no particle resistance)
   std::vector<std::int32_t> cached_edge_a_, cached_edge_b_;  // that geometry
 };
 

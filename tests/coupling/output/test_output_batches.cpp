@@ -11,6 +11,7 @@
 
 #include "coupling/output/PendingFrame.h"
 #include "coupling/output/ResultWriter.h"
+#include "support/TempDir.h"
 
 namespace {
 
@@ -130,10 +131,8 @@ std::pair<haddr_t, int> first_chunk(const std::string& path, const char* dataset
 // earlier frames as they were, for the restart from the last checkpoint (a compressed chunk
 // moved on each rewrite, and a SIGKILL once left /frames/time unreadable).
 TEST(ResultWriterBatches, PerFrameRowsAreRewrittenInPlace) {
-  const auto dir = std::filesystem::temp_directory_path() / ("tmdem-inplace-" + std::to_string(getpid()));
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  const std::string path = (dir / "r.h5").string();
+  const tmdem::test::TempDir dir;
+  const std::string path = dir.file("r.h5");
   const ResultHeader header = two_particle_header();
   {
     ResultWriter writer(path, header, true);
@@ -156,7 +155,6 @@ TEST(ResultWriterBatches, PerFrameRowsAreRewrittenInPlace) {
   }
   for (std::size_t i = 0; i < before.size(); ++i)
     EXPECT_EQ(first_chunk(path, per_frame[i]).first, before[i]) << per_frame[i];
-  std::filesystem::remove_all(dir);
 }
 
 namespace {
@@ -189,10 +187,8 @@ void garble_first_chunk(const std::string& path, const char* dataset) {
 // here the chunk is garbled by hand after the checkpoint, and the restarted file holds every
 // contact as written.
 TEST(ResultWriterBatches, RestartWritesTheContactsLastChunkAgainFromTheCheckpoint) {
-  const auto dir = std::filesystem::temp_directory_path() / ("tmdem-tail-" + std::to_string(getpid()));
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  const std::string path = (dir / "r.h5").string();
+  const tmdem::test::TempDir dir;
+  const std::string path = dir.file("r.h5");
   const ResultHeader header = two_particle_header();
   tmdem::coupling::ContactTail tail;
   {
@@ -237,5 +233,4 @@ TEST(ResultWriterBatches, RestartWritesTheContactsLastChunkAgainFromTheCheckpoin
     EXPECT_EQ(pair[2 * row], 0) << f;
     EXPECT_EQ(pair[2 * row + 1], 1) << f;
   }
-  std::filesystem::remove_all(dir);
 }

@@ -55,6 +55,37 @@ void static_warm_start(const ContactProblem& problem, const std::vector<double>&
   std::vector<std::size_t> rank(n);
   for (std::size_t r = 0; r < n; ++r) rank[std::size_t(order[r])] = r;
 
+  // A particle's touching contact c with a body below it, and how far its normal into i
+  // points up (> 0 for a support; 0 when c is no support of i).
+  const auto support_rise = [&](std::size_t i, std::size_t r, std::size_t c) {
+    const bool first = std::size_t(problem.body_i[c]) == i;
+    const double along_up = (first ? 1.0 : -1.0) * problem.normal[c].dot(up);
+    const std::int32_t other = first ? problem.body_j[c] : problem.body_i[c];
+    const bool below = is_wall(other) || !(problem.inverse_mass[std::size_t(other)] > 0.0) ||
+                       rank[std::size_t(other)] > r;
+    return below && along_up > 0.0 ? along_up : 0.0;
+  };
+  const auto other_body = [&](std::size_t i, std::size_t c) {
+    return std::size_t(problem.body_i[c]) == i ? problem.body_j[c] : problem.body_i[c];
+  };
+  // Grounded: resting on a wall or a fixed particle, directly or through grounded supports.
+  // Only grounded supports carry a load: a cluster that touches nothing immobile (a deposit
+  // laid above the floor, a heap in the air) is falling, and its contacts carry nothing. Loads
+  // passed down into it had no floor to end on: the lowest spheres of a bed deposited 1 mm
+  // above the floor took the bed's weight as a downward impulse, and the first step's solver
+  // diverged from that start (speeds of 1e10 m/s, periodic_pressed.toml raised by 1 mm).
+  std::vector<char> grounded(n, 0);
+  for (std::size_t i = 0; i < n; ++i) grounded[i] = !(problem.inverse_mass[i] > 0.0);
+  for (std::size_t r = n; r-- > 0;) {  // lowest first: a support is ranked below
+    const std::size_t i = std::size_t(order[r]);
+    for (std::size_t s = start[i]; s < start[i + 1] && !grounded[i]; ++s) {
+      const std::size_t c = of[s];
+      if (!(support_rise(i, r, c) > 0.0)) continue;
+      const std::int32_t other = other_body(i, c);
+      grounded[i] = is_wall(other) || grounded[std::size_t(other)];
+    }
+  }
+
   // Vertical load on each particle, N: its weight, and what the particles above pass down.
   std::vector<double> load_N(n, 0.0);
   for (std::size_t i = 0; i < n; ++i)
@@ -69,12 +100,9 @@ void static_warm_start(const ContactProblem& problem, const std::vector<double>&
     double rise_squared = 0.0;
     for (std::size_t s = start[i]; s < start[i + 1]; ++s) {
       const std::size_t c = of[s];
-      const bool first = std::size_t(problem.body_i[c]) == i;
-      const double along_up = (first ? 1.0 : -1.0) * problem.normal[c].dot(up);
-      const std::int32_t other = first ? problem.body_j[c] : problem.body_i[c];
-      const bool below = is_wall(other) || !(problem.inverse_mass[std::size_t(other)] > 0.0) ||
-                         rank[std::size_t(other)] > r;
-      if (!below || !(along_up > 0.0)) continue;
+      const double along_up = support_rise(i, r, c);
+      const std::int32_t other = other_body(i, c);
+      if (!(along_up > 0.0) || !(is_wall(other) || grounded[std::size_t(other)])) continue;
       supports.push_back(c);
       rise.push_back(along_up);
       rise_squared += along_up * along_up;
@@ -84,8 +112,7 @@ void static_warm_start(const ContactProblem& problem, const std::vector<double>&
       const std::size_t c = supports[k];
       const double force_N = load_N[i] * rise[k] / rise_squared;
       reactions[c] = Eigen::Vector3d(force_N * h_s, 0.0, 0.0);
-      const bool first = std::size_t(problem.body_i[c]) == i;
-      const std::int32_t other = first ? problem.body_j[c] : problem.body_i[c];
+      const std::int32_t other = other_body(i, c);
       if (!is_wall(other)) load_N[std::size_t(other)] += force_N * rise[k];
     }
   }

@@ -1,6 +1,6 @@
 // The first step's warm start from the statics of the contact geometry (StaticWarmStart.h):
-// closed-form statics of a pyramid and of a column, what it leaves out, and the sweeps it saves
-// on a deep column.
+// closed-form statics of a pyramid and of a column, what it leaves out, the sweeps it saves
+// on a deep column, and a falling bed (nothing under it) that it leaves without loads.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,6 +11,7 @@
 #include "mechanics/MechanicsTestScenes.h"
 #include "mechanics/integrator/StaticWarmStart.h"
 #include "mechanics/model/PairIndex.h"
+#include "mechanics/model/SequentialDeposition.h"
 
 using namespace tmdem::mechanics;
 using namespace tmdem::mechanics::test;
@@ -102,4 +103,73 @@ TEST(StaticWarmStart, DeepColumnStartsAtItsStaticsAndSavesTheSweeps) {
   EXPECT_LE(warm, 3);
   EXPECT_GE(cold, 100);  // 7,957 when written
   std::printf("first step of a 40-sphere column: %d sweeps from zero, %d from the statics\n", cold, warm);
+}
+
+// A pyramid in the air beside a sphere on the floor: the pyramid falls freely, so its contacts
+// carry nothing (passing its weight down would leave its base spheres pushed down by a load no
+// floor takes), while the sphere on the floor carries its own weight.
+TEST(StaticWarmStart, FallingClusterCarriesNothing) {
+  const double R = 1e-3, m = 1e-5, g = 9.81, h = 1e-3, lift_m = 1e-3;
+  const double cos_phi = std::sqrt(2.0 / 3.0);
+  std::vector<Vector3d> x;
+  for (int k = 0; k < 3; ++k) {
+    const double angle = 2 * std::numbers::pi * k / 3;
+    x.push_back(Vector3d(std::cos(angle), 0, std::sin(angle)) * (2 * R / std::sqrt(3.0)) +
+                Vector3d(0, R + lift_m, 0));
+  }
+  x.push_back(Vector3d(0, R + lift_m + 2 * R * cos_phi, 0));
+  x.push_back(Vector3d(10 * R, R, 0));  // on the floor, apart
+  ContactProblem p;
+  p.inverse_mass.assign(5, 1.0 / m);
+  p.inverse_inertia.assign(5, 1.0);
+  p.free_velocity.assign(5, Vector3d::Zero());
+  p.free_angular_velocity.assign(5, Vector3d::Zero());
+  p.add_fixed_wall_bodies(1);
+  // The floor is a candidate of the pyramid's base (a gap of lift_m) and touches sphere 4.
+  for (std::int32_t k = 0; k < 3; ++k) add_contact(p, k, wall_code<std::int32_t>(0), {0, 1, 0});
+  add_contact(p, 4, wall_code<std::int32_t>(0), {0, 1, 0});
+  add_contact(p, 0, 1, x[0] - x[1]);
+  add_contact(p, 0, 2, x[0] - x[2]);
+  add_contact(p, 1, 2, x[1] - x[2]);
+  for (std::int32_t k = 0; k < 3; ++k) add_contact(p, k, 3, x[std::size_t(k)] - x[3]);
+  std::vector<double> gaps(p.size(), 0.0);
+  for (std::size_t c = 0; c < 3; ++c) gaps[c] = lift_m;
+  std::vector<Vector3d> r;
+  static_warm_start(p, gaps, x, Vector3d(0, -g, 0), h, r);
+  ASSERT_EQ(r.size(), p.size());
+  for (std::size_t c = 0; c < p.size(); ++c) {
+    if (c != 3) EXPECT_EQ(r[c].norm(), 0.0) << "contact " << c << " of the falling pyramid";
+  }
+  EXPECT_NEAR(r[3][0], m * g * h, 1e-12 * m * g * h);
+}
+
+// A bed laid by deposition 1 mm above the floor of a box periodic along x and z, a piston high
+// above it (the piston's fast fall widens the candidates' margin, so the floor is a candidate
+// of the lowest spheres): the bed falls freely in its first step, every sphere at g h with no
+// contact force. Loads passed down into its lowest spheres (which nothing carries) had sent the
+// solver from a start far from that answer, and it diverged (speeds of 1e10 m/s).
+TEST(StaticWarmStart, BedDepositedAboveTheFloorFallsFreely) {
+  const double period_m = 0.02, lift_m = 1e-3, h = 1e-3;
+  std::vector<double> radii;
+  for (int k = 0; k < 200; ++k) radii.push_back(k % 2 ? 0.8e-3 : 1e-3);
+  const auto laid = deposit_spheres(radii, Vector3d(0, lift_m, 0), Vector3d(period_m, 0.09, period_m),
+                                    1, -1, 11, 3, {}, {}, {true, false, true});
+  ParticleSet set;
+  set.box.periodic = {true, false, true};
+  set.box.high = Vector3d(period_m, 0.0, period_m);
+  for (std::size_t k = 0; k < radii.size(); ++k)
+    set.add(laid.positions[k], radii[k], sphere_mass(radii[k], 2500.0), 0);
+  Wall piston = Wall::through({0, 0.095, 0}, {0, -1, 0}, 0);
+  piston.make_piston(0.01, 4.0);
+  NscdParameters parameters = nlgs_parameters();
+  parameters.time_step = h;
+  parameters.solver = "nncg";
+  NscdIntegrator sim(std::move(set), {Material{2500.0, 6.3e10, 0.22, 0.3}},
+                     {Wall::through({0, 0, 0}, {0, 1, 0}, 0), piston}, Vector3d(0, -kG, 0), 3,
+                     parameters);
+  const StepReport report = sim.step();
+  EXPECT_TRUE(report.converged) << report.sweeps << " sweeps, residual " << report.residual;
+  for (std::size_t i = 0; i < sim.particles().size(); ++i)
+    ASSERT_NEAR(sim.particles().velocity[i].y(), -kG * h, 1e-6 * kG * h) << "sphere " << i;
+  for (const auto& reaction : sim.reactions()) EXPECT_LE(reaction.norm(), 1e-6 * 1e-5 * kG * h);
 }

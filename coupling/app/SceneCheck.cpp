@@ -85,7 +85,7 @@ void check_scene(const Scene& scene, std::ostream& out) {
           << " of the smallest radius per step (" << travel.travel_m << " m against "
           << travel.smallest_radius_m << " m): contact normals and gaps are frozen over a step, "
           << "so a contact can carry force while its particles are still up to "
-          << travel.travel_m * travel.travel_m / (4.0 * travel.smallest_radius_m) << " m apart"
+          << travel.ghost_gap_m() << " m apart"
           << (dynamic ? ", and conduct heat there"
                       : ", and a particle can be stopped by a neighbour it would not reach")
           << "; lower mechanics.time_step below " << travel.limit_m() / travel.speed_m_per_s

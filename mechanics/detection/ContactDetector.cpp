@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -103,12 +104,28 @@ double ContactDetector::particle_margin_m(const ParticleSet& particles) const {
 void ContactDetector::check_period(const ParticleSet& particles, double lookahead_max) const {
   // The half-margin test is sound only with a margin of at least twice the largest look-ahead.
   const double fitted_m = particle_margin_m(particles);
-  if (!(fitted_m > 0.0) || fitted_m < 2.0 * lookahead_max)
-    throw std::runtime_error(
-        "a periodic period is too short for the contact reach: half the shortest period less "
-        "the largest diameter leaves " + std::to_string(fitted_m) + " m, less than twice the "
-        "largest look-ahead " + std::to_string(lookahead_max) + " m (how far a particle may move "
-        "in a step): enlarge the period or shorten mechanics.time_step");
+  if (fitted_m > 0.0 && fitted_m >= 2.0 * lookahead_max) return;
+  double period_m = INFINITY;
+  for (int a = 0; a < 3; ++a)
+    if (particles.box.along(a)) period_m = std::min(period_m, particles.box.length(a));
+  // Significant digits, not std::to_string's six decimals (a look-ahead of 2e-7 m printed as
+  // 0.000000 m).
+  std::ostringstream message;
+  message << "a periodic period is too short for the contact reach: half the shortest period "
+             "less the largest diameter leaves "
+          << fitted_m << " m, less than twice the largest look-ahead " << lookahead_max
+          << " m (how far a particle may move in a step)";
+  // A look-ahead beyond a whole period is a particle crossing the box within a step: a speed no
+  // period could hold, left by a step that went wrong before (a bed deposited 1 mm above its
+  // floor had its first contact solve diverge to 1e10 m/s, and this message asked for a longer
+  // period than 9e7 m).
+  if (lookahead_max >= period_m)
+    message << ", longer than the whole period " << period_m
+            << " m: a particle that fast points to an earlier step that went wrong (an "
+               "unconverged contact solve, see the warnings above), not to the period";
+  else
+    message << ": enlarge the period or shorten mechanics.time_step";
+  throw std::runtime_error(message.str());
 }
 
 void ContactDetector::rebuild(const ParticleSet& particles, const std::vector<Wall>& walls,

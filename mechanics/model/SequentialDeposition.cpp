@@ -398,7 +398,7 @@ DepositionResult deposit_spheres(const std::vector<double>& radii, const Eigen::
     if (height > box_height * (1.0 + 1e-12)) {
       std::ostringstream message;
       message << "deposit_spheres: the box is too low: sphere " << n + 1 << " of " << radii.size()
-              << " comes to rest reaching " << height << " m above the floor, the box is "
+              << " comes to rest reaching " << height << " m above the box's floor, the box is "
               << box_height << " m high";
       throw std::runtime_error(message.str());
     }

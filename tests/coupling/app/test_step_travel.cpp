@@ -119,5 +119,23 @@ TEST(StepTravel, PistonSpeedBoundsTheTravel) {
   EXPECT_EQ(estimate_step_travel(scene).speed_m_per_s, 0.0);
 }
 
+// The ghost gap is the true gap of two smallest spheres whose linearised gap is 0 after a
+// sideways move of one travel: sqrt((2 r)^2 + d^2) - 2 r by Pythagoras. A small travel gives
+// about d^2 / (4 r); a travel of many radii gives less than the travel (the small-travel
+// formula had put spheres 2.4 m apart after a 0.09 m step).
+TEST(StepTravel, GhostGapIsThePythagoreanGapAndNeverExceedsTheTravel) {
+  StepTravel t;
+  t.smallest_radius_m = 1e-3;
+  t.travel_m = 1e-5;
+  // The series' next term is d^2 / (4 (2 r)^2) = 6.25e-6 of the first.
+  EXPECT_NEAR(t.ghost_gap_m(), 1e-10 / 4e-3, 1e-5 * 1e-10 / 4e-3);
+  t.smallest_radius_m = 0.8e-3;
+  t.travel_m = 0.09;
+  const double centres_m = std::hypot(2 * t.smallest_radius_m, t.travel_m);  // after the move
+  EXPECT_NEAR(t.ghost_gap_m(), centres_m - 2 * t.smallest_radius_m, 1e-15);
+  EXPECT_GT(t.ghost_gap_m(), t.travel_m - 2 * t.smallest_radius_m);
+  EXPECT_LT(t.ghost_gap_m(), t.travel_m);
+}
+
 }  // namespace
 }  // namespace tmdem::coupling

@@ -4,6 +4,8 @@
 // short for the contact reach is refused.
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include <set>
 
 #include "coupling/scene/RandomPlacement.h"
@@ -147,4 +149,34 @@ TEST(PeriodicDetection, APeriodTooShortForTheReachIsRefused) {
   EXPECT_TRUE(fitted.update(set, {}, ahead));
   ContactDetector fast(0.1e-3, 2e-3);
   EXPECT_THROW(fast.update(set, {}, {0.2e-3, 0.2e-3}), std::runtime_error);
+}
+
+namespace {
+std::string refusal(ParticleSet& set, double lookahead_m) {
+  ContactDetector detector(0.1e-3, 2e-3);
+  try {
+    detector.update(set, {}, {lookahead_m, lookahead_m});
+  } catch (const std::runtime_error& error) {
+    return error.what();
+  }
+  ADD_FAILURE() << "a look-ahead of " << lookahead_m << " m was accepted";
+  return {};
+}
+}  // namespace
+
+// The refusal's figures are the period's room and the look-ahead as they are, in significant
+// digits; a look-ahead beyond the whole period (a particle crossing the box within a step) is
+// blamed on the speed, not on the period.
+TEST(PeriodicDetection, APeriodRefusalGivesItsFiguresAndBlamesARunawaySpeed) {
+  // Room: half of 4.6 mm less a 2 mm diameter, 0.3 mm.
+  const PeriodicBox box = box_of(Vector3d(0, 0, 0), Vector3d(4.6e-3, 0, 0), {true, false, false});
+  ParticleSet set = two_spheres(2.6e-3, box);
+  const std::string short_period = refusal(set, 0.2e-3);
+  EXPECT_NE(short_period.find("leaves 0.0003 m"), std::string::npos) << short_period;
+  EXPECT_NE(short_period.find("look-ahead 0.0002 m"), std::string::npos) << short_period;
+  EXPECT_NE(short_period.find("enlarge the period"), std::string::npos) << short_period;
+  const std::string runaway = refusal(set, 9e7);
+  EXPECT_NE(runaway.find("look-ahead 9e+07 m"), std::string::npos) << runaway;
+  EXPECT_NE(runaway.find("whole period 0.0046 m"), std::string::npos) << runaway;
+  EXPECT_EQ(runaway.find("enlarge the period"), std::string::npos) << runaway;
 }

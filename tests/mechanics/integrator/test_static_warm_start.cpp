@@ -138,7 +138,8 @@ TEST(StaticWarmStart, FallingClusterCarriesNothing) {
   static_warm_start(p, gaps, x, Vector3d(0, -g, 0), h, r);
   ASSERT_EQ(r.size(), p.size());
   for (std::size_t c = 0; c < p.size(); ++c) {
-    if (c != 3) EXPECT_EQ(r[c].norm(), 0.0) << "contact " << c << " of the falling pyramid";
+    if (c == 3) continue;  // sphere 4 on the floor
+    EXPECT_EQ(r[c].norm(), 0.0) << "contact " << c << " of the falling pyramid";
   }
   EXPECT_NEAR(r[3][0], m * g * h, 1e-12 * m * g * h);
 }

@@ -47,6 +47,7 @@ void check_scene(const Scene& scene, std::ostream& out) {
       << T_min << " .. " << T_max << " K; " << held << " held, " << sources
       << " with heat sources, " << fixed << " fixed\n";
   for (const auto& report : scene.imports) out << describe_import(report) << "\n";
+  for (const auto& warning : scene.warnings) out << "warning: " << warning << "\n";
   out << "materials:";
   for (const auto& m : scene.materials) out << " " << m.name;
   out << "\nwalls: " << scene.walls.size();

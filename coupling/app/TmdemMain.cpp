@@ -196,6 +196,9 @@ int tmdem_main(int argc, char** argv) {
       const Scene scene = load(scene_path, sets);
       if (!quiet && speaks)
         for (const auto& report : scene.imports) std::cerr << describe_import(report) << std::endl;
+      // Even with --quiet (no progress): a warning is about the scene, not the run's progress.
+      if (speaks)
+        for (const auto& warning : scene.warnings) std::cerr << "warning: " << warning << std::endl;
       RunOptions options;
       options.output_path = output.empty()
                                 ? (scene_path.empty() && scene.output.file.empty() ? "tmdem-default.h5"

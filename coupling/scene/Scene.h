@@ -244,6 +244,10 @@ struct Scene {
   MechanicsSettings mechanics;
   ThermalSettings thermal;
   OutputSettings output;
+  // What loading found legal but likely unmeant (a deposit laid above its floor:
+  // DepositSupport.h), one sentence each without a "warning: " prefix; tmdem check and tmdem
+  // run print them.
+  std::vector<std::string> warnings;
   std::string resolved_toml;        // the scene as TOML text after --set overrides
   std::string source;               // file path, or "<default scene>"
 };

@@ -42,6 +42,7 @@ Scene SceneBuilder::build() {
   read_settings();
   check_scene_limits(scene_, origins_, source_);
   check_overlaps(scene_, origins_, import_of_, source_);
+  scene_.warnings = unsupported_deposit_warnings(scene_, deposit_blocks_);
   return std::move(scene_);
 }
 

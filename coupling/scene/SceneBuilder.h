@@ -15,6 +15,7 @@
 
 #include <toml++/toml.h>
 
+#include "coupling/scene/DepositSupport.h"
 #include "coupling/scene/PackingFile.h"
 #include "coupling/scene/RandomPlacement.h"
 #include "coupling/scene/Scene.h"
@@ -95,6 +96,8 @@ class SceneBuilder {
   std::string source_;
   // Positions laid by a joint deposit for the later [[generate]] entries of its group, by index.
   std::map<std::size_t, RandomPlacement> deposited_;
+  // Every kind = "deposit" entry's particles and box, for the warning on a floor on no wall.
+  std::vector<DepositedBlock> deposit_blocks_;
   Scene scene_;
   std::vector<std::string> origins_;  // per particle: "particle[3]" or "generate[0]"
   std::vector<int> import_of_;        // per particle: index of its [[import]], or -1

@@ -21,6 +21,7 @@ void SceneBuilder::read_generators() {
       "kind", "material", "temperature", "fixed_temperature", "heat_source", "fixed"};
   const auto tables = root_.table_array("generate", true);
   deposited_.clear();
+  deposit_blocks_.clear();
   for (std::size_t index = 0; index < tables.size(); ++index) {
     const SceneTable& t = tables[index];
     const std::string kind = t.choice("kind");
@@ -86,6 +87,12 @@ void SceneBuilder::read_generators() {
       radii.assign(positions.size(), radius);
     } else {
       read_box_filling(tables, index, kind, positions, radii);
+      if (kind == "deposit") {
+        const auto box = t.optional_table("box", true);
+        deposit_blocks_.push_back({index, scene_.particles.size(), positions.size(),
+                                   box->required_vec3("min", scene_.dimension),
+                                   box->required_vec3("max", scene_.dimension)});
+      }
     }
     for (std::size_t i = 0; i < positions.size(); ++i)
       add_particle(positions[i], radii[i], settings, t.path(), t);

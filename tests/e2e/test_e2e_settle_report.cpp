@@ -138,3 +138,36 @@ TEST(EndToEndSettleReport, RestartedSettleRunKeepsItsSettleBlock) {
   ASSERT_TRUE(second.contains("settle")) << second.dump(2);
   EXPECT_EQ(second["settle"], first["settle"]);
 }
+
+// A deposit laid 1 mm above the floor wall (DepositSupport.h): `tmdem check` (stdout) and
+// `tmdem run` (stderr, even with --quiet) warn naming the [[generate]] entry, the fall and
+// the wall; the run then starts with the bed in free fall (5 steps: 5 h g, the floor 1 mm
+// away is not reached).
+TEST(EndToEndSettleReport, DepositAboveItsFloorIsWarnedOfByCheckAndRun) {
+  const auto dir = scratch_dir("settle_lifted_deposit");
+  write_file(dir + "/s.toml",
+             steel_scene()
+                 .set({{"simulation.duration", 0.01},
+                       {"simulation.dimension", 3},
+                       {"simulation.gravity", {0.0, -9.81, 0.0}},
+                       {"effects.mechanics", "settle"},
+                       {"mechanics.time_step", 1.0e-3},
+                       {"mechanics.settle_time", 0.005}})
+                 .add("generate", with(random_fill(30, "{ min = [0.0, 0.001, 0.0], max = [0.01, 0.03, 0.01] }",
+                                                         {{"radius", 0.001}}),
+                                       {{"kind", "deposit"}}))
+                 .add("wall", floor_wall())
+                 .set(output("out.h5", 0.01))
+                 .str());
+  const std::string warning = "warning: generate[0] (kind = \"deposit\")";
+  auto r = run_tmdem("check s.toml", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find(warning), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("falls 0.001 m onto wall[0]"), std::string::npos) << r.output;
+  r = run_tmdem("run s.toml --quiet --summary s.json", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find(warning), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("falls 0.001 m onto wall[0]"), std::string::npos) << r.output;
+  const auto s = read_summary(dir + "/s.json");
+  EXPECT_NEAR(s["settle"]["max_speed_m_s"].get<double>(), 5 * 1.0e-3 * 9.81, 1e-9);
+}

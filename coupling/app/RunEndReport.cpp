@@ -80,7 +80,9 @@ void print_run_end(const RunSummary& summary, const Scene& scene, const std::str
     for (const auto& p : scene.particles) r_min_m = std::min(r_min_m, p.radius_m);
     out << "mechanics: " << m.steps << " steps, mean " << m.mean_iterations << " iterations, "
         << m.unconverged_steps << " unconverged (" << m.stalled_steps
-        << " stalled), largest penetration " << m.max_penetration_m << " m";
+        << " stalled), Siconos' residual up to " << m.max_siconos_residual << " ("
+        << m.siconos_unconverged_steps << " steps above the tolerance), largest penetration "
+        << m.max_penetration_m << " m";
     if (r_min_m > 0.0 && r_min_m < std::numeric_limits<double>::infinity())
       out << " (" << 100.0 * m.max_penetration_m / r_min_m << "% of the smallest radius)";
     if (m.correction_sweeps > 0) {

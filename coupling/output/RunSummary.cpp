@@ -51,7 +51,9 @@ nlohmann::json RunSummary::to_json() const {
                       {"max_penetration_m", mechanics.max_penetration_m},
                       {"stalled_steps", mechanics.stalled_steps},
                       {"correction_sweeps", mechanics.correction_sweeps},
-                      {"max_step_travel_m", mechanics.max_step_travel_m}};
+                      {"max_step_travel_m", mechanics.max_step_travel_m},
+                      {"max_siconos_residual", mechanics.max_siconos_residual},
+                      {"siconos_unconverged_steps", mechanics.siconos_unconverged_steps}};
   if (const auto& ts = mechanics.tolerance_schedule) {
     nlohmann::json& block = m["tolerance_schedule"];
     for (const auto& [key, member] : kScheduleNumbers) block[key] = (*ts).*member;
@@ -144,6 +146,8 @@ RunSummary RunSummary::from_json(const nlohmann::json& j) {
   s.mechanics.stalled_steps = integer(m, "stalled_steps", 0);
   s.mechanics.correction_sweeps = integer(m, "correction_sweeps", 0);
   s.mechanics.max_step_travel_m = number(m, "max_step_travel_m", 0.0);
+  s.mechanics.max_siconos_residual = number(m, "max_siconos_residual", 0.0);
+  s.mechanics.siconos_unconverged_steps = integer(m, "siconos_unconverged_steps", 0);
   if (m.contains("tolerance_schedule")) {
     const nlohmann::json& block = m.at("tolerance_schedule");
     ToleranceScheduleSummary ts;

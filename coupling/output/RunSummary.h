@@ -42,6 +42,11 @@ struct MechanicsSummary {
   std::int64_t stalled_steps = 0;    // extra: of the unconverged steps, stopped for no progress
   std::int64_t correction_sweeps = 0;  // extra: penetration-correction sweeps over the run
   double max_step_travel_m = 0.0;    // extra: largest particle displacement in one step, m
+  // extra: Siconos' residual of the steps' reactions relative to ||q|| (the measure
+  // fc3d_compute_error reports), whatever the solver's own stop test: the largest, and the
+  // steps where it was above the tolerance in force.
+  double max_siconos_residual = 0.0;
+  std::int64_t siconos_unconverged_steps = 0;
   std::optional<ToleranceScheduleSummary> tolerance_schedule{};  // extra: with a fall_tolerance
 };
 

@@ -329,6 +329,8 @@ void CoupledRun::fill_summary() {
     summary_.mechanics.stalled_steps = ms.stalled_steps;
     summary_.mechanics.correction_sweeps = ms.correction_sweeps;
     summary_.mechanics.max_step_travel_m = ms.max_travel_m;
+    summary_.mechanics.max_siconos_residual = ms.max_siconos_residual;
+    summary_.mechanics.siconos_unconverged_steps = ms.siconos_unconverged_steps;
     if (nscd_->tolerance_schedule().enabled()) {
       ToleranceScheduleSummary ts;
       ts.tolerance = scene_.mechanics.tolerance;

@@ -83,6 +83,8 @@ void store_mechanics_stats(const mechanics::MechanicsStats& s, CheckpointState& 
   cs.extra["mechanics_correction_sweeps"] = double(s.correction_sweeps);
   cs.extra["mechanics_correction_potential_J"] = s.correction_potential_J;
   cs.extra["mechanics_max_travel_m"] = s.max_travel_m;
+  cs.extra["mechanics_max_siconos_residual"] = s.max_siconos_residual;
+  cs.extra["mechanics_siconos_unconverged_steps"] = double(s.siconos_unconverged_steps);
   cs.extra["mechanics_energy_change_J"] = s.energy_change_J;
   cs.extra["mechanics_contact_dissipation_J"] = s.contact_dissipation_J;
   cs.extra["mechanics_numerical_dissipation_J"] = s.numerical_dissipation_J;
@@ -101,6 +103,8 @@ mechanics::MechanicsStats mechanics_stats_of(const CheckpointState& cs) {
   s.correction_sweeps = std::int64_t(extra_or_zero(cs, "mechanics_correction_sweeps"));
   s.correction_potential_J = extra_or_zero(cs, "mechanics_correction_potential_J");
   s.max_travel_m = extra_or_zero(cs, "mechanics_max_travel_m");
+  s.max_siconos_residual = extra_or_zero(cs, "mechanics_max_siconos_residual");
+  s.siconos_unconverged_steps = std::int64_t(extra_or_zero(cs, "mechanics_siconos_unconverged_steps"));
   s.energy_change_J = extra_or_zero(cs, "mechanics_energy_change_J");
   s.contact_dissipation_J = extra_or_zero(cs, "mechanics_contact_dissipation_J");
   s.numerical_dissipation_J = extra_or_zero(cs, "mechanics_numerical_dissipation_J");

@@ -19,7 +19,7 @@ std::string unconverged_step_warning(const std::string& what, double t_s,
   msg << "warning: " << what << " at t = " << t_s << " s: contact solver " << nscd.solver().name()
       << (report.stalled ? " stalled (no progress) after " : " did not converge in ")
       << report.sweeps << " iterations (residual " << report.residual << ", tolerance "
-      << tolerance << ")";
+      << tolerance << "; Siconos' residual " << report.siconos_residual << ")";
   return msg.str();
 }
 

@@ -13,6 +13,7 @@
 #include "mechanics/solvers/ContactSolverRegistry.h"
 #include "mechanics/contact/ContactKinematics.h"
 #include "mechanics/contact/CoulombCone.h"
+#include "mechanics/contact/SiconosResidual.h"
 #include "mechanics/model/PairIndex.h"
 
 namespace tmdem::mechanics {
@@ -413,6 +414,10 @@ StepReport NscdIntegrator::step(double h) {
   report.residual = solved.residual;
   report.converged = solved.converged;
   report.stalled = solved.stalled;
+  // Siconos' measure of the reactions the step goes on with, whatever the solver's own stop test
+  // (SiconosResidual.h): one pass over the candidates, before keep_in_plane trims anything.
+  report.siconos_residual = siconos_residual(problem_, reactions_, rolling_impulse_, body_velocity_,
+                                             body_angular_velocity_, free_velocity_norm(problem_));
   keep_in_plane();
   // The bodies' view again (keep_in_plane may have trimmed the particles'), for the energy
   // account and the contacts' dissipation below.

@@ -15,6 +15,8 @@ void MechanicsStats::add(const StepReport& report) {
     if (!report.converged) ++fall_unconverged_steps;
   }
   max_penetration_m = std::max(max_penetration_m, report.max_penetration_m);
+  max_siconos_residual = std::max(max_siconos_residual, report.siconos_residual);
+  if (report.siconos_residual > report.tolerance) ++siconos_unconverged_steps;
   correction_sweeps += report.correction_sweeps;
   correction_potential_J += report.correction_potential_J;
   max_travel_m = std::max(max_travel_m, report.max_travel_m);

@@ -11,6 +11,9 @@ struct StepReport {
   double residual = 0.0;           // sum |dr| / sum |r| of the last sweep (see NscdParameters)
   bool converged = true;           // residual <= tolerance within max_iterations
   double tolerance = 0.0;          // the tolerance in force for this step (ToleranceSchedule.h)
+  // Siconos' residual of the step's reactions relative to ||q|| (SiconosResidual.h), whatever
+  // the solver's own stop test: the figure another code would report for the step.
+  double siconos_residual = 0.0;
   bool fall = false;               // solved at mechanics.fall_tolerance (the particles falling)
   bool stalled = false;            // the solver gave up early: no progress (not converged)
   int correction_sweeps = 0;       // penetration correction (PenetrationCorrection.h); 0: none
@@ -50,6 +53,10 @@ struct MechanicsStats {
   std::int64_t fall_steps = 0;
   std::int64_t fall_unconverged_steps = 0;
   double max_penetration_m = 0.0;
+  // Siconos' residual (StepReport::siconos_residual): the largest, and the steps where it was
+  // above the tolerance in force (whether or not the solver's own test passed).
+  double max_siconos_residual = 0.0;
+  std::int64_t siconos_unconverged_steps = 0;
   std::int64_t correction_sweeps = 0;  // sum of the steps' correction_sweeps
   double correction_potential_J = 0.0; // sum of the steps' correction_potential_J
   double max_travel_m = 0.0;           // largest of the steps' max_travel_m

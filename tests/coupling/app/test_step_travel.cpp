@@ -62,6 +62,17 @@ TEST(StepTravel, WithoutAFloorTheSpeedGrowsOverTheWholePhase) {
   EXPECT_FALSE(t.too_far());  // 0.1 mm per step against 0.5 mm
 }
 
+// A sphere resting on the floor with an overlap of round-off (a deposited bed's; the loader
+// accepts up to 1e-9 of the radius, here 1e-10 of it) rests: no fall, no speed of its own.
+TEST(StepTravel, ARoundOffOverlapWithTheFloorIsResting) {
+  Scene scene = one_sphere(-1e-13, 0.0);
+  ASSERT_LT(wall_signed_distance(scene.walls[0], scene.particles[0].position_m) - scene.particles[0].radius_m, 0.0);
+  EXPECT_EQ(estimate_step_travel(scene).speed_m_per_s, 0.0);
+  // Deeper than the loader allows: not a resting sphere (it would not load), no floor under it.
+  scene = one_sphere(-1e-6, 0.0);
+  EXPECT_NEAR(estimate_step_travel(scene).speed_m_per_s, kG * 5.0, 1e-12);
+}
+
 TEST(StepTravel, RestingOrStillScenesDoNotWarn) {
   const StepTravel resting = estimate_step_travel(one_sphere(0.0, 0.0));
   EXPECT_EQ(resting.speed_m_per_s, 0.0);

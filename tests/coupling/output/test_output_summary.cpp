@@ -60,9 +60,11 @@ TEST(RunSummary, JsonHasEveryContractKey) {
   EXPECT_FALSE(j["thermal"].contains("linear_solver"));
   EXPECT_FALSE(j.contains("settle"));  // only for settle runs
   EXPECT_EQ(j.size(), 7u);
-  // The contract's 5 mechanics keys plus the extras stalled_steps, correction_sweeps and
-  // max_step_travel_m.
-  EXPECT_EQ(j["mechanics"].size(), 8u);
+  // The contract's 5 mechanics keys plus the extras stalled_steps, correction_sweeps,
+  // max_step_travel_m, max_siconos_residual and siconos_unconverged_steps.
+  EXPECT_EQ(j["mechanics"].size(), 10u);
+  EXPECT_TRUE(j["mechanics"]["max_siconos_residual"].is_number());
+  EXPECT_TRUE(j["mechanics"]["siconos_unconverged_steps"].is_number_integer());
   EXPECT_TRUE(j["mechanics"]["stalled_steps"].is_number_integer());
   EXPECT_TRUE(j["mechanics"]["correction_sweeps"].is_number_integer());
   EXPECT_TRUE(j["mechanics"]["max_step_travel_m"].is_number());
@@ -160,6 +162,8 @@ TEST(RunSummary, CorrectionAndTravelRoundTrip) {
   RunSummary s = sample_summary();
   s.mechanics.correction_sweeps = 50655;
   s.mechanics.max_step_travel_m = 7.0e-4;
+  s.mechanics.max_siconos_residual = 1.1e-4;
+  s.mechanics.siconos_unconverged_steps = 12;
   tmdem::coupling::MechanicalEnergySummary m;
   m.energy_change_J = -2.0;
   m.contact_dissipation_J = 2.0;
@@ -173,6 +177,8 @@ TEST(RunSummary, CorrectionAndTravelRoundTrip) {
   EXPECT_EQ(j["energy"]["mechanical"]["balance_error_rel"].get<double>(), 0.0);
   const RunSummary r = RunSummary::from_json(j);
   EXPECT_EQ(r.mechanics.correction_sweeps, 50655);
+  EXPECT_EQ(r.mechanics.max_siconos_residual, 1.1e-4);
+  EXPECT_EQ(r.mechanics.siconos_unconverged_steps, 12);
   ASSERT_TRUE(r.energy.mechanical.has_value());
   EXPECT_EQ(r.energy.mechanical->correction_potential_J, 3.25e-8);
   EXPECT_EQ(r.to_json(), s.to_json());

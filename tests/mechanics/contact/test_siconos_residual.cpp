@@ -73,3 +73,36 @@ TEST(SiconosResidual, SeesWhatTheSweepTestMissesOnASlowColumn) {
   EXPECT_LE(siconos_residual(sim.problem(), exact.r, {}, exact.v, exact.w, free_velocity_norm(sim.problem())),
             1e-10);
 }
+
+// The integrator reports the figure for every step, beside the solver's own verdict: the slow
+// column's first step from rest, solved cold (no static warm start) by "nlgs" to its sweep test,
+// counts as converged by that test and as above the tolerance in Siconos' measure.
+TEST(SiconosResidual, IntegratorReportsItBesideTheSolversVerdict) {
+  auto first_step = [](const std::vector<double>& masses_kg, double tolerance) {
+    ParticleSet set;
+    for (std::size_t k = 0; k < masses_kg.size(); ++k)
+      set.add(Vector3d(0.0, (2.0 * k + 1.0) * kRadius, 0.0), kRadius, masses_kg[k], 0);
+    NscdParameters parameters = nlgs_parameters();
+    parameters.static_warm_start = false;
+    parameters.tolerance = tolerance;
+    parameters.max_iterations = 1000000;
+    parameters.stall_sweeps = 1000000;
+    NscdIntegrator sim(std::move(set), {steel(0.3)}, {Wall::through({0, 0, 0}, {0, 1, 0}, 0)},
+                       Vector3d(0, -kG, 0), 3, parameters);
+    sim.step();
+    return sim;
+  };
+  std::vector<double> masses;
+  for (int k = 0; k < 5; ++k) masses.insert(masses.end(), {1e-2, 1.0});
+  const NscdIntegrator slow = first_step(masses, 1e-5);
+  EXPECT_EQ(slow.stats().steps, 1);
+  EXPECT_EQ(slow.stats().unconverged_steps, 0);
+  EXPECT_EQ(slow.stats().siconos_unconverged_steps, 1);
+  EXPECT_GT(slow.stats().max_siconos_residual, 10.0 * slow.parameters().tolerance);
+  // Solved to 1e-12 by the sweep test, the same step is at 1.4e-9 in Siconos' measure (measured):
+  // the factor of ~1,000 between the two measures holds at any tolerance on this column. (An
+  // equal-mass column of three at 1e-5 shows 3e-5: not only mass ratios make the gap.)
+  const NscdIntegrator tight_solve = first_step(masses, 1e-12);
+  EXPECT_EQ(tight_solve.stats().unconverged_steps, 0);
+  EXPECT_LE(tight_solve.stats().max_siconos_residual, 1e-8);
+}

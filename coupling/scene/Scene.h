@@ -73,6 +73,9 @@ struct Wall {
   double piston_force_N = 0.0;
   std::optional<double> piston_pressure_Pa;
   double piston_area_m2 = 0.0;  // pressure_area; 0: not given
+  // start = "on_bed": the loader moved point_m along the normal onto the particles' top (the
+  // plane touches the particle that reaches farthest against the normal); false: as given.
+  bool piston_start_on_bed = false;
 };
 
 // Signed distance of x from the wall's surface, m (positive inside the domain).

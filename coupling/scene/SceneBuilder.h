@@ -75,6 +75,7 @@ class SceneBuilder {
                     const std::string& origin, const SceneTable& t);
   void read_particles();
   void read_walls();
+  void place_on_bed(Wall& w) const;  // a piston's start = "on_bed"
   void read_periodic();          // [periodic]: the periods (after [simulation])
   void check_periodic_bodies();  // the periods against the particles and walls; wraps them
   void read_assigns();

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 
 #include "coupling/scene/SceneBuilder.h"
@@ -151,10 +152,11 @@ void read_wall_heat(const SceneTable& t, Wall& w) {
 void read_piston(const SceneTable& t, Wall& w) {
   w.piston = t.boolean("piston", false);
   if (!w.piston) {
-    for (const char* key : {"mass", "force", "pressure", "pressure_area"})
+    for (const char* key : {"mass", "force", "pressure", "pressure_area", "start"})
       if (t.has(key)) t.fail(key, "only a piston = true wall takes this key");
     return;
   }
+  w.piston_start_on_bed = t.choice("start") == "on_bed";
   if (w.cylinder) t.fail("piston", "a piston must be a plane wall (shape = \"plane\")");
   w.piston_mass_kg = t.required_number("mass");
   const auto force = t.optional_number("force");
@@ -196,8 +198,21 @@ void SceneBuilder::read_walls() {
       t.fail("piston", "a piston needs effects.mechanics = \"settle\" or \"dynamic\" (the "
                        "contact mechanics moves it); with \"off\" it would stand still: set "
                        "piston = false");
+    if (w.piston_start_on_bed) place_on_bed(w);
     scene_.walls.push_back(w);
   }
+}
+
+// Moves a plane's point along its normal until the plane touches the particle that reaches
+// farthest against the normal: the least of signed distance - radius over the particles is
+// 0 (the top of the top sphere for a piston pressing down). The particles are all read by
+// now ([[particle]], [[generate]], [[import]]); wrapping into the periods later moves them
+// only across the normal (walls are parallel to every periodic axis).
+void SceneBuilder::place_on_bed(Wall& w) const {
+  double gap_m = INFINITY;
+  for (const auto& p : scene_.particles)
+    gap_m = std::min(gap_m, wall_signed_distance(w, p.position_m) - p.radius_m);
+  for (std::size_t k = 0; k < 3; ++k) w.point_m[k] += gap_m * w.normal[k];
 }
 
 void SceneBuilder::read_assigns() {

@@ -335,7 +335,12 @@ std::vector<Section> build_sections() {
         number("pressure", "Pa", std::nullopt, Range::at_least(0.0),
                "piston: pressure pushing it into the domain, over pressure_area"),
         number("pressure_area", "m^2", std::nullopt, Range::greater(0.0),
-               "piston: the area the pressure acts over (e.g. the box cross-section)")}}};
+               "piston: the area the pressure acts over (e.g. the box cross-section)"),
+        choice("start", "point", {"point", "on_bed"},
+               "piston: where its plane starts; \"point\": through point; \"on_bed\": resting "
+               "on the bed's top, point moved along the normal to the particles' farthest "
+               "extent against it (the top of the top sphere), so that it presses from the "
+               "first step instead of falling onto the bed")}}};
   sections.push_back(
       {"periodic",
        "periodic boundaries (no key: none): a particle leaving at max comes back at min, pairs "

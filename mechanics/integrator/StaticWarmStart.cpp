@@ -30,6 +30,13 @@ void static_warm_start(const ContactProblem& problem, const std::vector<double>&
   auto touching = [&](std::size_t c) {
     return problem.solvable(c) && gap_m[c] <= kTouchingGapFraction * problem.lever_i[c];
   };
+  // Contacts that join clusters (below): touching, or closed by a fall from rest within the
+  // step (a gap up to |g| h^2, 10 um at 1 ms), so that a bed a hair above its floor (an
+  // imported one) counts as held; a bed 1 mm above it does not.
+  const double reach_m = g * h_s * h_s;
+  auto within_reach = [&](std::size_t c) {
+    return problem.solvable(c) && (gap_m[c] <= reach_m || touching(c));
+  };
   for (std::size_t c = 0; c < contacts; ++c) {
     if (!touching(c)) continue;
     ++start[std::size_t(problem.body_i[c]) + 1];
@@ -68,23 +75,37 @@ void static_warm_start(const ContactProblem& problem, const std::vector<double>&
   const auto other_body = [&](std::size_t i, std::size_t c) {
     return std::size_t(problem.body_i[c]) == i ? problem.body_j[c] : problem.body_i[c];
   };
-  // Grounded: resting on a wall or a fixed particle, directly or through grounded supports.
-  // Only grounded supports carry a load: a cluster that touches nothing immobile (a deposit
-  // laid above the floor, a heap in the air) is falling, and its contacts carry nothing. Loads
-  // passed down into it had no floor to end on: the lowest spheres of a bed deposited 1 mm
-  // above the floor took the bed's weight as a downward impulse, and the first step's solver
-  // diverged from that start (speeds of 1e10 m/s, periodic_pressed.toml raised by 1 mm).
-  std::vector<char> grounded(n, 0);
-  for (std::size_t i = 0; i < n; ++i) grounded[i] = !(problem.inverse_mass[i] > 0.0);
-  for (std::size_t r = n; r-- > 0;) {  // lowest first: a support is ranked below
-    const std::size_t i = std::size_t(order[r]);
-    for (std::size_t s = start[i]; s < start[i + 1] && !grounded[i]; ++s) {
-      const std::size_t c = of[s];
-      if (!(support_rise(i, r, c) > 0.0)) continue;
-      const std::int32_t other = other_body(i, c);
-      grounded[i] = is_wall(other) || grounded[std::size_t(other)];
+  // Held: in a cluster of particles (joined by contacts within reach) that reaches a wall or a
+  // fixed particle. A cluster that reaches neither (a bed deposited above the floor, a heap in
+  // the air) is falling, and its contacts carry nothing: loads passed down into it had no
+  // floor to end on, and the lowest spheres of a bed deposited 1 mm above the floor took the
+  // bed's weight as a downward impulse, from which the first step's solver diverged (speeds
+  // of 1e10 m/s, periodic_pressed.toml raised by 1 mm). A held cluster is passed its loads
+  // as before, whichever way it is held: a sphere wedged by friction beside the wall of a
+  // settled bed has no support below it and still rests (held to chains of supports that end
+  // on a wall, such a bed, imported back, moved 150 times more over its first second).
+  std::vector<std::size_t> root(n);
+  std::iota(root.begin(), root.end(), std::size_t{0});
+  const auto find = [&](std::size_t i) {
+    while (root[i] != i) i = root[i] = root[root[i]];
+    return i;
+  };
+  std::vector<char> reaches_immobile(n, 0);
+  for (std::size_t i = 0; i < n; ++i) reaches_immobile[i] = !(problem.inverse_mass[i] > 0.0);
+  for (std::size_t c = 0; c < contacts; ++c) {
+    if (!within_reach(c)) continue;
+    const auto i = std::size_t(problem.body_i[c]);
+    if (is_wall(problem.body_j[c])) {
+      reaches_immobile[i] = 1;
+      continue;
     }
+    const std::size_t a = find(i), b = find(std::size_t(problem.body_j[c]));
+    if (a != b) root[a] = b;
   }
+  std::vector<char> held(n, 0);
+  for (std::size_t i = 0; i < n; ++i)
+    if (reaches_immobile[i]) held[find(i)] = 1;
+  for (std::size_t i = 0; i < n; ++i) held[i] = held[find(i)];
 
   // Vertical load on each particle, N: its weight, and what the particles above pass down.
   std::vector<double> load_N(n, 0.0);
@@ -95,14 +116,14 @@ void static_warm_start(const ContactProblem& problem, const std::vector<double>&
   for (std::size_t r = 0; r < n; ++r) {
     const std::size_t i = std::size_t(order[r]);
     if (!(problem.inverse_mass[i] > 0.0)) continue;  // fixed: carries like a wall
+    if (!held[i]) continue;                           // falling with its whole cluster
     supports.clear();
     rise.clear();
     double rise_squared = 0.0;
     for (std::size_t s = start[i]; s < start[i + 1]; ++s) {
       const std::size_t c = of[s];
       const double along_up = support_rise(i, r, c);
-      const std::int32_t other = other_body(i, c);
-      if (!(along_up > 0.0) || !(is_wall(other) || grounded[std::size_t(other)])) continue;
+      if (!(along_up > 0.0)) continue;
       supports.push_back(c);
       rise.push_back(along_up);
       rise_squared += along_up * along_up;

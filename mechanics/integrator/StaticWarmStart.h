@@ -13,9 +13,10 @@
 // load V (its weight plus what the particles above pass down) is shared among its supports
 // (touching contacts whose normal into it points up, with a wall or a particle taken later) by
 // the least-norm forces whose vertical parts carry it: f_k = V a_k / sum a_j^2, a_k = n_k . up;
-// each support passes f_k a_k on. The floor then carries the whole weight. Only supports that
-// rest, through a chain of supports, on a wall or a fixed particle take a load: a cluster that
-// rests on nothing immobile (a bed deposited above the floor) is falling and starts with none. The horizontal
+// each support passes f_k a_k on. The floor then carries the whole weight. Only clusters of
+// particles (joined by contacts that touch or close within the step's fall, |g| h^2) that reach
+// a wall or a fixed particle are loaded: a cluster that reaches neither (a bed deposited above
+// its floor) is falling, and its contacts start with no force. The horizontal
 // balance is left to the solver: the frictionless statics (non-negative least squares on the
 // supports, tried first) are ill-posed on a real bed: contacts near the horizontal carried up to
 // 4,600 weights, and the floor of the deposited 2,000 bed 1.3 times the bed's weight, and the

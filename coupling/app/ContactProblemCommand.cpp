@@ -261,6 +261,7 @@ int run_contact_problem_command(const Scene& scene, const ContactProblemOptions&
     local.step = outcome.step;
     local.solver_tolerance = outcome.report.tolerance;
     local.solver_residual = outcome.report.residual;
+    local.siconos_residual = outcome.report.siconos_residual;
     local.solver_iterations = outcome.report.sweeps;
     local.solver_seconds = outcome.report.solve_s;
     std::size_t active = 0;

@@ -107,6 +107,7 @@ void write_tmdem_group(const FclibLocalProblem& p, const std::string& path) {
   write_scalar(g, "dimension", p.dimension, H5T_NATIVE_INT);
   write_scalar(g, "solver_tolerance", p.solver_tolerance, H5T_NATIVE_DOUBLE);
   write_scalar(g, "solver_residual", p.solver_residual, H5T_NATIVE_DOUBLE);
+  write_scalar(g, "siconos_residual", p.siconos_residual, H5T_NATIVE_DOUBLE);
   write_scalar(g, "solver_seconds", p.solver_seconds, H5T_NATIVE_DOUBLE);
   write_scalar(g, "solver_iterations", p.solver_iterations, H5T_NATIVE_INT64);
   write_scalar(g, "omitted_contacts", p.omitted_contacts, H5T_NATIVE_INT64);

@@ -14,7 +14,7 @@
 //   tangent2
 //   gravity_impulse     3 doubles, N s: h sum_i m_i g over the moving particles
 //   time_step, step, dimension, solver_tolerance, solver_residual, solver_iterations,
-//   solver_seconds,
+//   solver_seconds, siconos_residual (tmdem's own evaluation of Siconos' measure, SiconosResidual.h),
 //   omitted_contacts    scalars (omitted: candidates between two immobile bodies, W_cc = 0)
 #include <array>
 #include <cstdint>
@@ -45,6 +45,7 @@ struct FclibLocalProblem {
   int dimension = 3;
   double solver_tolerance = 0.0;
   double solver_residual = 0.0;
+  double siconos_residual = 0.0;  // the step's StepReport::siconos_residual
   double solver_seconds = 0.0;  // wall time of the step's contact solve
   std::int64_t solver_iterations = 0;
   std::int64_t omitted_contacts = 0;

@@ -15,6 +15,7 @@
 #include "coupling/output/ResultFileLock.h"
 #include "coupling/output/ResultFrames.h"
 #include "coupling/output/ResultMetadata.h"
+#include "coupling/output/ResultProbes.h"
 #include "coupling/output/ResultViews.h"
 #include "coupling/output/XdmfWriter.h"
 
@@ -41,6 +42,7 @@ struct ResultWriter::Impl {
   Hdf5Handle file;
   ResultFrames frames;
   ResultContacts contacts;
+  ResultProbes probes;
   ResultViews views;
   std::size_t particles = 0;
   std::vector<double> times;      // of the frames written, for the XDMF
@@ -95,6 +97,7 @@ struct ResultWriter::Impl {
         const std::size_t new_contacts = contacts.stored() ? batch[k].normal_force_N.size() : 0;
         if (new_contacts > 0) contacts.append(rows, batch[k]);
         rows += static_cast<std::int64_t>(new_contacts);
+        probes.append(first + k, batch[k]);  // before frames.append, whose time commits the frame
         frames.append(first + k, batch[k], rows);
         view_counts.push_back(views.add_frame(file.get(), first + k, batch[k], contacts.stored(),
                                               rows - static_cast<std::int64_t>(new_contacts)));
@@ -109,6 +112,7 @@ struct ResultWriter::Impl {
         Hdf5ErrorSilence silence;
         frames.cut_back(first);
         contacts.cut_back(contact_rows);
+        probes.cut_back(first);
         views.cut_back(file.get(), first);
         view_counts.resize(first);
         H5Fflush(file.get(), H5F_SCOPE_LOCAL);
@@ -167,6 +171,7 @@ struct ResultWriter::Impl {
     Hdf5ErrorSilence silence;
     frames.close();
     contacts.close();
+    probes.close();
     return file.reset();
   }
 
@@ -235,6 +240,7 @@ ResultWriter::ResultWriter(const std::string& path, const ResultHeader& header,
     w.contacts.create(w.file.get(), n, store_contacts,
                       header.frozen ? header.frozen_contacts : 0);
     w.views.create(w.file.get(), n, header.walls, header.periodic);
+    w.probes.create(w.file.get(), header.probes);
     hdf5::check_ok(H5Fflush(w.file.get(), H5F_SCOPE_LOCAL), "H5Fflush");
   } catch (const Hdf5Failure& e) {
     w.close_ids();
@@ -303,6 +309,8 @@ ResultWriter ResultWriter::reopen(const std::string& path, std::size_t keep_fram
     w.contacts.open(w.file.get());
     w.frames.cut_back(keep_frames);
     w.contacts.cut_back(w.contact_rows);
+    w.probes.open(w.file.get());
+    w.probes.cut_back(keep_frames);
     // A crash while the last chunk was rewritten may have left its rows unreadable: write them
     // again from the checkpoint (a checkpoint without them leaves the chunk as it is).
     if (match != nullptr && match->contact_tail != nullptr && match->contact_tail->rows == w.contact_rows)

@@ -14,6 +14,8 @@
 //      tangential_force [C,3] N, conductance [C] W/K, heat_flow [C] W; group attribute
 //      "stored" = 1 or 0
 //   /periodic (scenes with [periodic] only): axis [3] int64 (1: periodic), low [3] m, high [3] m
+//   /probes (scenes with [[probe]] only): per frame and probe the count, mean, min and max
+//      temperature of the particles inside (ResultProbes.h)
 //   /walls and /xdmf: the walls and the per-frame views RESULT.xdmf points at (ResultViews.h)
 //   A frozen bed (ResultHeader::frozen): /frames/position and velocity, /contacts/pair,
 //   normal_force, tangential_force and conductance are virtual datasets over blocks in
@@ -72,6 +74,15 @@ struct PeriodicBounds {
   bool any() const { return axis[0] || axis[1] || axis[2]; }
 };
 
+// A probe as the result file describes it (/probes, ResultProbes.h): a sphere of radius_m > 0
+// around point_m, or (radius_m == 0) the axis-aligned box of full edge lengths box_m centred on it.
+struct ProbeRegion {
+  std::string name;
+  std::array<double, 3> point_m{};
+  double radius_m = 0.0;
+  std::array<double, 3> box_m{};
+};
+
 // Static data, written once. All vectors have N entries (N = radius_m.size()).
 struct ResultHeader {
   std::string scene_toml;                     // resolved scene, root attribute "scene"
@@ -82,6 +93,7 @@ struct ResultHeader {
   std::vector<std::string> material_names;    // optional; attribute "names" of /particles/material
   std::vector<WallPlane> walls;               // /walls, drawn in RESULT.xdmf
   PeriodicBounds periodic;                    // /periodic (none: not written)
+  std::vector<ProbeRegion> probes;            // /probes (none: not written)
   // A frozen bed (mechanics "settle" or "off"): every frame has the same positions, velocities
   // and frozen_contacts contacts. Those are then written once (BlockSeries.h: each later frame
   // is a hard link while the values stay the same); readers see the same [F, ...] datasets.

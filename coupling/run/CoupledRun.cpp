@@ -419,6 +419,8 @@ void CoupledRun::open_result_file() {
     header.periodic.axis = scene_.periodic.axis;
     header.periodic.low_m = scene_.periodic.low_m;
     header.periodic.high_m = scene_.periodic.high_m;
+    for (const Probe& probe : scene_.probes)
+      header.probes.push_back({probe.name, probe.point_m, probe.radius_m, probe.box_m});
     header.frozen = frozen_;  // the contacts too: fixed after settling (or from the start)
     header.frozen_contacts = contacts_.size();
     writer_.emplace(options_.output_path, header, scene_.output.contacts,

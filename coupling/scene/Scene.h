@@ -14,6 +14,7 @@
 #include "mechanics/integrator/NscdParameters.h"
 #include "mechanics/model/PeriodicBox.h"
 #include "mechanics/solvers/ContactSolverRegistry.h"
+#include "coupling/scene/Probe.h"
 #include "thermal/integrators/IntegratorKind.h"
 #include "thermal/modes/ModeSettings.h"
 
@@ -247,6 +248,7 @@ struct Scene {
   MechanicsSettings mechanics;
   ThermalSettings thermal;
   OutputSettings output;
+  std::vector<Probe> probes;        // [[probe]], in file order (coupling/scene/SceneProbes.h)
   // What loading found legal but likely unmeant (a deposit laid above its floor:
   // DepositSupport.h), one sentence each without a "warning: " prefix; tmdem check and tmdem
   // run print them.

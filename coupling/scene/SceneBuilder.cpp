@@ -2,6 +2,7 @@
 
 #include "coupling/scene/HeatModes.h"
 #include "coupling/scene/SceneLimits.h"
+#include "coupling/scene/SceneProbes.h"
 #include "coupling/scene/SceneValidation.h"
 #include "thermal/modes/ModeRegistry.h"
 
@@ -40,6 +41,7 @@ Scene SceneBuilder::build() {
   read_assigns();
   read_heat_modes();
   read_settings();
+  scene_.probes = read_probes(root_, scene_.dimension);
   check_scene_limits(scene_, origins_, source_);
   check_overlaps(scene_, origins_, import_of_, source_);
   scene_.warnings = unsupported_deposit_warnings(scene_, deposit_blocks_);

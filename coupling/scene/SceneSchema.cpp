@@ -4,6 +4,7 @@
 #include <map>
 
 #include "mechanics/integrator/NscdParameters.h"
+#include "coupling/scene/SceneProbes.h"
 #include "mechanics/solvers/ContactSolverRegistry.h"
 #include "thermal/integrators/IntegratorKind.h"
 #include "thermal/integrators/IntegratorRegistry.h"
@@ -173,6 +174,7 @@ std::vector<Section> build_sections() {
                         table("thermal", Kind::Table, "thermal integrator and contact conductance"),
                         table("output", Kind::Table, "result file, frames, checkpoints")})
     top.push_back(k);
+  top.push_back(probe_schema_key());
 
   std::vector<Key> effects{choice("mechanics", "settle", {"dynamic", "settle", "off"},
                                   "\"dynamic\": NSCD every step; \"settle\": NSCD until at rest "
@@ -469,6 +471,7 @@ std::vector<Section> build_sections() {
         boolean("contacts", "true", "store the contact list of every frame"),
         number("checkpoint_interval", "s", 0.0, Range::at_least(0.0),
                "simulated time between checkpoints; 0 = none")}});
+  sections.push_back(probe_schema_section());
   return sections;
 }
 

@@ -9,6 +9,7 @@
 #include "coupling/app/ConductivityCommand.h"
 #include "coupling/app/ContactProblemCommand.h"
 #include "coupling/app/ExportCommand.h"
+#include "coupling/app/ProbesCommand.h"
 #include "coupling/app/RenderCommand.h"
 #include "coupling/common/ExitCode.h"
 #include "coupling/run/CoupledRun.h"
@@ -126,6 +127,14 @@ int tmdem_main(int argc, char** argv) {
   export_command->add_option("-o,--output", export_options.csv_path, "CSV file to write")->required();
   export_command->add_flag("--overwrite", export_options.overwrite, "replace an existing CSV file");
 
+  ProbesOptions probes_options;
+  auto* probes = app.add_subcommand(
+      "probes", "the [[probe]] readings of a result as CSV: time_s,probe,count,mean_K,min_K,max_K "
+                "(count 0: no particle inside, temperatures then 0)");
+  probes->add_option("result", probes_options.result_path, "result file (HDF5)")->required();
+  probes->add_option("-o,--output", probes_options.csv_path,
+                     "CSV file to write (replaced if it exists; default: stdout)");
+
   RenderOptions render_options;
   auto* render = app.add_subcommand(
       "render", "draw one frame of a result (default: the last) as a PNG with ParaView's pvbatch: "
@@ -224,6 +233,7 @@ int tmdem_main(int argc, char** argv) {
       return outcome.exit_code;
     }
     if (*export_command) return run_export_command(export_options, std::cout, std::cerr);
+    if (*probes) return run_probes_command(probes_options, std::cout, std::cerr);
     if (*render) return run_render_command(render_options, std::cout, std::cerr);
     if (*contact_problem)
       return run_contact_problem_command(load_scene_file(problem_scene, sets), problem_options,

@@ -4,6 +4,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include "PythonProbes.h"
 #include "PythonResult.h"
 #include "PythonRun.h"
 #include "PythonScene.h"
@@ -68,6 +69,10 @@ PYBIND11_MODULE(tmdem, m) {
       py::arg("scene"), py::arg("output") = py::none(), py::arg("summary") = py::none(),
       py::arg("quiet") = true, py::arg("overwrite") = false, py::arg("restart") = py::none(),
       "run the scene as `tmdem run`; returns (summary dict, Result)");
+
+  m.def("read_probes", &tmdem::python::read_probes, py::arg("path"),
+        "the [[probe]] readings of a result file: dict name -> dict of arrays time_s, count, "
+        "mean_K, min_K, max_K (count 0: no particle inside, temperatures 0); {} without probes");
 
   py::class_<PythonResult>(m, "Result", "a result file read into NumPy arrays")
       .def(py::init<const std::string&>(), py::arg("path"))

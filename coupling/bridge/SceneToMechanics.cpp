@@ -59,6 +59,7 @@ mechanics::NscdParameters make_nscd_parameters(const Scene& scene) {
   p.static_warm_start = scene.mechanics.static_warm_start;
   p.max_iterations = scene.mechanics.max_iterations;
   p.full_sweep_every = scene.mechanics.full_sweep_every;
+  p.siconos_stop = scene.mechanics.stop_test == "siconos";
   p.penetration_slop_fraction = scene.mechanics.penetration_slop;
   p.recovery_speed = scene.mechanics.recovery_speed_m_per_s;
   return p;

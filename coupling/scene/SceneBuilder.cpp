@@ -127,6 +127,7 @@ void SceneBuilder::read_settings() {
     m.time_step_s = t.number("time_step");
     m.theta = t.number("theta");
     m.solver = t.choice("solver");
+    m.stop_test = t.choice("stop_test");
     m.tolerance = t.number("tolerance");
     m.fall_tolerance = t.number("fall_tolerance");
     m.fall_speed_m_per_s = t.optional_number("fall_speed").value_or(0.0);  // absent: automatic

@@ -25,6 +25,9 @@ struct SolverSettings {
   // Gauss-Seidel solvers: a sweep over every contact at least every this many sweeps, the
   // others visit the active contacts only (ActiveContactSet.h); 1: every sweep is full.
   int full_sweep_every = 1;
+  // "nncg": a solve its own stop test calls converged goes on (tighter) until Siconos' residual
+  // (SiconosResidual.h) is within `tolerance` too (scene mechanics.stop_test = "siconos").
+  bool siconos_stop = false;
 };
 
 struct SolveReport {

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "mechanics/ColumnStatics.h"
@@ -12,6 +14,7 @@
 #include "mechanics/SolverTestPile.h"
 #include "mechanics/contact/ContactProblem.h"
 #include "mechanics/contact/SiconosResidual.h"
+#include "mechanics/solvers/ContactSolverRegistry.h"
 
 using namespace tmdem::mechanics;
 using namespace tmdem::mechanics::test;
@@ -105,4 +108,43 @@ TEST(SiconosResidual, IntegratorReportsItBesideTheSolversVerdict) {
   const NscdIntegrator tight_solve = first_step(masses, 1e-12);
   EXPECT_EQ(tight_solve.stats().unconverged_steps, 0);
   EXPECT_LE(tight_solve.stats().max_siconos_residual, 1e-8);
+}
+
+// mechanics.stop_test = "siconos" (SolverSettings::siconos_stop, "nncg"): the slow column that
+// the sweep test leaves at 1.4e-2 in Siconos' measure is solved until that measure is within the
+// tolerance, and its statics hold to the accuracy that measure implies.
+TEST(SiconosResidual, NncgWithTheSiconosStopTestMeetsIt) {
+  std::vector<double> masses;
+  for (int k = 0; k < 5; ++k) masses.insert(masses.end(), {1e-2, 1.0});
+  const NscdIntegrator sim = column(masses);
+  constexpr double tolerance = 1e-5;
+  SolverSettings settings = tight(tolerance);
+  const Solved plain = solve_cold(sim.problem(), *make_contact_solver("nncg", settings));
+  settings.siconos_stop = true;
+  const Solved honest = solve_cold(sim.problem(), *make_contact_solver("nncg", settings));
+  ASSERT_TRUE(plain.report.converged);
+  ASSERT_TRUE(honest.report.converged);
+  const double q = free_velocity_norm(sim.problem());
+  EXPECT_GT(siconos_residual(sim.problem(), plain.r, {}, plain.v, plain.w, q), tolerance);
+  EXPECT_LE(siconos_residual(sim.problem(), honest.r, {}, honest.v, honest.w, q), tolerance);
+  EXPECT_GT(honest.report.sweeps, plain.report.sweeps);
+  // Velocities within 1e-5 of the free fall's g h at every contact: the column statics to that
+  // share of the heaviest load.
+  expect_column_statics(sim, honest.r, 1e-3);
+}
+
+// Only "nncg" implements it: another solver with it is refused, naming both.
+TEST(SiconosResidual, SiconosStopTestWithAnotherSolverIsRefused) {
+  NscdParameters parameters = nlgs_parameters();
+  parameters.siconos_stop = true;
+  ParticleSet set;
+  set.add(Vector3d(0.0, kRadius, 0.0), kRadius, 1.0, 0);
+  try {
+    NscdIntegrator sim(std::move(set), {steel(0.3)}, {Wall::through({0, 0, 0}, {0, 1, 0}, 0)},
+                       Vector3d(0, -kG, 0), 3, parameters);
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("\"nlgs\""), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("stop_test"), std::string::npos) << e.what();
+  }
 }

@@ -24,6 +24,7 @@
 #include "coupling/output/ProgressReporter.h"
 #include "coupling/scene/SceneLoader.h"
 #include "coupling/bridge/ThermalNetworkBuilder.h"
+#include "coupling/run/LinearSolverChoice.h"
 #include "coupling/run/ThermalProblem.h"
 #include "thermal/integrators/IntegratorRegistry.h"
 
@@ -60,7 +61,7 @@ int main(int argc, char** argv) {
   ProgressReporter progress(std::cerr, true, false);
   auto problem = build_frozen_thermal_problem(scene, progress);
   auto& system = *problem.system;
-  const auto base = integrator_settings(scene);
+  const auto base = integrator_settings(scene, choose_linear_solver(scene, system, 1).kind);
   const double T_end = scene.duration_s;
   AccuracyStudyOptions opt;
   // The CVODE runs are short: time each 5 times and keep the least (explicit runs: once).

@@ -5,6 +5,7 @@
 #include "coupling/app/StudyCsvFile.h"
 #include "coupling/common/ExitCode.h"
 #include "coupling/output/ProgressReporter.h"
+#include "coupling/run/LinearSolverChoice.h"
 #include "coupling/run/ThermalProblem.h"
 #include "coupling/scene/HeatModes.h"
 #include "coupling/studies/AccuracyReport.h"
@@ -22,7 +23,11 @@ int run_accuracy_command(const Scene& scene, const AccuracyCommandOptions& optio
   AccuracyStudyResult result;
   const int computed = csv.compute_or_discard<ReferenceError>([&] {
     ProgressReporter progress(log, options.quiet, options.terminal);
-    const auto base = integrator_settings(scene);
+    // The scene's solver resolved on its system (a study runs in one process). The study's
+    // methods name their own; this one is what the explicit rungs' settings carry.
+    auto base_for = [&](const thermal::ThermalSystem& system) {
+      return integrator_settings(scene, choose_linear_solver(scene, system, 1).kind);
+    };
     if (scene.effects.mechanics == MechanicsMode::Dynamic && near_pair_reach(scene) > 0.0) {
       log << "error: tmdem study accuracy replays a dynamic scene's recorded contacts without "
              "positions, so it cannot follow the near pairs of effects.gas_conduction or "
@@ -34,6 +39,7 @@ int run_accuracy_command(const Scene& scene, const AccuracyCommandOptions& optio
       const auto recording = record_contacts(scene, progress);
       ContactList no_contacts;
       auto system = build_thermal_system(scene, no_contacts);
+      const auto base = base_for(*system);
       std::vector<double> T0;
       for (const auto& p : scene.particles) T0.push_back(p.temperature_K);
       ThermalReplay replay(scene, recording, *system);
@@ -48,7 +54,8 @@ int run_accuracy_command(const Scene& scene, const AccuracyCommandOptions& optio
                                   options.quiet ? nullptr : &log, driver);
     } else {
       auto problem = build_frozen_thermal_problem(scene, progress);
-      result = run_accuracy_study(*problem.system, problem.T0_K, scene.duration_s, base,
+      result = run_accuracy_study(*problem.system, problem.T0_K, scene.duration_s,
+                                  base_for(*problem.system),
                                   options.study, options.quiet ? nullptr : &log);
     }
     return kExitOk;

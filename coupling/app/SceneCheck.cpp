@@ -8,10 +8,12 @@
 #include "coupling/bridge/RestingContacts.h"
 #include "coupling/bridge/SceneToMechanics.h"
 #include "coupling/bridge/ThermalDiagnostics.h"
+#include "coupling/run/LinearSolverChoice.h"
 #include "coupling/run/ThermalProblem.h"
 #include "coupling/scene/ParticleImport.h"
 #include "coupling/scene/SceneLimits.h"
 #include "mechanics/detection/TouchingPairs.h"
+#include "thermal/integrators/MpiWorld.h"
 #include "thermal/modes/ModeRegistry.h"
 
 namespace tmdem::coupling {
@@ -110,8 +112,8 @@ void check_scene(const Scene& scene, std::ostream& out) {
           << " m: half the shortest period less the largest diameter); the run would stop when a "
              "particle gets that fast: enlarge the period or lower mechanics.time_step\n";
   }
-  out << "thermal: integrator " << scene.thermal.integrator << ", linear solver "
-      << scene.thermal.linear_solver << ", conductance " << scene.thermal.conductance << "\n";
+  out << "thermal: integrator " << scene.thermal.integrator << ", conductance "
+      << scene.thermal.conductance << "\n";
 
   // Estimated network on the contacts present now.
   const auto particles = make_particle_set(scene);
@@ -128,6 +130,17 @@ void check_scene(const Scene& scene, std::ostream& out) {
   out << "modes:";
   for (const auto& mode : system->modes()) out << " " << mode->name();
   out << "\n";
+  // The solver the run will take (it resolves "auto" the same way, on the same system); the
+  // explicit update solves no linear system.
+  if (thermal::parse_integrator_kind(scene.thermal.integrator) !=
+      thermal::IntegratorKind::Explicit) {
+    const auto solver = choose_linear_solver(scene, *system, thermal::MpiWorld::size());
+    out << "linear solver " << solver.name() << " (" << solver.reason << ")\n";
+    if (const auto warning = klu_size_warning({scene.thermal.linear_solver, n, scene.dimension, 1,
+                                               system->symmetric_jacobian()});
+        !warning.empty())
+      out << "warning: " << warning << "\n";
+  }
   out << "estimated stiffness on the " << contacts.size() << " contacts touching at start"
       << (scene.effects.mechanics != MechanicsMode::Off && scene.thermal.conductance == "hertz"
               ? " (Hertz force estimated as each particle's weight; settling gives the real one)"

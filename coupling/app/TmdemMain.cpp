@@ -106,7 +106,8 @@ int tmdem_main(int argc, char** argv) {
   ConductivityCommandOptions conductivity_options;
   auto* conductivity = study->add_subcommand(
       "conductivity", "effective conductivity of a bed between its two isothermal walls "
-                      "(steady state: KLU, or multigrid CG with thermal.linear_solver = amg)");
+                      "(steady state: KLU, or multigrid CG with thermal.linear_solver = amg, "
+                      "or auto on a large bed)");
   conductivity->add_option("scene", conductivity_path, "scene file (TOML)")->required();
   conductivity->add_option("--pressures", conductivity_options.pressures_Pa,
                            "piston pressures, Pa (needs a piston)")

@@ -71,6 +71,8 @@ nlohmann::json RunSummary::to_json() const {
                       {"convergence_failures", thermal.convergence_failures},
                       {"reinitializations", thermal.reinitializations}};
   if (!thermal.linear_solver.empty()) t["linear_solver"] = thermal.linear_solver;
+  if (!thermal.linear_solver_reason.empty())
+    t["linear_solver_reason"] = thermal.linear_solver_reason;
   t["wall_time_s"] = thermal.wall_time_s;
   if (!thermal.coupling.empty()) t["coupling"] = thermal.coupling;
   nlohmann::json e = {{"initial_J", energy.initial_J},
@@ -201,6 +203,7 @@ RunSummary RunSummary::from_json(const nlohmann::json& j) {
   const nlohmann::json& t = section(j, "thermal");
   s.thermal.integrator = text(t, "integrator", s.thermal.integrator);
   s.thermal.linear_solver = text(t, "linear_solver", "");
+  s.thermal.linear_solver_reason = text(t, "linear_solver_reason", "");
   s.thermal.steps = integer(t, "steps", 0);
   s.thermal.rhs_evals = integer(t, "rhs_evals", 0);
   s.thermal.jacobian_evals = integer(t, "jacobian_evals", 0);

@@ -1,7 +1,8 @@
 #pragma once
 // The run summary of contract section 4 (written by `tmdem run --summary SUMMARY.json`).
-// Key names in JSON are exactly the member names below; "message" and "thermal.linear_solver"
-// are extra keys written only when not empty, "settle" and "wall_time_parts" only when set (docs/summary.md).
+// Key names in JSON are exactly the member names below; "message", "thermal.linear_solver" and
+// "thermal.linear_solver_reason" are extra keys written only when not empty, "settle" and
+// "wall_time_parts" only when set (docs/summary.md).
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -64,7 +65,10 @@ struct SettleSummary {
 
 struct ThermalSummary {
   std::string integrator = "cvode";  // "cvode", "ida" or "explicit"
-  std::string linear_solver;         // extra: "klu" or "pcg"; omitted when empty
+  std::string linear_solver;         // extra: "klu", "pcg" or "amg" (as resolved from "auto");
+                                     // omitted when empty (explicit update, failed before)
+  std::string linear_solver_reason;  // extra: why that one, e.g. "auto: 25000 particles >= 5000
+                                     // in 3D, symmetric Jacobian"; omitted when empty
   std::int64_t steps = 0;
   std::int64_t rhs_evals = 0;
   std::int64_t jacobian_evals = 0;

@@ -27,6 +27,7 @@
 #include "coupling/output/ResultWriter.h"
 #include "coupling/run/CoupledRunLoop.h"
 #include "coupling/run/Interruption.h"
+#include "coupling/run/LinearSolverChoice.h"
 #include "coupling/run/OutputPaths.h"
 #include "coupling/run/RestartState.h"
 #include "coupling/run/ThermalProblem.h"
@@ -125,9 +126,12 @@ void CoupledRun::prepare_thermal() {
     if (restart_)
       dynamic_network_->restore(restart_->thermal_pattern_pair, contacts_, &nscd_->particles());
   }
-  auto s = integrator_settings(scene_);
-  s.max_temperature_K = max_temperature_K();
+  thermal::IntegratorSettings s;
   try {
+    // "auto" resolved here, once: the integrator, the report and the summary name this solver.
+    linear_solver_ = choose_linear_solver(scene_, *system_, thermal::MpiWorld::size());
+    s = integrator_settings(scene_, linear_solver_->kind);
+    s.max_temperature_K = max_temperature_K();
     if (thermal::MpiWorld::distributed())
       prepare_distributed_thermal(s);
     else
@@ -145,7 +149,9 @@ void CoupledRun::prepare_thermal() {
   if (!options_.quiet) {
     std::ostringstream report;
     report << "thermal: integrator " << scene_.thermal.integrator;
-    if (!integrator_->is_explicit()) report << " (" << scene_.thermal.linear_solver << ")";
+    if (!integrator_->is_explicit())
+      report << " (" << linear_solver_->name()
+             << (linear_solver_->automatic ? "; " + linear_solver_->reason : "") << ")";
     report << ", modes:";
     for (const auto& m : system_->modes()) report << " " << m->name();
     report << "\n";
@@ -364,7 +370,11 @@ void CoupledRun::fill_summary() {
   summary_.thermal.integrator = scene_.thermal.integrator;
   const bool explicit_update =
       thermal::parse_integrator_kind(scene_.thermal.integrator) == thermal::IntegratorKind::Explicit;
-  summary_.thermal.linear_solver = explicit_update ? "" : scene_.thermal.linear_solver;
+  // The resolved solver; none when the run failed before its thermal side was set up.
+  if (!explicit_update && linear_solver_) {
+    summary_.thermal.linear_solver = linear_solver_->name();
+    summary_.thermal.linear_solver_reason = linear_solver_->reason;
+  }
   if (integrator_) {
     const auto st = integrator_->stats();
     summary_.thermal.steps = st.steps;

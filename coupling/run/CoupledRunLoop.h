@@ -19,6 +19,7 @@
 #include "coupling/output/RunSummary.h"
 #include "coupling/run/CoupledRun.h"
 #include "coupling/run/DistributedHeating.h"
+#include "coupling/run/LinearSolverChoice.h"
 #include "mechanics/integrator/NscdIntegrator.h"
 #include "thermal/integrators/MpiWorld.h"
 #include "thermal/integrators/ThermalIntegrator.h"
@@ -95,6 +96,7 @@ class CoupledRun {
   std::vector<double> wall_point_m_;                 // W*3, the walls' points, for the frames
   std::unique_ptr<DynamicNetwork> dynamic_network_;  // dynamic runs only
   std::unique_ptr<thermal::ThermalSystem> system_;
+  std::optional<LinearSolverChoice> linear_solver_;  // thermal.linear_solver resolved on system_
   std::unique_ptr<DistributedHeating> distributed_;  // over MPI only; the integrator refers to it
   std::unique_ptr<thermal::ThermalIntegrator> integrator_;
   std::optional<ResultWriter> writer_;

@@ -1,6 +1,7 @@
 #include "coupling/run/DistributedHeating.h"
 
 #include "coupling/bridge/ThermalNetworkBuilder.h"
+#include "coupling/run/LinearSolverChoice.h"
 #include "thermal/integrators/DistributedCvodeIntegrator.h"
 #include "thermal/integrators/IntegratorKind.h"
 #include "thermal/integrators/MpiWorld.h"
@@ -27,7 +28,8 @@ std::string distributed_heating_refusal(const Scene& scene, int processes) {
   if (thermal::parse_integrator_kind(scene.thermal.integrator) != thermal::IntegratorKind::Cvode)
     return over + "thermal.integrator = \"" + scene.thermal.integrator +
            "\" runs in one process only; use \"cvode\"";
-  if (thermal::parse_linear_solver_kind(scene.thermal.linear_solver) != thermal::LinearSolverKind::Amg)
+  // "auto" is amg over several processes; an explicit klu or pcg is refused.
+  if (choose_distributed_linear_solver(scene, processes).kind != thermal::LinearSolverKind::Amg)
     return over + "thermal.linear_solver = \"" + scene.thermal.linear_solver +
            "\" runs in one process only; use \"amg\" (conjugate gradients with BoomerAMG across "
            "the processes)";

@@ -20,10 +20,10 @@ namespace tmdem::coupling {
 
 // Why this scene cannot be heated over `processes` processes, or empty when it can: frozen beds
 // only (mechanics "off", or "settle": every process settles the same packing), integrator
-// "cvode" with linear_solver "amg", no gas layer shared by neighbour count, at least one
-// particle per process. (A symmetric Jacobian is checked by the integrator, which sees the
-// modes.) Checkpoints and restarts work as in one process: rank 0 writes them, every process
-// reads them.
+// "cvode" with linear_solver "amg" (or "auto", which is amg there), no gas layer shared by
+// neighbour count, at least one particle per process. (A symmetric Jacobian is checked by the
+// integrator, which sees the modes.) Checkpoints and restarts work as in one process: rank 0
+// writes them, every process reads them.
 std::string distributed_heating_refusal(const Scene& scene, int processes);
 
 class DistributedHeating {

@@ -15,6 +15,7 @@
 #include "coupling/bridge/ThermalNetworkBuilder.h"
 #include "mechanics/contact/ContactForce.h"
 #include "mechanics/integrator/NscdIntegrator.h"
+#include "thermal/integrators/IntegratorKind.h"
 #include "thermal/integrators/ThermalIntegrator.h"
 #include "thermal/system/ThermalSystem.h"
 
@@ -51,8 +52,10 @@ std::unique_ptr<thermal::ThermalSystem> build_thermal_system(
 // Largest temperature the run can see: particles, isothermal walls, fluid, surroundings.
 double max_scene_temperature_K(const Scene& scene);
 
-// [thermal] of the scene as integrator settings.
-thermal::IntegratorSettings integrator_settings(const Scene& scene);
+// [thermal] of the scene as integrator settings, with `linear_solver` the scene's resolved
+// (choose_linear_solver, LinearSolverChoice.h: the scene's may be "auto").
+thermal::IntegratorSettings integrator_settings(const Scene& scene,
+                                                thermal::LinearSolverKind linear_solver);
 
 // A scene's thermal problem on a frozen contact graph: contacts from geometry (mechanics off)
 // or from settling (settle). Throws std::invalid_argument for a dynamic scene.

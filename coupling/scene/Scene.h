@@ -185,7 +185,7 @@ struct MechanicsSettings {
 
 struct ThermalSettings {
   std::string integrator{thermal::name_of(thermal::kDefaultIntegrator)};  // thermal_integrator_names()
-  std::string linear_solver{thermal::name_of(thermal::kDefaultLinearSolver)};  // linear_solver_names()
+  std::string linear_solver{thermal::kDefaultLinearSolverName};  // "auto" or linear_solver_names()
   double relative_tolerance = 1.0e-6;
   double absolute_tolerance_K = 1.0e-6;
   double explicit_step_s = 0.0;        // 0 = largest stable step

@@ -70,6 +70,13 @@ std::vector<std::string> names_of(const std::vector<std::string_view>& names) {
   return {names.begin(), names.end()};
 }
 
+// thermal.linear_solver: "auto" (resolved by the run, never a solver itself) and the solvers.
+std::vector<std::string> linear_solver_choices() {
+  auto names = names_of(thermal::linear_solver_names());
+  names.insert(names.begin(), std::string(thermal::kAutoLinearSolverName));
+  return names;
+}
+
 Key choice(std::string name, std::string fallback, const std::vector<std::string>& choices,
            std::string description) {
   // Built by appending: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string here.
@@ -435,9 +442,13 @@ std::vector<Section> build_sections() {
        {choice("integrator", std::string(thermal::name_of(thermal::kDefaultIntegrator)),
                names_of(thermal::thermal_integrator_names()),
                "CVODE (BDF), IDA (DAE; held temperatures algebraic) or forward Euler"),
-        choice("linear_solver", std::string(thermal::name_of(thermal::kDefaultLinearSolver)),
-               names_of(thermal::linear_solver_names()),
-               "sparse direct (KLU), conjugate gradients preconditioned by incomplete Cholesky (pcg) "
+        choice("linear_solver", std::string(thermal::kDefaultLinearSolverName),
+               linear_solver_choices(),
+               "\"auto\": one of the others, chosen once per run from the particles, the "
+               "dimension, the MPI processes and the Jacobian's symmetry (klu for small beds and "
+               "one-sided Jacobians, pcg for large ones, amg for the largest and under MPI; the "
+               "rule and its measurements: docs/integrators.md); sparse direct (KLU), conjugate "
+               "gradients preconditioned by incomplete Cholesky (pcg) "
                "or by an algebraic-multigrid V-cycle (amg, hypre BoomerAMG; also the steady "
                "state of study conductivity)"),
         number("relative_tolerance", "", 1.0e-6, Range::greater(0.0), "integrator tolerance"),

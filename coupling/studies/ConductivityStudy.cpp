@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "coupling/bridge/SceneToMechanics.h"
+#include "coupling/run/LinearSolverChoice.h"
 #include "coupling/run/ThermalProblem.h"
 #include "coupling/scene/SceneError.h"
 #include "coupling/studies/ZehnerSchlunderBauer.h"
@@ -257,8 +258,12 @@ ConductivityResult measure_conductivity(const Scene& scene, const FrozenThermalP
 
   const auto& system = *problem.system;
   // thermal.linear_solver = "amg" solves the steady state with multigrid CG; klu and pcg with KLU.
+  // "auto" that resolves to conjugate gradients (a large symmetric bed) takes amg's: the steady
+  // solver has no IC(0) variant, and KLU's fill on a large 3D bed is what "auto" avoids.
   thermal::SteadyStateOptions steady_options;
-  if (thermal::parse_linear_solver_kind(scene.thermal.linear_solver) == thermal::LinearSolverKind::Amg)
+  const auto choice = choose_linear_solver(scene, system, 1);
+  if (choice.kind == thermal::LinearSolverKind::Amg ||
+      (choice.automatic && thermal::is_conjugate_gradients(choice.kind)))
     steady_options.linear_solver = thermal::LinearSolverKind::Amg;
   const auto steady = thermal::solve_steady_state(system, problem.T0_K, steady_options);
   r.T_K = steady.T_K;

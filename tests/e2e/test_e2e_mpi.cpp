@@ -243,6 +243,33 @@ TEST(E2eMpi, RestartFromACheckpointIsBitForBit) {
             summary_without_wall_times(dir + "/part.json"));
 }
 
+// A scene that names no linear solver ("auto") heats over MPI with amg, and the summary says why;
+// an explicit "klu" is still refused, naming the key, its value and the fix.
+TEST(E2eMpi, TheDefaultLinearSolverIsAmgAndKluIsRefused) {
+  if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed (Debian openmpi-bin) or cannot start 2 processes";
+  const auto dir = scratch_dir("mpi_auto");
+  std::string scene = lattice_bed_scene(BedShape{});
+  const std::string amg_line = "linear_solver = \"amg\"\n";
+  ASSERT_NE(scene.find(amg_line), std::string::npos);
+  scene.erase(scene.find(amg_line), amg_line.size());
+  write_file(dir + "/bed.toml", scene);
+  const auto two = run_tmdem_mpi("run bed.toml -o two.h5 --summary two.json", dir);
+  ASSERT_EQ(two.exit_code, 0) << two.output;
+  EXPECT_NE(two.output.find("thermal: integrator cvode (amg; auto: heating over 2 MPI processes"),
+            std::string::npos)
+      << two.output;
+  const auto summary = read_summary(dir + "/two.json");
+  EXPECT_EQ(summary["thermal"]["linear_solver"], "amg");
+  EXPECT_EQ(summary["thermal"]["linear_solver_reason"],
+            "auto: heating over 2 MPI processes, which only amg spans");
+  const auto klu = run_tmdem_mpi("run bed.toml --set thermal.linear_solver=klu -o klu.h5", dir);
+  EXPECT_EQ(klu.exit_code, 2) << klu.output;
+  EXPECT_NE(klu.output.find("thermal.linear_solver = \"klu\" runs in one process only; use "
+                            "\"amg\""),
+            std::string::npos)
+      << klu.output;
+}
+
 TEST(E2eMpi, OnlyRunRunsOverMpi) {
   if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed (Debian openmpi-bin) or cannot start 2 processes";
   const auto dir = scratch_dir("mpi_check");

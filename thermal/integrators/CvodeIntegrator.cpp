@@ -31,7 +31,8 @@ ThermalSolverError cvode_failure(void* mem, const std::string& solver, int flag,
 }
 
 void CvodeIntegrator::fail(int flag, const char* call) const {
-  throw cvode_failure(mem_.get(), "CVODE", flag, call, t_, last_error_);
+  throw cvode_failure(mem_.get(), "CVODE", flag, call, t_,
+                      failure_detail(flag == CV_LSETUP_FAIL));
 }
 
 void CvodeIntegrator::initialize(double t0_s, std::span<const double> T0_K, double boundary_heat0_J) {

@@ -26,7 +26,8 @@ void IdaIntegrator::fail(int flag, const char* call) const {
     IDAGetCurrentStep(mem_.get(), &h);
     IDAGetNumSteps(mem_.get(), &steps);
   }
-  throw_failure("IDA", IDAGetReturnFlagName(flag), flag, call, h, steps);
+  throw_failure("IDA", IDAGetReturnFlagName(flag), flag, call, h, steps,
+                failure_detail(flag == IDA_LSETUP_FAIL));
 }
 
 void IdaIntegrator::consistent_derivative() {

@@ -19,7 +19,11 @@ constexpr bool is_conjugate_gradients(LinearSolverKind k) { return k != LinearSo
 
 // A scene that names no integrator or linear solver gets these: the one place they are set.
 inline constexpr IntegratorKind kDefaultIntegrator = IntegratorKind::Cvode;
-inline constexpr LinearSolverKind kDefaultLinearSolver = LinearSolverKind::Klu;
+// thermal.linear_solver = "auto" is no kind: coupling turns it, once per run, into one of the
+// kinds above from the problem's size, dimension, processes and symmetry
+// (coupling/run/LinearSolverChoice.h), so the thermal side only ever sees klu, pcg or amg.
+inline constexpr std::string_view kAutoLinearSolverName = "auto";
+inline constexpr std::string_view kDefaultLinearSolverName = kAutoLinearSolverName;
 
 constexpr std::string_view name_of(IntegratorKind k) { return kIntegratorNames[static_cast<int>(k)]; }
 constexpr std::string_view name_of(LinearSolverKind k) { return kLinearSolverNames[static_cast<int>(k)]; }
@@ -41,7 +45,11 @@ Kind parse_kind(std::string_view name, const std::array<std::string_view, N>& na
 inline IntegratorKind parse_integrator_kind(std::string_view name) {
   return detail::parse_kind<IntegratorKind>(name, kIntegratorNames, "thermal integrator");
 }
+// "auto" reaching here is a bug of the caller (it resolves it first), hence logic_error.
 inline LinearSolverKind parse_linear_solver_kind(std::string_view name) {
+  if (name == kAutoLinearSolverName)
+    throw std::logic_error("linear solver \"auto\" reached the thermal side unresolved; it is "
+                           "turned into klu, pcg or amg by coupling/run/LinearSolverChoice.h");
   return detail::parse_kind<LinearSolverKind>(name, kLinearSolverNames, "linear solver");
 }
 

@@ -195,9 +195,20 @@ IntegratorStats SundialsIntegratorBase::with_history(IntegratorStats current) co
 }
 
 void SundialsIntegratorBase::throw_failure(const char* solver, char* flag_name, int flag,
-                                           const char* call, double step_s, long steps) const {
-  throw ThermalSolverError::from_solver(solver, flag_name, flag, call, t_, step_s, steps,
-                                        last_error_);
+                                           const char* call, double step_s, long steps,
+                                           const std::string& detail) const {
+  throw ThermalSolverError::from_solver(solver, flag_name, flag, call, t_, step_s, steps, detail);
+}
+
+std::string SundialsIntegratorBase::failure_detail(bool linear_setup_failed) const {
+  if (!linear_setup_failed || cg_ || !LS_) return last_error_;
+  // KLU's status is KLU_OK unless its own analysis or factorisation failed (the setup also
+  // fails when the Jacobian cannot be evaluated: no hint then).
+  const auto* common = SUNLinSol_KLUGetCommon(LS_.get());
+  if (!common || common->status == KLU_OK) return last_error_;
+  const std::string hint =
+      klu_failure_hint(int(common->status), system_.size(), system_.symmetric_jacobian());
+  return last_error_.empty() ? hint : last_error_ + "; " + hint;
 }
 
 void SundialsIntegratorBase::error_handler(int code, const char* module, const char* function,

@@ -80,9 +80,13 @@ class SundialsIntegratorBase : public ThermalIntegrator {
   IntegratorStats with_history(IntegratorStats current) const;
 
   // "<solver> failed in <call> with <flag name> (<flag>) at t = ... s, step size ... s after
-  // ... steps: <last SUNDIALS message>".
+  // ... steps: <detail>" (detail: failure_detail).
   [[noreturn]] void throw_failure(const char* solver, char* flag_name, int flag, const char* call,
-                                  double step_s, long steps) const;
+                                  double step_s, long steps, const std::string& detail) const;
+  // The last SUNDIALS message, and when the linear-solver setup failed (CV_LSETUP_FAIL,
+  // IDA_LSETUP_FAIL: `linear_setup_failed`) in KLU's factorisation, what that means and the
+  // solvers to choose instead (klu_failure_hint).
+  std::string failure_detail(bool linear_setup_failed) const;
   // SUNDIALS error handler (same signature for CVODES and IDAS): keeps the message for the
   // exception instead of printing it.
   static void error_handler(int code, const char* module, const char* function, char* msg,

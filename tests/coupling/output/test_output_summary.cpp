@@ -58,6 +58,7 @@ TEST(RunSummary, JsonHasEveryContractKey) {
   // Extras only when set.
   EXPECT_FALSE(j.contains("message"));
   EXPECT_FALSE(j["thermal"].contains("linear_solver"));
+  EXPECT_FALSE(j["thermal"].contains("linear_solver_reason"));
   EXPECT_FALSE(j.contains("settle"));  // only for settle runs
   EXPECT_EQ(j.size(), 7u);
   // The contract's 5 mechanics keys plus the extras stalled_steps, correction_sweeps,
@@ -94,6 +95,27 @@ TEST(RunSummary, FileRoundTrip) {
   EXPECT_EQ(r.mechanics.max_iterations, 812);
   EXPECT_EQ(r.thermal.reinitializations, 7);
   EXPECT_DOUBLE_EQ(r.energy.boundary_heat_J, 10.5);
+}
+
+// The resolved linear solver and why ("auto" or explicit): extras, written only when set.
+TEST(RunSummary, LinearSolverReasonRoundTrips) {
+  RunSummary s = sample_summary();
+  s.thermal.linear_solver = "pcg";
+  s.thermal.linear_solver_reason = "auto: 25000 particles >= 5000 in 3D, symmetric Jacobian";
+  const nlohmann::json j = nlohmann::json::parse(s.to_json().dump());
+  EXPECT_EQ(j["thermal"]["linear_solver"], "pcg");
+  EXPECT_EQ(j["thermal"]["linear_solver_reason"],
+            "auto: 25000 particles >= 5000 in 3D, symmetric Jacobian");
+  EXPECT_EQ(j["thermal"].size(), 11u);  // 9 (see above) + linear_solver + linear_solver_reason
+  const RunSummary r = RunSummary::from_json(j);
+  EXPECT_EQ(r.thermal.linear_solver, "pcg");
+  EXPECT_EQ(r.thermal.linear_solver_reason, s.thermal.linear_solver_reason);
+  EXPECT_EQ(r.to_json(), s.to_json());
+  // Summaries written before the reason existed read back without one, and write none.
+  nlohmann::json old = j;
+  old["thermal"].erase("linear_solver_reason");
+  EXPECT_EQ(RunSummary::from_json(old).thermal.linear_solver_reason, "");
+  EXPECT_FALSE(RunSummary::from_json(old).to_json()["thermal"].contains("linear_solver_reason"));
 }
 
 TEST(RunSummary, SettleBlockAndStalledStepsRoundTrip) {

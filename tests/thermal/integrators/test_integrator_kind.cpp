@@ -25,3 +25,11 @@ TEST(IntegratorKind, UnknownNamesListTheValidOnes) {
   }
   EXPECT_THROW(parse_linear_solver_kind("gmres"), std::invalid_argument);
 }
+
+// "auto" is resolved by coupling (LinearSolverChoice.h) before a thermal integrator is made; one
+// reaching the thermal side is a bug, not a user's unknown name.
+TEST(IntegratorKind, AutoIsNoLinearSolverKind) {
+  EXPECT_EQ(kDefaultLinearSolverName, "auto");
+  EXPECT_THROW(parse_linear_solver_kind(kAutoLinearSolverName), std::logic_error);
+  for (auto name : linear_solver_names()) EXPECT_NE(name, kAutoLinearSolverName);
+}

@@ -170,7 +170,7 @@ struct MechanicsSettings {
   int tighten_steps = mechanics::NscdParameters{}.tighten_steps;  // fall_tolerance -> tolerance over this many steps
   int max_iterations = mechanics::NscdParameters{}.max_iterations;
   int full_sweep_every = 1;  // Gauss-Seidel active-set sweeps (mechanics::NscdParameters)
-  std::string stop_test = "sweep";  // "sweep" or "siconos" (mechanics::NscdParameters::siconos_stop)
+  std::string stop_test = "siconos";  // "sweep" or "siconos" (mechanics::NscdParameters::siconos_stop)
   double settle_time_s = 5.0;
   double settle_velocity_m_per_s = 1.0e-4;
   // When "settle" ends (coupling/run/SettleRestTest.h): "network" when the normal forces have

@@ -367,11 +367,11 @@ std::vector<Section> build_sections() {
         number("theta", "", 0.5, Range::open_closed(0.0, 1.0), "Moreau-Jean theta"),
         choice("solver", mechanics::default_contact_solver(), mechanics::contact_solver_names(),
                "contact solver by name (mechanics::ContactSolverRegistry)"),
-        choice("stop_test", "sweep", {"sweep", "siconos"},
-               "when a step's solve counts as converged: \"sweep\", the change of one sweep "
-               "below tolerance; \"siconos\" (nncg only), also Siconos' residual (relative to "
-               "|q|) below tolerance, sweeping on as needed (docs/mechanics.md \"Honest "
-               "convergence\")"),
+        choice("stop_test", "siconos", {"sweep", "siconos"},
+               "when a step's solve counts as converged: \"siconos\", when Siconos' residual "
+               "(relative to |q|) is below tolerance too, nncg sweeping on as needed; \"sweep\", "
+               "when the change of one sweep is (the other solvers always stop on their own "
+               "test; docs/mechanics.md \"Honest convergence\")"),
         number("tolerance", "", kNscd.tolerance, Range::greater(0.0),
                "relative contact-law residual of a Gauss-Seidel sweep that counts as converged "
                "(scale-free: the change of the reactions over one sweep relative to the "

@@ -60,9 +60,6 @@ NscdIntegrator::NscdIntegrator(ParticleSet particles, std::vector<Material> mate
   require(parameters_.theta > 0.0 && parameters_.theta <= 1.0, "theta must be in (0, 1]");
   require(parameters_.tolerance > 0.0, "tolerance must be positive");
   require(parameters_.max_iterations >= 1, "max_iterations must be at least 1");
-  require(!parameters_.siconos_stop || parameters_.solver == "nncg",
-          "stop_test = \"siconos\" is implemented by the solver \"nncg\" only (it is \"" +
-              parameters_.solver + "\")");
   require(parameters_.penetration_slop_fraction >= 0.0 &&
               parameters_.penetration_slop_fraction < 1.0,
           "penetration_slop_fraction must be in [0, 1)");
@@ -154,7 +151,7 @@ NscdIntegrator::NscdIntegrator(ParticleSet particles, std::vector<Material> mate
   settings.relaxation = parameters_.relaxation;
   settings.stall_sweeps = parameters_.stall_sweeps;
   settings.full_sweep_every = parameters_.full_sweep_every;
-  settings.siconos_stop = parameters_.siconos_stop;
+  settings.siconos_stop = parameters_.siconos_stop && parameters_.solver == "nncg";
   solver_ = make_contact_solver(parameters_.solver, settings);
   order_ = SpatialContactOrder(parameters_.parallel_from);
   problem_.rolling = rolling_;

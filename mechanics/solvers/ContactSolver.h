@@ -26,7 +26,8 @@ struct SolverSettings {
   // others visit the active contacts only (ActiveContactSet.h); 1: every sweep is full.
   int full_sweep_every = 1;
   // "nncg": a solve its own stop test calls converged goes on (tighter) until Siconos' residual
-  // (SiconosResidual.h) is within `tolerance` too (scene mechanics.stop_test = "siconos").
+  // (SiconosResidual.h) is within `tolerance` too (scene mechanics.stop_test = "siconos", the
+  // default; NscdIntegrator sets it for "nncg" only).
   bool siconos_stop = false;
 };
 

@@ -238,7 +238,8 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& given,
   if (settings_.siconos_stop && report.converged) {
     const double q_norm = free_velocity_norm(problem);
     double sweep_tolerance = settings_.tolerance;
-    for (int round = 0; round < 12 && report.converged; ++round) {
+    constexpr int kRounds = 40;  // runs of sweeps at most; each tightens by at least 2x
+    for (int round = 0; round < kRounds && report.converged; ++round) {
       const double e = siconos_residual(problem, r, m, velocity, angular_velocity, q_norm);
       if (e <= settings_.tolerance) break;
       if (report.sweeps >= settings_.max_iterations) {
@@ -246,6 +247,7 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& given,
         break;
       }
       sweep_tolerance *= std::max(1e-3, 0.5 * settings_.tolerance / e);
+      if (!(sweep_tolerance > 0.0)) break;  // tightened to nothing: the budget decides
       restart(problem, r, m);
       hooks.previous = 0.0;
       SolverSettings rest = settings_;
@@ -254,7 +256,7 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& given,
       SolveReport more = run(rest);
       more.sweeps += report.sweeps;
       report = more;
-      if (report.converged && round == 11)
+      if (report.converged && round == kRounds - 1)
         report.converged = siconos_residual(problem, r, m, velocity, angular_velocity, q_norm) <= settings_.tolerance;
     }
   }

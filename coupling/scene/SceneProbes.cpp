@@ -10,15 +10,11 @@ namespace {
 
 using Key = SceneSchema::Key;
 
+// A probe key has no default: SceneSchema's plain value key with an empty default text.
 Key probe_value(std::string name, std::string unit, std::string allowed, std::string description,
                 bool required) {
-  Key k;
-  k.name = std::move(name);
-  k.unit = std::move(unit);
-  k.allowed = std::move(allowed);
-  k.description = std::move(description);
-  k.required = required;
-  return k;
+  return schema_value_key(std::move(name), std::move(unit), "", std::move(allowed),
+                          std::move(description), required);
 }
 
 }  // namespace

@@ -51,14 +51,8 @@ Key required_number(std::string name, std::string unit, Range range, std::string
 
 Key value(std::string name, std::string unit, std::string default_text, std::string allowed,
           std::string description, bool required = false) {
-  Key k;
-  k.name = std::move(name);
-  k.unit = std::move(unit);
-  k.default_text = std::move(default_text);
-  k.allowed = std::move(allowed);
-  k.description = std::move(description);
-  k.required = required;
-  return k;
+  return schema_value_key(std::move(name), std::move(unit), std::move(default_text),
+                          std::move(allowed), std::move(description), required);
 }
 
 Key boolean(std::string name, std::string default_text, std::string description) {
@@ -568,6 +562,18 @@ std::string_view SceneSchema::suggestion(std::string_view schema, std::string_vi
     }
   }
   return best;
+}
+
+SceneSchema::Key schema_value_key(std::string name, std::string unit, std::string default_text,
+                                  std::string allowed, std::string description, bool required) {
+  SceneSchema::Key k;
+  k.name = std::move(name);
+  k.unit = std::move(unit);
+  k.default_text = std::move(default_text);
+  k.allowed = std::move(allowed);
+  k.description = std::move(description);
+  k.required = required;
+  return k;
 }
 
 }  // namespace tmdem::coupling

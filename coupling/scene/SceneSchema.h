@@ -61,4 +61,9 @@ class SceneSchema {
   static std::string_view suggestion(std::string_view schema, std::string_view name);
 };
 
+// A plain value key (no range, no choices): what every schema table builds its free-form keys
+// from (SceneSchema.cpp's tables, the probe table of SceneProbes.cpp).
+SceneSchema::Key schema_value_key(std::string name, std::string unit, std::string default_text,
+                                  std::string allowed, std::string description, bool required = false);
+
 }  // namespace tmdem::coupling

@@ -196,6 +196,8 @@ FclibLocalProblem fclib_local_problem(const ContactProblem& problem,
         const std::size_t e = kept[other];
         Eigen::Vector3d u = mechanics::local_velocity<Eigen::Vector3d>(problem, e, dv, dw);
         u[0] -= problem.bias[e];
+        // A compliant contact's own normal column: W_nn + compliance (ContactProblem.h).
+        if (problem.compliant && e == c && a == 0) u[0] += problem.compliance[c];
         for (int b = 0; b < d; ++b)
           if (u[b] != 0.0) {
             out.row.push_back(int(other) * d + b);
@@ -213,7 +215,8 @@ FclibLocalProblem fclib_local_problem(const ContactProblem& problem,
   for (const std::size_t c : kept) {
     const Eigen::Vector3d q =
         mechanics::local_velocity<Eigen::Vector3d>(problem, c, problem.free_velocity, problem.free_angular_velocity);
-    const Eigen::Vector3d u = mechanics::local_velocity<Eigen::Vector3d>(problem, c, v, w);
+    Eigen::Vector3d u = mechanics::local_velocity<Eigen::Vector3d>(problem, c, v, w);
+    if (problem.compliant) u[0] += problem.compliance[c] * reactions[c][0];
     for (int a = 0; a < d; ++a) {
       out.q.push_back(q[a]);
       out.r.push_back(reactions[c][a]);

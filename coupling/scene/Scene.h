@@ -171,6 +171,7 @@ struct MechanicsSettings {
   int max_iterations = mechanics::NscdParameters{}.max_iterations;
   int full_sweep_every = 1;  // Gauss-Seidel active-set sweeps (mechanics::NscdParameters)
   std::string stop_test = "siconos";  // "sweep" or "siconos" (mechanics::NscdParameters::siconos_stop)
+  mechanics::NormalLaw normal_law = mechanics::NscdParameters{}.normal_law;  // "rigid" or "hertz"
   double settle_time_s = 5.0;
   double settle_velocity_m_per_s = 1.0e-4;
   // When "settle" ends (coupling/run/SettleRestTest.h): "network" when the normal forces have

@@ -128,6 +128,7 @@ void SceneBuilder::read_settings() {
     m.theta = t.number("theta");
     m.solver = t.choice("solver");
     m.stop_test = t.choice("stop_test");
+    m.normal_law = mechanics::parse_normal_law(t.choice("normal_law"));
     m.tolerance = t.number("tolerance");
     m.fall_tolerance = t.number("fall_tolerance");
     m.fall_speed_m_per_s = t.optional_number("fall_speed").value_or(0.0);  // absent: automatic

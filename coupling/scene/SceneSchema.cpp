@@ -366,6 +366,13 @@ std::vector<Section> build_sections() {
                "(relative to |q|) is below tolerance too, nncg sweeping on as needed; \"sweep\", "
                "when the change of one sweep is (the other solvers always stop on their own "
                "test; docs/mechanics.md \"Honest convergence\")"),
+        choice("normal_law", mechanics::normal_law_name(kNscd.normal_law), mechanics::normal_law_names(),
+               "normal contact law: \"rigid\", unilateral contacts without overlap (NSCD); "
+               "\"hertz\", elastic contacts at the materials' young_modulus and poisson_ratio, "
+               "F = (4/3) E* sqrt(R*) delta^(3/2) for an overlap delta, solved in the same "
+               "Moreau-Jean step as a normal compliance: forces unique in a hyperstatic packing, "
+               "overlaps kept (no position step); needs solver nlgs, nlgs_coloured, nncg or "
+               "nncg_coloured (docs/mechanics.md \"The normal law\")"),
         number("tolerance", "", kNscd.tolerance, Range::greater(0.0),
                "relative contact-law residual of a Gauss-Seidel sweep that counts as converged "
                "(scale-free: the change of the reactions over one sweep relative to the "

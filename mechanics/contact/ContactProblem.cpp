@@ -16,6 +16,7 @@ void ContactProblem::resize_contacts(std::size_t count) {
   w_t.resize(count);
   bias.resize(count);
   mu.resize(count);
+  if (compliant) compliance.resize(count);
   if (rolling) {
     rolling_limit.resize(count);
     rolling_radius.resize(count);

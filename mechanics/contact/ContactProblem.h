@@ -43,6 +43,14 @@ struct ContactProblem {
   std::vector<double> w_n, w_t;         // Delassus block diag(w_n, w_t, w_t), 1/kg
   std::vector<double> bias;             // m/s, position term added to the normal velocity
   std::vector<double> mu;               // friction coefficient
+  // Normal compliance (MechanicsNormalLaw "hertz"; `compliant` false: rigid, the array is not
+  // sized). Contact c's normal velocity is then U_n = H_c^T v + bias + compliance_c r_n, 1/kg:
+  // the Moreau-Jean step of an elastic normal spring of stiffness k, compliance 1 / (k h^2)
+  // (HertzNormalLaw.h). W becomes W + diag(compliance_c, 0, 0): positive definite, so the
+  // reactions of a hyperstatic packing are unique. Every solver sees it through
+  // normal_delassus(c) (its local block) and contact_velocity() (ContactKinematics.h).
+  bool compliant = false;
+  std::vector<double> compliance;       // 1/kg (m/s per N s)
   // m/s; 0: off. The Gauss-Seidel stop test (GaussSeidelUpdate.h) counts a contact's impulse
   // |r_c| at most as the impulse that would give its bodies this speed, stop_speed / w_n: the
   // test is relative to the reactions (scale-free) where they carry weight, and relative to
@@ -78,6 +86,8 @@ struct ContactProblem {
   bool split_periodic() const { return split_period[1] > split_period[0]; }
 
   std::size_t size() const { return body_i.size(); }
+  // W_cc's normal entry, 1/kg: w_n, plus the normal compliance of a compliant problem.
+  double normal_delassus(std::size_t c) const { return compliant ? w_n[c] + compliance[c] : w_n[c]; }
   std::size_t body_count() const { return inverse_mass.size(); }
   // The body of the wall named by j (is_wall(j)).
   std::size_t wall_body(std::int32_t j) const { return particle_count + wall_index(j); }
@@ -129,6 +139,7 @@ inline void ContactProblem::copy_contact(std::size_t k, const ContactProblem& fr
   w_t[k] = from.w_t[c];
   bias[k] = from.bias[c];
   mu[k] = from.mu[c];
+  if (from.compliant) compliance[k] = from.compliance[c];
   if (from.rolling) {
     rolling_limit[k] = from.rolling_limit[c];
     rolling_radius[k] = from.rolling_radius[c];

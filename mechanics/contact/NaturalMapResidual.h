@@ -19,15 +19,16 @@
 
 namespace tmdem::mechanics {
 
-// R_c for one contact from its reaction r_c and local velocity u (with bias, ContactProblem).
+// R_c for one contact from its reaction r_c and local velocity u (with bias, ContactProblem;
+// without a compliant contact's compliance r_n).
 inline Eigen::Vector3d local_law_solution(const ContactProblem& problem, std::size_t c,
                                           const Eigen::Vector3d& r_c, const Eigen::Vector3d& u) {
   const double w_n = problem.w_n[c], w_t = problem.w_t[c];
   const bool planar = problem.dimension == 2;
   const Eigen::Vector3d u0(u[0] - w_n * r_c[0], u[1] - w_t * r_c[1],
                            planar ? 0.0 : u[2] - w_t * r_c[2]);
-  Eigen::Vector3d next;
-  solve_contact_bipotential(u0, w_n, w_t, problem.mu[c], next);
+  Eigen::Vector3d next;  // u has no compliance term, u0 needs none (GaussSeidelUpdate.h)
+  solve_contact_bipotential(u0, problem.normal_delassus(c), w_t, problem.mu[c], next);
   if (planar) next[2] = 0.0;
   return next;
 }

@@ -26,7 +26,8 @@ double siconos_residual(const ContactProblem& problem, const std::vector<Eigen::
   double sum = 0.0;
   for (std::size_t c = 0; c < problem.size(); ++c) {
     if (!problem.solvable(c)) continue;
-    const Eigen::Vector3d u = local_velocity<Eigen::Vector3d>(problem, c, velocity, angular_velocity);
+    Eigen::Vector3d u = local_velocity<Eigen::Vector3d>(problem, c, velocity, angular_velocity);
+    if (problem.compliant) u[0] += problem.compliance[c] * r[c][0];  // (W r + q)_n of W + C
     const double slip = std::hypot(u[1], u[2]);
     const Eigen::Vector3d tau(r[c][0] - (u[0] + problem.mu[c] * slip), r[c][1] - u[1], r[c][2] - u[2]);
     Eigen::Vector3d defect = r[c] - project_onto_coulomb_cone(tau, problem.mu[c]);

@@ -153,6 +153,20 @@ NscdIntegrator::NscdIntegrator(ParticleSet particles, std::vector<Material> mate
   settings.full_sweep_every = parameters_.full_sweep_every;
   settings.siconos_stop = parameters_.siconos_stop && parameters_.solver == "nncg";
   solver_ = make_contact_solver(parameters_.solver, settings);
+  if (compliant()) {
+    const auto& names = compliant_contact_solver_names();
+    std::string valid;
+    for (const auto& name : names) valid += (valid.empty() ? "\"" : ", \"") + name + "\"";
+    require(std::find(names.begin(), names.end(), parameters_.solver) != names.end(),
+            "normal_law \"hertz\" needs a Gauss-Seidel solver, not \"" + parameters_.solver +
+                "\" (valid: " + valid + ")");
+    for (std::size_t m = 0; m < materials_.size(); ++m)
+      require(materials_[m].young_modulus > 0.0 && std::isfinite(materials_[m].young_modulus) &&
+                  materials_[m].poisson_ratio > -1.0 && materials_[m].poisson_ratio < 0.5,
+              "material " + std::to_string(m) +
+                  ": normal_law \"hertz\" needs young_modulus > 0 Pa and poisson_ratio in (-1, 0.5)");
+    problem_.compliant = true;
+  }
   order_ = SpatialContactOrder(parameters_.parallel_from);
   problem_.rolling = rolling_;
   require(parameters_.stop_travel_fraction >= 0.0 && std::isfinite(parameters_.stop_travel_fraction),
@@ -390,6 +404,7 @@ StepReport NscdIntegrator::step(double h) {
   }
   lap();
   setup_contacts(h);
+  if (compliant()) set_hertz_laws(h);
   // Where the particles are, for a solver that cuts the contacts into slabs (ContactSlabs.h).
   problem_.particle_position.assign(particles_.position.begin(), particles_.position.end());
   problem_.split_axis = split_axis();
@@ -446,6 +461,7 @@ StepReport NscdIntegrator::step(double h) {
   // Then overlaps deeper than the slop are removed by moving positions only.
   lap();
   gaps_after_step(gap_after_);
+  if (compliant()) add_elastic_overlaps(h, gap_after_);  // a compliant law's overlaps are its own
   const SolveReport corrected = correction_.correct(problem_, gap_after_, slop_m_,
                                                     parameters_.recovery_speed, h,
                                                     particles_.position);
@@ -455,8 +471,8 @@ StepReport NscdIntegrator::step(double h) {
     report.stalled = report.stalled || corrected.stalled;
     report.residual = std::max(report.residual, corrected.residual);
   }
+  if (corrected.sweeps > 0 || compliant()) gaps_after_step(gap_after_);
   if (corrected.sweeps > 0) {
-    gaps_after_step(gap_after_);
     const auto& pseudo = correction_.pseudo_velocity();
     for (std::size_t i = 0; i < n; ++i) {
       if (inverse_mass_[i] > 0.0)

@@ -142,6 +142,13 @@ class NscdIntegrator {
  private:
   void refresh_candidates(double h);
   void setup_contacts(double h);
+  // The "hertz" normal law (NscdIntegratorHertz.cpp): each solvable candidate's compliance and
+  // bias from its linearised Hertz law, after setup_contacts.
+  void set_hertz_laws(double h);
+  // gap_m (per candidate, m) += the Hertz overlap of the force of the step just solved: the
+  // position step then removes only what lies beyond the elastic overlap.
+  void add_elastic_overlaps(double h, std::vector<double>& gap_m) const;
+  bool compliant() const { return parameters_.normal_law == NormalLaw::hertz; }
   void keep_in_plane();
   void refresh_wall_bodies(double h);
   // The step's energy change and numerical damping (see above), from v- and v+.
@@ -183,6 +190,7 @@ class NscdIntegrator {
   std::vector<Eigen::Vector3d> reactions_;   // local impulse per candidate (n, t1, t2), N s
   std::vector<double> gap_;                  // per candidate at the start of the step, m
   std::vector<double> gap_after_;            // per candidate after the step, m
+  std::vector<double> hertz_coefficient_;    // K per candidate, N/m^1.5 ("hertz"; 0: rigid this step)
   PenetrationCorrection correction_{SolverSettings{}};
   std::vector<Eigen::Vector3d> force_;       // global reaction force per candidate, N
   std::vector<Eigen::Vector3d> old_force_;   // same, before a candidate rebuild

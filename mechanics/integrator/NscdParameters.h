@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <string>
 
+#include "mechanics/contact/NormalLaw.h"
 #include "mechanics/solvers/ContactSolverRegistry.h"
 
 namespace tmdem::mechanics {
@@ -12,6 +13,9 @@ struct NscdParameters {
   double time_step = 1.0e-3;  // s
   double theta = 0.5;         // Moreau-Jean theta, in (0, 1]; 0.5 conserves energy in flight
   std::string solver = default_contact_solver();  // contact solver by name (ContactSolverRegistry.h)
+  // Rigid unilateral contacts, or Hertz's elastic ones at the materials' moduli (NormalLaw.h;
+  // the position step then leaves overlaps alone: they are the law's).
+  NormalLaw normal_law = NormalLaw::rigid;
   // Gauss-Seidel stop: sum_c |dr_c| / sum_c |r_c| < tolerance over one sweep (Euclidean norms
   // of the local impulses, N s). With the natural step of the closed-form local solve
   // (CoulombCone.h), dr_c is the bipotential fixed-point residual r - proj_K(r - rho u~) of

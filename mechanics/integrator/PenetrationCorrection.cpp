@@ -37,6 +37,7 @@ SolveReport PenetrationCorrection::correct(const ContactProblem& problem,
             Eigen::Vector3d::Zero());
   std::fill(problem_.mu.begin(), problem_.mu.end(), 0.0);
   problem_.rolling = false;  // frictionless, and no rolling resistance: normals only
+  problem_.compliant = false;  // positions of rigid contacts (a compliant law keeps its overlaps)
   problem_.stop_speed = 0.0;  // displacements, not impulses: relative to the whole correction
   // Walls, pistons included, do not move in the position step: the particle takes the whole
   // correction (a piston's share would otherwise be solved for and never applied).

@@ -15,6 +15,9 @@ namespace {
 struct Entry {
   std::string name;
   std::unique_ptr<ContactSolver> (*make)(const SolverSettings&);
+  // Solves compliant problems (ContactProblem::compliance): every local block it solves goes
+  // through gauss_seidel_visit (GaussSeidelUpdate.h). The others build W's blocks themselves.
+  bool compliant = false;
 };
 
 template <class Solver>
@@ -36,12 +39,12 @@ std::unique_ptr<ContactSolver> make_subspace_nncg(const SolverSettings& settings
 
 const std::vector<Entry>& entries() {
   static const std::vector<Entry> table = {
-      {"nlgs", &make<GaussSeidelSolver>},
+      {"nlgs", &make<GaussSeidelSolver>, true},
       {"apgd", &make<ApgdSolver>},
-      {"nlgs_coloured", &make<ColouredGaussSeidelSolver>},
+      {"nlgs_coloured", &make<ColouredGaussSeidelSolver>, true},
       {"nlgs_block", &make<BlockGaussSeidelSolver>},
-      {"nncg", &make<NncgSolver>},
-      {"nncg_coloured", &make_coloured_nncg},
+      {"nncg", &make<NncgSolver>, true},
+      {"nncg_coloured", &make_coloured_nncg, true},
       {"nlgs_subspace", &make<SubspaceGaussSeidelSolver>},
       {"nncg_subspace", &make_subspace_nncg},
   };
@@ -61,6 +64,16 @@ const std::vector<std::string>& contact_solver_names() {
   static const std::vector<std::string> names = [] {
     std::vector<std::string> out;
     for (const auto& e : entries()) out.push_back(e.name);
+    return out;
+  }();
+  return names;
+}
+
+const std::vector<std::string>& compliant_contact_solver_names() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const auto& e : entries())
+      if (e.compliant) out.push_back(e.name);
     return out;
   }();
   return names;

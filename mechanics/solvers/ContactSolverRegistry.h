@@ -14,6 +14,10 @@ namespace tmdem::mechanics {
 // Registered names, in registration order.
 const std::vector<std::string>& contact_solver_names();
 
+// The names of the solvers that solve compliant problems (ContactProblem::compliance: the
+// "hertz" normal law), in registration order.
+const std::vector<std::string>& compliant_contact_solver_names();
+
 // The solver of a scene or NscdParameters that names none: the one place this default is set.
 const std::string& default_contact_solver();
 

@@ -40,12 +40,13 @@ inline ContactUpdate gauss_seidel_update(const ContactProblem& problem, std::siz
                                          std::vector<Eigen::Vector3d>& angular_velocity) {
   const bool planar = problem.dimension == 2;
   const double w_n = problem.w_n[c], w_t = problem.w_t[c], mu = problem.mu[c];
-  // u0 = U_c - W_cc r_c.
+  // u0 = U_c - W_cc r_c. A compliant contact's U_n and W_cc both carry compliance r_n, which
+  // cancels here: only its local solve sees the compliance.
   const ScalarVec3 u = local_velocity<ScalarVec3>(problem, c, velocity, angular_velocity);
   const Eigen::Vector3d u0(u[0] - w_n * rc[0], u[1] - w_t * rc[1], planar ? 0.0 : u[2] - w_t * rc[2]);
   // Exact local solve (closed form of the bipotential fixed point, CoulombCone.h).
   Eigen::Vector3d next;
-  solve_contact_bipotential(u0, w_n, w_t, mu, next);
+  solve_contact_bipotential(u0, problem.normal_delassus(c), w_t, mu, next);
   if (relaxation != 1.0) next = project_onto_coulomb_cone(rc + relaxation * (next - rc), mu);
   if (planar) next[2] = 0.0;
   const ScalarVec3 after(next), dr = after - ScalarVec3(rc);

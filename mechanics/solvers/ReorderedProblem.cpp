@@ -15,6 +15,7 @@ void ReorderedProblem::load(const ContactProblem& problem, const std::vector<std
   ordered_.free_angular_velocity.assign(problem.free_angular_velocity.begin(),
                                         problem.free_angular_velocity.end());
   ordered_.rolling = problem.rolling;
+  ordered_.compliant = problem.compliant;
   ordered_.stop_speed = problem.stop_speed;
   ordered_.resize_contacts(static_cast<std::size_t>(count));
   ordered_r_.resize(static_cast<std::size_t>(count));

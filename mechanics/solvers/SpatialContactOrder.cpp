@@ -83,6 +83,7 @@ void SpatialContactOrder::gather(const ContactProblem& problem, const std::vecto
   q.dimension = problem.dimension;
   q.particle_count = n;
   q.rolling = problem.rolling;
+  q.compliant = problem.compliant;
   q.inverse_mass.resize(bodies);
   q.inverse_inertia.resize(bodies);
   q.free_velocity.resize(bodies);

@@ -371,8 +371,8 @@ std::vector<Section> build_sections() {
                "\"hertz\", elastic contacts at the materials' young_modulus and poisson_ratio, "
                "F = (4/3) E* sqrt(R*) delta^(3/2) for an overlap delta, solved in the same "
                "Moreau-Jean step as a normal compliance: forces unique in a hyperstatic packing, "
-               "overlaps kept (no position step); needs solver nlgs, nlgs_coloured, nncg or "
-               "nncg_coloured (docs/mechanics.md \"The normal law\")"),
+               "elastic overlaps kept (the position step removes only what lies beyond them); "
+               "not with solver apgd or nlgs_block (docs/mechanics.md \"The normal law\")"),
         number("tolerance", "", kNscd.tolerance, Range::greater(0.0),
                "relative contact-law residual of a Gauss-Seidel sweep that counts as converged "
                "(scale-free: the change of the reactions over one sweep relative to the "

@@ -182,6 +182,11 @@ bool ActiveSetSubspaceStep::assemble_and_factorise(const ContactProblem& problem
   std::fill(values, values + matrix_.nonZeros(), 0.0);
   std::size_t t = 0;
   for_each_contribution(problem, [&](int, int, double value) { values[value_index_[t++]] += value; });
+  // A compliant problem's W + C: each active contact's normal unknown (its first) takes its
+  // compliance (ContactProblem::compliance), which makes W_AA positive definite.
+  if (problem.compliant)
+    for (std::size_t k = 0; k < active_.size(); ++k)
+      values[diagonal_index_[offset_[k]]] += problem.compliance[static_cast<std::size_t>(active_[k])];
   diagonal_.resize(unknowns);
   for (int u = 0; u < unknowns; ++u) {
     diagonal_[u] = values[diagonal_index_[u]];
@@ -212,7 +217,8 @@ bool ActiveSetSubspaceStep::take(const ContactProblem& problem, std::vector<Eige
     pass_start_.resize(count);
     for (std::size_t k = 0; k < count; ++k) {
       const auto c = static_cast<std::size_t>(active_[k]);
-      const Eigen::Vector3d u = local_velocity<Eigen::Vector3d>(problem, c, velocity, angular_velocity);
+      Eigen::Vector3d u = local_velocity<Eigen::Vector3d>(problem, c, velocity, angular_velocity);
+      if (problem.compliant) u[0] += problem.compliance[c] * r[c][0];  // U of W + C
       for (std::int32_t a = 0; a < size_[k]; ++a) residual_[offset_[k] + a] = -u[a];
       pass_start_[k] = r[c];
     }

@@ -19,7 +19,9 @@
 //     projection leaving one open is no change of status;
 //   - open contacts (r_n = 0), contacts just inside the cone's edge and the rolling impulses
 //     (ContactProblem::rolling) are held fixed (the sweeps solve them).
-// A hyperstatic bed makes W_AA singular, and the position terms of a closed loop of contacts
+// A compliant problem (ContactProblem::compliance, the "hertz" normal law) solves with
+// W_AA + C_A, C_A its active contacts' normal compliances, and U_A includes C r_n: positive
+// definite, its forces unique. A rigid hyperstatic bed makes W_AA singular, and the position terms of a closed loop of contacts
 // can make W_AA dr = -U_A inconsistent; the step is therefore the proximal point iteration
 // (W_AA + rho D) (x_{k+1} - x_k) = -U_A(x_k), D = diag(W_AA), a few passes from x = 0
 // (Options::proximal, proximal_iterations): bounded in the near-null directions, and any

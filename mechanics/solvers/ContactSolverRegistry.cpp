@@ -15,8 +15,9 @@ namespace {
 struct Entry {
   std::string name;
   std::unique_ptr<ContactSolver> (*make)(const SolverSettings&);
-  // Solves compliant problems (ContactProblem::compliance): every local block it solves goes
-  // through gauss_seidel_visit (GaussSeidelUpdate.h). The others build W's blocks themselves.
+  // Solves compliant problems (ContactProblem::compliance): its local blocks go through
+  // gauss_seidel_visit (GaussSeidelUpdate.h), its subspace steps add the compliance to W_AA
+  // (ActiveSetSubspaceStep.h). The others build W's blocks themselves without it.
   bool compliant = false;
 };
 
@@ -45,8 +46,8 @@ const std::vector<Entry>& entries() {
       {"nlgs_block", &make<BlockGaussSeidelSolver>},
       {"nncg", &make<NncgSolver>, true},
       {"nncg_coloured", &make_coloured_nncg, true},
-      {"nlgs_subspace", &make<SubspaceGaussSeidelSolver>},
-      {"nncg_subspace", &make_subspace_nncg},
+      {"nlgs_subspace", &make<SubspaceGaussSeidelSolver>, true},
+      {"nncg_subspace", &make_subspace_nncg, true},
   };
   return table;
 }

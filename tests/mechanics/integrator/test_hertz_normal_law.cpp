@@ -10,30 +10,11 @@
 
 #include <cmath>
 
-#include "mechanics/MechanicsTestScenes.h"
-#include "mechanics/contact/HertzNormalLaw.h"
+#include "mechanics/HertzScenes.h"
 
 using namespace tmdem::mechanics;
 using namespace tmdem::mechanics::test;
 using Eigen::Vector3d;
-
-namespace {
-
-NscdParameters hertz_parameters() {
-  NscdParameters parameters = nlgs_parameters();
-  parameters.normal_law = NormalLaw::hertz;
-  parameters.tolerance = 1e-10;
-  parameters.max_iterations = 100000;
-  return parameters;
-}
-
-// E* of two steel bodies (steel(): E 2.1e11 Pa, nu 0.3).
-double steel_pair_modulus() {
-  const Material m = steel(0.0);
-  return hertz_effective_modulus(m.young_modulus, m.poisson_ratio, m.young_modulus, m.poisson_ratio);
-}
-
-}  // namespace
 
 TEST(HertzNormalLaw, StepLawAtItsTangentPointIsHertz) {
   // r_n = h F* + k h (delta+ - delta*) with delta+ = -(g~ + h u_n): at rest (u_n = 0) with
@@ -103,7 +84,6 @@ TEST(HertzNormalLaw, PlateOnThreeUnequalSpheresSharesTheLoadAsHertzSprings) {
   Wall plate = Wall::through({0, 2 * kRadius, 0}, {0, -1, 0}, 0);
   plate.make_piston(1e-3, load);
   NscdParameters parameters = hertz_parameters();
-  parameters.solver = "nncg";  // the plate is 30 times a sphere's mass: slow for plain Gauss-Seidel
   NscdIntegrator sim(std::move(set), {steel(0.0)}, {Wall::through({0, 0, 0}, {0, 1, 0}, 0), plate},
                      Vector3d::Zero(), 3, parameters);
   for (int s = 0; s < 3000; ++s) {
@@ -116,7 +96,7 @@ TEST(HertzNormalLaw, PlateOnThreeUnequalSpheresSharesTheLoadAsHertzSprings) {
     if (c.j == wall_code<std::int64_t>(1)) plate_force[c.i] = c.normal_force_N;
   }
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(plate_force[k], force_of(k, y), 1e-6 * load) << "sphere " << k;
-  EXPECT_NEAR(plate_force[0] + plate_force[1] + plate_force[2], load, 1e-9 * load);
+  EXPECT_NEAR(plate_force[0] + plate_force[1] + plate_force[2], load, 1e-8 * load);
 }
 
 TEST(HertzNormalLaw, NeedsAGaussSeidelSolverAndModuli) {

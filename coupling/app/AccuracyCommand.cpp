@@ -28,6 +28,12 @@ int run_accuracy_command(const Scene& scene, const AccuracyCommandOptions& optio
     auto base_for = [&](const thermal::ThermalSystem& system) {
       return integrator_settings(scene, choose_linear_solver(scene, system, 1).kind);
     };
+    if (scene.effects.mechanics == MechanicsMode::Coupled) {
+      log << "error: tmdem study accuracy takes scenes with effects.mechanics = \"off\", "
+             "\"settle\" or \"dynamic\"; a \"coupled\" scene's network changes with its "
+             "temperatures, which differ between the study's runs\n";
+      return kExitInvalid;
+    }
     if (scene.effects.mechanics == MechanicsMode::Dynamic && near_pair_reach(scene) > 0.0) {
       log << "error: tmdem study accuracy replays a dynamic scene's recorded contacts without "
              "positions, so it cannot follow the near pairs of effects.gas_conduction or "

@@ -28,7 +28,8 @@ std::array<double, 3> array_of(const Eigen::Vector3d& v) { return {v.x(), v.y(),
 std::int64_t scene_step_limit(const Scene& scene) {
   const double h = scene.mechanics.time_step_s;
   std::int64_t steps = 0;
-  if (scene.effects.mechanics == MechanicsMode::Settle) {
+  // "coupled" settles first, as "settle": its first packing is that one.
+  if (scene.effects.mechanics == MechanicsMode::Settle || scene.effects.mechanics == MechanicsMode::Coupled) {
     for (double t = 0.0; t < scene.mechanics.settle_time_s - 0.5 * h; t += h) ++steps;
   } else {  // dynamic, as CoupledRun::run_dynamic: steps of h, the last one cut at the duration
     for (double t = 0.0; t < scene.duration_s - 1e-9 * h; ++steps)
@@ -99,7 +100,8 @@ struct StepOutcome {
 // Runs the mechanics up to step `wanted` (0: the last one) as `tmdem run` would.
 StepOutcome run_to_step(mechanics::NscdIntegrator& nscd, const Scene& scene, std::int64_t wanted) {
   const std::int64_t limit = scene_step_limit(scene);
-  const bool settle = scene.effects.mechanics == MechanicsMode::Settle;
+  const bool settle = scene.effects.mechanics == MechanicsMode::Settle ||
+                      scene.effects.mechanics == MechanicsMode::Coupled;
   if (wanted > limit) {
     std::ostringstream msg;
     msg << "--step " << wanted << " is beyond the scene's mechanical steps: "

@@ -24,6 +24,7 @@ const char* mechanics_name(MechanicsMode m) {
     case MechanicsMode::Off: return "off";
     case MechanicsMode::Settle: return "settle";
     case MechanicsMode::Dynamic: return "dynamic";
+    case MechanicsMode::Coupled: return "coupled";
   }
   return "?";
 }

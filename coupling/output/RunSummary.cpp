@@ -108,6 +108,14 @@ nlohmann::json RunSummary::to_json() const {
                    {"ended_by", settle->ended_by},
                    {"rattlers", settle->rattlers}};
   }
+  if (thermo_mechanics) {
+    j["thermo_mechanics"] = {{"couplings", thermo_mechanics->couplings},
+                             {"steps", thermo_mechanics->steps},
+                             {"not_at_rest", thermo_mechanics->not_at_rest},
+                             {"largest_wall_force_N", thermo_mechanics->largest_wall_force_N},
+                             {"last_wall_force_N", thermo_mechanics->last_wall_force_N},
+                             {"last_wall_point_m", thermo_mechanics->last_wall_point_m}};
+  }
   if (wall_time_parts) {
     j["wall_time_parts"] = {{"mechanics_s", wall_time_parts->mechanics_s},
                             {"thermal_s", wall_time_parts->thermal_s},
@@ -173,6 +181,21 @@ RunSummary RunSummary::from_json(const nlohmann::json& j) {
     if (st.contains("ended_by")) settle.ended_by = st.at("ended_by").get<std::string>();
     settle.rattlers = integer(st, "rattlers", 0);
     s.settle = settle;
+  }
+
+  if (j.contains("thermo_mechanics")) {
+    const nlohmann::json& c = j.at("thermo_mechanics");
+    ThermoMechanicsSummary tm;
+    tm.couplings = integer(c, "couplings", 0);
+    tm.steps = integer(c, "steps", 0);
+    tm.not_at_rest = integer(c, "not_at_rest", 0);
+    auto list = [&](const char* key) {
+      return c.contains(key) ? c.at(key).get<std::vector<double>>() : std::vector<double>{};
+    };
+    tm.largest_wall_force_N = list("largest_wall_force_N");
+    tm.last_wall_force_N = list("last_wall_force_N");
+    tm.last_wall_point_m = list("last_wall_point_m");
+    s.thermo_mechanics = tm;
   }
 
   if (j.contains("wall_time_parts")) {

@@ -63,6 +63,18 @@ struct SettleSummary {
   std::int64_t rattlers = 0;
 };
 
+// The "thermo_mechanics" block (extra; effects.mechanics = "coupled" only): the quasi-static
+// re-solves of the packing during the heating, and the walls' forces (N, the sum of the normal
+// forces of each wall's contacts, one entry per [[wall]] in scene order) and points (m).
+struct ThermoMechanicsSummary {
+  std::int64_t couplings = 0;           // re-solves of the packing after t = 0
+  std::int64_t steps = 0;               // mechanical steps over them
+  std::int64_t not_at_rest = 0;         // re-solves that ran out of mechanics.settle_time
+  std::vector<double> largest_wall_force_N;  // over the run's frames
+  std::vector<double> last_wall_force_N;
+  std::vector<double> last_wall_point_m;     // 3 per wall
+};
+
 struct ThermalSummary {
   std::string integrator = "cvode";  // "cvode", "ida" or "explicit"
   std::string linear_solver;         // extra: "klu", "pcg" or "amg" (as resolved from "auto");
@@ -162,6 +174,7 @@ struct RunSummary {
   std::int64_t particles = 0;
   MechanicsSummary mechanics;
   std::optional<SettleSummary> settle;  // extra: present for settle runs only
+  std::optional<ThermoMechanicsSummary> thermo_mechanics;  // extra: "coupled" runs only
   ThermalSummary thermal;
   EnergySummary energy;
   std::optional<WallTimeParts> wall_time_parts;  // extra: present for runs that got going

@@ -85,6 +85,13 @@ void CoupledRun::prepare_mechanics() {
     frozen_ = false;
     return;
   }
+  if (mode == MechanicsMode::Coupled) {
+    if (restart_) throw StartError("a \"coupled\" run cannot be restarted from a checkpoint yet");
+    settle();
+    frozen_ = false;  // the packing moves again at every coupling
+    expansion_.emplace(scene_);
+    return;
+  }
   if (restart_) {
     particles_ = nscd_->particles();
     // The walls where settling left them, not where the scene put them: a piston's gas gaps
@@ -318,6 +325,7 @@ void CoupledRun::fill_summary() {
     parts.correction_s = nscd_->stats().correction_s;
   }
   summary_.wall_time_parts = parts;
+  if (scene_.effects.mechanics == MechanicsMode::Coupled) summary_.thermo_mechanics = thermo_;
   const char* wait_policy = std::getenv("OMP_WAIT_POLICY");
   const char* spin_count = std::getenv("GOMP_SPINCOUNT");
   summary_.openmp = OpenMpSummary{omp_get_max_threads(), wait_policy ? wait_policy : "unset",
@@ -556,6 +564,8 @@ RunOutcome CoupledRun::run() {
                              : 0.0;
     if (frozen_)
       run_static();
+    else if (scene_.effects.mechanics == MechanicsMode::Coupled)
+      run_coupled();
     else
       run_dynamic();
   } catch (const Interrupted& stop) {

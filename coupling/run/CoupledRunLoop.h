@@ -20,6 +20,7 @@
 #include "coupling/run/CoupledRun.h"
 #include "coupling/run/DistributedHeating.h"
 #include "coupling/run/LinearSolverChoice.h"
+#include "coupling/run/ThermalExpansion.h"
 #include "mechanics/integrator/NscdIntegrator.h"
 #include "thermal/integrators/MpiWorld.h"
 #include "thermal/integrators/ThermalIntegrator.h"
@@ -61,6 +62,11 @@ class CoupledRun {
   void prepare_distributed_thermal(const thermal::IntegratorSettings& settings);
   void run_static();
   void run_dynamic();
+  // effects.mechanics = "coupled" (CoupledRunThermoMechanics.cpp): heating between couplings,
+  // each a quasi-static re-solve of the packing with the radii of the temperatures reached.
+  void run_coupled();
+  void recouple();
+  void track_wall_forces();
   // The result file: created, or reopened to resume (rank 0 only over MPI).
   void open_result_file();
   void write_frame(double t_s);
@@ -94,7 +100,10 @@ class CoupledRun {
   std::vector<double> heat_flow_W_;                  // per contact, for the frames
   std::vector<double> series_conductance_W_per_K_;   // per contact, f H: particle resistance
   std::vector<double> wall_point_m_;                 // W*3, the walls' points, for the frames
-  std::unique_ptr<DynamicNetwork> dynamic_network_;  // dynamic runs only
+  std::unique_ptr<DynamicNetwork> dynamic_network_;  // dynamic and coupled runs only
+  std::optional<ThermalExpansion> expansion_;        // coupled runs only
+  std::vector<double> radius_m_;                     // coupled: the radii of the last coupling
+  ThermoMechanicsSummary thermo_;                    // coupled: couplings and wall forces
   std::unique_ptr<thermal::ThermalSystem> system_;
   std::optional<LinearSolverChoice> linear_solver_;  // thermal.linear_solver resolved on system_
   std::unique_ptr<DistributedHeating> distributed_;  // over MPI only; the integrator refers to it

@@ -22,9 +22,11 @@ bool gas_layer_shared(const Scene& scene) {
 
 std::string distributed_heating_refusal(const Scene& scene, int processes) {
   const std::string over = "heating over MPI (" + std::to_string(processes) + " processes): ";
-  if (scene.effects.mechanics == MechanicsMode::Dynamic)
-    return over + "effects.mechanics = \"dynamic\" changes the contact graph every step; only "
-                  "frozen beds are split (\"off\", or \"settle\"), or run with one process";
+  if (scene.effects.mechanics == MechanicsMode::Dynamic || scene.effects.mechanics == MechanicsMode::Coupled)
+    return over + "effects.mechanics = \"" +
+           (scene.effects.mechanics == MechanicsMode::Dynamic ? "dynamic" : "coupled") +
+           "\" changes the contact graph during the run; only frozen beds are split (\"off\", "
+           "or \"settle\"), or run with one process";
   if (thermal::parse_integrator_kind(scene.thermal.integrator) != thermal::IntegratorKind::Cvode)
     return over + "thermal.integrator = \"" + scene.thermal.integrator +
            "\" runs in one process only; use \"cvode\"";

@@ -135,7 +135,8 @@ thermal::IntegratorSettings integrator_settings(const Scene& scene,
   s.absolute_tolerance_K = scene.thermal.absolute_tolerance_K;
   s.explicit_step_s = scene.thermal.explicit_step_s;
   s.max_temperature_K = max_scene_temperature_K(scene);
-  s.stop_at_each_time = scene.effects.mechanics == MechanicsMode::Dynamic;
+  s.stop_at_each_time = scene.effects.mechanics == MechanicsMode::Dynamic ||
+                        scene.effects.mechanics == MechanicsMode::Coupled;
   return s;
 }
 
@@ -173,9 +174,10 @@ FrozenThermalProblem build_frozen_thermal_problem(const Scene& scene, ProgressRe
       break;
     }
     case MechanicsMode::Dynamic:
+    case MechanicsMode::Coupled:
       throw std::invalid_argument(
-          "the thermal problem of a dynamic scene changes every mechanical step; it has no frozen "
-          "contact graph");
+          "the thermal problem of a dynamic or coupled scene changes during the run; it has no "
+          "frozen contact graph");
   }
   return problem;
 }

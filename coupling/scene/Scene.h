@@ -22,7 +22,10 @@ namespace tmdem::coupling {
 
 using Vec3 = std::array<double, 3>;
 
-enum class MechanicsMode { Off, Settle, Dynamic };
+// Coupled: settle as Settle, then during the heating the packing is solved again
+// quasi-statically every mechanics.coupling_interval with the radii of the current
+// temperatures (thermal expansion), and the network follows (coupling/run/ThermalExpansion.h).
+enum class MechanicsMode { Off, Settle, Dynamic, Coupled };
 
 struct Material {
   std::string name;
@@ -34,6 +37,9 @@ struct Material {
   double conductivity_W_per_mK = 0.0;    // with a table: its first value (the reference)
   double heat_capacity_J_per_kgK = 0.0;  // specific heat c; with a table: its first value
   double emissivity = 0.0;               // 0..1
+  // Linear thermal expansion coefficient alpha, 1/K: a particle's radius is r0 (1 + alpha (T - T0))
+  // with r0 and T0 its radius and temperature at the start (effects.mechanics = "coupled").
+  double thermal_expansion_per_K = 0.0;
   // [T_K, value] points when the scene gives the property as a table (piecewise linear in T,
   // clamped outside); empty for a constant.
   std::vector<std::array<double, 2>> conductivity_table;
@@ -172,6 +178,7 @@ struct MechanicsSettings {
   int full_sweep_every = 1;  // Gauss-Seidel active-set sweeps (mechanics::NscdParameters)
   std::string stop_test = "siconos";  // "sweep" or "siconos" (mechanics::NscdParameters::siconos_stop)
   mechanics::NormalLaw normal_law = mechanics::NscdParameters{}.normal_law;  // "rigid" or "hertz"
+  double coupling_interval_s = 60.0;  // "coupled": heating time between two re-solves of the packing
   double settle_time_s = 5.0;
   double settle_velocity_m_per_s = 1.0e-4;
   // When "settle" ends (coupling/run/SettleRestTest.h): "network" when the normal forces have

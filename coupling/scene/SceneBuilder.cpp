@@ -76,9 +76,10 @@ void SceneBuilder::read_simulation() {
 void SceneBuilder::read_effects() {
   const SceneTable t = section("effects", true);
   const std::string mechanics = t.choice("mechanics");
-  scene_.effects.mechanics = mechanics == "dynamic"  ? MechanicsMode::Dynamic
-                             : mechanics == "settle" ? MechanicsMode::Settle
-                                                     : MechanicsMode::Off;
+  scene_.effects.mechanics = mechanics == "dynamic"   ? MechanicsMode::Dynamic
+                             : mechanics == "settle"  ? MechanicsMode::Settle
+                             : mechanics == "coupled" ? MechanicsMode::Coupled
+                                                      : MechanicsMode::Off;
   // The heat-transfer modes' switches, as each mode declares them.
   for (const auto& e : thermal::heat_transfer_effects())
     scene_.effects.heat[std::string(e.key)] = t.boolean(e.key, e.default_on);
@@ -146,6 +147,7 @@ void SceneBuilder::read_settings() {
     m.full_sweep_every = sweeps("full_sweep_every", m.full_sweep_every);
     m.tighten_steps = sweeps("tighten_steps", m.tighten_steps);
     m.settle_time_s = t.number("settle_time");
+    m.coupling_interval_s = t.number("coupling_interval");
     m.settle_velocity_m_per_s = t.number("settle_velocity");
     m.rest_test = t.choice("rest_test");
     m.rest_window = sweeps("rest_window", m.rest_window);

@@ -57,6 +57,7 @@ void SceneBuilder::read_materials() {
     m.conductivity_W_per_mK = read_property(t, "conductivity", m.conductivity_table);
     m.heat_capacity_J_per_kgK = read_property(t, "heat_capacity", m.heat_capacity_table);
     m.emissivity = t.number("emissivity");
+    m.thermal_expansion_per_K = t.number("thermal_expansion");
     material_ids_.emplace(m.name, static_cast<int>(scene_.materials.size()));
     scene_.materials.push_back(std::move(m));
   }

@@ -45,7 +45,8 @@ SceneResources estimate_resources(const Scene& scene) {
   r.frames = std::floor(scene.duration_s / scene.output.interval_s) + 2.0;
   if (scene.effects.mechanics == MechanicsMode::Dynamic)
     r.mechanics_steps = std::ceil(scene.duration_s / scene.mechanics.time_step_s);
-  const bool frozen = scene.effects.mechanics != MechanicsMode::Dynamic;
+  const bool frozen = scene.effects.mechanics == MechanicsMode::Off ||
+                      scene.effects.mechanics == MechanicsMode::Settle;
   const double frame_bytes =
       n * (frozen ? kFrozenBytesPerParticle : kMovingBytesPerParticle) + 4.0 * 8.0;
   const double contact_bytes =

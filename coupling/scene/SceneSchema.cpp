@@ -177,9 +177,14 @@ std::vector<Section> build_sections() {
     top.push_back(k);
   top.push_back(probe_schema_key());
 
-  std::vector<Key> effects{choice("mechanics", "settle", {"dynamic", "settle", "off"},
+  std::vector<Key> effects{choice("mechanics", "settle", {"dynamic", "settle", "coupled", "off"},
                                   "\"dynamic\": NSCD every step; \"settle\": NSCD until at rest "
-                                  "(before t = 0), then frozen; \"off\": contacts from geometry")};
+                                  "(before t = 0), then frozen; \"coupled\": settle, then during "
+                                  "the heating the packing is settled again every "
+                                  "mechanics.coupling_interval with the particles' radii grown "
+                                  "by their material's thermal_expansion, and the network "
+                                  "follows (docs/thermo-mechanics.md); \"off\": contacts from "
+                                  "geometry")};
   for (const auto& e : thermal::heat_transfer_effects())
     effects.push_back(boolean(std::string(e.key), e.default_on ? "true" : "false",
                               std::string(e.description)));
@@ -209,7 +214,12 @@ std::vector<Section> build_sections() {
         value("heat_capacity", "J/(kg K)", "", "> 0, or [[T_K, c], ...] (T increasing, c > 0)",
               "specific heat c; a table: piecewise linear in T, clamped outside it, the energy "
               "being m int c dT (cvode or ida with klu)", true),
-        number("emissivity", "", 0.0, Range::closed(0.0, 1.0), "surface emissivity")}},
+        number("emissivity", "", 0.0, Range::closed(0.0, 1.0), "surface emissivity"),
+        number("thermal_expansion", "1/K", 0.0, Range::closed(-1e-3, 1e-3),
+               "linear thermal expansion coefficient alpha: with effects.mechanics = \"coupled\" "
+               "a particle's radius is r0 (1 + alpha (T - T0)), r0 and T0 its radius and "
+               "temperature at the start; mass and moment of inertia are kept; walls do not "
+               "expand")}},
       {"particle", "one particle (ids: [[particle]] entries first, then [[generate]])",
        concat({vector3("position", "m", "", "centre"),
                required_number("radius", "m", Range::greater(0.0), "radius"),
@@ -418,6 +428,10 @@ std::vector<Section> build_sections() {
               "many sweeps, the others visit the contacts the last full sweep left closed; "
               "convergence is judged on full sweeps (1: every sweep is full)"),
         number("settle_time", "s", 5.0, Range::greater(0.0), "longest \"settle\" phase"),
+        number("coupling_interval", "s", 60.0, Range::greater(0.0),
+               "effects.mechanics = \"coupled\": heating time between two quasi-static "
+               "re-solves of the packing (each settles as the first, at most settle_time of "
+               "mechanics, the heating paused)"),
         number("settle_velocity", "m/s", 1.0e-4, Range::greater(0.0),
                "rest_test \"velocity\": every particle slower than this; \"network\": the "
                "mass-weighted mean speed sqrt(2 KE / M) of the load-carrying particles (pressed "

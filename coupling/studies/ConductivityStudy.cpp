@@ -356,7 +356,8 @@ std::size_t study_piston(const Scene& scene) {
 ConductivityResult run_conductivity_study(const Scene& input, ProgressReporter& progress) {
   const auto [hot, cold] = conductivity_walls(input);
   Scene scene = input;
-  if (scene.effects.mechanics == MechanicsMode::Dynamic) scene.effects.mechanics = MechanicsMode::Settle;
+  if (scene.effects.mechanics == MechanicsMode::Dynamic || scene.effects.mechanics == MechanicsMode::Coupled)
+    scene.effects.mechanics = MechanicsMode::Settle;
   const auto problem = build_frozen_thermal_problem(scene, progress);
   auto r = measure_conductivity(with_walls_of(scene, problem), problem, hot, cold);
   const auto& piston = std::find_if(scene.walls.begin(), scene.walls.end(), [](const Wall& w) { return w.piston; });
@@ -378,7 +379,8 @@ std::vector<ConductivityResult> run_conductivity_pressure_study(
     const Scene& input, const std::vector<double>& pressures_Pa, ProgressReporter& progress) {
   const auto [hot, cold] = conductivity_walls(input);
   Scene scene = input;
-  if (scene.effects.mechanics == MechanicsMode::Dynamic) scene.effects.mechanics = MechanicsMode::Settle;
+  if (scene.effects.mechanics == MechanicsMode::Dynamic || scene.effects.mechanics == MechanicsMode::Coupled)
+    scene.effects.mechanics = MechanicsMode::Settle;
   const std::size_t piston = study_piston(scene);
   const double area = piston_area_m2(scene);
   for (double p : pressures_Pa)

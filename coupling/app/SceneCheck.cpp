@@ -14,6 +14,7 @@
 #include "coupling/scene/SceneLimits.h"
 #include "mechanics/detection/TouchingPairs.h"
 #include "thermal/integrators/MpiWorld.h"
+#include "thermal/modes/ConductanceLaw.h"
 #include "thermal/modes/ModeRegistry.h"
 
 namespace tmdem::coupling {
@@ -143,7 +144,9 @@ void check_scene(const Scene& scene, std::ostream& out) {
       out << "warning: " << warning << "\n";
   }
   out << "estimated stiffness on the " << contacts.size() << " contacts touching at start"
-      << (scene.effects.mechanics != MechanicsMode::Off && scene.thermal.conductance == "hertz"
+      << (scene.effects.mechanics != MechanicsMode::Off &&
+                  thermal::conductance_law_uses_force(
+                      thermal::conductance_law_from_name(scene.thermal.conductance))
               ? " (Hertz force estimated as each particle's weight; settling gives the real one)"
               : "")
       << ":\n";

@@ -12,14 +12,33 @@
 #include "coupling/scene/HeatModes.h"
 #include "mechanics/model/PairIndex.h"
 #include "mechanics/detection/TouchingPairs.h"
+#include "thermal/modes/GasGapConductance.h"
 #include "thermal/modes/ModeRegistry.h"
 #include "thermal/modes/ParticleResistance.h"
 
 namespace tmdem::coupling {
 
+namespace {
+
+// The gas in the micro-gaps of rough contacts (thermal.conductance = "bahrami"): the [fluid] of
+// effects.gas_conduction when it is on, its jump M from the same keys as the gas mode's macro-gap;
+// with the gas off the contacts are in vacuum and nothing of the gas is read.
+thermal::ContactGas contact_gas(const Scene& scene) {
+  const auto* gas = thermal::find_heat_transfer_mode("gas_conduction");
+  if (gas == nullptr || !mode_enabled(scene, *gas)) return {};
+  const auto p = thermal::resolve_mode_parameters(*gas, scene.heat_modes);
+  return {p["conductivity"],
+          thermal::gas_parameter_m(p["pressure"], p["mean_free_path"], p["accommodation"],
+                                   p["accommodation"], p["heat_capacity_ratio"], p["prandtl"])};
+}
+
+}  // namespace
+
 ThermalNetworkBuilder::ThermalNetworkBuilder(const Scene& scene)
     : scene_(scene),
       law_(thermal::conductance_law_from_name(scene.thermal.conductance)),
+      contact_gas_(law_ == thermal::ConductanceLawKind::Bahrami ? contact_gas(scene)
+                                                                 : thermal::ContactGas{}),
       contacts_carry_heat_(contacts_carry_heat(scene.effects)),
       near_reach_(near_pair_reach(scene)),
       line_of_sight_(needs_line_of_sight(scene)),
@@ -115,6 +134,9 @@ thermal::ContactBody ThermalNetworkBuilder::body(std::int64_t id) const {
   b.conductivity_W_per_mK = m.conductivity_W_per_mK;
   b.young_modulus_Pa = m.young_modulus_Pa;
   b.poisson_ratio = m.poisson_ratio;
+  b.roughness_m = m.roughness_m;
+  b.asperity_slope = m.asperity_slope;
+  b.microhardness_Pa = m.microhardness_Pa;
   return b;
 }
 
@@ -122,6 +144,8 @@ double ThermalNetworkBuilder::conductance_W_per_K(std::int64_t i, std::int64_t j
                                                   double normal_force_N) const {
   if (law_ == thermal::ConductanceLawKind::Constant)
     return scene_.thermal.constant_conductance_W_per_K;
+  if (law_ == thermal::ConductanceLawKind::Bahrami)
+    return thermal::rough_contact_conductance_W_per_K(body(i), body(j), normal_force_N, contact_gas_);
   return thermal::hertz_conductance_W_per_K(body(i), body(j), normal_force_N,
                                             scene_.thermal.contact_flattening);
 }

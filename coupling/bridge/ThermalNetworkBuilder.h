@@ -11,6 +11,7 @@
 #include "mechanics/model/Wall.h"
 #include "thermal/modes/ConductanceLaw.h"
 #include "thermal/modes/ModeSettings.h"
+#include "thermal/modes/RoughContactConductance.h"
 #include "thermal/network/ThermalNetwork.h"
 
 namespace tmdem::coupling {
@@ -65,6 +66,7 @@ class ThermalNetworkBuilder {
   // data, -1 for none.
   std::vector<std::int32_t> wall_table_, wall_flux_;
   thermal::ConductanceLawKind law_;
+  thermal::ContactGas contact_gas_;  // the gas in rough contacts' micro-gaps (none: vacuum)
   bool contacts_carry_heat_;  // some switched-on mode reads the contact conductances
   double near_reach_;         // fraction of the smaller radius; 0: contacts only
   bool line_of_sight_;        // some enabled mode needs the shadowed near pairs marked

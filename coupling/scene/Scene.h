@@ -40,6 +40,11 @@ struct Material {
   // Linear thermal expansion coefficient alpha, 1/K: a particle's radius is r0 (1 + alpha (T - T0))
   // with r0 and T0 its radius and temperature at the start (effects.mechanics = "coupled").
   double thermal_expansion_per_K = 0.0;
+  // Surface, for thermal.conductance = "bahrami" (thermal/modes/RoughContactConductance.h): RMS
+  // roughness sigma (m; 0: smooth), mean absolute asperity slope, microhardness (Pa; 0: not given).
+  double roughness_m = 0.0;
+  double asperity_slope = 0.0;
+  double microhardness_Pa = 0.0;
   // [T_K, value] points when the scene gives the property as a table (piecewise linear in T,
   // clamped outside); empty for a constant.
   std::vector<std::array<double, 2>> conductivity_table;
@@ -197,7 +202,7 @@ struct ThermalSettings {
   double relative_tolerance = 1.0e-6;
   double absolute_tolerance_K = 1.0e-6;
   double explicit_step_s = 0.0;        // 0 = largest stable step
-  std::string conductance = "hertz";   // hertz | constant
+  std::string conductance = "hertz";   // thermal::conductance_law_names()
   double constant_conductance_W_per_K = 1.0e-4;
   // Hertz law: a loaded contact's spot radius is at least contact_flattening x R* (0: Hertz).
   double contact_flattening = 0.0;

@@ -4,6 +4,7 @@
 #include "coupling/scene/SceneLimits.h"
 #include "coupling/scene/SceneProbes.h"
 #include "coupling/scene/SceneValidation.h"
+#include "thermal/modes/ConductanceLaw.h"
 #include "thermal/modes/ModeRegistry.h"
 
 namespace tmdem::coupling {
@@ -120,6 +121,27 @@ void SceneBuilder::read_heat_modes() {
 
 // Defaults, ranges and choices of these sections are the schema's (SceneSchema.cpp), so the
 // scene reference shows exactly what is checked here.
+// thermal.conductance = "bahrami": every conductivity constant (the law has no k(T) form), and
+// every rough surface with the slope and microhardness its micro-contacts need.
+void SceneBuilder::check_rough_surfaces(const SceneTable& thermal_table) const {
+  const auto tables = root_.table_array("material", true);
+  for (std::size_t k = 0; k < scene_.materials.size() && k < tables.size(); ++k) {
+    const Material& m = scene_.materials[k];
+    if (!m.conductivity_table.empty())
+      thermal_table.fail("conductance",
+                         "\"bahrami\" needs constant conductivities, but material \"" + m.name +
+                             "\" gives its conductivity as a table; set a constant or "
+                             "conductance = \"hertz\"");
+    if (!(m.roughness_m > 0.0)) continue;
+    const std::string why = " (roughness " + format_number(m.roughness_m) +
+                            " m with thermal.conductance = \"bahrami\")";
+    if (!(m.asperity_slope > 0.0))
+      tables[k].fail("asperity_slope", "must be given and > 0 for a rough surface" + why);
+    if (!(m.microhardness_Pa > 0.0))
+      tables[k].fail("microhardness", "must be given for a rough surface" + why);
+  }
+}
+
 void SceneBuilder::read_settings() {
   const bool mechanics_on = scene_.effects.mechanics != MechanicsMode::Off;
   {
@@ -164,23 +186,28 @@ void SceneBuilder::read_settings() {
     th.absolute_tolerance_K = t.number("absolute_tolerance");
     th.explicit_step_s = t.number("explicit_step");
     th.conductance = t.choice("conductance");
+    const auto law = thermal::conductance_law_from_name(th.conductance);
+    if (law == thermal::ConductanceLawKind::Bahrami) check_rough_surfaces(t);
     th.constant_conductance_W_per_K = t.number("constant_conductance");
     th.contact_flattening = t.number("contact_flattening");
     if (th.contact_flattening > 0.0 && th.conductance != "hertz")
-      t.fail("contact_flattening", "flattens the Hertz contact spot, but conductance = \"" +
-                                       th.conductance + "\" does not use one; set "
-                                       "conductance = \"hertz\" or contact_flattening = 0");
+      t.fail("contact_flattening", "flattens the contact spot of conductance = \"hertz\", but "
+                                   "conductance = \"" + th.conductance + "\"; set conductance = "
+                                   "\"hertz\" or contact_flattening = 0");
     th.particle_resistance = t.choice("particle_resistance");
     th.core_fraction = t.number("core_fraction");
     // The rays are the surrounding layer's; the Vargas-McCarthy closed form has none.
     if (th.particle_resistance == "isothermal_core_rays")
       if (const auto* gas = thermal::find_heat_transfer_mode("gas_conduction");
-          gas != nullptr && switched_on(scene_.effects, *gas) &&
-          thermal::resolve_mode_parameters(*gas, scene_.heat_modes).choice("model") != "surrounding_layer")
-        t.fail("particle_resistance",
-               "\"isothermal_core_rays\" integrates the shells along the surrounding layer's rays, "
-               "but fluid.model is \"vargas_mccarthy\"; set fluid.model = \"surrounding_layer\" or "
-               "particle_resistance = \"isothermal_core\"");
+          gas != nullptr && switched_on(scene_.effects, *gas)) {
+        const std::string model(
+            thermal::resolve_mode_parameters(*gas, scene_.heat_modes).choice("model"));
+        if (model != "surrounding_layer")
+          t.fail("particle_resistance",
+                 "\"isothermal_core_rays\" integrates the shells along the surrounding layer's "
+                 "rays, but fluid.model is \"" + model + "\"; set fluid.model = "
+                 "\"surrounding_layer\" or particle_resistance = \"isothermal_core\"");
+      }
     // The shell's resistance is a constant conductance only for constant k; with any table and
     // the Hertz law the contacts follow the Kirchhoff form (KirchhoffContactFlow.h), not handled.
     if (th.particle_resistance != "off")
@@ -195,7 +222,7 @@ void SceneBuilder::read_settings() {
                      "; set particle_resistance = \"off\" or constant properties");
     th.coupling = t.choice("coupling");
     // Forces imported with the packing ([[import]] contacts) stand in for the mechanics'.
-    if (contacts_carry_heat(scene_.effects) && !mechanics_on && th.conductance == "hertz" &&
+    if (contacts_carry_heat(scene_.effects) && !mechanics_on && thermal::conductance_law_uses_force(law) &&
         !scene_.imported_forces.covers_every_particle(scene_.particles.size())) {
       const std::string imported =
           scene_.imported_forces.wall_gap.empty()
@@ -204,8 +231,8 @@ void SceneBuilder::read_settings() {
                 "have none)";
       if (t.has("conductance"))
         t.fail("conductance",
-               "\"hertz\" needs contact forces but effects.mechanics = \"off\"; use "
-               "conductance = \"constant\" or mechanics = \"settle\" or \"dynamic\", or " +
+               "\"" + th.conductance + "\" needs contact forces but effects.mechanics = \"off\"; "
+               "use conductance = \"constant\" or mechanics = \"settle\" or \"dynamic\", or " +
                    imported);
       const SceneTable effects = section("effects", true);
       effects.fail("mechanics",

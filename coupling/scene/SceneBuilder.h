@@ -67,6 +67,7 @@ class SceneBuilder {
   void read_effects();
   void read_heat_modes();
   void read_settings();
+  void check_rough_surfaces(const SceneTable& thermal_table) const;  // conductance = "bahrami"
   // SceneBuilderBodies.cpp
   void read_materials();
   int material_of(const SceneTable& t, std::string_view key) const;

@@ -40,7 +40,8 @@ double read_property(const SceneTable& t, std::string_view key,
 
 void SceneBuilder::read_materials() {
   // Required: name, density, young_modulus, poisson_ratio, conductivity, heat_capacity.
-  // Optional: friction (default 0.3), rolling_friction (0), emissivity (default 0.0).
+  // Optional: friction (default 0.3), rolling_friction (0), emissivity (default 0.0), the surface
+  // of rough contacts: roughness (0), asperity_slope (0), microhardness (none).
   const auto tables = root_.table_array("material", true);
   for (const SceneTable& t : tables) {
     Material m;
@@ -58,6 +59,9 @@ void SceneBuilder::read_materials() {
     m.heat_capacity_J_per_kgK = read_property(t, "heat_capacity", m.heat_capacity_table);
     m.emissivity = t.number("emissivity");
     m.thermal_expansion_per_K = t.number("thermal_expansion");
+    m.roughness_m = t.number("roughness");
+    m.asperity_slope = t.number("asperity_slope");
+    m.microhardness_Pa = t.optional_number("microhardness").value_or(0.0);
     material_ids_.emplace(m.name, static_cast<int>(scene_.materials.size()));
     scene_.materials.push_back(std::move(m));
   }

@@ -8,6 +8,7 @@
 #include "mechanics/solvers/ContactSolverRegistry.h"
 #include "thermal/integrators/IntegratorKind.h"
 #include "thermal/integrators/IntegratorRegistry.h"
+#include "thermal/modes/ConductanceLaw.h"
 #include "thermal/modes/ModeRegistry.h"
 
 namespace tmdem::coupling {
@@ -219,7 +220,16 @@ std::vector<Section> build_sections() {
                "linear thermal expansion coefficient alpha: with effects.mechanics = \"coupled\" "
                "a particle's radius is r0 (1 + alpha (T - T0)), r0 and T0 its radius and "
                "temperature at the start; mass and moment of inertia are kept; walls do not "
-               "expand")}},
+               "expand"),
+        number("roughness", "m", 0.0, Range::at_least(0.0),
+               "RMS surface roughness sigma, for thermal.conductance = \"bahrami\" (0: smooth; a "
+               "pair's sigma is sqrt(sigma1^2 + sigma2^2); docs/heat-modes.md \"Rough contacts\")"),
+        number("asperity_slope", "", 0.0, Range::at_least(0.0),
+               "mean absolute slope m of the surface's asperities, for thermal.conductance = "
+               "\"bahrami\" (> 0 needed with roughness > 0; a pair's m is sqrt(m1^2 + m2^2))"),
+        number("microhardness", "Pa", std::nullopt, Range::greater(0.0),
+               "microhardness of the surface layer, for thermal.conductance = \"bahrami\" "
+               "(needed with roughness > 0; a pair takes the softer surface's)")}},
       {"particle", "one particle (ids: [[particle]] entries first, then [[generate]])",
        concat({vector3("position", "m", "", "centre"),
                required_number("radius", "m", Range::greater(0.0), "radius"),
@@ -470,9 +480,12 @@ std::vector<Section> build_sections() {
         number("absolute_tolerance", "K", 1.0e-6, Range::greater(0.0), "integrator tolerance"),
         number("explicit_step", "s", 0.0, Range::at_least(0.0),
                "explicit step; 0 = largest stable step, above the bound is refused"),
-        choice("conductance", "hertz", {"hertz", "constant"},
-               "contact conductance: H = 2 k a (Hertz radius a from the normal force), or "
-               "constant_conductance"),
+        choice("conductance", "hertz", names_of(thermal::conductance_law_names()),
+               "contact conductance: \"hertz\": H = 2 k a (Hertz radius a from the normal "
+               "force); \"constant\": constant_conductance; \"bahrami\": rough surfaces "
+               "(material roughness, asperity_slope, microhardness), the Hertz spot in series "
+               "with its micro-contacts and, with effects.gas_conduction, its micro-gap "
+               "(docs/heat-modes.md \"Rough contacts\")"),
         number("constant_conductance", "W/K", 1.0e-4, Range::greater(0.0),
                "H of every contact when conductance = \"constant\""),
         number("contact_flattening", "", 0.0, Range::closed(0.0, 1.0),

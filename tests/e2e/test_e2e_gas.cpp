@@ -73,8 +73,8 @@ TEST(EndToEndGas, UnknownModelAndReplayingStudiesAreRefusedByName) {
                                                      {"fluid.model", "voronoi"}}));
   auto r = run_tmdem("check s.toml", dir);
   EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_NE(r.output.find("fluid.model: must be one of \"vargas_mccarthy\", \"surrounding_layer\" "
-                          "(got \"voronoi\")"),
+  EXPECT_NE(r.output.find("fluid.model: must be one of \"vargas_mccarthy\", \"surrounding_layer\", "
+                          "\"bahrami\" (got \"voronoi\")"),
             std::string::npos) << r.output;
 
   // A gas pressure rarefies the surrounding layer's gaps; the touching-pair closed form has none.

@@ -26,13 +26,16 @@ double hertz_conductance_W_per_K(const ContactBody& b1, const ContactBody& b2,
 }
 
 const std::vector<std::string_view>& conductance_law_names() {
-  static const std::vector<std::string_view> names{"hertz", "constant"};
+  static const std::vector<std::string_view> names{"hertz", "constant", "bahrami"};
   return names;
 }
+
+bool conductance_law_uses_force(ConductanceLawKind law) { return law != ConductanceLawKind::Constant; }
 
 ConductanceLawKind conductance_law_from_name(std::string_view name) {
   if (name == "hertz") return ConductanceLawKind::Hertz;
   if (name == "constant") return ConductanceLawKind::Constant;
+  if (name == "bahrami") return ConductanceLawKind::Bahrami;
   std::string valid;
   for (auto n : conductance_law_names()) valid += (valid.empty() ? "" : ", ") + std::string(n);
   throw std::invalid_argument("unknown conductance law \"" + std::string(name) +

@@ -6,12 +6,18 @@
 
 namespace tmdem::thermal {
 
-// One side of a contact: what the Hertz law needs to know about a body.
+// One side of a contact: what the contact laws need to know about a body.
 struct ContactBody {
   double radius_m = std::numeric_limits<double>::infinity();  // infinity for a wall
   double conductivity_W_per_mK = 0.0;
   double young_modulus_Pa = 0.0;
   double poisson_ratio = 0.0;
+  // Its surface, for the rough-contact law (RoughContactConductance.h): RMS roughness sigma (m),
+  // mean absolute asperity slope m, microhardness of its surface layer (Pa; 0: not given).
+  // 0, 0, 0 is a smooth surface.
+  double roughness_m = 0.0;
+  double asperity_slope = 0.0;
+  double microhardness_Pa = 0.0;
 };
 
 // Hertz contact radius a = (3 F R* / (4 E*))^(1/3), m; 1/R* = 1/R1 + 1/R2,
@@ -26,10 +32,14 @@ double hertz_contact_radius_m(const ContactBody& b1, const ContactBody& b2, doub
 double hertz_conductance_W_per_K(const ContactBody& b1, const ContactBody& b2,
                                  double normal_force_N, double flattening = 0.0);
 
-enum class ConductanceLawKind { Hertz, Constant };
+// hertz: H = 2 k a (above); constant: one H for every contact; bahrami: rough surfaces, the Hertz
+// spot in series with its micro-contacts and micro-gap (RoughContactConductance.h).
+enum class ConductanceLawKind { Hertz, Constant, Bahrami };
 
 // Run-time selection by name; an unknown name throws std::invalid_argument listing the valid names.
 ConductanceLawKind conductance_law_from_name(std::string_view name);
 const std::vector<std::string_view>& conductance_law_names();
+// The law reads the contact's normal force (so a run needs forces: mechanics or imported ones).
+bool conductance_law_uses_force(ConductanceLawKind law);
 
 }  // namespace tmdem::thermal

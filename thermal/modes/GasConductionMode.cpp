@@ -18,18 +18,26 @@
 namespace tmdem::thermal {
 namespace {
 
-enum class GasModel { VargasMcCarthy, SurroundingLayer };
+enum class GasModel { VargasMcCarthy, SurroundingLayer, Bahrami };
+
+GasModel model_of(std::string_view name) {
+  if (name == "surrounding_layer") return GasModel::SurroundingLayer;
+  if (name == "bahrami") return GasModel::Bahrami;
+  return GasModel::VargasMcCarthy;
+}
 
 class GasConductionMode final : public HeatTransferMode {
  public:
   explicit GasConductionMode(const ModeParameters& p)
       : k_f_W_per_mK_(p["conductivity"]),
-        model_(p.choice("model") == "surrounding_layer" ? GasModel::SurroundingLayer
-                                                        : GasModel::VargasMcCarthy),
+        model_(model_of(p.choice("model"))),
         share_(p.choice("layer_share") == "equal_solid_angle"),
         reach_(p["cutoff"]),
         min_gap_m_(p["min_gap"]),
-        jump_m_(gas_jump_length_m(p["pressure"], p["mean_free_path"], p["accommodation"])) {}
+        jump_m_(gas_jump_length_m(p["pressure"], p["mean_free_path"], p["accommodation"])),
+        gas_parameter_m_(gas_parameter_m(p["pressure"], p["mean_free_path"], p["accommodation"],
+                                         p["accommodation"], p["heat_capacity_ratio"],
+                                         p["prandtl"])) {}
 
   std::string_view name() const override { return "gas_conduction"; }
 
@@ -105,7 +113,8 @@ class GasConductionMode final : public HeatTransferMode {
   GasConductionMode(const GasConductionMode& settings, const ThermalNetwork& net)
       : k_f_W_per_mK_(settings.k_f_W_per_mK_), model_(settings.model_), share_(settings.share_),
         reach_(settings.reach_),
-        min_gap_m_(settings.min_gap_m_), jump_m_(settings.jump_m_) {
+        min_gap_m_(settings.min_gap_m_), jump_m_(settings.jump_m_),
+        gas_parameter_m_(settings.gas_parameter_m_) {
     if (net.edge_a == settings.cached_edge_a_ && net.edge_b == settings.cached_edge_b_ &&
         net.node_count() == settings.neighbours_.size())
       neighbours_ = settings.neighbours_;
@@ -187,8 +196,11 @@ class GasConductionMode final : public HeatTransferMode {
   }
 
   double conductance(const GasGap& g, bool in_contact, double disk_radius_m) const {
+    const bool touching = in_contact || g.gap_m <= 0.0;
     if (model_ == GasModel::VargasMcCarthy)
-      return in_contact || g.gap_m <= 0.0 ? vargas_mccarthy_conductance_W_per_K(g, k_f_W_per_mK_) : 0.0;
+      return touching ? vargas_mccarthy_conductance_W_per_K(g, k_f_W_per_mK_) : 0.0;
+    if (model_ == GasModel::Bahrami)
+      return touching ? bahrami_macrogap_conductance_W_per_K(g, k_f_W_per_mK_, gas_parameter_m_) : 0.0;
     return surrounding_layer_conductance_W_per_K(g, k_f_W_per_mK_, reach_, min_gap_m_, jump_m_,
                                                  disk_radius_m);
   }
@@ -199,6 +211,7 @@ class GasConductionMode final : public HeatTransferMode {
   double reach_;      // fraction of the smaller radius
   double min_gap_m_;  // L_min of the surrounding layer
   double jump_m_;     // Smoluchowski jump length of the gap's two surfaces, m (0: continuum)
+  double gas_parameter_m_;  // Bahrami's gas parameter M of the gap's two surfaces, m (0: continuum)
   std::vector<std::size_t> neighbours_;  // per node, when sharing: pairs inside the layer
   std::vector<double> H_edge_, H_wall_;  // W/K, per edge of the current geometry
   std::vector<std::int32_t> cached_edge_a_, cached_edge_b_, cached_wall_node_;  // that geometry
@@ -224,9 +237,11 @@ const ModeDescription& gas_conduction_mode() {
                      {.key = "model",
                       .range = ParameterRange::any(),
                       .description = "gas-gap conductance model: \"vargas_mccarthy\" (touching "
-                                     "pairs, Vargas & McCarthy 2002) or \"surrounding_layer\" "
-                                     "(touching and near pairs, Rong & Horio 1999)",
-                      .choices = {"vargas_mccarthy", "surrounding_layer"}},
+                                     "pairs, Vargas & McCarthy 2002), \"surrounding_layer\" "
+                                     "(touching and near pairs, Rong & Horio 1999) or \"bahrami\" "
+                                     "(touching pairs: the macro-gap of Bahrami, Yovanovich & "
+                                     "Culham 2006 with the gas parameter M; needs pressure > 0)",
+                      .choices = {"vargas_mccarthy", "surrounding_layer", "bahrami"}},
                      {.key = "layer_share",
                       .range = ParameterRange::any(),
                       .description = "how the surrounding layer's gas is shared between a "
@@ -257,7 +272,10 @@ const ModeDescription& gas_conduction_mode() {
                                      "of the surrounding layer: each gap conducts as if wider by "
                                      "the jump length 2 (2 - accommodation) / accommodation x "
                                      "mean_free_path x 101325 Pa / pressure; 0: continuum gas, "
-                                     "no reduction (needs model = \"surrounding_layer\")"},
+                                     "no reduction (needs model = \"surrounding_layer\" or "
+                                     "\"bahrami\"; \"bahrami\" needs it > 0, and rough contacts, "
+                                     "thermal.conductance = \"bahrami\", take their micro-gap's "
+                                     "jump from it)"},
                      {.key = "mean_free_path",
                       .unit = "m",
                       .default_value = 6.8e-8,
@@ -270,14 +288,33 @@ const ModeDescription& gas_conduction_mode() {
                       .range = ParameterRange::open_closed(0.0, 1.0),
                       .description = "thermal accommodation coefficient of the gas on the "
                                      "particle surfaces (air on glass near 300 K: 0.9, VDI Heat "
-                                     "Atlas; helium much lower)"}},
+                                     "Atlas; helium much lower)"},
+                     {.key = "heat_capacity_ratio",
+                      .unit = "",
+                      .default_value = 1.4,
+                      .range = ParameterRange::closed(1.0, 2.0),
+                      .description = "c_p / c_v of the gas, in Bahrami's gas parameter M (model = "
+                                     "\"bahrami\" and rough contacts; air: 1.4, helium: 5/3)"},
+                     {.key = "prandtl",
+                      .unit = "",
+                      .default_value = 0.71,
+                      .range = ParameterRange::greater(0.0),
+                      .description = "Prandtl number mu c_p / k_f of the gas, in Bahrami's gas "
+                                     "parameter M (model = \"bahrami\" and rough contacts; air "
+                                     "at 300 K: 0.71, helium: 0.67)"}},
       .near_pair_reach = "cutoff",
       .check = [](const ModeParameters& p) -> std::optional<ParameterProblem> {
-        if (p["pressure"] > 0.0 && p.choice("model") != "surrounding_layer")
+        if (p["pressure"] > 0.0 && p.choice("model") == "vargas_mccarthy")
           return ParameterProblem{"pressure",
-                                  "needs model = \"surrounding_layer\" (\"" +
-                                      std::string(p.choice("model")) +
-                                      "\" is a touching-pair closed form with no gas gap to rarefy)"};
+                                  "needs model = \"surrounding_layer\" or \"bahrami\" "
+                                  "(\"vargas_mccarthy\" is a touching-pair closed form with no "
+                                  "gas gap to rarefy)"};
+        // The macro-gap's jump M closes its logarithm at the contact's rim: no continuum limit.
+        if (!(p["pressure"] > 0.0) && p.choice("model") == "bahrami")
+          return ParameterProblem{"pressure",
+                                  "model = \"bahrami\" needs the gas pressure (> 0; 101325 for "
+                                  "air at 1 atm): its gap conductance diverges at the contact's "
+                                  "rim without the temperature jump M of a rarefied gas"};
         if (p.choice("layer_share") != "none" && p.choice("model") != "surrounding_layer")
           return ParameterProblem{"layer_share",
                                   "needs model = \"surrounding_layer\" (\"" +

@@ -54,24 +54,28 @@ void kronrod(F&& f, double a, double b, double& value, double& error) {
 }
 
 template <class F>
-double adaptive(F&& f, double a, double b, double tolerance, int depth);
+double adaptive(F&& f, double a, double b, double tolerance, int depth, double roundoff);
 
 // The integral of f over [a, b] to a relative 1e-13 of the larger of its first estimate and
-// `scale` (what it is added to).
+// `scale` (what it is added to). roundoff > 0: a piece also counts as converged once its error
+// estimate is below roundoff x its value, so that a sharp peak holding a large share of the
+// integral (the macro-gap at the contact's rim) does not halve the tolerance below what the
+// arithmetic can resolve and split to the depth limit everywhere near it.
 template <class F>
-double integrate(F&& f, double a, double b, double scale = 0.0) {
+double integrate(F&& f, double a, double b, double scale = 0.0, double roundoff = 0.0) {
   double estimate = 0.0, error = 0.0;
   kronrod(f, a, b, estimate, error);
-  return adaptive(f, a, b, 1e-13 * std::max(std::abs(estimate), scale), 0);
+  return adaptive(f, a, b, 1e-13 * std::max(std::abs(estimate), scale), 0, roundoff);
 }
 
 template <class F>
-double adaptive(F&& f, double a, double b, double tolerance, int depth) {
+double adaptive(F&& f, double a, double b, double tolerance, int depth, double roundoff) {
   double value = 0.0, error = 0.0;
   kronrod(f, a, b, value, error);
-  if (error <= tolerance || depth >= 40) return value;
+  if (error <= tolerance || error <= roundoff * std::abs(value) || depth >= 40) return value;
   const double m = 0.5 * (a + b);
-  return adaptive(f, a, m, 0.5 * tolerance, depth + 1) + adaptive(f, m, b, 0.5 * tolerance, depth + 1);
+  return adaptive(f, a, m, 0.5 * tolerance, depth + 1, roundoff) +
+         adaptive(f, m, b, 0.5 * tolerance, depth + 1, roundoff);
 }
 
 }  // namespace
@@ -81,6 +85,37 @@ double gas_jump_length_m(double pressure_Pa, double mean_free_path_at_1atm_m, do
   constexpr double kAtmosphere_Pa = 101325.0;
   const double mean_free_path_m = mean_free_path_at_1atm_m * kAtmosphere_Pa / pressure_Pa;
   return 2.0 * (2.0 - accommodation) / accommodation * mean_free_path_m;
+}
+
+double gas_parameter_m(double pressure_Pa, double mean_free_path_at_1atm_m, double accommodation_1,
+                       double accommodation_2, double heat_capacity_ratio, double prandtl) {
+  if (!(pressure_Pa > 0.0)) return 0.0;
+  constexpr double kAtmosphere_Pa = 101325.0;
+  const double mean_free_path_m = mean_free_path_at_1atm_m * kAtmosphere_Pa / pressure_Pa;
+  const double surfaces =
+      (2.0 - accommodation_1) / accommodation_1 + (2.0 - accommodation_2) / accommodation_2;
+  return surfaces * (2.0 * heat_capacity_ratio / (1.0 + heat_capacity_ratio)) * mean_free_path_m /
+         prandtl;
+}
+
+double bahrami_macrogap_conductance_W_per_K(const GasGap& g, double k_f, double M) {
+  const bool plane = std::isinf(g.radius_b_m);
+  const double r_min = plane ? g.radius_a_m : std::min(g.radius_a_m, g.radius_b_m);
+  const double a = std::clamp(g.contact_radius_m, 0.0, r_min);
+  if (!(a < r_min)) return 0.0;
+  // s(r) - s(a) of one sphere, sqrt(R^2 - a^2) - sqrt(R^2 - r^2), without cancellation.
+  const auto opening = [a](double R, double r) {
+    if (std::isinf(R)) return 0.0;
+    return (r - a) * (r + a) /
+           (std::sqrt(std::max(R * R - a * a, 0.0)) + std::sqrt(std::max(R * R - r * r, 0.0)));
+  };
+  // r = r_min sin(theta) removes the square-root end point at r = r_min.
+  const auto f = [&](double theta) {
+    const double r = r_min * std::sin(theta);
+    return 2.0 * std::numbers::pi * r * r_min * std::cos(theta) /
+           (opening(g.radius_a_m, r) + opening(g.radius_b_m, r) + M);
+  };
+  return k_f * integrate(f, std::asin(a / r_min), 0.5 * std::numbers::pi, 0.0, 1e-12);
 }
 
 bool surrounding_layer_reaches(const GasGap& g, double layer_fraction) {

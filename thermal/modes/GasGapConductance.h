@@ -59,6 +59,31 @@ double equal_share_disk_radius_m(double radius_m, std::size_t neighbours);
 // theory at a fixed temperature; Lambda_ref at p_ref = 101325 Pa). m; 0 for p = 0 (continuum).
 double gas_jump_length_m(double pressure_Pa, double mean_free_path_at_1atm_m, double accommodation);
 
+// Bahrami's gas parameter M (m): the temperature-jump distance of a gap's two surfaces in a
+// rarefied gas (Bahrami, Yovanovich & Culham 2006, after Yovanovich's gap model),
+//   M = ((2 - alpha_1)/alpha_1 + (2 - alpha_2)/alpha_2) (2 gamma / (1 + gamma)) Lambda / Pr,
+// alpha_i the thermal accommodation coefficients of the surfaces, gamma = c_p / c_v of the gas,
+// Pr its Prandtl number, Lambda = Lambda_ref * 101325 Pa / p its mean free path (Lambda_ref at
+// 101325 Pa); 0 for p = 0 (continuum).
+double gas_parameter_m(double pressure_Pa, double mean_free_path_at_1atm_m, double accommodation_1,
+                       double accommodation_2, double heat_capacity_ratio, double prandtl);
+
+// The macro-gap of Bahrami, Yovanovich & Culham (2006) (fluid.model = "bahrami"): the gas between
+// touching spheres, or a sphere and a plane wall, outside their contact disc of radius a, out to
+// the smaller radius r_min (the paper's simple-cubic cell, whose flux tube is the sphere's own
+// radius: its "B = 0"), in series with the temperature jump M of the two surfaces:
+//   H = k_f int_a^r_min 2 pi r dr / (delta(r) + M),   delta(r) = s(r) - s(a),
+// s(r) = (R_a - sqrt(R_a^2 - r^2)) + (R_b - sqrt(R_b^2 - r^2)) (a plane adds 0): the surfaces
+// meet at the rim of the disc and open with the spheres' curvature (the paper's profile; the
+// overlap or gap of the rigid packing is not used). Equal spheres give the paper's closed form
+// (pi k_f / 2) [S ln(S / (S - A)) - A], A = 2 sqrt(R^2 - a^2), S = A + M; a sphere on a plane
+// 2 pi k_f [S ln(S / (S - u)) - u], u = sqrt(R^2 - a^2), S = u + M. Evaluated for every pair by
+// adaptive Gauss-Kronrod (G7K15) in r = r_min sin(theta), relative accuracy about 1e-12.
+// M > 0 (the conductance diverges as M -> 0 at the rim). Defined for touching pairs only; the
+// caller passes touching pairs.
+double bahrami_macrogap_conductance_W_per_K(const GasGap& gap, double fluid_conductivity_W_per_mK,
+                                            double gas_parameter_m);
+
 // Vargas & McCarthy (2002) stagnant-fluid conductance of a touching pair, in the closed form
 // used by Kratos ThermalDEM (IndirectConductionVargas): with the mean radius R = (R_a + R_b)/2
 // (a plane: R = R_a) and contact radius a,

@@ -221,6 +221,98 @@ TEST(GasGap, VargasMcCarthyClosedFormAndLimits) {
   EXPECT_EQ(vargas_mccarthy_conductance_W_per_K(spheres(kR, kR, 0.0, kR), k), 0.0);
 }
 
+// Bahrami's gas parameter, M = ((2 - a1)/a1 + (2 - a2)/a2) (2 g / (1 + g)) Lambda / Pr, with the
+// mean free path inversely proportional to the pressure.
+TEST(GasGap, BahramiGasParameter) {
+  const double M = gas_parameter_m(101325.0, 68e-9, 0.7, 0.7, 1.4, 0.69);
+  EXPECT_NEAR(M / (2.0 * 1.3 / 0.7 * (2.8 / 2.4) * 68e-9 / 0.69), 1.0, 1e-14);
+  EXPECT_NEAR(gas_parameter_m(1013.25, 68e-9, 0.7, 0.7, 1.4, 0.69) / M, 100.0, 1e-12);
+  EXPECT_NEAR(gas_parameter_m(101325.0, 68e-9, 1.0, 0.5, 1.0, 1.0), (1.0 + 3.0) * 68e-9, 1e-22);
+  EXPECT_EQ(gas_parameter_m(0.0, 68e-9, 0.7, 0.7, 1.4, 0.69), 0.0);  // continuum
+}
+
+namespace {
+
+// Closed forms of the macro-gap (k_f = 1): the gas from the rim of the contact disc (radius a),
+// where the surfaces meet, out to the sphere's radius, in series with the jump M.
+// Equal spheres, u = sqrt(R^2 - r^2): delta = 2 (u_a - u), int_0^u_a 2 pi u du / (S - 2u),
+// S = 2 u_a + M: (pi / 2) [S ln(S / (S - A)) - A], A = 2 u_a (Bahrami et al. 2006, B = 0).
+double macrogap_equal_spheres(double R, double a, double M) {
+  const double A = 2.0 * std::sqrt(R * R - a * a), S = A + M;
+  return 0.5 * kPi * (S * std::log(S / M) - A);  // S - A = M
+}
+// Sphere and plane: delta = u_a - u, int_0^u_a 2 pi u du / (S - u), S = u_a + M.
+double macrogap_sphere_plane(double R, double a, double M) {
+  const double u = std::sqrt(R * R - a * a), S = u + M;
+  return 2.0 * kPi * (S * std::log(S / M) - u);  // S - u = M
+}
+// The defining integral by adaptive Simpson straight in r (plain subtraction for the opening).
+double macrogap_by_simpson(const GasGap& g, double M) {
+  const bool plane = std::isinf(g.radius_b_m);
+  const double Ra = g.radius_a_m, Rb = g.radius_b_m, a = g.contact_radius_m;
+  const double r_min = plane ? Ra : std::min(Ra, Rb);
+  const auto sag = [](double R, double r) { return std::isinf(R) ? 0.0 : R - std::sqrt(R * R - r * r); };
+  const std::function<double(double)> f = [&](double r) {
+    return 2.0 * kPi * r / (sag(Ra, r) + sag(Rb, r) - sag(Ra, a) - sag(Rb, a) + M);
+  };
+  const double fa = f(a), fm = f(0.5 * (a + r_min)), fb = f(r_min);
+  const double whole = (r_min - a) / 6.0 * (fa + 4.0 * fm + fb);
+  return simpson(f, a, r_min, fa, fm, fb, whole, 1e-11 * whole, 0);
+}
+
+}  // namespace
+
+// From air at 1 atm (M 0.37 um for Beaulieu's spheres) to a gas far thinner than the sphere.
+TEST(GasGap, BahramiMacrogapMatchesItsClosedForms) {
+  const double R = 3.2e-3;
+  for (const double M : {3.7e-7, 1e-8, 1e-5, 1e-2}) {
+    for (const double a : {0.0, 1e-5, 1e-4, 0.5 * R}) {
+      SCOPED_TRACE(M);
+      SCOPED_TRACE(a);
+      EXPECT_NEAR(bahrami_macrogap_conductance_W_per_K(spheres(R, R, 0.0, a), 1.0, M) /
+                      macrogap_equal_spheres(R, a, M), 1.0, 1e-10);
+      EXPECT_NEAR(bahrami_macrogap_conductance_W_per_K(plane(R, 0.0, a), 1.0, M) /
+                      macrogap_sphere_plane(R, a, M), 1.0, 1e-10);
+    }
+  }
+  // Linear in k_f; the overlap or gap of the packing plays no part (the surfaces meet at a).
+  const double once = bahrami_macrogap_conductance_W_per_K(spheres(R, R, 0.0, 1e-5), 1.0, 3.7e-7);
+  EXPECT_NEAR(bahrami_macrogap_conductance_W_per_K(spheres(R, R, -1e-6, 1e-5), 0.027, 3.7e-7),
+              0.027 * once, 1e-13 * once);
+}
+
+TEST(GasGap, BahramiMacrogapOfUnequalSpheresMatchesQuadrature) {
+  const double R = 3.2e-3, M = 3.7e-7;
+  for (const GasGap& g : {spheres(R, 0.5 * R, 0.0), spheres(0.5 * R, R, 0.0, 2e-5),
+                          spheres(R, 0.9 * R, 0.0, 1e-4), plane(0.7 * R, 0.0, 3e-5)}) {
+    const double H = bahrami_macrogap_conductance_W_per_K(g, 1.0, M);
+    EXPECT_NEAR(H / macrogap_by_simpson(g, M), 1.0, 1e-7) << g.radius_a_m << " " << g.radius_b_m;
+  }
+}
+
+TEST(GasGap, BahramiMacrogapLimits) {
+  const double R = 3.2e-3;
+  // A thinner gas conducts less; in the free-molecule limit (M far above the sphere) the gap
+  // conducts as a slab of thickness M over the disc from a to R: pi (R^2 - a^2) / M.
+  double previous = kInf;
+  for (const double M : {1e-9, 3.7e-7, 1e-4, 1e-1}) {
+    const double H = bahrami_macrogap_conductance_W_per_K(spheres(R, R, 0.0), 1.0, M);
+    EXPECT_LT(H, previous) << M;
+    previous = H;
+  }
+  EXPECT_NEAR(bahrami_macrogap_conductance_W_per_K(plane(R, 0.0, 1e-4), 1.0, 1e3) /
+                  (kPi * (R * R - 1e-8) / 1e3), 1.0, 1e-5);
+  // A continuum gas would conduct infinitely at the rim: for equal spheres H grows like
+  // pi R ln(1/M), the logarithm the paper's M closes.
+  const double h1 = bahrami_macrogap_conductance_W_per_K(spheres(R, R, 0.0), 1.0, 1e-8);
+  const double h2 = bahrami_macrogap_conductance_W_per_K(spheres(R, R, 0.0), 1.0, 1e-9);
+  EXPECT_NEAR((h2 - h1) / (kPi * R * std::log(10.0)), 1.0, 1e-4);
+  // A larger contact disc leaves less gas; a disc as large as the sphere leaves none.
+  EXPECT_LT(bahrami_macrogap_conductance_W_per_K(spheres(R, R, 0.0, 1e-4), 1.0, 3.7e-7),
+            bahrami_macrogap_conductance_W_per_K(spheres(R, R, 0.0, 1e-5), 1.0, 3.7e-7));
+  EXPECT_EQ(bahrami_macrogap_conductance_W_per_K(spheres(R, R, 0.0, R), 1.0, 3.7e-7), 0.0);
+}
+
 namespace {
 
 // Three particles: 0-1 touching, 1-2 a near pair at 0.1 R, 0-2 beyond the cutoff; particle 0
@@ -235,6 +327,16 @@ ThermalNetwork gas_network() {
   net.add_edge(0, 2, 0.0, 0.9 * kR, 0.0, false);
   net.add_wall_edge(0, 400.0, 0.0, -1, 0.05 * kR, 0.0, false);
   return net;
+}
+
+// Building the gas mode with `s` throws std::invalid_argument naming `key`.
+void expect_gas_mode_refused(const ModeSettings& s, const std::string& key) {
+  try {
+    make_heat_transfer_mode("gas_conduction", s);
+    ADD_FAILURE() << "built without error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+  }
 }
 
 ModeSettings gas_settings(double model) {
@@ -294,17 +396,37 @@ TEST(GasConductionMode, VargasMcCarthyCountsTouchingPairsOnly) {
   EXPECT_EQ(boundary, 0.0);
 }
 
+// fluid.model = "bahrami": the macro-gap of touching pairs (and touching isothermal walls) with
+// the gas parameter M of the section's pressure, mean free path, accommodation, gamma and Pr;
+// near pairs get nothing, and without a pressure the model is refused naming the key.
+TEST(GasConductionMode, BahramiCountsTouchingPairsWithTheSectionsGasParameter) {
+  ThermalNetwork net = gas_network();
+  net.add_wall_edge(2, 400.0, 0.0, -1, 0.0, 2e-6, true);  // 2 rests on a wall at 400 K
+  ModeSettings s = gas_settings(2.0);
+  s.set("gas_conduction", "pressure", 101325.0);
+  s.set("gas_conduction", "accommodation", 0.7);
+  s.set("gas_conduction", "heat_capacity_ratio", 1.4);
+  s.set("gas_conduction", "prandtl", 0.69);
+  auto sys = make_system(net, {"gas_conduction"}, s);
+  std::vector<double> q(3);
+  double boundary = 0.0;
+  ASSERT_TRUE(sys->heat_flow(std::vector<double>{300.0, 350.0, 330.0}, q, boundary));
+  const double M = 2.0 * 1.3 / 0.7 * (2.8 / 2.4) * 6.8e-8 / 0.69;  // mean_free_path's default
+  const double H01 = bahrami_macrogap_conductance_W_per_K(spheres(kR, kR, 0.0, 1e-5), 0.05, M);
+  const double Hw = bahrami_macrogap_conductance_W_per_K(plane(0.8 * kR, 0.0, 2e-6), 0.05, M);
+  EXPECT_NEAR(q[0], H01 * 50.0, 1e-12 * H01 * 50.0);  // not the near wall at 0.05 R
+  EXPECT_NEAR(q[2], Hw * 70.0, 1e-12 * Hw * 70.0);    // not the near pair 1-2
+  EXPECT_NEAR(boundary, Hw * 70.0, 1e-12 * Hw * 70.0);
+  s.set("gas_conduction", "pressure", 0.0);
+  expect_gas_mode_refused(s, "gas_conduction.pressure");
+}
+
 TEST(GasConductionMode, AModelIndexOutsideTheChoicesIsRefused) {
   // The scene maps names to indices (an unknown name is refused there, listing the valid ones:
   // test_scene_gas); a bad index set directly is refused naming the key.
   ModeSettings s;
-  s.set("gas_conduction", "model", 2.0);
-  try {
-    make_heat_transfer_mode("gas_conduction", s);
-    FAIL();
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("gas_conduction.model"), std::string::npos) << e.what();
-  }
+  s.set("gas_conduction", "model", 3.0);
+  expect_gas_mode_refused(s, "gas_conduction.model");
 }
 
 // fluid.layer_share = "equal_solid_angle": a particle with z pairs inside the layer gives each

@@ -1,5 +1,6 @@
 // The "coupled" run (effects.mechanics = "coupled"; CoupledRun.h): after the settle, the heating
-// goes from coupling to coupling (every mechanics.coupling_interval, and at the end); at each,
+// goes from coupling to coupling (every mechanics.coupling_interval, at each point of a wall
+// temperature table inside the run, and at the end); at each,
 // the particles take the radii of their temperatures (ThermalExpansion.h), the packing is
 // settled again quasi-statically (the heating paused: mechanical time is not heating time), and
 // the thermal network takes the new contacts and forces (DynamicNetwork), the integrator
@@ -23,19 +24,31 @@ void CoupledRun::run_coupled() {
   track_wall_forces();
   write_frame(0.0);
   const auto frames = frame_times();
-  std::size_t next_frame = 1;  // frame 0 written
-  long couplings = 1;
+  // Couplings: every interval, at the end, and where a wall temperature table changes slope
+  // (its points inside the run): the heating turns there, and the packing follows.
+  std::vector<double> couple_at;
+  for (long k = 1; double(k) * interval < end; ++k) couple_at.push_back(double(k) * interval);
+  couple_at.push_back(end);
+  for (const auto& wall : scene_.walls)
+    for (const auto& point : wall.temperature_table)
+      if (point[0] > 0.0 && point[0] < end) couple_at.push_back(point[0]);
+  std::sort(couple_at.begin(), couple_at.end());
   const double tiny = 1e-9 * std::min(interval, scene_.output.interval_s);
+  couple_at.erase(std::unique(couple_at.begin(), couple_at.end(),
+                              [tiny](double a, double b) { return b - a <= tiny; }),
+                  couple_at.end());
+  std::size_t next_frame = 1;  // frame 0 written
+  std::size_t next_coupling = 0;
   while (next_frame < frames.size()) {
-    const double coupling_time = std::min(double(couplings) * interval, end);
+    const double coupling_time = couple_at[std::min(next_coupling, couple_at.size() - 1)];
     const double frame_time = frames[next_frame];
     const double t = std::min(coupling_time, frame_time);
     const auto thermal_start = std::chrono::steady_clock::now();
     integrator_->advance_to(t);
     thermal_seconds_ += seconds_since(thermal_start);
-    if (std::abs(t - coupling_time) <= tiny) {
+    if (next_coupling < couple_at.size() && std::abs(t - coupling_time) <= tiny) {
       recouple();
-      ++couplings;
+      ++next_coupling;
     }
     bool frame_written = false;
     if (std::abs(t - frame_time) <= tiny) {

@@ -307,7 +307,7 @@ TEST(SceneRules, ConductanceChoice) {
 
 TEST(SceneRules, MechanicsChoice) {
   expect_scene_error(kBaseScene, {"effects.mechanics=on"},
-                     {"effects.mechanics", "\"dynamic\", \"settle\", \"off\""});
+                     {"effects.mechanics", "\"dynamic\", \"settle\", \"coupled\", \"off\""});
 }
 
 TEST(SceneRules, TolerancesPositive) {

@@ -64,6 +64,7 @@ void write_contents(hid_t file, const CheckpointState& s) {
   }
   if (!s.settled_wall_point_m.empty())
     hdf5::write_array(file, "settled_wall_point", s.settled_wall_point_m, 3, "m");
+  if (!s.radius_m.empty()) hdf5::write_array(file, "radius", s.radius_m, 0, "m");
   if (!s.thermal_pattern_pair.empty()) {
     Hdf5Handle thermal = hdf5::create_group(file, "thermal");
     hdf5::write_array(thermal.get(), "pattern_pair", s.thermal_pattern_pair, 2, "1");
@@ -151,6 +152,7 @@ CheckpointState read_contents(hid_t file) {
   }
   if (hdf5::exists(file, "settled_wall_point"))
     s.settled_wall_point_m = hdf5::read_double_array(file, "settled_wall_point", 3);
+  if (hdf5::exists(file, "radius")) s.radius_m = hdf5::read_double_array(file, "radius", 0);
   if (hdf5::exists(file, "thermal")) {
     Hdf5Handle thermal = hdf5::open_group(file, "thermal");
     s.thermal_pattern_pair = hdf5::read_int64_array(thermal.get(), "pattern_pair", 2);

@@ -63,6 +63,8 @@ struct CheckpointState {
   std::vector<std::int64_t> thermal_pattern_pair;    // P*2, dynamic runs
   // W*3, a settled run's walls where settling left them (pistons move), or empty: the scene's.
   std::vector<double> settled_wall_point_m;
+  // N, the particles' radii, m: a coupled run's (grown by thermal expansion), or empty: the scene's.
+  std::vector<double> radius_m;
   // The result file's contacts in their last chunk (ContactTail.h), or empty: a restart writes
   // them again, whatever a crash left of that chunk.
   ContactTail result_contact_tail;

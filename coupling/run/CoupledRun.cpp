@@ -72,7 +72,14 @@ void CoupledRun::prepare_mechanics() {
     // mechanics' whole state (candidate table and warm-start forces) when the checkpoint has it.
     contacts_ = contacts_of(*restart_, scene_.mechanics.time_step_s);
     nscd_->restore_stats(mechanics_stats_of(*restart_));
-    if (mode == MechanicsMode::Dynamic && restart_->has_mechanics) {
+    if (mode == MechanicsMode::Coupled) {
+      // The radii of the checkpoint's last coupling, before the state whose gaps they make.
+      if (!restart_->has_mechanics || restart_->radius_m.size() != particles_.size())
+        throw StartError("checkpoint " + options_.restart_path +
+                         " holds no coupled run's mechanics (radii and candidate table)");
+      std::copy(restart_->radius_m.begin(), restart_->radius_m.end(), nscd_->particles().radius.begin());
+    }
+    if ((mode == MechanicsMode::Dynamic || mode == MechanicsMode::Coupled) && restart_->has_mechanics) {
       try {
         nscd_->restore_state(mechanics_state_of(*restart_));
         move_scene_walls(scene_, nscd_->walls());
@@ -86,8 +93,7 @@ void CoupledRun::prepare_mechanics() {
     return;
   }
   if (mode == MechanicsMode::Coupled) {
-    if (restart_) throw StartError("a \"coupled\" run cannot be restarted from a checkpoint yet");
-    settle();
+    if (!restart_) settle();  // a restart goes on from the checkpoint's packing (above)
     frozen_ = false;  // the packing moves again at every coupling
     expansion_.emplace(scene_);
     return;

@@ -39,6 +39,16 @@ void CoupledRun::restore_checkpoint() {
     dissipation_received0_J_ = it->second;
   // A restarted settle run does not settle again: it reports how the checkpointed run settled.
   const auto& extra = restart_->extra;
+  if (auto it = extra.find("coupled_couplings"); it != extra.end()) {
+    thermo_.couplings = std::llround(it->second);
+    thermo_.steps = std::llround(extra.at("coupled_steps"));
+    thermo_.not_at_rest = std::llround(extra.at("coupled_not_at_rest"));
+    for (std::size_t w = 0;; ++w) {
+      const auto force = extra.find("coupled_largest_wall_force_N_" + std::to_string(w));
+      if (force == extra.end()) break;
+      thermo_.largest_wall_force_N.push_back(force->second);
+    }
+  }
   if (extra.contains("settle_at_rest") && extra.contains("settle_time_s") &&
       extra.contains("settle_steps") && extra.contains("settle_max_speed_m_s")) {
     summary_.settle = SettleSummary{extra.at("settle_at_rest") != 0.0, extra.at("settle_time_s"),
@@ -105,6 +115,15 @@ void CoupledRun::checkpoint(double t_s) {
   dissipation_received0_J_ += integrator_->dissipation_heat_J();
   cs.extra["dissipation_share_J"] = dissipation_share_J_;
   cs.extra["dissipation_received_J"] = dissipation_received0_J_;
+  if (expansion_) {  // a coupled run: the radii of its last coupling, and its couplings so far
+    const auto& radius = nscd_->particles().radius;
+    cs.radius_m.assign(radius.begin(), radius.end());
+    cs.extra["coupled_couplings"] = double(thermo_.couplings);
+    cs.extra["coupled_steps"] = double(thermo_.steps);
+    cs.extra["coupled_not_at_rest"] = double(thermo_.not_at_rest);
+    for (std::size_t w = 0; w < thermo_.largest_wall_force_N.size(); ++w)
+      cs.extra["coupled_largest_wall_force_N_" + std::to_string(w)] = thermo_.largest_wall_force_N[w];
+  }
   if (summary_.settle) {
     cs.extra["settle_at_rest"] = summary_.settle->at_rest ? 1.0 : 0.0;
     cs.extra["settle_time_s"] = summary_.settle->time_s;

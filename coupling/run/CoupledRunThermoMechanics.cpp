@@ -19,10 +19,12 @@ namespace tmdem::coupling::run_detail {
 void CoupledRun::run_coupled() {
   const double interval = scene_.mechanics.coupling_interval_s;
   const double end = scene_.duration_s;
-  // The settled network as the dynamic network's first pattern (as a dynamic run's steps do).
-  dynamic_network_->update(contacts_, *integrator_, CouplingStrategy::Restart, &nscd_->particles());
-  track_wall_forces();
-  write_frame(0.0);
+  if (!restart_) {
+    // The settled network as the dynamic network's first pattern (as a dynamic run's steps do).
+    dynamic_network_->update(contacts_, *integrator_, CouplingStrategy::Restart, &nscd_->particles());
+    track_wall_forces();
+    write_frame(0.0);
+  }
   const auto frames = frame_times();
   // Couplings: every interval, at the end, and where a wall temperature table changes slope
   // (its points inside the run): the heating turns there, and the packing follows.
@@ -37,8 +39,11 @@ void CoupledRun::run_coupled() {
   couple_at.erase(std::unique(couple_at.begin(), couple_at.end(),
                               [tiny](double a, double b) { return b - a <= tiny; }),
                   couple_at.end());
-  std::size_t next_frame = 1;  // frame 0 written
-  std::size_t next_coupling = 0;
+  // Past the start (t0_ > 0 on a restart: its frames and couplings up to t0_ were done before
+  // the checkpoint, which came after them).
+  std::size_t next_frame = 0, next_coupling = 0;
+  while (next_frame < frames.size() && frames[next_frame] <= t0_ + tiny) ++next_frame;
+  while (next_coupling < couple_at.size() && couple_at[next_coupling] <= t0_ + tiny) ++next_coupling;
   while (next_frame < frames.size()) {
     const double coupling_time = couple_at[std::min(next_coupling, couple_at.size() - 1)];
     const double frame_time = frames[next_frame];
@@ -56,6 +61,7 @@ void CoupledRun::run_coupled() {
       write_frame(t);
       frame_written = true;
       ++next_frame;
+      maybe_checkpoint(t);  // at frames, as every run: integration boundaries of both runs
     }
     stop_if_interrupted(t, frame_written);
     progress_.update("run", t, end, std::to_string(thermo_.couplings) + " couplings");

@@ -3,8 +3,9 @@
 
 Reads a tmdem result file (format tmdem-result-1) and writes PREFIX.png with three panels
 against time (s): the mean particle temperature (K); the bed height, the lid's point along its
-normal (m, /frames/wall_position of the lid wall); and each wall's force (N), the sum of the
-normal forces of its contacts at each frame (/contacts rows with j < 0, wall -1 - j). It also
+normal (m, /frames/wall_position of the lid wall); and each wall's force (N, /frames/wall_force:
+the sum of the normal forces of its contacts at each frame; older files: summed from the
+/contacts rows with j < 0, wall -1 - j). It also
 prints one line per cycle: the bed height and the side walls' largest force at the end of the
 cycle, which show the ratcheting (the bed settling a little further at each cycle).
 
@@ -28,7 +29,10 @@ except ImportError as error:  # pragma: no cover - depends on the machine
 
 
 def wall_forces(result):
-    """Per frame and wall, the sum of the normal forces (N) of the wall's contacts: [F, W]."""
+    """Per frame and wall, the sum of the normal forces (N) of the wall's contacts: [F, W].
+    /frames/wall_force when the file has it, else summed from /contacts."""
+    if "/frames/wall_force" in result:
+        return result["/frames/wall_force"][:]
     offset = result["/frames/contact_offset"][:]
     pair = result["/contacts/pair"][:]
     force = result["/contacts/normal_force"][:]

@@ -41,9 +41,12 @@ void ResultFrames::create(hid_t file, std::size_t particles, std::size_t walls,
   boundary_heat_ = hdf5::create_dataset(g, "boundary_heat", H5T_IEEE_F64LE, {0}, kFrameChunk, "J", false);
   contact_offset_ =
       hdf5::create_dataset(g, "contact_offset", H5T_STD_I64LE, {0}, kFrameChunk, "1", false);
-  if (walls > 0)
+  if (walls > 0) {
     wall_position_ =
         hdf5::create_dataset(g, "wall_position", H5T_IEEE_F64LE, {0, hsize_t(walls), 3}, 1, "m");
+    wall_force_ = hdf5::create_dataset(g, "wall_force", H5T_IEEE_F64LE, {0, hsize_t(walls)}, 1, "N");
+  }
+  wall_force_N_.assign(walls, 0.0);
   const std::int64_t zero = 0;
   hdf5::write_rows(contact_offset_.get(), 0, 1, &zero, H5T_NATIVE_INT64);
 }
@@ -62,12 +65,18 @@ void ResultFrames::open(hid_t file) {
   wall_position_.reset();
   if (hdf5::exists(file, "/frames/wall_position"))
     wall_position_ = hdf5::open_dataset(file, "/frames/wall_position");
+  wall_force_.reset();
+  if (hdf5::exists(file, "/frames/wall_force")) {
+    wall_force_ = hdf5::open_dataset(file, "/frames/wall_force");
+    wall_force_N_.assign(hdf5::dataset_dims(wall_force_.get()).at(1), 0.0);
+  }
 }
 
 std::vector<const Hdf5Handle*> ResultFrames::row_datasets() const {
   std::vector<const Hdf5Handle*> out{&time_,           &position_,      &velocity_,
                                      &temperature_,    &thermal_energy_, &boundary_heat_};
   if (wall_position_.valid()) out.push_back(&wall_position_);
+  if (wall_force_.valid()) out.push_back(&wall_force_);
   return out;
 }
 
@@ -105,6 +114,16 @@ void ResultFrames::append(std::size_t index, const FrameView& frame, std::int64_
   hdf5::write_rows(contact_offset_.get(), f + 1, 1, &contact_end, H5T_NATIVE_INT64);
   if (wall_position_.valid())
     hdf5::write_rows(wall_position_.get(), f, 1, frame.wall_point_m.data(), H5T_NATIVE_DOUBLE);
+  if (wall_force_.valid()) {
+    // Each wall's force: the normal forces of the frame's contacts with it (pair j < 0 is wall
+    // -1 - j), N, summed in the contacts' order.
+    std::fill(wall_force_N_.begin(), wall_force_N_.end(), 0.0);
+    for (std::size_t k = 0; k < frame.normal_force_N.size(); ++k) {
+      const std::int64_t j = frame.contact_pair[2 * k + 1];
+      if (j < 0 && std::size_t(-1 - j) < wall_force_N_.size()) wall_force_N_[std::size_t(-1 - j)] += frame.normal_force_N[k];
+    }
+    hdf5::write_rows(wall_force_.get(), f, 1, wall_force_N_.data(), H5T_NATIVE_DOUBLE);
+  }
   hdf5::write_rows(time_.get(), f, 1, &frame.time_s, H5T_NATIVE_DOUBLE);  // last: commits
 }
 
@@ -112,6 +131,7 @@ void ResultFrames::cut_back(std::size_t frames) {
   for (const Hdf5Handle* d : {&time_, &temperature_, &thermal_energy_, &boundary_heat_})
     hdf5::set_rows(d->get(), frames);
   if (wall_position_.valid()) hdf5::set_rows(wall_position_.get(), frames);
+  if (wall_force_.valid()) hdf5::set_rows(wall_force_.get(), frames);
   for (BlockSeries* blocks : {&position_blocks_, &velocity_blocks_})
     if (blocks->active()) blocks->cut_back(file_, frames);
   for (const Hdf5Handle* d : {&position_, &velocity_})
@@ -121,7 +141,7 @@ void ResultFrames::cut_back(std::size_t frames) {
 
 void ResultFrames::close() {
   for (Hdf5Handle* d : {&time_, &position_, &velocity_, &temperature_, &thermal_energy_,
-                        &boundary_heat_, &contact_offset_, &wall_position_}) {
+                        &boundary_heat_, &contact_offset_, &wall_position_, &wall_force_}) {
     d->reset();
   }
 }

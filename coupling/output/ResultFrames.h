@@ -39,7 +39,8 @@ class ResultFrames {
   std::vector<const Hdf5Handle*> row_datasets() const;
 
   Hdf5Handle time_, position_, velocity_, temperature_, thermal_energy_, boundary_heat_,
-      contact_offset_, wall_position_;
+      contact_offset_, wall_position_, wall_force_;
+  std::vector<double> wall_force_N_;  // one frame's wall forces (no allocation per frame)
   hid_t file_ = -1;  // not owned
   BlockSeries position_blocks_, velocity_blocks_;  // active with shared geometry
 };

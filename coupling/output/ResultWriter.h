@@ -9,7 +9,8 @@
 //   /frames/time [F] s, position [F,N,3] m, velocity [F,N,3] m/s, temperature [F,N] K,
 //      thermal_energy [F] J, boundary_heat [F] J, contact_offset [F+1] int64 ("1"),
 //      wall_position [F,W,3] m (files with walls: each wall's point, which a piston moves along
-//      its normal; files written before it existed lack it)
+//      its normal; files written before it existed lack it), wall_force [F,W] N (files with
+//      walls: the normal forces of each wall's contacts in the frame, summed)
 //   /contacts/pair [C,2] int64 ("1"; j < 0 is wall -1-j), normal_force [C] N,
 //      tangential_force [C,3] N, conductance [C] W/K, heat_flow [C] W; group attribute
 //      "stored" = 1 or 0

@@ -101,6 +101,24 @@ TEST(EndToEndThermoMechanics, HeatedRowBetweenFixedWallsPressesWithTheHertzForce
   EXPECT_NEAR(force[0], expected + kRowCount * weight, 1e-6 * expected);
   EXPECT_LE(s.at("energy").at("balance_error_rel").get<double>(), 1e-12);
   EXPECT_EQ(s.at("mechanics").at("unconverged_steps").get<int>(), 0);
+  // Every frame's wall forces in the result file (/frames/wall_force [F, W]): the last is the
+  // summary's, and each is the sum of that frame's wall contacts.
+  H5::H5File f(dir + "/out.h5", H5F_ACC_RDONLY);
+  std::vector<hsize_t> dims;
+  const auto wall_force = read_doubles(f, "/frames/wall_force", &dims);
+  ASSERT_EQ(dims, (std::vector<hsize_t>{5, 2}));  // frames at 0, 500, ..., 2000 s
+  EXPECT_EQ(wall_force[8], force[0]);
+  EXPECT_EQ(wall_force[9], force[1]);
+  const auto offset = read_ints(f, "/frames/contact_offset");
+  const auto pair = read_ints(f, "/contacts/pair");
+  const auto normal = read_doubles(f, "/contacts/normal_force");
+  for (std::size_t frame = 0; frame < 5; ++frame) {
+    double sum[2] = {0.0, 0.0};
+    for (long long k = offset[frame]; k < offset[frame + 1]; ++k)
+      if (pair[2 * k + 1] < 0) sum[-1 - pair[2 * k + 1]] += normal[k];
+    EXPECT_EQ(wall_force[2 * frame], sum[0]) << "frame " << frame;
+    EXPECT_EQ(wall_force[2 * frame + 1], sum[1]) << "frame " << frame;
+  }
 }
 
 TEST(EndToEndThermoMechanics, WithoutExpansionTheRowKeepsItsWeightsOnly) {

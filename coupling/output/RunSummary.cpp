@@ -107,6 +107,8 @@ nlohmann::json RunSummary::to_json() const {
                    {"max_speed_m_s", settle->max_speed_m_s},
                    {"ended_by", settle->ended_by},
                    {"rattlers", settle->rattlers}};
+    if (settle->bed_height_m) j["settle"]["bed_height_m"] = *settle->bed_height_m;
+    if (settle->porosity) j["settle"]["porosity"] = *settle->porosity;
   }
   if (thermo_mechanics) {
     j["thermo_mechanics"] = {{"couplings", thermo_mechanics->couplings},
@@ -180,6 +182,8 @@ RunSummary RunSummary::from_json(const nlohmann::json& j) {
     settle.max_speed_m_s = number(st, "max_speed_m_s", 0.0);
     if (st.contains("ended_by")) settle.ended_by = st.at("ended_by").get<std::string>();
     settle.rattlers = integer(st, "rattlers", 0);
+    if (st.contains("bed_height_m")) settle.bed_height_m = st.at("bed_height_m").get<double>();
+    if (st.contains("porosity")) settle.porosity = st.at("porosity").get<double>();
     s.settle = settle;
   }
 

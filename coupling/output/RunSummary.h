@@ -61,6 +61,11 @@ struct SettleSummary {
   // met), and the moving particles with no contact carrying force when frozen.
   std::string ended_by;
   std::int64_t rattlers = 0;
+  // extra (3D beds under gravity in plane-walled containers, coupling/run/PackingMeasure.h):
+  // the bed's height along gravity (m) and the porosity of the box bounding its particles;
+  // omitted (null) when not measured.
+  std::optional<double> bed_height_m;
+  std::optional<double> porosity;
 };
 
 // The "thermo_mechanics" block (extra; effects.mechanics = "coupled" only): the quasi-static

@@ -56,6 +56,10 @@ void CoupledRun::restore_checkpoint() {
                                     extra.at("settle_max_speed_m_s"), "settle_time", 0};
     if (auto it = extra.find("settle_rattlers"); it != extra.end())
       summary_.settle->rattlers = std::llround(it->second);
+    if (extra.contains("settle_porosity") && extra.contains("settle_bed_height_m")) {
+      summary_.settle->bed_height_m = extra.at("settle_bed_height_m");
+      summary_.settle->porosity = extra.at("settle_porosity");
+    }
     if (auto it = extra.find("settle_ended_by"); it != extra.end())
       summary_.settle->ended_by = it->second == 1.0   ? "network"
                                   : it->second == 2.0 ? "velocity"
@@ -130,6 +134,10 @@ void CoupledRun::checkpoint(double t_s) {
     cs.extra["settle_steps"] = double(summary_.settle->steps);
     cs.extra["settle_max_speed_m_s"] = summary_.settle->max_speed_m_s;
     cs.extra["settle_rattlers"] = double(summary_.settle->rattlers);
+    if (summary_.settle->porosity) {
+      cs.extra["settle_bed_height_m"] = *summary_.settle->bed_height_m;
+      cs.extra["settle_porosity"] = *summary_.settle->porosity;
+    }
     cs.extra["settle_ended_by"] = summary_.settle->ended_by == "network"    ? 1.0
                                   : summary_.settle->ended_by == "velocity" ? 2.0
                                                                             : 0.0;

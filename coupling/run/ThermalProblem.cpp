@@ -1,4 +1,5 @@
 #include "coupling/run/ThermalProblem.h"
+#include "coupling/run/PackingMeasure.h"
 
 #include <algorithm>
 #include <sstream>
@@ -61,6 +62,10 @@ SettleSummary settle_packing(mechanics::NscdIntegrator& nscd, const Scene& scene
   outcome.steps = nscd.stats().steps - steps_before;
   outcome.max_speed_m_s = nscd.max_speed();
   outcome.rattlers = rest.rattlers();
+  if (const auto packing = measure_packing(scene, nscd.particles())) {
+    outcome.bed_height_m = packing->bed_height_m;
+    outcome.porosity = packing->porosity;
+  }
   if (!outcome.at_rest) outcome.ended_by = "settle_time";
   std::ostringstream msg;
   if (!outcome.at_rest && stop && stop()) {
@@ -83,6 +88,9 @@ SettleSummary settle_packing(mechanics::NscdIntegrator& nscd, const Scene& scene
         << outcome.steps << " steps, " << nscd.contacts().size() << " contacts, "
         << outcome.rattlers << " rattlers, max penetration " << nscd.stats().max_penetration_m
         << " m, " << nscd.stats().unconverged_steps << " unconverged steps)";
+    if (outcome.porosity)
+      msg << "; bed " << *outcome.bed_height_m << " m tall, porosity " << *outcome.porosity
+          << " (the box bounding the particles)";
   }
   progress.message(msg.str());
   return outcome;

@@ -1,5 +1,6 @@
 #include "coupling/scene/SceneBuilder.h"
 
+#include "coupling/common/ShortestNumber.h"
 #include "coupling/scene/HeatModes.h"
 #include "coupling/scene/SceneLimits.h"
 #include "coupling/scene/SceneProbes.h"
@@ -46,6 +47,19 @@ Scene SceneBuilder::build() {
   check_scene_limits(scene_, origins_, source_);
   check_overlaps(scene_, origins_, import_of_, source_);
   scene_.warnings = unsupported_deposit_warnings(scene_, deposit_blocks_);
+  // Growth under rigid contacts: a confined bed has no solution (docs/thermo-mechanics.md).
+  if (scene_.effects.mechanics == MechanicsMode::Coupled &&
+      scene_.mechanics.normal_law == mechanics::NormalLaw::rigid)
+    for (const auto& m : scene_.materials)
+      if (m.thermal_expansion_per_K != 0.0) {
+        scene_.warnings.push_back(
+            "material " + quote_text(m.name) + " expands (thermal_expansion " +
+            shortest_number(m.thermal_expansion_per_K) +
+            " 1/K) under mechanics.normal_law = \"rigid\": rigid contacts carry no thermal "
+            "stress and a confined bed has no solution as its particles grow; use "
+            "mechanics.normal_law = \"hertz\"");
+        break;
+      }
   return std::move(scene_);
 }
 

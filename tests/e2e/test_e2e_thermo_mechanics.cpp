@@ -158,3 +158,14 @@ TEST(EndToEndThermoMechanics, RestartedCoupledRunIsBitwiseTheUninterruptedOne) {
   EXPECT_EQ(summary_without_wall_times(full + "/s.json"), summary_without_wall_times(part + "/s.json"));
   EXPECT_EQ(read_summary(part + "/s.json").at("thermo_mechanics").at("couplings").get<int>(), 20);
 }
+
+TEST(EndToEndThermoMechanics, GrowthUnderRigidContactsIsWarnedOf) {
+  const auto dir = scratch_dir("thermo_mechanics_rigid_warning");
+  write_file(dir + "/s.toml", row_scene());
+  const auto r = run_tmdem("check s.toml --set mechanics.normal_law=\"rigid\"", dir);
+  EXPECT_NE(r.output.find("warning: material \"steel\" expands (thermal_expansion 1.2e-05 1/K) under "
+                          "mechanics.normal_law = \"rigid\""),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(run_tmdem("check s.toml", dir).output.find("expands"), std::string::npos);
+}

@@ -68,7 +68,7 @@ int run_accuracy_command(const Scene& scene, const AccuracyCommandOptions& optio
   }, log);
   if (computed != kExitOk) return computed;
   for (const auto& r : result.runs)
-    if (!r.ok)
+    if (r.failed())
       log << "warning: " << r.label() << " "
           << (r.is_explicit() ? "h = " : "rtol = ") << shortest_number(r.parameter)
           << " failed (left out of the CSV): " << r.message << std::endl;

@@ -86,8 +86,12 @@ int tmdem_main(int argc, char** argv) {
                        "(default 2e9, a few seconds)")
       ->check(CLI::PositiveNumber);
   accuracy->add_option("--implicit-budget", study_options.study.implicit_time_budget_s,
-                       "s: once an implicit run took longer, skip its method's tighter "
-                       "tolerances (default 60)")
+                       "s: skip an implicit run predicted to take longer, and its method's "
+                       "tighter tolerances once one of its runs took longer (default 60)")
+      ->check(CLI::NonNegativeNumber);
+  accuracy->add_option("--time-budget", study_options.study.study_time_budget_s,
+                       "s: skip any run predicted to end the study (reference included) past "
+                       "this (default 180)")
       ->check(CLI::NonNegativeNumber);
   std::vector<std::string> accuracy_methods;
   accuracy->add_option("--methods", accuracy_methods,

@@ -1,5 +1,7 @@
 #include "coupling/studies/AccuracyReport.h"
 
+#include "coupling/common/FormattedNumber.h"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -13,11 +15,7 @@ namespace {
 // The label (and method) of the explicit update's runs.
 const std::string kExplicitLabel(thermal::name_of(thermal::IntegratorKind::Explicit));
 
-std::string fmt(const char* format, double x) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, x);
-  return buf;
-}
+std::string fmt(const char* format, double x) { return formatted_number(format, x); }
 
 std::string parameter_text(const AccuracyRun& r) {
   return r.is_explicit() ? "h = " + fmt("%.3e", r.parameter) + " s"
@@ -40,6 +38,13 @@ std::vector<std::string> labels_of(const std::vector<AccuracyRun>& runs) {
   return labels;
 }
 
+// The loosest (explicit: largest-step) skipped run of `label`; null if none.
+const AccuracyRun* first_skipped(const std::vector<AccuracyRun>& runs, const std::string& label) {
+  for (const auto& r : runs)
+    if (r.skipped && r.label() == label) return &r;
+  return nullptr;
+}
+
 const AccuracyRun* most_accurate(const std::vector<AccuracyRun>& runs, const std::string& label) {
   const AccuracyRun* best = nullptr;
   for (const auto& r : runs)
@@ -50,12 +55,17 @@ const AccuracyRun* most_accurate(const std::vector<AccuracyRun>& runs, const std
 }  // namespace
 
 void write_accuracy_csv(std::ostream& out, const std::vector<AccuracyRun>& runs) {
-  out << kAccuracyCsvHeader << "\n";
+  out << kAccuracyCsvHeader << "," << kAccuracyCsvExtension << "\n";
   for (const auto& r : runs) {
-    if (!r.ok) continue;
-    out << r.method << "," << r.linear_solver << "," << shortest_number(r.parameter) << ","
-        << shortest_number(r.max_error_K) << "," << shortest_number(r.wall_time_s) << ","
-        << r.steps << "," << r.rhs_evals << "\n";
+    if (r.failed()) continue;
+    out << r.method << "," << r.linear_solver << "," << shortest_number(r.parameter) << ",";
+    if (r.ok)
+      out << shortest_number(r.max_error_K) << "," << shortest_number(r.wall_time_s) << ","
+          << r.steps << "," << r.rhs_evals << ",ok,";
+    else
+      out << ",,,,skipped,";
+    if (std::isfinite(r.predicted_wall_time_s)) out << shortest_number(r.predicted_wall_time_s);
+    out << "\n";
   }
 }
 
@@ -110,20 +120,16 @@ void print_accuracy_report(std::ostream& out, const AccuracyStudyResult& res,
       << " s), then / " << opt.explicit_rung_factor << " per rung, " << opt.explicit_rungs
       << " rungs; work budget " << fmt("%.3g", opt.explicit_work_budget)
       << " = ceil(duration / h) x (particles + edges + wall edges) per run (a few seconds)\n";
-  if (!res.skipped.empty()) {
-    out << "  skipped, over the work budget: h =";
-    for (const auto& s : res.skipped) out << " " << fmt("%.3e", s.step_s);
-    out << " s (projected work from " << fmt("%.3g", res.skipped.front().projected_work) << ")\n";
-  }
   out << "implicit: relative tolerances";
   for (double t : opt.relative_tolerances) out << " " << fmt("%.0e", t);
-  out << ", absolute tolerance = relative tolerance (K), loose to tight; a method's tighter "
-         "tolerances are skipped once one of its runs took over "
-      << fmt("%.3g", opt.implicit_time_budget_s) << " s\n";
-  for (const auto& s : res.skipped_tolerances)
-    out << "  skipped, over the time budget: " << s.method << "/" << s.linear_solver << " rtol "
-        << fmt("%.0e", s.relative_tolerance) << " (a looser run took " << fmt("%.3g", s.after_s)
-        << " s)\n";
+  out << ", absolute tolerance = relative tolerance (K), loose to tight\n";
+  out << "budgets: each run's wall time is predicted before it is made; skipped: an implicit run "
+         "predicted over "
+      << fmt("%.3g", opt.implicit_time_budget_s)
+      << " s (--implicit-budget) or after its method's run over it, and any run predicted to end "
+         "the study past "
+      << fmt("%.3g", opt.study_time_budget_s) << " s (--time-budget); this study took "
+      << fmt("%.3g", res.wall_time_s) << " s (reference included)\n";
   out << "timing: the integrator's initialize + advance only (steady_clock); runs under "
       << opt.repeat_below_s * 1e3 << " ms are repeated up to " << opt.max_timings
       << " times and the least time kept (cpu_time_s: thread CPU time of that run; well below "
@@ -140,8 +146,9 @@ void print_accuracy_report(std::ostream& out, const AccuracyStudyResult& res,
                     r.method.c_str(), r.linear_solver.c_str(), parameter_text(r).c_str(),
                     r.max_error_K, r.wall_time_s, r.steps, r.rhs_evals, r.timings, r.cpu_time_s);
     else
-      std::snprintf(line, sizeof line, "%-9s %-6s %-18s FAILED: %.300s\n", r.method.c_str(),
-                    r.linear_solver.c_str(), parameter_text(r).c_str(), r.message.c_str());
+      std::snprintf(line, sizeof line, "%-9s %-6s %-18s %s: %.400s\n", r.method.c_str(),
+                    r.linear_solver.c_str(), parameter_text(r).c_str(),
+                    r.skipped ? "skipped" : "FAILED", r.message.c_str());
     out << line;
   }
 
@@ -174,6 +181,11 @@ void print_accuracy_report(std::ostream& out, const AccuracyStudyResult& res,
       if (const AccuracyRun* best = most_accurate(res.runs, label))
         out << " (smallest error " << fmt("%.2e", best->max_error_K) << " K at "
             << parameter_text(*best) << ")";
+      if (const AccuracyRun* skipped = first_skipped(res.runs, label)) {
+        out << "; skipped from " << parameter_text(*skipped) << " on";
+        if (std::isfinite(skipped->predicted_wall_time_s))
+          out << " (predicted " << fmt("%.3g", skipped->predicted_wall_time_s) << " s)";
+      }
       out << "\n";
       if (label == kExplicitLabel && proj.available)
         out << "    projected: h = " << fmt("%.3e", proj.step_s) << " s, "

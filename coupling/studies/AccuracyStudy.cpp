@@ -1,6 +1,7 @@
 #include "coupling/studies/AccuracyStudy.h"
 
 #include "thermal/integrators/IntegratorKind.h"
+#include "coupling/common/FormattedNumber.h"
 #include "coupling/common/ShortestNumber.h"
 
 #include <algorithm>
@@ -14,6 +15,7 @@
 #include <limits>
 #include <sstream>
 
+#include "coupling/studies/AccuracyRunForecast.h"
 #include "coupling/studies/ExactThermalReference.h"
 #include "coupling/studies/SparseExactReference.h"
 #include "coupling/output/ProgressReporter.h"
@@ -22,6 +24,8 @@
 #include "coupling/run/ThermalProblem.h"
 #include "coupling/studies/ThermalReplay.h"
 #include "thermal/integrators/IntegratorRegistry.h"
+#include "thermal/integrators/KluFactorisationCost.h"
+#include "thermal/integrators/ThermalSolverError.h"
 
 namespace tmdem::coupling {
 
@@ -58,10 +62,40 @@ thermal::IntegratorSettings implicit_settings(const thermal::IntegratorSettings&
   return s;  // stop_at_each_time from base: true when a dynamic replay changes the network
 }
 
-std::string fmt_bound(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.2e", x);
-  return buf;
+std::string fmt_bound(double x) { return formatted_number("%.2e", x); }
+std::string fmt_rtol(double x) { return formatted_number("%.0e", x); }
+std::string fmt_seconds(double x) { return formatted_number("%.3g", x); }
+
+// The forecaster, with the cost of one KLU factorisation when a klu method is studied: analysed,
+// then timed unless the analysis alone puts it over a budget (at 10^6 particles the timing would
+// run out of memory, as the run would). A failed analysis leaves klu runs unpredicted (they
+// then fail with KLU's own error).
+AccuracyRunForecaster klu_forecaster(const thermal::ThermalSystem& system,
+                                     const AccuracyStudyOptions& options,
+                                     Clock::time_point study_start, std::ostream* log) {
+  const std::string klu(thermal::name_of(thermal::LinearSolverKind::Klu));
+  bool studied = false;
+  for (const auto& method : options.implicit_methods) studied = studied || method.second == klu;
+  if (!studied) return AccuracyRunForecaster();
+  try {
+    auto cost = thermal::analyse_klu_factorisation(system.pattern());
+    const double at_least_s = cost.flops / kKluFastestFlopsPerSecond;
+    if (at_least_s <= options.implicit_time_budget_s &&
+        seconds_since(study_start) + at_least_s <= options.study_time_budget_s) {
+      cost = thermal::time_klu_factorisation(system.pattern());
+      if (log)
+        *log << "study: KLU: one factorisation (" << fmt_bound(cost.flops) << " flops) took "
+             << fmt_seconds(cost.factorisation_s) << " s, one solve " << fmt_seconds(cost.solve_s)
+             << " s" << std::endl;
+    } else if (log) {
+      *log << "study: KLU: one factorisation (" << fmt_bound(cost.flops) << " flops) takes at least "
+           << fmt_seconds(at_least_s) << " s, over the budget: not timed" << std::endl;
+    }
+    return AccuracyRunForecaster(cost);
+  } catch (const thermal::ThermalSolverError& e) {
+    if (log) *log << "study: KLU: " << e.what() << "; klu runs unpredicted" << std::endl;
+    return AccuracyRunForecaster();
+  }
 }
 
 }  // namespace
@@ -94,6 +128,7 @@ AccuracyRun timed_accuracy_run(thermal::ThermalSystem& system, const std::string
         const auto st = integrator->stats();
         run.steps = st.steps;
         run.rhs_evals = st.rhs_evals;
+        run.linear_setups = st.linear_setups;
         run.max_error_K = max_abs_difference(integrator->temperatures_K(), reference_T_K);
         if (!std::isfinite(run.max_error_K)) {
           run.ok = false;
@@ -178,6 +213,7 @@ AccuracyStudyResult run_accuracy_study(thermal::ThermalSystem& system,
                                        const thermal::IntegratorSettings& base,
                                        const AccuracyStudyOptions& options, std::ostream* log,
                                        const ThermalDriver& driver) {
+  const auto study_start = Clock::now();
   AccuracyStudyResult result;
   result.end_time_s = end_time_s;
   const auto& net = system.network();
@@ -194,58 +230,159 @@ AccuracyStudyResult run_accuracy_study(thermal::ThermalSystem& system,
     *log << "study: reference: " << result.reference.description << ", "
          << result.reference.wall_time_s << " s" << std::endl;
 
+  AccuracyRunForecaster forecaster = klu_forecaster(system, options, study_start, log);
+
   auto report = [&](const AccuracyRun& r) {
     if (!log) return;
     *log << "study: " << r.label() << (r.is_explicit() ? " h = " : " rtol = ")
          << r.parameter << (r.is_explicit() ? " s" : "");
     if (r.ok)
       *log << ": max error " << r.max_error_K << " K, " << r.wall_time_s << " s, " << r.steps
-           << " steps" << std::endl;
+           << " steps" << (r.is_explicit() ? std::string()
+                                : ", " + std::to_string(r.linear_setups) + " linear-solver setups")
+           << (std::isfinite(r.predicted_wall_time_s)
+                               ? " (predicted " + fmt_seconds(r.predicted_wall_time_s) + " s)"
+                               : std::string())
+           << std::endl;
+    else if (r.skipped)
+      *log << ": skipped: " << r.message << std::endl;
     else
       *log << ": FAILED: " << r.message << std::endl;
   };
+  // A run not made: its parameters, its prediction and why.
+  auto skip = [&](const std::string& method, const std::string& solver, double parameter,
+                  const RunForecast& forecast, const std::string& why) {
+    AccuracyRun r;
+    r.method = method;
+    r.linear_solver = solver;
+    r.parameter = parameter;
+    r.ok = false;
+    r.skipped = true;
+    r.predicted_wall_time_s = forecast.wall_time_s;
+    r.prediction_basis = forecast.basis;
+    r.message = why;
+    result.runs.push_back(r);
+    report(result.runs.back());
+  };
+  auto predicted_text = [](const RunForecast& f) {
+    return "predicted " + fmt_seconds(f.wall_time_s) + " s (" + f.basis + ")";
+  };
+  // The study's budget: would this run end past it?
+  auto past_study_budget = [&](const RunForecast& f, std::string& why) {
+    const double used = seconds_since(study_start);
+    if (!f.known() || used + f.wall_time_s <= options.study_time_budget_s) return false;
+    why = predicted_text(f) + ", which would end the study past its " +
+          fmt_seconds(options.study_time_budget_s) + " s budget (" + fmt_seconds(used) +
+          " s used; --time-budget)";
+    return true;
+  };
 
   // Explicit ladder.
+  const std::string explicit_name(thermal::name_of(thermal::IntegratorKind::Explicit));
   const double work_per_step = double(result.nodes + result.edges + result.wall_edges);
   double h = std::isfinite(result.stability_bound_s)
                  ? options.explicit_first_fraction * result.stability_bound_s
                  : end_time_s;
   if (options.max_explicit_step_s > 0.0) h = std::min(h, options.max_explicit_step_s);
+  // Seconds per work unit of a few timed explicit steps, for the first rung's prediction (none
+  // for a dynamic scene, whose network at t = 0 is not the one its rungs run on).
+  double probe_seconds_per_unit = std::numeric_limits<double>::quiet_NaN();
+  if (!driver && options.explicit_rungs > 0 && options.explicit_probe_steps > 0 && h > 0.0 &&
+      work_per_step > 0.0) {
+    auto s = base;
+    s.explicit_step_s = h;
+    const double probe_end = std::min(end_time_s, h * options.explicit_probe_steps);
+    AccuracyStudyOptions once = options;
+    once.max_timings = 1;
+    const auto probe = timed_accuracy_run(system, explicit_name, s, T0_K, probe_end,
+                                          result.reference.T_K, once);
+    if (probe.steps > 0)
+      probe_seconds_per_unit = probe.wall_time_s / (double(probe.steps) * work_per_step);
+  }
   for (int k = 0; k < options.explicit_rungs; ++k, h /= options.explicit_rung_factor) {
     const double work = std::ceil(end_time_s / h) * work_per_step;
+    const auto forecast =
+        forecaster.explicit_run(work, work_per_step, result.runs, probe_seconds_per_unit);
+    std::string why;
     if (work > options.explicit_work_budget) {
-      result.skipped.push_back({h, work});
+      why = "projected work " + fmt_bound(work) + " over the work budget " +
+            fmt_bound(options.explicit_work_budget) + " (--explicit-budget)" +
+            (forecast.known() ? "; " + predicted_text(forecast) : std::string());
+      skip(explicit_name, kNoLinearSolver, h, forecast, why);
+      continue;
+    }
+    if (past_study_budget(forecast, why)) {
+      skip(explicit_name, kNoLinearSolver, h, forecast, why);
       continue;
     }
     auto s = base;
     s.explicit_step_s = h;
-    result.runs.push_back(timed_accuracy_run(system, std::string(thermal::name_of(thermal::IntegratorKind::Explicit)), s, T0_K, end_time_s,
+    result.runs.push_back(timed_accuracy_run(system, explicit_name, s, T0_K, end_time_s,
                                              result.reference.T_K, options, driver));
+    result.runs.back().predicted_wall_time_s = forecast.wall_time_s;
+    result.runs.back().prediction_basis = forecast.basis;
     report(result.runs.back());
   }
-  // Implicit methods at each tolerance.
-  for (const auto& [method, solver] : options.implicit_methods) {
-    // Loose to tight: a tighter tolerance costs more than a looser one that was already over.
-    std::vector<double> tolerances = options.relative_tolerances;
-    std::sort(tolerances.begin(), tolerances.end(), std::greater<>());
-    double over_s = 0.0;
-    for (double rtol : tolerances) {
-      if (over_s > 0.0) {
-        result.skipped_tolerances.push_back({method, solver, rtol, over_s});
-        if (log)
-          *log << "study: " << method << "/" << solver << " rtol = " << rtol << ": skipped (rtol = "
-               << result.runs.back().parameter << " took " << over_s << " s, over the "
-               << options.implicit_time_budget_s << " s budget)" << std::endl;
-        continue;
+
+  // Implicit methods: first those with iterative solvers, then klu (predicted from their counts
+  // at the same tolerance, and the slowest on large 3D beds, so they are what the study's budget
+  // cuts); within each, loose to tight, every method at a tolerance before any at the next.
+  const std::string klu_name(thermal::name_of(thermal::LinearSolverKind::Klu));
+  std::vector<double> tolerances = options.relative_tolerances;
+  std::sort(tolerances.begin(), tolerances.end(), std::greater<>());
+  std::vector<std::string> closed(options.implicit_methods.size());  // why its tighter runs are skipped
+  for (const bool klu_pass : {false, true})
+    for (double rtol : tolerances)
+      for (std::size_t m = 0; m < options.implicit_methods.size(); ++m) {
+        const auto& [method, solver] = options.implicit_methods[m];
+        if ((solver == klu_name) != klu_pass) continue;
+        const auto forecast = forecaster.implicit_run(method, solver, rtol, result.runs);
+        std::string why;
+        if (!closed[m].empty()) {
+          skip(method, solver, rtol, forecast,
+               closed[m] + (forecast.known() ? "; " + predicted_text(forecast) : std::string()));
+          continue;
+        }
+        if (forecast.known() && forecast.wall_time_s > options.implicit_time_budget_s) {
+          why = predicted_text(forecast) + ", over the " +
+                fmt_seconds(options.implicit_time_budget_s) + " s budget of one run (--implicit-budget)";
+          closed[m] = "a looser tolerance was skipped";
+          skip(method, solver, rtol, forecast, why);
+          continue;
+        }
+        if (past_study_budget(forecast, why)) {
+          closed[m] = "a looser tolerance was skipped";
+          skip(method, solver, rtol, forecast, why);
+          continue;
+        }
+        auto run = timed_accuracy_run(system, method, implicit_settings(base, solver, rtol), T0_K,
+                                      end_time_s, result.reference.T_K, options, driver);
+        run.predicted_wall_time_s = forecast.wall_time_s;
+        run.prediction_basis = forecast.basis;
+        result.runs.push_back(run);
+        report(result.runs.back());
+        if (run.wall_time_s > options.implicit_time_budget_s)
+          closed[m] = "rtol " + fmt_rtol(rtol) + " took " + fmt_seconds(run.wall_time_s) +
+                      " s, over the " + fmt_seconds(options.implicit_time_budget_s) +
+                      " s budget of one run (--implicit-budget)";
       }
-      result.runs.push_back(timed_accuracy_run(system, method, implicit_settings(base, solver, rtol),
-                                               T0_K, end_time_s, result.reference.T_K, options,
-                                               driver));
-      report(result.runs.back());
-      if (result.runs.back().wall_time_s > options.implicit_time_budget_s)
-        over_s = result.runs.back().wall_time_s;
-    }
-  }
+
+  // The report's order: explicit rungs as made, then each method loose to tight.
+  auto group = [&](const AccuracyRun& r) -> std::size_t {
+    if (r.is_explicit()) return 0;
+    for (std::size_t m = 0; m < options.implicit_methods.size(); ++m)
+      if (options.implicit_methods[m].first == r.method &&
+          options.implicit_methods[m].second == r.linear_solver)
+        return m + 1;
+    return options.implicit_methods.size() + 1;
+  };
+  std::stable_sort(result.runs.begin(), result.runs.end(),
+                   [&](const AccuracyRun& a, const AccuracyRun& b) {
+                     const auto ga = group(a), gb = group(b);
+                     if (ga != gb) return ga < gb;
+                     return !a.is_explicit() && a.parameter > b.parameter;
+                   });
+  result.wall_time_s = seconds_since(study_start);
   return result;
 }
 

@@ -6,11 +6,23 @@
 //   explicit   forward Euler at h = 0.9 x the stability bound (2 / lambda_max, Gershgorin), then
 //              h / 4, h / 16, ... (explicit_rungs = 12 rungs); a rung whose projected work
 //              ceil(duration / h) x (nodes + edges + wall edges) exceeds explicit_work_budget
-//              is skipped and listed as such (2e9 is a few seconds of wall time).
+//              is skipped (2e9 is a few seconds of wall time).
 //   cvode, ida with klu and pcg, at relative tolerances 1e-2, 1e-4, 1e-6, 1e-8, 1e-10 and the
 //              absolute tolerance equal to the relative one, read in kelvin (atol = rtol K).
-//              Loose to tight: once a method's run took longer than implicit_time_budget_s,
-//              its tighter tolerances (which cost more) are skipped and listed as such.
+//              First the methods with iterative solvers, then klu (predicted from their counts,
+//              and the slowest on large 3D beds); each loose to tight, every method at one
+//              tolerance before any at the next.
+// Before each run its wall time is predicted (AccuracyRunForecast.h); a run is skipped, and
+// kept in `runs` with skipped = true, its prediction and why, when
+//   - its prediction exceeds implicit_time_budget_s (implicit runs), or
+//   - the study's time so far (reference included) plus its prediction exceeds
+//     study_time_budget_s, or
+//   - a looser run of its method was skipped or took longer than implicit_time_budget_s
+//     (a tighter tolerance costs more).
+// A run without a prediction (an iterative method's first run; a dynamic scene's explicit
+// rungs) is made. Why: a study that starts every run does not end on a large 3D bed (KLU's
+// fill-in: 35-100 s for one run at 24,389 particles, out of memory at 10^6), and a skipped
+// run's predicted cost still says what the method would take.
 // Reference: for a linear network (no radiation) of any size, the exact solution with its own
 // error bound in kelvin (coupling/studies/SparseExactReference.h: Chebyshev series of the
 // matrix exponential on the sparse system); otherwise (and for a dynamic scene's replay)
@@ -53,10 +65,17 @@ struct AccuracyStudyOptions {
   double explicit_first_fraction = 0.9;      // of the stability bound
   double explicit_rung_factor = 4.0;         // each rung's step is the previous one / this
   double explicit_work_budget = 2.0e9;       // steps x (nodes + edges + wall edges)
-  // s of one implicit run, past which the method's tighter tolerances are skipped. Why: on a
-  // 100,352-particle stiff bed cvode/klu at rtol 1e-2 alone took 215 s (KLU fill-in), so its
-  // nine tighter runs and ida/klu's would take hours while pcg's take seconds.
+  // s of one implicit run: one predicted to take longer is skipped, and once one took longer its
+  // method's tighter tolerances are. Why: on a 100,352-particle stiff bed cvode/klu at rtol 1e-2
+  // alone took 215 s (KLU fill-in), so its tighter runs and ida/klu's would take hours while
+  // pcg's take seconds.
   double implicit_time_budget_s = 60.0;
+  // s of the whole study from its start (reference included): a run predicted to end past it is
+  // skipped. 180 s of runs, so that a study of a 25,000-particle 3D bed, set-up included, ends
+  // within 4 minutes (docs/benchmarks.md).
+  double study_time_budget_s = 180.0;
+  // Explicit steps timed to predict the first explicit rung when no explicit run was made yet.
+  int explicit_probe_steps = 100;
   double repeat_below_s = 0.05;
   int max_timings = 10;
   double reference_tolerance = 1e-12;        // CVODE/KLU reference: rtol = atol (K)
@@ -86,26 +105,20 @@ struct AccuracyRun {
                                // wall time unless the machine is busy with other work
   long steps = 0;
   long rhs_evals = 0;
+  long linear_setups = 0;      // (not in the CSV) what the forecasts of klu runs scale with
   int timings = 0;             // how many times it was run and timed
-  bool ok = true;
-  std::string message;         // why it failed
+  bool ok = true;              // made and successful
+  std::string message;         // why it failed, or why it was skipped
+  bool skipped = false;        // not made (ok = false): predicted too slow, see `message`
+  // The wall time predicted before the run (AccuracyRunForecast.h); NaN: no prediction.
+  double predicted_wall_time_s = std::numeric_limits<double>::quiet_NaN();
+  std::string prediction_basis;  // how it was predicted
+
+  bool failed() const { return !ok && !skipped; }
 
   // "explicit", "cvode/klu", ...
   bool is_explicit() const { return method == thermal::name_of(thermal::IntegratorKind::Explicit); }
   std::string label() const { return is_explicit() ? method : method + "/" + linear_solver; }
-};
-
-struct SkippedRung {
-  double step_s = 0.0;
-  double projected_work = 0.0;
-};
-
-// An implicit run not made: a looser one of the same method already took `after_s` (s), more
-// than the time budget.
-struct SkippedTolerance {
-  std::string method, linear_solver;
-  double relative_tolerance = 0.0;
-  double after_s = 0.0;
 };
 
 struct AccuracyReference {
@@ -122,9 +135,10 @@ struct AccuracyStudyResult {
   std::size_t nodes = 0, edges = 0, wall_edges = 0;
   double stability_bound_s = 0.0;
   AccuracyReference reference;
-  std::vector<AccuracyRun> runs;        // explicit rungs first, then each implicit method
-  std::vector<SkippedRung> skipped;     // explicit rungs over the work budget
-  std::vector<SkippedTolerance> skipped_tolerances;  // implicit runs past the time budget
+  // Explicit rungs first (largest step first), then each implicit method in the options'
+  // order, loose to tight; skipped runs included (skipped = true).
+  std::vector<AccuracyRun> runs;
+  double wall_time_s = 0.0;             // the whole study, reference included
 };
 
 // The reference could not be computed (exit code 3).

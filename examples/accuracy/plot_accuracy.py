@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """Work-precision plot of a `tmdem study accuracy` CSV.
 
-Reads the CSV (header method,linear_solver,parameter,max_error_K,wall_time_s,steps,rhs_evals)
-and draws the max error at the end time against the wall time, log-log, one line per method and
+Reads the CSV (header method,linear_solver,parameter,max_error_K,wall_time_s,steps,rhs_evals,
+status,predicted_wall_time_s: the contract's seven columns and tmdem's two) and draws the max error at the end time against the wall time, log-log, one line per method and
 linear solver (explicit: one point per step; cvode/ida: one point per relative tolerance), with
 the 1e-3 K and 1e-6 K targets as dashed lines. Saves a PNG.
 
@@ -22,6 +22,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 HEADER = ["method", "linear_solver", "parameter", "max_error_K", "wall_time_s", "steps", "rhs_evals"]
+EXTENSION = ["status", "predicted_wall_time_s"]  # tmdem's: runs skipped as predicted too slow
 STYLE = {
     "explicit": dict(color="black", marker="o"),
     "cvode/klu": dict(color="tab:blue", marker="s"),
@@ -36,12 +37,12 @@ def read_runs(path):
     with open(path, newline="") as f:
         reader = csv.reader(f)
         header = next(reader, None)
-        if header != HEADER:
-            raise ValueError(f"{path}: expected the header {','.join(HEADER)}, got {header}")
+        if header not in (HEADER, HEADER + EXTENSION):
+            raise ValueError(f"{path}: expected the header {','.join(HEADER + EXTENSION)}, got {header}")
         series = OrderedDict()
         for row in reader:
-            if not row:
-                continue
+            if not row or (len(row) > 7 and row[7] != "ok"):
+                continue  # a run the study skipped has no error nor time to draw
             method, solver, parameter, error, wall = row[0], row[1], float(row[2]), float(row[3]), float(row[4])
             label = method if method == "explicit" else f"{method}/{solver}"
             series.setdefault(label, []).append((wall, error, parameter))

@@ -30,6 +30,8 @@ struct Row {
   std::string method, solver;
   double parameter, error, wall;
   long steps, rhs;
+  std::string status;   // ok | skipped
+  double predicted;     // NaN when the study made no prediction
 };
 
 std::vector<std::string> split(const std::string& line) {
@@ -37,10 +39,15 @@ std::vector<std::string> split(const std::string& line) {
   std::stringstream ss(line);
   std::string cell;
   while (std::getline(ss, cell, ',')) out.push_back(cell);
+  if (!line.empty() && line.back() == ',') out.push_back("");
   return out;
 }
 
-// The study's CSV: the contract's header, then one row of 7 cells per run.
+double number_or_nan(const std::string& cell) { return cell.empty() ? std::nan("") : std::stod(cell); }
+
+// The study's CSV: the contract's header and its extension, then one row of 9 cells per run,
+// made (status ok: every cell but perhaps the prediction) or skipped (the four measured cells
+// empty).
 std::vector<Row> read_study_csv(const std::string& path) {
   std::vector<Row> rows;
   std::ifstream in(path);
@@ -49,17 +56,30 @@ std::vector<Row> read_study_csv(const std::string& path) {
     ADD_FAILURE() << "no header in " << path;
     return rows;
   }
-  EXPECT_EQ(line, "method,linear_solver,parameter,max_error_K,wall_time_s,steps,rhs_evals");
+  EXPECT_EQ(line, "method,linear_solver,parameter,max_error_K,wall_time_s,steps,rhs_evals,"
+                  "status,predicted_wall_time_s");
   while (std::getline(in, line)) {
     const auto c = split(line);
-    if (c.size() != 7u) {
-      ADD_FAILURE() << "not 7 cells: " << line;
+    if (c.size() != 9u) {
+      ADD_FAILURE() << "not 9 cells: " << line;
       continue;
     }
-    rows.push_back({c[0], c[1], std::stod(c[2]), std::stod(c[3]), std::stod(c[4]),
-                    std::stol(c[5]), std::stol(c[6])});
+    const bool made = c[7] == "ok";
+    EXPECT_TRUE(made || c[7] == "skipped") << line;
+    EXPECT_EQ(made, !c[3].empty() && !c[4].empty() && !c[5].empty() && !c[6].empty()) << line;
+    rows.push_back({c[0], c[1], std::stod(c[2]), number_or_nan(c[3]), number_or_nan(c[4]),
+                    made ? std::stol(c[5]) : 0L, made ? std::stol(c[6]) : 0L, c[7],
+                    number_or_nan(c[8])});
   }
   return rows;
+}
+
+// The rows of runs made.
+std::vector<Row> made_rows(const std::vector<Row>& rows) {
+  std::vector<Row> made;
+  for (const auto& row : rows)
+    if (row.status == "ok") made.push_back(row);
+  return made;
 }
 
 }  // namespace
@@ -78,6 +98,7 @@ TEST(EndToEndStudy, AccuracyStudyCsvAndConvergence) {
   EXPECT_NE(r.output.find("max error <= 1e-06 K"), std::string::npos) << r.output;
 
   const std::vector<Row> rows = read_study_csv(dir + "/out.csv");
+  EXPECT_EQ(made_rows(rows).size(), rows.size()) << "a run of this small study was skipped";
   for (const auto& row : rows) {
     EXPECT_TRUE(std::isfinite(row.error)) << row.method << " " << row.parameter;
     EXPECT_GE(row.wall, 0.0) << row.method << " " << row.parameter;
@@ -120,26 +141,61 @@ TEST(EndToEndStudy, AccuracyStudyCsvAndConvergence) {
   EXPECT_EQ(tight, 2);
 }
 
-// --implicit-budget: once a method's run took longer, its tighter tolerances are skipped (a
-// tighter tolerance costs more). With a budget of 0 s every run is over it, so each implicit
-// method runs at its loosest tolerance only, and the others are listed as skipped.
-TEST(EndToEndStudy, ImplicitTimeBudgetSkipsTighterTolerances) {
+// --implicit-budget: an implicit run predicted to take longer is skipped, with its prediction,
+// and so are a method's tighter runs once one of its runs took longer. With a budget of 0 s the
+// iterative methods' loosest runs, which have no prediction, are made and take longer; every
+// other implicit run is skipped and said so, in the output and as a CSV row with its predicted
+// cost (klu's from its sibling's counts and KLU's analysis).
+TEST(EndToEndStudy, ImplicitTimeBudgetSkipsRunsPredictedOverIt) {
   const auto dir = scratch_dir("study_budget");
   write_file(dir + "/lattice.toml", kStudyLattice);
   const auto r = run_tmdem("study accuracy lattice.toml --csv out.csv --explicit-rungs 1 "
                            "--implicit-budget 0 --set simulation.duration=20.0",
                            dir);
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  std::vector<std::string> implicit;
+  std::vector<std::string> made, skipped;
   for (const auto& row : read_study_csv(dir + "/out.csv")) {
     if (row.method == "explicit") continue;
-    implicit.push_back(row.method + "/" + row.solver);
-    EXPECT_EQ(row.parameter, 1e-2) << implicit.back();  // the loosest only
+    const std::string name = row.method + "/" + row.solver;
+    if (row.status == "ok") {
+      made.push_back(name);
+      EXPECT_EQ(row.parameter, 1e-2) << name;  // the loosest only
+    } else {
+      skipped.push_back(name);
+      EXPECT_GT(row.predicted, 0.0) << name << " " << row.parameter;
+    }
   }
-  EXPECT_EQ(implicit, (std::vector<std::string>{"cvode/klu", "cvode/pcg", "ida/klu", "ida/pcg"}));
-  for (const char* skipped : {"skipped, over the time budget: cvode/klu rtol 1e-04",
-                              "skipped, over the time budget: ida/pcg rtol 1e-10"})
-    EXPECT_NE(r.output.find(skipped), std::string::npos) << skipped << "\n" << r.output;
+  EXPECT_EQ(made, (std::vector<std::string>{"cvode/pcg", "ida/pcg"}));
+  EXPECT_EQ(skipped.size(), 18u);  // 4 methods x 5 tolerances, less the two made
+  for (const char* said : {"ida/pcg rtol = 0.0001: skipped: rtol 1e-02 took",
+                           "cvode/klu rtol = 0.01: skipped: predicted",
+                           "over the 0 s budget of one run (--implicit-budget)",
+                           "cvode/klu: not reached; skipped from rtol = 1e-02 on (predicted"})
+    EXPECT_NE(r.output.find(said), std::string::npos) << said << "\n" << r.output;
+}
+
+// --time-budget: a run predicted to end the study past it is skipped. At 0 s every run with a
+// prediction is: the explicit rung (predicted from a probe of explicit steps) and every implicit
+// run but the iterative methods' loosest.
+TEST(EndToEndStudy, StudyTimeBudgetSkipsRunsPredictedToEndPastIt) {
+  const auto dir = scratch_dir("study_time_budget");
+  write_file(dir + "/lattice.toml", kStudyLattice);
+  const auto r = run_tmdem("study accuracy lattice.toml --csv out.csv --explicit-rungs 2 "
+                           "--time-budget 0 --set simulation.duration=20.0",
+                           dir);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto rows = read_study_csv(dir + "/out.csv");
+  ASSERT_EQ(rows.size(), 22u);  // 2 explicit rungs + 4 methods x 5 tolerances, every one a row
+  std::vector<std::string> made;
+  for (const auto& row : made_rows(rows)) made.push_back(row.method + "/" + row.solver);
+  EXPECT_EQ(made, (std::vector<std::string>{"cvode/pcg", "ida/pcg"}));
+  for (const auto& row : rows)
+    if (row.method == "explicit") {
+      EXPECT_EQ(row.status, "skipped");
+      EXPECT_GT(row.predicted, 0.0);
+    }
+  EXPECT_NE(r.output.find("past its 0 s budget"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("(--time-budget)"), std::string::npos) << r.output;
 }
 
 // --methods chooses the implicit methods: cvode/amg alone gives five amg rows, each converging
@@ -152,7 +208,7 @@ TEST(EndToEndStudy, MethodsChooseTheImplicitMethods) {
                      "--methods cvode/amg --set simulation.duration=20.0",
                      dir);
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  const auto rows = read_study_csv(dir + "/out.csv");
+  const auto rows = made_rows(read_study_csv(dir + "/out.csv"));
   ASSERT_EQ(rows.size(), 5u);
   for (const auto& row : rows) {
     EXPECT_EQ(row.method + "/" + row.solver, "cvode/amg");
@@ -205,26 +261,16 @@ TEST(EndToEndStudy, DynamicSceneReplaysItsRecordedContactGraph) {
   const auto r = run_tmdem("study accuracy drop.toml --csv out.csv --explicit-rungs 3", dir);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("restarted every mechanical step"), std::string::npos) << r.output;
-  std::ifstream in(dir + "/out.csv");
-  std::string line;
-  std::getline(in, line);
-  EXPECT_EQ(line, "method,linear_solver,parameter,max_error_K,wall_time_s,steps,rhs_evals");
   int explicit_rows = 0, cvode_rows = 0;
   double cvode_tight_error = 1e9;
-  while (std::getline(in, line)) {
-    std::stringstream ss(line);
-    std::string method, solver, parameter, error;
-    std::getline(ss, method, ',');
-    std::getline(ss, solver, ',');
-    std::getline(ss, parameter, ',');
-    std::getline(ss, error, ',');
-    if (method == "explicit") {
+  for (const auto& row : made_rows(read_study_csv(dir + "/out.csv"))) {
+    if (row.method == "explicit") {
       ++explicit_rows;
-      EXPECT_LE(std::stod(parameter), 1e-3 * (1 + 1e-12)) << "explicit step above the mechanical step";
+      EXPECT_LE(row.parameter, 1e-3 * (1 + 1e-12)) << "explicit step above the mechanical step";
     }
-    if (method == "cvode" && solver == "klu") {
+    if (row.method == "cvode" && row.solver == "klu") {
       ++cvode_rows;
-      if (std::stod(parameter) == 1e-10) cvode_tight_error = std::stod(error);
+      if (row.parameter == 1e-10) cvode_tight_error = row.error;
     }
   }
   EXPECT_EQ(explicit_rows, 3);

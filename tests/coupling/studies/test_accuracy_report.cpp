@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <sstream>
 
@@ -42,17 +43,46 @@ std::vector<AccuracyRun> sample_runs() {
           make_run("cvode", "pcg", 1e-6, 0.0, 0.0, 0, false)};
 }
 
-TEST(AccuracyReport, CsvHasContractHeaderAndOnlySuccessfulRuns) {
+// A run the study skipped as predicted too slow, with its prediction.
+AccuracyRun skipped_run(const std::string& method, const std::string& solver, double parameter,
+                        double predicted_s) {
+  AccuracyRun r = make_run(method, solver, parameter, 0.0, 0.0, 0, false);
+  r.skipped = true;
+  r.predicted_wall_time_s = predicted_s;
+  r.message = "predicted " + std::to_string(predicted_s) + " s, over the budget";
+  return r;
+}
+
+TEST(AccuracyReport, CsvHasContractHeaderExtendedAndNoFailedRun) {
+  auto runs = sample_runs();
+  runs[2].predicted_wall_time_s = 2.5e-4;
   std::ostringstream out;
-  write_accuracy_csv(out, sample_runs());
+  write_accuracy_csv(out, runs);
   const std::string text = out.str();
+  // The contract's seven columns, in their places, then the extension's two.
   EXPECT_EQ(text.substr(0, text.find('\n')),
-            "method,linear_solver,parameter,max_error_K,wall_time_s,steps,rhs_evals");
+            "method,linear_solver,parameter,max_error_K,wall_time_s,steps,rhs_evals,"
+            "status,predicted_wall_time_s");
   EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 6);  // header + 5 successful runs
-  EXPECT_NE(text.find("explicit,none,0.4,0.04,0.001,250,250\n"), std::string::npos) << text;
-  EXPECT_NE(text.find("cvode,klu,1e-06,9e-07,9e-04,200,200\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("explicit,none,0.4,0.04,0.001,250,250,ok,\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("cvode,klu,0.01,0.5,1e-04,20,20,ok,0.00025\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("cvode,klu,1e-06,9e-07,9e-04,200,200,ok,\n"), std::string::npos) << text;
   EXPECT_EQ(text.find("pcg"), std::string::npos);
   EXPECT_EQ(text.find("nan"), std::string::npos);
+}
+
+TEST(AccuracyReport, SkippedRunsAreRowsWithTheirPredictionAndNoMeasurement) {
+  const std::vector<AccuracyRun> runs{skipped_run("ida", "klu", 1e-4, 90.5),
+                                      skipped_run("explicit", "none", 1e-5, std::nan(""))};
+  std::ostringstream out;
+  write_accuracy_csv(out, runs);
+  const std::string text = out.str();
+  EXPECT_NE(text.find("\nida,klu,1e-04,,,,,skipped,90.5\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("\nexplicit,none,1e-05,,,,,skipped,\n"), std::string::npos) << text;
+  EXPECT_EQ(text.find("nan"), std::string::npos);
+  // Skipped runs never count as reaching a target, nor as failures.
+  EXPECT_EQ(cheapest_reaching(runs, "ida/klu", 1e9), nullptr);
+  EXPECT_FALSE(runs[0].failed());
 }
 
 TEST(AccuracyReport, CheapestRunReachingATarget) {
@@ -90,6 +120,21 @@ TEST(AccuracyReport, ReportNamesReferenceTargetsAndFailures) {
   EXPECT_NE(text.find("FAILED: solver failed"), std::string::npos) << text;
   EXPECT_NE(text.find("projected"), std::string::npos) << text;
   EXPECT_NE(text.find("faster than explicit"), std::string::npos) << text;
+}
+
+TEST(AccuracyReport, ReportShowsASkippedMethodsPredictedCost) {
+  AccuracyStudyResult res;
+  res.end_time_s = 100.0;
+  res.reference.description = "exact matrix exponential";
+  res.runs = sample_runs();
+  res.runs.push_back(skipped_run("ida", "klu", 1e-2, 90.5));
+  std::ostringstream out;
+  print_accuracy_report(out, res, AccuracyStudyOptions{});
+  const std::string text = out.str();
+  EXPECT_NE(text.find("skipped: predicted 90.5"), std::string::npos) << text;
+  EXPECT_NE(text.find("ida/klu: not reached; skipped from rtol = 1e-02 on (predicted 90.5 s)"),
+            std::string::npos)
+      << text;
 }
 
 TEST(AccuracyExamples, StiffBedIsStiffAndTriangleIsValid) {

@@ -1,7 +1,11 @@
 #pragma once
 // The coupled run's state and steps (CoupledRun.h describes the run), shared by the files that
-// implement it: CoupledRun.cpp (set-up, time loops, frames, summary) and
-// CoupledRunCheckpoints.cpp (checkpoints, restarts and interruptions). Internal to the run room.
+// implement it: CoupledRun.cpp (the run as a whole: exit codes, status, the files closed),
+// CoupledRunSetup.cpp (mechanics and thermal set-up), CoupledRunLoops.cpp (the time loops;
+// "coupled" runs: CoupledRunThermoMechanics.cpp),
+// CoupledRunResultFile.cpp (the result file and its frames), CoupledRunSummary.cpp (the
+// summary) and CoupledRunCheckpoints.cpp (checkpoints, restarts and interruptions). Internal
+// to the run room.
 #include <chrono>
 #include <memory>
 #include <optional>

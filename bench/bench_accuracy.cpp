@@ -75,7 +75,7 @@ int main(int argc, char** argv) {
   std::printf("reference: %s, %.3g s\n", ref.description.c_str(), ref.wall_time_s);
   {
     auto s = base;
-    s.linear_solver = "klu";
+    s.linear_solver = thermal::LinearSolverKind::Klu;
     s.relative_tolerance = s.absolute_tolerance_K = 1e-12;
     s.max_steps_per_call = 100000000L;
     auto integ = thermal::make_thermal_integrator("cvode", system, s);
@@ -91,7 +91,7 @@ int main(int argc, char** argv) {
   cvode_runs.reserve(20);
   for (int k = 8; k <= 22; ++k) {
     auto s = base;
-    s.linear_solver = "klu";
+    s.linear_solver = thermal::LinearSolverKind::Klu;
     s.relative_tolerance = s.absolute_tolerance_K = std::pow(10.0, -0.5 * k);
     cvode_runs.push_back(timed_accuracy_run(system, "cvode", s, problem.T0_K, T_end, ref.T_K, opt));
     const auto& r = cvode_runs.back();

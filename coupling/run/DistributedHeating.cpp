@@ -31,10 +31,9 @@ std::string distributed_heating_refusal(const Scene& scene, int processes) {
     return over + "thermal.integrator = \"" + scene.thermal.integrator +
            "\" runs in one process only; use \"cvode\"";
   // "auto" is amg over several processes; an explicit klu or pcg is refused.
-  if (choose_distributed_linear_solver(scene, processes).kind != thermal::LinearSolverKind::Amg)
-    return over + "thermal.linear_solver = \"" + scene.thermal.linear_solver +
-           "\" runs in one process only; use \"amg\" (conjugate gradients with BoomerAMG across "
-           "the processes)";
+  if (const auto choice = choose_distributed_linear_solver(scene, processes);
+      !choice.refusal.empty())
+    return over + choice.refusal;
   if (scene.particles.size() < std::size_t(processes))
     return over + "fewer particles (" + std::to_string(scene.particles.size()) + ") than processes";
   if (gas_layer_shared(scene))

@@ -1,7 +1,5 @@
 #include "coupling/run/LinearSolverChoice.h"
 
-#include <stdexcept>
-
 namespace tmdem::coupling {
 
 namespace {
@@ -10,26 +8,19 @@ std::size_t klu_particles(int dimension) {
   return dimension == 2 ? kKluParticles2d : kKluParticles3d;
 }
 
-std::string valid_names() {
-  std::string valid = "\"" + std::string(thermal::kAutoLinearSolverName) + "\"";
-  for (const auto name : thermal::kLinearSolverNames) valid += ", \"" + std::string(name) + "\"";
-  return valid;
-}
-
 }  // namespace
 
 LinearSolverChoice choose_linear_solver(const LinearSolverProblem& p) {
   using thermal::LinearSolverKind;
   LinearSolverChoice c;
-  if (p.requested != thermal::kAutoLinearSolverName) {
-    for (std::size_t k = 0; k < thermal::kLinearSolverNames.size(); ++k)
-      if (thermal::kLinearSolverNames[k] == p.requested) {
-        c.kind = static_cast<LinearSolverKind>(k);
-        c.reason = "explicit: thermal.linear_solver = \"" + p.requested + "\"";
-        return c;
-      }
-    throw std::invalid_argument("thermal.linear_solver = \"" + p.requested +
-                                "\" is not a linear solver; valid values: " + valid_names());
+  if (p.requested) {
+    c.kind = *p.requested;
+    const std::string named = "thermal.linear_solver = \"" + c.name() + "\"";
+    c.reason = "explicit: " + named;
+    if (p.processes > 1 && c.kind != LinearSolverKind::Amg)
+      c.refusal = named + " runs in one process only; use \"amg\" (conjugate gradients with "
+                          "BoomerAMG across the processes)";
+    return c;
   }
   c.automatic = true;
   const std::string n = std::to_string(p.particles) + " particles";
@@ -69,7 +60,7 @@ LinearSolverChoice choose_distributed_linear_solver(const Scene& scene, int proc
 }
 
 std::string klu_size_warning(const LinearSolverProblem& p) {
-  if (p.requested != thermal::name_of(thermal::LinearSolverKind::Klu) || p.dimension != 3 ||
+  if (p.requested != thermal::LinearSolverKind::Klu || p.dimension != 3 ||
       p.particles < kKluParticles3d)
     return "";
   return "thermal.linear_solver = \"klu\" on " + std::to_string(p.particles) +

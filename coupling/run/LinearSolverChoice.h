@@ -5,7 +5,9 @@
 // accuracy and conductivity studies) asks this, so "auto" never reaches the thermal side.
 //
 // The rule, first match wins:
-//   1. an explicit choice                    -> that solver
+//   1. an explicit choice                    -> that solver; over more than one MPI process
+//                                               only amg, else refused (`refusal`: the one place
+//                                               this is decided; the MPI integrator is always amg)
 //   2. more than one MPI process             -> amg (the only solver that spans processes)
 //   3. a one-sided Jacobian (temperature-dependent properties, particle-particle radiation)
 //                                            -> klu (pcg and amg need a symmetric one)
@@ -25,6 +27,7 @@
 // conjugate-gradient iterations stay flat where IC(0)'s grow with the bed's width), for 1.2x
 // the memory: amg where its gain is in minutes.
 #include <cstddef>
+#include <optional>
 #include <string>
 
 #include "coupling/scene/Scene.h"
@@ -39,7 +42,8 @@ inline constexpr std::size_t kAmgParticles = 500'000;    // pcg below, amg from 
 
 // What the rule looks at.
 struct LinearSolverProblem {
-  std::string requested;           // thermal.linear_solver: "auto", "klu", "pcg" or "amg"
+  // thermal.linear_solver as the scene parsed it: empty for "auto".
+  std::optional<thermal::LinearSolverKind> requested;
   std::size_t particles = 0;       // thermal unknowns (the whole bed, also over MPI)
   int dimension = 3;               // simulation.dimension
   int processes = 1;               // MPI processes heating the bed
@@ -53,11 +57,13 @@ struct LinearSolverChoice {
   // "auto: 25000 particles >= 5000 in 3D, symmetric Jacobian", "explicit: thermal.linear_solver
   // = \"klu\"".
   std::string reason;
+  // Not empty when the explicit choice cannot be honoured (klu or pcg over MPI): why and what to
+  // set instead, e.g. "thermal.linear_solver = \"klu\" runs in one process only; use \"amg\" ...".
+  std::string refusal;
   std::string name() const { return std::string(thermal::name_of(kind)); }
 };
 
-// The rule above. Throws std::invalid_argument naming thermal.linear_solver, its value and the
-// valid values for an unknown name.
+// The rule above.
 LinearSolverChoice choose_linear_solver(const LinearSolverProblem& problem);
 
 // The rule for `scene` heated over `processes` MPI processes, the Jacobian's symmetry taken from
@@ -66,7 +72,8 @@ LinearSolverChoice choose_linear_solver(const Scene& scene, const thermal::Therm
                                         int processes);
 
 // The rule where the system is not built yet and the processes decide alone (more than one:
-// amg whatever the symmetry; the MPI integrator refuses a one-sided Jacobian itself).
+// amg whatever the symmetry, an explicit klu or pcg refused; the MPI integrator refuses a
+// one-sided Jacobian itself).
 LinearSolverChoice choose_distributed_linear_solver(const Scene& scene, int processes);
 
 // tmdem check's warning for an explicit "klu" on a 3D bed at or above kKluParticles3d (KLU's

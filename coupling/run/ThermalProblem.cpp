@@ -138,7 +138,7 @@ double max_scene_temperature_K(const Scene& scene) {
 thermal::IntegratorSettings integrator_settings(const Scene& scene,
                                                 thermal::LinearSolverKind linear_solver) {
   thermal::IntegratorSettings s;
-  s.linear_solver = thermal::name_of(linear_solver);
+  s.linear_solver = linear_solver;
   s.relative_tolerance = scene.thermal.relative_tolerance;
   s.absolute_tolerance_K = scene.thermal.absolute_tolerance_K;
   s.explicit_step_s = scene.thermal.explicit_step_s;

@@ -198,7 +198,9 @@ struct MechanicsSettings {
 
 struct ThermalSettings {
   std::string integrator{thermal::name_of(thermal::kDefaultIntegrator)};  // thermal_integrator_names()
-  std::string linear_solver{thermal::kDefaultLinearSolverName};  // "auto" or linear_solver_names()
+  // thermal.linear_solver, parsed once here; empty: "auto", turned into a solver by each run
+  // from its problem (coupling/run/LinearSolverChoice.h).
+  std::optional<thermal::LinearSolverKind> linear_solver;
   double relative_tolerance = 1.0e-6;
   double absolute_tolerance_K = 1.0e-6;
   double explicit_step_s = 0.0;        // 0 = largest stable step

@@ -195,7 +195,8 @@ void SceneBuilder::read_settings() {
     const SceneTable t = section("thermal", true);
     auto& th = scene_.thermal;
     th.integrator = t.choice("integrator");
-    th.linear_solver = t.choice("linear_solver");
+    if (const auto solver = t.choice("linear_solver"); solver != thermal::kAutoLinearSolverName)
+      th.linear_solver = thermal::parse_linear_solver_kind(solver);  // the schema checked the name
     th.relative_tolerance = t.number("relative_tolerance");
     th.absolute_tolerance_K = t.number("absolute_tolerance");
     th.explicit_step_s = t.number("explicit_step");

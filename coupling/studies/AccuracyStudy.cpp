@@ -54,7 +54,7 @@ double max_abs_difference(std::span<const double> T, std::span<const double> ref
 }
 
 thermal::IntegratorSettings implicit_settings(const thermal::IntegratorSettings& base,
-                                              const std::string& linear_solver, double rtol) {
+                                              thermal::LinearSolverKind linear_solver, double rtol) {
   auto s = base;
   s.linear_solver = linear_solver;
   s.relative_tolerance = rtol;
@@ -75,7 +75,8 @@ AccuracyRunForecaster klu_forecaster(const thermal::ThermalSystem& system,
                                      Clock::time_point study_start, std::ostream* log) {
   const std::string klu(thermal::name_of(thermal::LinearSolverKind::Klu));
   bool studied = false;
-  for (const auto& method : options.implicit_methods) studied = studied || method.second == klu;
+  for (const auto& method : options.implicit_methods)
+    studied = studied || method.solver == thermal::LinearSolverKind::Klu;
   if (!studied) return AccuracyRunForecaster();
   try {
     auto cost = thermal::analyse_klu_factorisation(system.pattern());
@@ -108,7 +109,8 @@ AccuracyRun timed_accuracy_run(thermal::ThermalSystem& system, const std::string
   AccuracyRun run;
   run.method = method;
   const bool explicit_update = run.is_explicit();
-  run.linear_solver = explicit_update ? kNoLinearSolver : settings.linear_solver;
+  run.linear_solver =
+      explicit_update ? kNoLinearSolver : std::string(thermal::name_of(settings.linear_solver));
   run.parameter = explicit_update ? settings.explicit_step_s : settings.relative_tolerance;
   run.wall_time_s = std::numeric_limits<double>::infinity();
   try {
@@ -180,8 +182,7 @@ AccuracyReference accuracy_reference(thermal::ThermalSystem& system, std::span<c
     }
   }
   if (!ref.exact) {
-    auto s = implicit_settings(base, std::string(thermal::name_of(thermal::LinearSolverKind::Klu)),
-                               options.reference_tolerance);
+    auto s = implicit_settings(base, thermal::LinearSolverKind::Klu, options.reference_tolerance);
     s.max_steps_per_call = std::max(s.max_steps_per_call, 100000000L);
     try {
       auto integrator = thermal::make_thermal_integrator(thermal::name_of(thermal::IntegratorKind::Cvode), system, s);
@@ -327,15 +328,15 @@ AccuracyStudyResult run_accuracy_study(thermal::ThermalSystem& system,
   // Implicit methods: first those with iterative solvers, then klu (predicted from their counts
   // at the same tolerance, and the slowest on large 3D beds, so they are what the study's budget
   // cuts); within each, loose to tight, every method at a tolerance before any at the next.
-  const std::string klu_name(thermal::name_of(thermal::LinearSolverKind::Klu));
   std::vector<double> tolerances = options.relative_tolerances;
   std::sort(tolerances.begin(), tolerances.end(), std::greater<>());
   std::vector<std::string> closed(options.implicit_methods.size());  // why its tighter runs are skipped
   for (const bool klu_pass : {false, true})
     for (double rtol : tolerances)
       for (std::size_t m = 0; m < options.implicit_methods.size(); ++m) {
-        const auto& [method, solver] = options.implicit_methods[m];
-        if ((solver == klu_name) != klu_pass) continue;
+        const auto& kinds = options.implicit_methods[m];
+        if ((kinds.solver == thermal::LinearSolverKind::Klu) != klu_pass) continue;
+        const std::string method = kinds.integrator_name(), solver = kinds.solver_name();
         const auto forecast = forecaster.implicit_run(method, solver, rtol, result.runs);
         std::string why;
         if (!closed[m].empty()) {
@@ -355,7 +356,7 @@ AccuracyStudyResult run_accuracy_study(thermal::ThermalSystem& system,
           skip(method, solver, rtol, forecast, why);
           continue;
         }
-        auto run = timed_accuracy_run(system, method, implicit_settings(base, solver, rtol), T0_K,
+        auto run = timed_accuracy_run(system, method, implicit_settings(base, kinds.solver, rtol), T0_K,
                                       end_time_s, result.reference.T_K, options, driver);
         run.predicted_wall_time_s = forecast.wall_time_s;
         run.prediction_basis = forecast.basis;
@@ -371,8 +372,8 @@ AccuracyStudyResult run_accuracy_study(thermal::ThermalSystem& system,
   auto group = [&](const AccuracyRun& r) -> std::size_t {
     if (r.is_explicit()) return 0;
     for (std::size_t m = 0; m < options.implicit_methods.size(); ++m)
-      if (options.implicit_methods[m].first == r.method &&
-          options.implicit_methods[m].second == r.linear_solver)
+      if (options.implicit_methods[m].integrator_name() == r.method &&
+          options.implicit_methods[m].solver_name() == r.linear_solver)
         return m + 1;
     return options.implicit_methods.size() + 1;
   };
@@ -386,19 +387,23 @@ AccuracyStudyResult run_accuracy_study(thermal::ThermalSystem& system,
   return result;
 }
 
-std::vector<std::pair<std::string, std::string>> parse_implicit_methods(
-    const std::vector<std::string>& names, std::string& problem) {
-  std::vector<std::pair<std::string, std::string>> methods;
+std::vector<ImplicitMethod> parse_implicit_methods(const std::vector<std::string>& names,
+                                                   std::string& problem) {
+  std::vector<ImplicitMethod> methods;
   for (const auto& name : names) {
     const auto slash = name.find('/');
-    const std::string integrator = name.substr(0, slash);
-    const std::string solver = slash == std::string::npos ? "" : name.substr(slash + 1);
     try {
       if (slash == std::string::npos) throw std::invalid_argument("no \"/\" in it");
-      if (thermal::parse_integrator_kind(integrator) == thermal::IntegratorKind::Explicit)
+      ImplicitMethod method;
+      method.integrator = thermal::parse_integrator_kind(name.substr(0, slash));
+      if (method.integrator == thermal::IntegratorKind::Explicit)
         throw std::invalid_argument("the explicit update is studied by its rungs "
                                     "(--explicit-rungs), not as a method");
-      thermal::parse_linear_solver_kind(solver);
+      const std::string solver = name.substr(slash + 1);
+      if (solver == thermal::kAutoLinearSolverName)
+        throw std::invalid_argument("\"auto\" chooses per run; the study compares named solvers");
+      method.solver = thermal::parse_linear_solver_kind(solver);
+      methods.push_back(method);
     } catch (const std::invalid_argument& e) {
       std::string valid;
       for (const auto i : {thermal::IntegratorKind::Cvode, thermal::IntegratorKind::Ida})
@@ -407,7 +412,6 @@ std::vector<std::pair<std::string, std::string>> parse_implicit_methods(
       problem = "\"" + name + "\": " + e.what() + " (valid: " + valid + ")";
       return {};
     }
-    methods.emplace_back(integrator, solver);
   }
   return methods;
 }

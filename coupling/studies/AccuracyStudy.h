@@ -54,13 +54,24 @@ namespace tmdem::coupling {
 // "cvode/amg"-style names (INTEGRATOR/LINEAR_SOLVER, implicit integrators only) parsed into
 // AccuracyStudyOptions::implicit_methods; on a bad name `problem` says which and lists the valid
 // ones, and the result is empty.
-std::vector<std::pair<std::string, std::string>> parse_implicit_methods(
-    const std::vector<std::string>& names, std::string& problem);
+// An implicit method of the study: its integrator and linear solver, parsed once from the names.
+struct ImplicitMethod {
+  thermal::IntegratorKind integrator = thermal::IntegratorKind::Cvode;
+  thermal::LinearSolverKind solver = thermal::LinearSolverKind::Klu;
+  std::string integrator_name() const { return std::string(thermal::name_of(integrator)); }
+  std::string solver_name() const { return std::string(thermal::name_of(solver)); }
+};
+
+std::vector<ImplicitMethod> parse_implicit_methods(const std::vector<std::string>& names,
+                                                   std::string& problem);
 
 struct AccuracyStudyOptions {
   std::vector<double> relative_tolerances{1e-2, 1e-4, 1e-6, 1e-8, 1e-10};
-  std::vector<std::pair<std::string, std::string>> implicit_methods{
-      {"cvode", "klu"}, {"cvode", "pcg"}, {"ida", "klu"}, {"ida", "pcg"}};
+  std::vector<ImplicitMethod> implicit_methods{
+      {thermal::IntegratorKind::Cvode, thermal::LinearSolverKind::Klu},
+      {thermal::IntegratorKind::Cvode, thermal::LinearSolverKind::Pcg},
+      {thermal::IntegratorKind::Ida, thermal::LinearSolverKind::Klu},
+      {thermal::IntegratorKind::Ida, thermal::LinearSolverKind::Pcg}};
   int explicit_rungs = 12;
   double explicit_first_fraction = 0.9;      // of the stability bound
   double explicit_rung_factor = 4.0;         // each rung's step is the previous one / this

@@ -23,7 +23,7 @@ void print_conductivity_report(std::ostream& out, const ConductivityResult& r) {
       << " W, out through the cold wall " << r.heat_cold_W << " W (relative difference "
       << std::setprecision(3) << r.balance_rel << ")\n"
       << "steady state: " << r.newton_iterations << " Newton iterations, ";
-  if (r.linear_solver == "amg")
+  if (r.linear_solver == thermal::LinearSolverKind::Amg)
     out << r.factorizations << " BoomerAMG setup(s), " << r.cg_iterations << " CG iterations";
   else
     out << r.factorizations << " KLU factorisation(s)";

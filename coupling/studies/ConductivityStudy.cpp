@@ -269,7 +269,7 @@ ConductivityResult measure_conductivity(const Scene& scene, const FrozenThermalP
   r.T_K = steady.T_K;
   r.newton_iterations = steady.newton_iterations;
   r.factorizations = steady.factorizations;
-  r.linear_solver = std::string(thermal::name_of(steady_options.linear_solver));
+  r.linear_solver = steady_options.linear_solver;
   r.cg_iterations = steady.cg_iterations;
   r.max_residual_W = steady.max_residual_W;
   r.floating_particles = steady.floating_particles;

@@ -33,6 +33,7 @@
 
 #include "coupling/output/ProgressReporter.h"
 #include "coupling/scene/Scene.h"
+#include "thermal/integrators/IntegratorKind.h"
 
 namespace tmdem::coupling {
 
@@ -60,7 +61,8 @@ struct ConductivityResult {
   std::size_t floating_particles = 0;  // exchange heat with nothing: kept at their start value
   int newton_iterations = 0;
   int factorizations = 0;      // KLU factorisations or AMG setups
-  std::string linear_solver = "klu";  // of the steady state: "klu" or "amg"
+  // Of the steady state: klu or amg.
+  thermal::LinearSolverKind linear_solver = thermal::LinearSolverKind::Klu;
   long cg_iterations = 0;      // amg: conjugate-gradient iterations
   double max_residual_W = 0.0;
   bool at_rest = true;         // settled packings: came to rest within settle_time

@@ -16,7 +16,7 @@ std::vector<std::tuple<std::string, std::string>> implicit_methods() {
 
 IntegratorSettings settings(const std::string& solver, double rtol = 1e-6) {
   IntegratorSettings s;
-  s.linear_solver = solver;
+  s.linear_solver = tmdem::thermal::parse_linear_solver_kind(solver);
   s.relative_tolerance = rtol;
   s.absolute_tolerance_K = rtol;
   return s;

@@ -147,6 +147,9 @@ inline std::vector<IntegratorCase> all_integrator_cases() {
   return {{"cvode", "klu"}, {"cvode", "pcg"}, {"cvode", "amg"}, {"ida", "klu"},
           {"ida", "pcg"},   {"ida", "amg"},   {"explicit", "klu"}};
 }
+// The linear solver of a case, named as the scene names it.
+inline LinearSolverKind solver_kind(const std::string& name) { return parse_linear_solver_kind(name); }
+
 inline std::string case_name(const IntegratorCase& c) {
   return std::get<0>(c) == "explicit" ? "explicit" : std::get<0>(c) + "_" + std::get<1>(c);
 }
@@ -154,7 +157,7 @@ inline std::string case_name(const IntegratorCase& c) {
 // Tight tolerances for exact-answer and balance checks.
 inline IntegratorSettings tight_settings(const std::string& linear_solver, double tol = 1e-10) {
   IntegratorSettings s;
-  s.linear_solver = linear_solver;
+  s.linear_solver = solver_kind(linear_solver);
   s.relative_tolerance = tol;
   s.absolute_tolerance_K = tol;
   return s;

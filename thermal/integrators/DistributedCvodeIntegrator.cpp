@@ -42,10 +42,6 @@ DistributedCvodeIntegrator::DistributedCvodeIntegrator(ThermalSystem& local,
                                                        const IntegratorSettings& settings)
     : system_(local), settings_(settings), owned_(layout.owned), node_(layout.node),
       ghosts_(layout) {
-  if (parse_linear_solver_kind(settings.linear_solver) != LinearSolverKind::Amg)
-    throw std::invalid_argument("heating over MPI uses conjugate gradients with BoomerAMG across "
-                                "the processes: set thermal.linear_solver = \"amg\" (it is \"" +
-                                settings.linear_solver + "\")");
   if (!system_.symmetric_jacobian())
     throw std::invalid_argument(
         "heating over MPI needs a symmetric Jacobian (conjugate gradients), but temperature-"

@@ -34,7 +34,9 @@ namespace tmdem::thermal {
 class DistributedCvodeIntegrator final : public ThermalIntegrator {
  public:
   // local: the ThermalSystem on this process's LocalNetwork `layout` of `partition`; it must
-  // outlive the integrator. Needs a symmetric Jacobian and linear_solver "amg"; throws
+  // outlive the integrator. Always conjugate gradients with BoomerAMG across the processes,
+  // whatever settings.linear_solver says (which solvers a run over MPI may name is decided once,
+  // in coupling/run/LinearSolverChoice.h). Needs a symmetric Jacobian; throws
   // std::invalid_argument otherwise.
   DistributedCvodeIntegrator(ThermalSystem& local, const LocalNetwork& layout,
                              const NetworkPartition& partition, const IntegratorSettings& settings);

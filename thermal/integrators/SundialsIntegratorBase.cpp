@@ -19,10 +19,11 @@ namespace tmdem::thermal {
 SundialsIntegratorBase::SundialsIntegratorBase(ThermalSystem& system,
                                                const IntegratorSettings& settings)
     : system_(system), settings_(settings),
-      cg_(is_conjugate_gradients(parse_linear_solver_kind(settings.linear_solver))) {
+      cg_(is_conjugate_gradients(settings.linear_solver)) {
   if (cg_ && !system_.symmetric_jacobian())
     throw std::invalid_argument(
-        "thermal.linear_solver = \"" + settings.linear_solver + "\" needs a symmetric Jacobian, but " +
+        "thermal.linear_solver = \"" + std::string(name_of(settings.linear_solver)) +
+        "\" needs a symmetric Jacobian, but " +
         std::string(system_.network().temperature_dependent()
                         ? "temperature-dependent material properties (a conductivity or "
                           "heat_capacity table) make it one-sided"
@@ -34,7 +35,7 @@ SundialsIntegratorBase::SundialsIntegratorBase(ThermalSystem& system,
     scale_.resize(system_.size());
     for (std::size_t i = 0; i < scale_.size(); ++i)
       scale_[i] = std::sqrt(system_.network().heat_capacity_J_per_K[i]);
-    if (parse_linear_solver_kind(settings.linear_solver) == LinearSolverKind::Amg) {
+    if (settings.linear_solver == LinearSolverKind::Amg) {
       auto amg = std::make_unique<BoomerAmgPreconditioner>();
       amg->set_state_scale(scale_);
       preconditioner_ = std::move(amg);

@@ -32,7 +32,9 @@ struct IntegratorStats {
 };
 
 struct IntegratorSettings {
-  std::string linear_solver = "klu";   // klu | pcg | amg (cvode, ida)
+  // cvode, ida: parsed once where the name is read (the scene's thermal.linear_solver, the
+  // accuracy study's --methods); "auto" is resolved by coupling before it gets here.
+  LinearSolverKind linear_solver = LinearSolverKind::Klu;
   double relative_tolerance = 1.0e-6;
   double absolute_tolerance_K = 1.0e-6;
   double explicit_step_s = 0.0;        // 0: 0.9 of the stability bound

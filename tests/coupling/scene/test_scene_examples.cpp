@@ -69,7 +69,7 @@ material = "m"
   EXPECT_EQ(scene.mechanics.settle_time_s, 5.0);
   EXPECT_EQ(scene.mechanics.settle_velocity_m_per_s, 1e-4);
   EXPECT_EQ(scene.thermal.integrator, "cvode");
-  EXPECT_EQ(scene.thermal.linear_solver, "auto");  // resolved per run: klu for this bed
+  EXPECT_FALSE(scene.thermal.linear_solver.has_value());  // "auto": resolved per run, klu here
   EXPECT_EQ(scene.thermal.relative_tolerance, 1e-6);
   EXPECT_EQ(scene.thermal.absolute_tolerance_K, 1e-6);
   EXPECT_EQ(scene.thermal.explicit_step_s, 0.0);

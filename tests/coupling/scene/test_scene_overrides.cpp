@@ -25,7 +25,7 @@ TEST(SceneOverrides, BareWordIsAString) {
       kBaseScene, "t",
       {"thermal.integrator=explicit", "thermal.linear_solver=\"pcg\"", "output.file=out/run 1.h5"});
   EXPECT_EQ(scene.thermal.integrator, "explicit");
-  EXPECT_EQ(scene.thermal.linear_solver, "pcg");
+  EXPECT_EQ(scene.thermal.linear_solver, thermal::LinearSolverKind::Pcg);
   EXPECT_EQ(scene.output.file, "out/run 1.h5");
 }
 

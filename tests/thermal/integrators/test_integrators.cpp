@@ -101,7 +101,7 @@ TEST_P(ChainTest, MatchesExactModalSolution) {
   T0[0] = 373.15;
   T0[7] = 330.0;
   IntegratorSettings s;
-  s.linear_solver = solver;
+  s.linear_solver = solver_kind(solver);
   s.relative_tolerance = 1e-9;
   s.absolute_tolerance_K = 1e-9;
   s.explicit_step_s = 1e-3;
@@ -176,9 +176,6 @@ TEST(Registry, UnknownNamesListValidOnes) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("cvode, ida, explicit"), std::string::npos) << e.what();
   }
-  IntegratorSettings s;
-  s.linear_solver = "lu";
-  EXPECT_THROW(make_thermal_integrator("cvode", *sys, s), std::invalid_argument);
   try {
     make_heat_transfer_mode("conduction_magic", {});
     FAIL();

@@ -243,7 +243,7 @@ TEST(TemperatureDependent, ExplicitAndPcgAreRefused) {
     EXPECT_NE(std::string(e.what()).find("\"cvode\" or \"ida\""), std::string::npos) << e.what();
   }
   IntegratorSettings s;
-  s.linear_solver = "pcg";
+  s.linear_solver = LinearSolverKind::Pcg;
   try {
     make_thermal_integrator("cvode", *sys, s);
     ADD_FAILURE() << "pcg accepted";

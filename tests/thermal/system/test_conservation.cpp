@@ -47,7 +47,7 @@ TEST_P(ConservationTest, RandomStiffNetworkKeepsEnergyAndRange) {
   const double lo = *std::min_element(T0.begin(), T0.end());
   const double hi = *std::max_element(T0.begin(), T0.end());
   IntegratorSettings s;
-  s.linear_solver = solver;
+  s.linear_solver = solver_kind(solver);
   s.relative_tolerance = 1e-8;
   s.absolute_tolerance_K = 1e-8;
   auto integ = make_thermal_integrator(integrator, *sys, s);
@@ -77,7 +77,7 @@ TEST_P(ConservationTest, UniformFieldStaysUniform) {
   const auto net = random_network(50, 120, 3);
   auto sys = make_system(net, {"contact_conduction"});
   IntegratorSettings s;
-  s.linear_solver = solver;
+  s.linear_solver = solver_kind(solver);
   auto integ = make_thermal_integrator(integrator, *sys, s);
   integ->initialize(0.0, std::vector<double>(50, 321.0), 0.0);
   integ->advance_to(integrator == "explicit" ? 1e-7 : 100.0);

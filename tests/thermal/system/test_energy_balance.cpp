@@ -136,7 +136,7 @@ TEST_P(BalanceTest, DefaultTolerancesAreReported) {
   auto scene = mixed_scene();
   auto sys = make_system(scene.net, kEveryMode, scene.ms);
   IntegratorSettings s;
-  s.linear_solver = solver;
+  s.linear_solver = solver_kind(solver);
   auto integ = make_thermal_integrator(integrator, *sys, s);
   integ->initialize(0.0, scene.T0, 0.0);
   integ->advance_to(kEndTime);
@@ -202,7 +202,7 @@ TEST_P(LinearBalanceTest, ClosesToRoundOffAtEveryTolerance) {
   double worst = 0.0;
   for (double rtol : {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8}) {
     IntegratorSettings s;
-    s.linear_solver = "klu";
+    s.linear_solver = LinearSolverKind::Klu;
     s.relative_tolerance = rtol;
     s.absolute_tolerance_K = rtol;
     auto integ = make_thermal_integrator(integrator, *sys, s);

@@ -53,7 +53,7 @@ void CoupledRun::restore_checkpoint() {
       extra.contains("settle_steps") && extra.contains("settle_max_speed_m_s")) {
     summary_.settle = SettleSummary{extra.at("settle_at_rest") != 0.0, extra.at("settle_time_s"),
                                     std::llround(extra.at("settle_steps")),
-                                    extra.at("settle_max_speed_m_s"), "settle_time", 0};
+                                    extra.at("settle_max_speed_m_s"), "settle_time", 0, std::nullopt, std::nullopt};
     if (auto it = extra.find("settle_rattlers"); it != extra.end())
       summary_.settle->rattlers = std::llround(it->second);
     if (extra.contains("settle_porosity") && extra.contains("settle_bed_height_m")) {

@@ -121,7 +121,7 @@ TEST(RunSummary, LinearSolverReasonRoundTrips) {
 TEST(RunSummary, SettleBlockAndStalledStepsRoundTrip) {
   RunSummary s = sample_summary();
   s.mechanics.stalled_steps = 3;
-  s.settle = tmdem::coupling::SettleSummary{false, 5.0, 5000, 1.15e-3, "settle_time", 0};
+  s.settle = tmdem::coupling::SettleSummary{false, 5.0, 5000, 1.15e-3, "settle_time", 0, std::nullopt, std::nullopt};
   const nlohmann::json j = nlohmann::json::parse(s.to_json().dump());
   ASSERT_TRUE(j.contains("settle"));
   EXPECT_EQ(j["settle"].size(), 6u);

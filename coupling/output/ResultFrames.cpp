@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "coupling/output/Hdf5Io.h"
+#include "coupling/output/WallForces.h"
 
 namespace tmdem::coupling {
 namespace {
@@ -115,13 +116,7 @@ void ResultFrames::append(std::size_t index, const FrameView& frame, std::int64_
   if (wall_position_.valid())
     hdf5::write_rows(wall_position_.get(), f, 1, frame.wall_point_m.data(), H5T_NATIVE_DOUBLE);
   if (wall_force_.valid()) {
-    // Each wall's force: the normal forces of the frame's contacts with it (pair j < 0 is wall
-    // -1 - j), N, summed in the contacts' order.
-    std::fill(wall_force_N_.begin(), wall_force_N_.end(), 0.0);
-    for (std::size_t k = 0; k < frame.normal_force_N.size(); ++k) {
-      const std::int64_t j = frame.contact_pair[2 * k + 1];
-      if (j < 0 && std::size_t(-1 - j) < wall_force_N_.size()) wall_force_N_[std::size_t(-1 - j)] += frame.normal_force_N[k];
-    }
+    sum_wall_forces(frame.contact_pair, frame.normal_force_N, wall_force_N_);
     hdf5::write_rows(wall_force_.get(), f, 1, wall_force_N_.data(), H5T_NATIVE_DOUBLE);
   }
   hdf5::write_rows(time_.get(), f, 1, &frame.time_s, H5T_NATIVE_DOUBLE);  // last: commits

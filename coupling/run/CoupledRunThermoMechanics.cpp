@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "coupling/bridge/SceneToMechanics.h"
+#include "coupling/output/WallForces.h"
 #include "coupling/run/CoupledRunLoop.h"
 #include "coupling/run/Interruption.h"
 #include "coupling/run/ThermalProblem.h"
@@ -94,11 +95,8 @@ void CoupledRun::recouple() {
 
 void CoupledRun::track_wall_forces() {
   const std::size_t walls = scene_.walls.size();
-  thermo_.last_wall_force_N.assign(walls, 0.0);
-  for (std::size_t k = 0; k < contacts_.size(); ++k) {
-    const std::int64_t j = contacts_.pair[2 * k + 1];
-    if (mechanics::is_wall(j)) thermo_.last_wall_force_N[mechanics::wall_index(j)] += contacts_.normal_force_N[k];
-  }
+  thermo_.last_wall_force_N.resize(walls);
+  sum_wall_forces(contacts_.pair, contacts_.normal_force_N, thermo_.last_wall_force_N);
   thermo_.largest_wall_force_N.resize(walls, 0.0);
   for (std::size_t w = 0; w < walls; ++w)
     thermo_.largest_wall_force_N[w] = std::max(thermo_.largest_wall_force_N[w], thermo_.last_wall_force_N[w]);

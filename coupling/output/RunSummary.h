@@ -94,7 +94,9 @@ struct ThermalSummary {
   std::int64_t convergence_failures = 0;
   std::int64_t reinitializations = 0;
   double wall_time_s = 0.0;          // extra: time spent in the thermal side alone
-  std::string coupling;              // extra: thermal.coupling of a dynamic run; omitted when empty
+  std::string coupling;              // extra: thermal.coupling of a dynamic run ("restart" for a
+                                     // coupled run, which re-initialises at every coupling);
+                                     // omitted when empty
 };
 
 // extra: energy.mechanical, runs with mechanics (settle: the settle phase). The mechanics' energy account over the run

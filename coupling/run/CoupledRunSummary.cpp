@@ -95,7 +95,11 @@ void CoupledRun::fill_summary() {
     summary_.thermal.convergence_failures = st.convergence_failures;
     summary_.thermal.reinitializations = st.reinitializations;
     summary_.thermal.wall_time_s = thermal_seconds_;
-    if (!frozen_) summary_.thermal.coupling = scene_.thermal.coupling;
+    // A coupled run re-initialises at every coupling whatever thermal.coupling says
+    // (CoupledRunThermoMechanics.cpp): the summary names what was done.
+    if (!frozen_)
+      summary_.thermal.coupling =
+          scene_.effects.mechanics == MechanicsMode::Coupled ? "restart" : scene_.thermal.coupling;
     summary_.simulated_time_s = integrator_->time_s();
     summary_.energy.initial_J = initial_energy_J_;
     summary_.energy.final_J = system_->thermal_energy_J(integrator_->temperatures_K());

@@ -101,6 +101,7 @@ TEST(EndToEndThermoMechanics, HeatedRowBetweenFixedWallsPressesWithTheHertzForce
   EXPECT_NEAR(force[0], expected + kRowCount * weight, 1e-6 * expected);
   EXPECT_LE(s.at("energy").at("balance_error_rel").get<double>(), 1e-12);
   EXPECT_EQ(s.at("mechanics").at("unconverged_steps").get<int>(), 0);
+  EXPECT_EQ(s.at("thermal").at("coupling").get<std::string>(), "restart");  // the scene says nothing
   // Every frame's wall forces in the result file (/frames/wall_force [F, W]): the last is the
   // summary's, and each is the sum of that frame's wall contacts.
   H5::H5File f(dir + "/out.h5", H5F_ACC_RDONLY);

@@ -177,7 +177,7 @@ BENCHMARK(BM_SweepsOrder)
 // Args: solver (0 nlgs, 1 nncg, 2 nlgs_subspace, 3 nncg_subspace), layers, loaded (0/1).
 //   OMP_NUM_THREADS=1 build/bench/bench_solvers --benchmark_filter=BM_PileHeight
 void BM_PileHeight(benchmark::State& state) {
-  static const char* const names[] = {"nlgs", "nncg", "nlgs_subspace", "nncg_subspace"};
+  static const char* const names[] = {"nlgs", "nncg", "nlgs_subspace", "nncg_subspace", "ipm"};
   const std::string name = names[state.range(0)];
   const int layers = static_cast<int>(state.range(1));
   const bool loaded = state.range(2) != 0;
@@ -225,7 +225,7 @@ void BM_PileHeight(benchmark::State& state) {
   state.counters["cpu_ms"] = per_solve(seconds * 1e3);
 }
 BENCHMARK(BM_PileHeight)
-    ->ArgsProduct({{0, 1, 2, 3}, {10, 40, 160}, {0, 1}})
+    ->ArgsProduct({{0, 1, 2, 3, 4}, {10, 40, 160}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
 

@@ -5,7 +5,9 @@
 #include "mechanics/solvers/ApgdSolver.h"
 #include "mechanics/solvers/BlockGaussSeidelSolver.h"
 #include "mechanics/solvers/ColouredGaussSeidelSolver.h"
+#include "mechanics/solvers/FallbackContactSolver.h"
 #include "mechanics/solvers/GaussSeidelSolver.h"
+#include "mechanics/solvers/InteriorPointSolver.h"
 #include "mechanics/solvers/NncgSolver.h"
 #include "mechanics/solvers/SubspaceGaussSeidelSolver.h"
 
@@ -38,6 +40,11 @@ std::unique_ptr<ContactSolver> make_subspace_nncg(const SolverSettings& settings
   return std::make_unique<NncgSolver>(settings, options);
 }
 
+std::unique_ptr<ContactSolver> make_nncg_ipm(const SolverSettings& settings) {
+  return std::make_unique<FallbackContactSolver>("nncg_ipm", std::make_unique<NncgSolver>(settings),
+                                                 std::make_unique<InteriorPointSolver>(settings));
+}
+
 const std::vector<Entry>& entries() {
   static const std::vector<Entry> table = {
       {"nlgs", &make<GaussSeidelSolver>, true},
@@ -48,6 +55,8 @@ const std::vector<Entry>& entries() {
       {"nncg_coloured", &make_coloured_nncg, true},
       {"nlgs_subspace", &make<SubspaceGaussSeidelSolver>, true},
       {"nncg_subspace", &make_subspace_nncg, true},
+      {"ipm", &make<InteriorPointSolver>},
+      {"nncg_ipm", &make_nncg_ipm, true},
   };
   return table;
 }

@@ -1,0 +1,138 @@
+// "ipm" (InteriorPointSolver.h) and its cone algebra (SecondOrderCone.h): the Nesterov-Todd
+// scaling's defining identities, the step to the boundary against its closed form; then the
+// solver against the closed-form statics of heavy-on-light columns (the depth and mass ratio
+// that make Gauss-Seidel crawl), the frictional lattice pile's statics and "nlgs"'s reactions,
+// the rolling pile, and Siconos' residual of the tolerance on each.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "mechanics/ColumnStatics.h"
+#include "mechanics/MechanicsTestScenes.h"
+#include "mechanics/SolverTestPile.h"
+#include "mechanics/contact/SiconosResidual.h"
+#include "mechanics/solvers/InteriorPointSolver.h"
+#include "mechanics/solvers/SecondOrderCone.h"
+
+using namespace tmdem::mechanics;
+using namespace tmdem::mechanics::test;
+
+namespace ipm_test {
+
+double siconos_of(const ContactProblem& problem, const Solved& s) {
+  return siconos_residual(problem, s.r, {}, s.v, s.w, free_velocity_norm(problem));
+}
+
+}  // namespace ipm_test
+
+// W s = W^-1 z = lambda, W symmetric, for interior pairs of every dimension.
+TEST(SecondOrderCone, NesterovToddScalingMapsSToZ) {
+  const Eigen::Vector3d s(2.0, 0.5, -0.3), z(1.5, -0.2, 1.1);
+  for (int dim = 1; dim <= 3; ++dim) {
+    SCOPED_TRACE(dim);
+    Eigen::Vector3d sd = s, zd = z;
+    for (int k = dim; k < 3; ++k) sd[k] = zd[k] = 0.0;
+    const cone::Scaling w = cone::nesterov_todd(dim, sd, zd);
+    EXPECT_LE((w.w * w.w * sd - zd).norm(), 1e-14);
+    EXPECT_LE((w.w * sd - w.w_inverse * zd).norm(), 1e-14);
+    EXPECT_LE(((w.w * w.w_inverse).topLeftCorner(dim, dim) - Eigen::MatrixXd::Identity(dim, dim)).norm(), 1e-14);
+    EXPECT_LE((w.w - w.w.transpose()).norm(), 0.0);
+    // lambda o (lambda \ a) = a.
+    const Eigen::Vector3d a(0.3, -0.7, 0.2);
+    Eigen::Vector3d ad = a;
+    for (int k = dim; k < 3; ++k) ad[k] = 0.0;
+    EXPECT_LE((cone::jordan_product(dim, w.lambda, cone::jordan_divide(dim, w.lambda, ad)) - ad).norm(), 1e-14);
+  }
+}
+
+// From (1, 0, 0) along (-1, 1, 0) the cone's edge x_0 = |x_1| is met at alpha = 1/2; along
+// (0, 1, 0) at alpha = 1; along (1, 0, 0) never.
+TEST(SecondOrderCone, StepToBoundary) {
+  const Eigen::Vector3d x(1.0, 0.0, 0.0);
+  EXPECT_NEAR(cone::step_to_boundary(3, x, Eigen::Vector3d(-1.0, 1.0, 0.0)), 0.5, 1e-15);
+  EXPECT_NEAR(cone::step_to_boundary(3, x, Eigen::Vector3d(0.0, 1.0, 0.0)), 1.0, 1e-15);
+  EXPECT_TRUE(std::isinf(cone::step_to_boundary(3, x, Eigen::Vector3d(1.0, 0.0, 0.0))));
+  EXPECT_NEAR(cone::step_to_boundary(1, x, Eigen::Vector3d(-4.0, 0.0, 0.0)), 0.25, 1e-15);
+  EXPECT_NEAR(cone::step_to_boundary(2, x, Eigen::Vector3d(-1.0, 1.0, 0.0)), 0.5, 1e-15);
+  // Straight through the apex (a double root of J): stopped at the apex, not let into -Q.
+  const Eigen::Vector3d axis(5.016e-4, 0.0, 0.0);
+  EXPECT_NEAR(cone::step_to_boundary(3, axis, Eigen::Vector3d(-7.842e-3, 0.0, 0.0)), 5.016e-4 / 7.842e-3, 1e-9);
+}
+
+// A column of ten spheres alternating 1 g and 1 kg (Gauss-Seidel contracts by 0.9995 per sweep
+// on it): every contact carries the weight above it to 1e-9, in a few tens of iterations.
+TEST(InteriorPoint, HeavyOnLightColumnCarriesTheWeightsAbove) {
+  std::vector<double> masses;
+  for (int k = 0; k < 5; ++k) masses.insert(masses.end(), {1e-3, 1.0});
+  const NscdIntegrator sim = column(masses);
+  InteriorPointSolver solver(tight(1e-10));
+  const Solved s = solve_cold(sim.problem(), solver);
+  ASSERT_TRUE(s.report.converged) << s.report.residual << " after " << s.report.sweeps;
+  EXPECT_LE(ipm_test::siconos_of(sim.problem(), s), 1e-10);
+  expect_column_statics(sim, s.r, 1e-9);
+  EXPECT_LE(s.report.sweeps, 60);
+}
+
+// The iterations do not grow with depth: 10 and 160 spheres alike.
+TEST(InteriorPoint, IterationsFlatInDepth) {
+  int iterations[2];
+  for (int k = 0; k < 2; ++k) {
+    const std::vector<double> masses(k == 0 ? 10 : 160, 1e-2);
+    const NscdIntegrator sim = column(masses);
+    InteriorPointSolver solver(tight(1e-10));
+    const Solved s = solve_cold(sim.problem(), solver);
+    ASSERT_TRUE(s.report.converged) << s.report.residual << " after " << s.report.sweeps;
+    expect_column_statics(sim, s.r, 1e-7);
+    iterations[k] = s.report.sweeps;
+  }
+  EXPECT_LE(iterations[1], 2 * iterations[0]) << iterations[0] << " then " << iterations[1];
+}
+
+// The frictional 5 x 5 x 6 lattice pile: Siconos' residual of the tolerance, the statics and
+// "nlgs"'s reactions to 1e-6 of the weights.
+TEST(InteriorPoint, FrictionalLatticePileMatchesGaussSeidelAndStatics) {
+  const ContactProblem& problem = lattice_pile().problem();
+  InteriorPointSolver solver(tight(1e-10));
+  const Solved s = solve_cold(problem, solver);
+  ASSERT_TRUE(s.report.converged) << s.report.residual << " after " << s.report.sweeps;
+  EXPECT_LE(ipm_test::siconos_of(problem, s), 1e-10);
+  const double weight = pile_weight_impulse();
+  expect_pile_statics(s.r, 1e-6 * kPileLayers * weight);
+  const Solved gs = solve_cold(problem, "nlgs", 1e-10);
+  EXPECT_LE(largest_difference(gs.r, s.r), 1e-6 * kPileLayers * weight);
+}
+
+// With rolling resistance: both cones held, the pile left at rest, the rolling torques used.
+TEST(InteriorPoint, RollingPileLikeGaussSeidel) {
+  const NscdIntegrator sim = settled_rolling_pile();
+  InteriorPointSolver solver(tight(1e-9));
+  expect_rolling_pile_solved(sim, solver, 1e-7);
+}
+
+// "nncg_ipm" (FallbackContactSolver.h): where nncg converges, nncg's reactions to the bit; where
+// it does not (here: 20 sweeps on the heavy-on-light column), the interior point's, which carry
+// the weights above each contact.
+TEST(InteriorPoint, NncgIpmIsNncgWhereNncgConvergesAndIpmWhereItDoesNot) {
+  std::vector<double> masses;
+  for (int k = 0; k < 5; ++k) masses.insert(masses.end(), {1e-3, 1.0});
+  const NscdIntegrator sim = column(masses);
+  const ContactProblem& problem = sim.problem();
+  {
+    auto plain = make_contact_solver("nncg", tight(1e-8));
+    auto hybrid = make_contact_solver("nncg_ipm", tight(1e-8));
+    const Solved a = solve_cold(problem, *plain), b = solve_cold(problem, *hybrid);
+    ASSERT_TRUE(a.report.converged);
+    EXPECT_EQ(a.report.sweeps, b.report.sweeps);
+    for (std::size_t c = 0; c < problem.size(); ++c) EXPECT_EQ(a.r[c], b.r[c]) << "contact " << c;
+  }
+  SolverSettings short_of_sweeps = tight(1e-8);
+  short_of_sweeps.max_iterations = 20;
+  auto plain = make_contact_solver("nncg", short_of_sweeps);
+  ASSERT_FALSE(solve_cold(problem, *plain).report.converged);
+  auto hybrid = make_contact_solver("nncg_ipm", short_of_sweeps);
+  const Solved s = solve_cold(problem, *hybrid);
+  ASSERT_TRUE(s.report.converged) << s.report.residual;
+  EXPECT_LE(ipm_test::siconos_of(problem, s), 1e-8);
+  expect_column_statics(sim, s.r, 1e-6);
+}

@@ -80,12 +80,13 @@ void SceneBuilder::read_simulation() {
   const SceneTable t = section("simulation", true);
   if (!t.present()) t.fail("duration", "required key is missing (no [simulation] table)");
   scene_.duration_s = t.required_number("duration");
-  scene_.dimension = static_cast<int>(t.integer("dimension", 3, 2, 3));
+  scene_.dimension = static_cast<int>(t.integer("dimension", scene_.dimension, 2, 3));
   scene_.gravity_m_per_s2 = t.optional_vec3("gravity", scene_.dimension).value_or(Vec3{});
   if (scene_.dimension == 2 && scene_.gravity_m_per_s2[2] != 0.0)
     t.fail("gravity", "in 2D (dimension = 2) motion is in the xy-plane: the z component must "
                       "be 0 (got " + format_vec3(scene_.gravity_m_per_s2) + ")");
-  scene_.seed = static_cast<std::uint64_t>(t.integer("seed", 1, 0, kIntMax));
+  scene_.seed = static_cast<std::uint64_t>(
+      t.integer("seed", std::int64_t(scene_.seed), 0, kIntMax));  // Scene's defaults
 }
 
 void SceneBuilder::read_effects() {

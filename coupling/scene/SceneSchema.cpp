@@ -65,6 +65,7 @@ std::vector<Section> mode_sections() {
 
 std::vector<Section> build_sections() {
   const auto modes = mode_sections();
+  const Scene scene_defaults;  // [simulation]'s defaults, written once in Scene.h
   std::vector<Key> top{
       value("format", "", "", "\"tmdem-scene-1\"", "scene format version", true),
       table("simulation", Kind::Table, "duration, dimension, gravity, seed", true),
@@ -100,9 +101,10 @@ std::vector<Section> build_sections() {
       {"", "the top level of the file", top},
       {"simulation", "the run",
        {required_number("duration", "s", Range::greater(0.0), "simulated time of the run"),
-        value("dimension", "", "3", "2 or 3", "2: motion in the xy-plane (particles are still spheres)"),
+        value("dimension", "", std::to_string(scene_defaults.dimension), "2 or 3",
+              "2: motion in the xy-plane (particles are still spheres)"),
         vector3("gravity", "m/s^2", "[0, 0, 0]", "gravitational acceleration; z = 0 in 2D", false),
-        value("seed", "", "1", "integer >= 0",
+        value("seed", "", std::to_string(scene_defaults.seed), "integer >= 0",
               "seed of the random generators ([[generate]] number k draws with seed + k)")}},
       {"effects", "only what is switched on is computed", effects},
       {"material", "one material",

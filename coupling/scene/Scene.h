@@ -16,6 +16,8 @@
 #include "mechanics/solvers/ContactSolverRegistry.h"
 #include "coupling/scene/Probe.h"
 #include "thermal/integrators/IntegratorKind.h"
+#include "thermal/modes/ConductanceLaw.h"
+#include "thermal/modes/ParticleResistanceKind.h"
 #include "thermal/modes/ModeSettings.h"
 
 namespace tmdem::coupling {
@@ -211,13 +213,13 @@ struct ThermalSettings {
   double relative_tolerance = 1.0e-6;
   double absolute_tolerance_K = 1.0e-6;
   double explicit_step_s = 0.0;        // 0 = largest stable step
-  std::string conductance = "hertz";   // thermal::conductance_law_names()
+  thermal::ConductanceLawKind conductance = thermal::ConductanceLawKind::Hertz;
   double constant_conductance_W_per_K = 1.0e-4;
   // Hertz law: a loaded contact's spot radius is at least contact_flattening x R* (0: Hertz).
   double contact_flattening = 0.0;
   // The particle's own resistance in series with its contact and gas paths
-  // (thermal/modes/ParticleResistance.h): "off" | "isothermal_core" | "isothermal_core_rays"; core radius c r.
-  std::string particle_resistance = "off";
+  // (thermal/modes/ParticleResistance.h); core radius c r.
+  thermal::ParticleResistanceKind particle_resistance = thermal::ParticleResistanceKind::Off;
   double core_fraction = 0.5;
   // Dynamic runs (extension): how the implicit integrators follow the moving packing.
   // "continue": keep the step history while contacts only change force, re-initialise when

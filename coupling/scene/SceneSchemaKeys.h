@@ -2,6 +2,8 @@
 // The builders of the scene schema's keys (SceneSchema.h), shared by the files that declare its
 // sections: SceneSchema.cpp (the scene's bodies and the top level) and SceneSchemaSettings.cpp
 // (the [mechanics], [thermal] and [output] settings).
+#include <array>
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -34,6 +36,10 @@ Key value(std::string name, std::string unit, std::string default_text, std::str
 Key boolean(std::string name, std::string default_text, std::string description);
 std::string bool_text(bool value);  // "true", "false": a boolean default as TOML text
 std::vector<std::string> names_of(const std::vector<std::string_view>& names);
+template <std::size_t N>
+std::vector<std::string> names_of(const std::array<std::string_view, N>& names) {
+  return {names.begin(), names.end()};
+}
 std::vector<std::string> linear_solver_choices();
 // One of `choices`, `fallback` its default (empty: none).
 Key choice(std::string name, std::string fallback, const std::vector<std::string>& choices,

@@ -121,7 +121,8 @@ std::vector<Section> settings_sections() {
         number("absolute_tolerance", "K", kT.absolute_tolerance_K, Range::greater(0.0), "integrator tolerance"),
         number("explicit_step", "s", kT.explicit_step_s, Range::at_least(0.0),
                "explicit step; 0 = largest stable step, above the bound is refused"),
-        choice("conductance", kT.conductance, names_of(thermal::conductance_law_names()),
+        choice("conductance", std::string(thermal::name_of(kT.conductance)),
+               names_of(thermal::kConductanceLawNames),
                "contact conductance: \"hertz\": H = 2 k a (Hertz radius a from the normal "
                "force); \"constant\": constant_conductance; \"bahrami\": rough surfaces "
                "(material roughness, asperity_slope, microhardness), the Hertz spot in series "
@@ -134,7 +135,8 @@ std::vector<Section> settings_sections() {
                "least contact_flattening x R* (R* = r1 r2 / (r1 + r2); a wall: r), the flattened "
                "contact of rough or deformed beads (ZSB's flattening term); 0 = the Hertz radius "
                "(docs/heat-modes.md \"Flattened contacts\")"),
-        choice("particle_resistance", kT.particle_resistance, {"off", "isothermal_core", "isothermal_core_rays"},
+        choice("particle_resistance", std::string(thermal::name_of(kT.particle_resistance)),
+               names_of(thermal::kParticleResistanceNames),
                "the particle's own resistance: \"isothermal_core\" puts the solid shell between "
                "an isothermal core (radius core_fraction x r) and the surface in series with the "
                "summed contact and gas conductance of every pair, H' = 1 / (1/H + R_a + R_b), "

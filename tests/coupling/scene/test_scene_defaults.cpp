@@ -89,3 +89,23 @@ TEST(SceneDefaults, ParticleDefaultsAreTheStructs) {
 }
 
 }  // namespace tmdem::coupling::test
+
+namespace tmdem::coupling::test {
+
+// The scene's choices of thermal.conductance and thermal.particle_resistance are the kinds'
+// names (one list, next to each enum), and a name the scene accepts loads to its kind.
+TEST(SceneKinds, ThermalChoicesAreTheKindsNames) {
+  const auto* conductance = SceneSchema::find("thermal", "conductance");
+  ASSERT_NE(conductance, nullptr);
+  EXPECT_EQ(conductance->choices, (std::vector<std::string>{"hertz", "constant", "bahrami"}));
+  const auto* resistance = SceneSchema::find("thermal", "particle_resistance");
+  ASSERT_NE(resistance, nullptr);
+  EXPECT_EQ(resistance->choices,
+            (std::vector<std::string>{"off", "isothermal_core", "isothermal_core_rays"}));
+  const Scene constant = load_scene_text(kBaseScene, "test.toml", {"thermal.conductance=\"constant\""});
+  EXPECT_EQ(constant.thermal.conductance, thermal::ConductanceLawKind::Constant);
+  expect_scene_error(kBaseScene, {"thermal.conductance=\"linear\""},
+                     {"thermal.conductance", "\"linear\"", "\"hertz\", \"constant\", \"bahrami\""});
+}
+
+}  // namespace tmdem::coupling::test

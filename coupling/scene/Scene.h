@@ -109,7 +109,7 @@ inline double wall_signed_distance(const Wall& w, const Vec3& x) {
 struct ImportReport {
   std::string origin;       // "import[0]"
   std::string file;
-  std::string format;       // "csv", "lammps" or "tmdem"
+  std::string format;       // the format read (coupling/scene/PackingFormats.h)
   std::string description;  // e.g. "frame 20 of 21 (t = 1 s)"; may be empty
   std::size_t first_id = 0;
   std::size_t count = 0;

@@ -5,6 +5,7 @@
 #include <map>
 
 #include "mechanics/integrator/NscdParameters.h"
+#include "coupling/scene/PackingFormats.h"
 #include "coupling/scene/SceneProbes.h"
 #include "mechanics/solvers/ContactSolverRegistry.h"
 #include "thermal/integrators/IntegratorKind.h"
@@ -182,7 +183,7 @@ std::vector<Section> build_sections() {
        "particle, overriding the file",
        concat({value("file", "", "", "path of a regular file", "particle file; relative paths "
                      "are relative to the current folder", true),
-               choice("format", "auto", {"auto", "csv", "lammps", "tmdem"},
+               choice("format", "auto", packing_format_choices(),
                       "\"csv\": header line then one particle per line; \"lammps\": the last "
                       "snapshot of a text dump (ITEM: ATOMS ...); \"tmdem\": a frame of a "
                       "result file; \"auto\": .csv, .h5/.hdf5, or a dump by its first line"),

@@ -115,7 +115,7 @@ void check_scene(const Scene& scene, std::ostream& out) {
              "particle gets that fast: enlarge the period or lower mechanics.time_step\n";
   }
   out << "thermal: integrator " << scene.thermal.integrator << ", conductance "
-      << scene.thermal.conductance << "\n";
+      << thermal::name_of(scene.thermal.conductance) << "\n";
 
   // Estimated network on the contacts present now.
   const auto particles = make_particle_set(scene);
@@ -145,8 +145,7 @@ void check_scene(const Scene& scene, std::ostream& out) {
   }
   out << "estimated stiffness on the " << contacts.size() << " contacts touching at start"
       << (scene.effects.mechanics != MechanicsMode::Off &&
-                  thermal::conductance_law_uses_force(
-                      thermal::conductance_law_from_name(scene.thermal.conductance))
+                  thermal::conductance_law_uses_force(scene.thermal.conductance)
               ? " (Hertz force estimated as each particle's weight; settling gives the real one)"
               : "")
       << ":\n";

@@ -36,7 +36,7 @@ thermal::ContactGas contact_gas(const Scene& scene) {
 
 ThermalNetworkBuilder::ThermalNetworkBuilder(const Scene& scene)
     : scene_(scene),
-      law_(thermal::conductance_law_from_name(scene.thermal.conductance)),
+      law_(scene.thermal.conductance),
       contact_gas_(law_ == thermal::ConductanceLawKind::Bahrami ? contact_gas(scene)
                                                                  : thermal::ContactGas{}),
       contacts_carry_heat_(contacts_carry_heat(scene.effects)),
@@ -68,8 +68,9 @@ thermal::ThermalNetwork ThermalNetworkBuilder::nodes() const {
   if (temperature_dependent_) add_material_tables(net);
   // The particle's own resistance: each shell per unit solid angle (the scene refuses it with
   // conductivity tables; ThermalNetwork::validate refuses it with a k(T) contact law).
-  if (scene_.thermal.particle_resistance != "off") {
-    net.gas_shells_per_ray = scene_.thermal.particle_resistance == "isothermal_core_rays";
+  if (scene_.thermal.particle_resistance != thermal::ParticleResistanceKind::Off) {
+    net.gas_shells_per_ray =
+        scene_.thermal.particle_resistance == thermal::ParticleResistanceKind::IsothermalCoreRays;
     net.shell_resistance_K_sr_per_W.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
       const auto& p = scene_.particles[i];

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -13,6 +14,18 @@
 #include "coupling/output/OutputError.h"
 
 namespace tmdem::coupling {
+
+// One key of a summary block: its JSON name and the member that holds it. Each block's keys are
+// listed once, after its struct (k...Fields below); RunSummary::to_json writes them and from_json
+// reads them back through these lists (keys missing from a file keep the struct's default).
+// omit_empty: a string written only when not empty, an optional number only when set. What a
+// list does not hold (nested blocks, keys written only in some runs) is written beside it.
+template <class Block, class Value>
+struct SummaryField {
+  const char* key;
+  Value Block::*member;
+  bool omit_empty = false;
+};
 
 // "mechanics.tolerance_schedule" (extra; only for scenes with mechanics.fall_tolerance): the
 // tolerances, how many steps were solved at fall_tolerance (and of those unconverged: every
@@ -33,6 +46,16 @@ struct ToleranceScheduleSummary {
   double tightened_time_s = 0.0;      // s since the mechanics started (settle: of the settle
                                       // time; dynamic: of the run) when that step began; null too
 };
+// tightened_step and tightened_time_s are written beside the list (null until tightened).
+inline constexpr std::tuple kToleranceScheduleFields{
+    SummaryField{"tolerance", &ToleranceScheduleSummary::tolerance},
+    SummaryField{"fall_tolerance", &ToleranceScheduleSummary::fall_tolerance},
+    SummaryField{"fall_speed_m_s", &ToleranceScheduleSummary::fall_speed_m_s},
+    SummaryField{"fall_share", &ToleranceScheduleSummary::fall_share},
+    SummaryField{"fall_steps", &ToleranceScheduleSummary::fall_steps},
+    SummaryField{"fall_unconverged_steps", &ToleranceScheduleSummary::fall_unconverged_steps},
+    SummaryField{"tighten_steps", &ToleranceScheduleSummary::tighten_steps},
+    SummaryField{"tightened", &ToleranceScheduleSummary::tightened}};
 
 struct MechanicsSummary {
   std::int64_t steps = 0;
@@ -50,6 +73,17 @@ struct MechanicsSummary {
   std::int64_t siconos_unconverged_steps = 0;
   std::optional<ToleranceScheduleSummary> tolerance_schedule{};  // extra: with a fall_tolerance
 };
+inline constexpr std::tuple kMechanicsSummaryFields{
+    SummaryField{"steps", &MechanicsSummary::steps},
+    SummaryField{"mean_iterations", &MechanicsSummary::mean_iterations},
+    SummaryField{"max_iterations", &MechanicsSummary::max_iterations},
+    SummaryField{"unconverged_steps", &MechanicsSummary::unconverged_steps},
+    SummaryField{"max_penetration_m", &MechanicsSummary::max_penetration_m},
+    SummaryField{"stalled_steps", &MechanicsSummary::stalled_steps},
+    SummaryField{"correction_sweeps", &MechanicsSummary::correction_sweeps},
+    SummaryField{"max_step_travel_m", &MechanicsSummary::max_step_travel_m},
+    SummaryField{"max_siconos_residual", &MechanicsSummary::max_siconos_residual},
+    SummaryField{"siconos_unconverged_steps", &MechanicsSummary::siconos_unconverged_steps}};
 
 // The "settle" block (mechanics = "settle" only): how the packing was frozen.
 struct SettleSummary {
@@ -67,6 +101,15 @@ struct SettleSummary {
   std::optional<double> bed_height_m;
   std::optional<double> porosity;
 };
+inline constexpr std::tuple kSettleSummaryFields{
+    SummaryField{"at_rest", &SettleSummary::at_rest},
+    SummaryField{"time_s", &SettleSummary::time_s},
+    SummaryField{"steps", &SettleSummary::steps},
+    SummaryField{"max_speed_m_s", &SettleSummary::max_speed_m_s},
+    SummaryField{"ended_by", &SettleSummary::ended_by},
+    SummaryField{"rattlers", &SettleSummary::rattlers},
+    SummaryField{"bed_height_m", &SettleSummary::bed_height_m, true},
+    SummaryField{"porosity", &SettleSummary::porosity, true}};
 
 // The "thermo_mechanics" block (extra; effects.mechanics = "coupled" only): the quasi-static
 // re-solves of the packing during the heating, and the walls' forces (N, the sum of the normal
@@ -79,6 +122,13 @@ struct ThermoMechanicsSummary {
   std::vector<double> last_wall_force_N;
   std::vector<double> last_wall_point_m;     // 3 per wall
 };
+inline constexpr std::tuple kThermoMechanicsSummaryFields{
+    SummaryField{"couplings", &ThermoMechanicsSummary::couplings},
+    SummaryField{"steps", &ThermoMechanicsSummary::steps},
+    SummaryField{"not_at_rest", &ThermoMechanicsSummary::not_at_rest},
+    SummaryField{"largest_wall_force_N", &ThermoMechanicsSummary::largest_wall_force_N},
+    SummaryField{"last_wall_force_N", &ThermoMechanicsSummary::last_wall_force_N},
+    SummaryField{"last_wall_point_m", &ThermoMechanicsSummary::last_wall_point_m}};
 
 struct ThermalSummary {
   std::string integrator = "cvode";  // "cvode", "ida" or "explicit"
@@ -98,6 +148,19 @@ struct ThermalSummary {
                                      // coupled run, which re-initialises at every coupling);
                                      // omitted when empty
 };
+inline constexpr std::tuple kThermalSummaryFields{
+    SummaryField{"integrator", &ThermalSummary::integrator},
+    SummaryField{"linear_solver", &ThermalSummary::linear_solver, true},
+    SummaryField{"linear_solver_reason", &ThermalSummary::linear_solver_reason, true},
+    SummaryField{"steps", &ThermalSummary::steps},
+    SummaryField{"rhs_evals", &ThermalSummary::rhs_evals},
+    SummaryField{"jacobian_evals", &ThermalSummary::jacobian_evals},
+    SummaryField{"linear_setups", &ThermalSummary::linear_setups},
+    SummaryField{"error_test_failures", &ThermalSummary::error_test_failures},
+    SummaryField{"convergence_failures", &ThermalSummary::convergence_failures},
+    SummaryField{"reinitializations", &ThermalSummary::reinitializations},
+    SummaryField{"wall_time_s", &ThermalSummary::wall_time_s},
+    SummaryField{"coupling", &ThermalSummary::coupling, true}};
 
 // extra: energy.mechanical, runs with mechanics (settle: the settle phase). The mechanics' energy account over the run
 // (mechanics/integrator/NscdIntegrator.h): energy_change + contact_dissipation + numerical_dissipation = 0
@@ -125,6 +188,17 @@ struct MechanicalEnergySummary {
   // This account with balance_error_rel (and, when `heat_on`, heat_error_rel) filled in.
   MechanicalEnergySummary with_errors(bool heat_on) const;
 };
+inline constexpr std::tuple kMechanicalEnergyFields{
+    SummaryField{"energy_change_J", &MechanicalEnergySummary::energy_change_J},
+    SummaryField{"contact_dissipation_J", &MechanicalEnergySummary::contact_dissipation_J},
+    SummaryField{"numerical_dissipation_J", &MechanicalEnergySummary::numerical_dissipation_J},
+    SummaryField{"balance_error_rel", &MechanicalEnergySummary::balance_error_rel},
+    SummaryField{"correction_potential_J", &MechanicalEnergySummary::correction_potential_J}};
+// Written only with `heat` (which a file tells by heat_generated_J); heat_share_J never.
+inline constexpr std::tuple kMechanicalHeatFields{
+    SummaryField{"heat_generated_J", &MechanicalEnergySummary::heat_generated_J},
+    SummaryField{"heat_received_J", &MechanicalEnergySummary::heat_received_J},
+    SummaryField{"heat_error_rel", &MechanicalEnergySummary::heat_error_rel}};
 
 struct EnergySummary {
   double initial_J = 0.0;
@@ -133,6 +207,11 @@ struct EnergySummary {
   double balance_error_rel = 0.0;
   std::optional<MechanicalEnergySummary> mechanical;  // extra: runs with mechanics
 };
+inline constexpr std::tuple kEnergySummaryFields{
+    SummaryField{"initial_J", &EnergySummary::initial_J},
+    SummaryField{"final_J", &EnergySummary::final_J},
+    SummaryField{"boundary_heat_J", &EnergySummary::boundary_heat_J},
+    SummaryField{"balance_error_rel", &EnergySummary::balance_error_rel}};
 
 // The "wall_time_parts" block (extra): where the run's wall time went, s, measured around the
 // calls of the coupled run loop. The first four add up to wall_time_s; the last three are parts
@@ -147,6 +226,14 @@ struct WallTimeParts {
   double contact_solve_s = 0.0;  // of mechanics_s: the velocity-level contact solve
   double correction_s = 0.0;     // of mechanics_s: penetration correction (position-only)
 };
+inline constexpr std::tuple kWallTimePartsFields{
+    SummaryField{"mechanics_s", &WallTimeParts::mechanics_s},
+    SummaryField{"thermal_s", &WallTimeParts::thermal_s},
+    SummaryField{"output_s", &WallTimeParts::output_s},
+    SummaryField{"other_s", &WallTimeParts::other_s},
+    SummaryField{"detection_s", &WallTimeParts::detection_s},
+    SummaryField{"contact_solve_s", &WallTimeParts::contact_solve_s},
+    SummaryField{"correction_s", &WallTimeParts::correction_s}};
 
 // One entry of the "imports" list (extra): what an [[import]] of the scene brought in.
 struct ImportSummary {
@@ -155,6 +242,11 @@ struct ImportSummary {
   double largest_overlap_rel = 0.0;  // largest overlap among its particles / the smaller radius
   double overlap_tolerance = 0.0;    // what the scene accepted, same measure
 };
+inline constexpr std::tuple kImportSummaryFields{
+    SummaryField{"file", &ImportSummary::file},
+    SummaryField{"particles", &ImportSummary::particles},
+    SummaryField{"largest_overlap_rel", &ImportSummary::largest_overlap_rel},
+    SummaryField{"overlap_tolerance", &ImportSummary::overlap_tolerance}};
 
 // The "openmp" block (extra): the threads the run's parallel loops could use and how idle
 // threads waited (OMP_WAIT_POLICY and GOMP_SPINCOUNT as the run saw them; the program bounds
@@ -165,6 +257,10 @@ struct OpenMpSummary {
   std::string wait_policy;    // "passive", "active", or "unset" (libgomp's spin-then-sleep)
   std::string spin_count;     // GOMP_SPINCOUNT, or "unset"
 };
+inline constexpr std::tuple kOpenMpSummaryFields{
+    SummaryField{"threads", &OpenMpSummary::threads},
+    SummaryField{"wait_policy", &OpenMpSummary::wait_policy},
+    SummaryField{"spin_count", &OpenMpSummary::spin_count}};
 
 // The "mpi" block (extra): present for a run heated over MPI (`mpirun -np N tmdem run`,
 // docs/scale-out.md). Wall times in the summary are rank 0's.
@@ -172,6 +268,8 @@ struct MpiSummary {
   std::int64_t processes = 1;
   std::int64_t ghosts = 0;  // ghost copies of other processes' particles, summed over processes
 };
+inline constexpr std::tuple kMpiSummaryFields{SummaryField{"processes", &MpiSummary::processes},
+                                               SummaryField{"ghosts", &MpiSummary::ghosts}};
 
 struct RunSummary {
   std::string status = "ok";         // "ok", "failed" or "interrupted"
@@ -199,5 +297,12 @@ struct RunSummary {
   // |final - initial - boundary_heat| / max(|initial|, |boundary_heat|); 0 when both are 0.
   static double balance_error_rel(double initial_J, double final_J, double boundary_heat_J);
 };
+// The top level's own keys (the blocks above are written beside them).
+inline constexpr std::tuple kRunSummaryFields{
+    SummaryField{"status", &RunSummary::status},
+    SummaryField{"message", &RunSummary::message, true},
+    SummaryField{"wall_time_s", &RunSummary::wall_time_s},
+    SummaryField{"simulated_time_s", &RunSummary::simulated_time_s},
+    SummaryField{"particles", &RunSummary::particles}};
 
 }  // namespace tmdem::coupling

@@ -4,39 +4,28 @@
 #include <cstdio>
 
 #include "coupling/output/OutputError.h"
-#include "coupling/scene/CsvPackingReader.h"
-#include "coupling/scene/LammpsDumpReader.h"
 #include "coupling/scene/PackingFile.h"
-#include "coupling/scene/ResultPackingReader.h"
+#include "coupling/scene/PackingFormats.h"
 #include "coupling/scene/SceneBuilder.h"
 
 namespace tmdem::coupling {
 
 namespace {
 
-bool ends_with(const std::string& text, std::string_view suffix) {
-  return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
-// format = "auto" for a text file: .csv, else a dump by its first line.
-std::string detect_format(const SceneTable& t, const std::string& path, const std::string& text) {
-  if (ends_with(path, ".csv") || ends_with(path, ".CSV")) return "csv";
-  if (looks_like_lammps_dump(text)) return "lammps";
-  t.fail("file", "cannot tell the format of " + quote_text(path) +
-                     " (not .csv, .h5 or .hdf5, and no \"ITEM:\" first line); give format = "
-                     "\"csv\", \"lammps\" or \"tmdem\"");
-}
-
+// The file read by its format (PackingFormats.h); format = "auto" is replaced by the one found:
+// by the file's ending, else by its text.
 Packing read_packing(const SceneTable& t, const std::string& path, std::string& format,
                      const std::string& temperature_column, bool z_required) {
-  if (format == "tmdem" || (format == "auto" && (ends_with(path, ".h5") || ends_with(path, ".hdf5")))) {
-    format = "tmdem";
-    return read_result_packing(path, t.integer("frame", -1, -(std::int64_t{1} << 40), std::int64_t{1} << 40));
-  }
-  const std::string text = read_packing_text(path);
-  if (format == "auto") format = detect_format(t, path, text);
-  if (format == "csv") return read_csv_packing(text, path, temperature_column, z_required);
-  return read_lammps_dump(text, path, temperature_column, z_required);
+  const PackingFormat* chosen =
+      format == "auto" ? packing_format_by_ending(path) : find_packing_format(format);
+  std::string text;
+  if (chosen == nullptr || chosen->reads_text) text = read_packing_text(path);
+  if (chosen == nullptr) chosen = packing_format_by_text(text);
+  if (chosen == nullptr)
+    t.fail("file", "cannot tell the format of " + quote_text(path) + " " +
+                       unknown_packing_format_hint());
+  format = chosen->name;
+  return chosen->read({t, path, temperature_column, z_required}, text);
 }
 
 // Three significant digits: the report is read, not parsed.

@@ -16,6 +16,8 @@
 #include "mechanics/solvers/ContactSolverRegistry.h"
 #include "coupling/scene/Probe.h"
 #include "thermal/integrators/IntegratorKind.h"
+#include "thermal/modes/ConductanceLaw.h"
+#include "thermal/modes/ParticleResistanceKind.h"
 #include "thermal/modes/ModeSettings.h"
 
 namespace tmdem::coupling {
@@ -107,7 +109,7 @@ inline double wall_signed_distance(const Wall& w, const Vec3& x) {
 struct ImportReport {
   std::string origin;       // "import[0]"
   std::string file;
-  std::string format;       // "csv", "lammps" or "tmdem"
+  std::string format;       // the format read (coupling/scene/PackingFormats.h)
   std::string description;  // e.g. "frame 20 of 21 (t = 1 s)"; may be empty
   std::size_t first_id = 0;
   std::size_t count = 0;
@@ -163,11 +165,15 @@ struct Effects {
   }
 };
 
+// The defaults of [mechanics], [thermal] and [output] are written here once: the scene schema
+// (SceneSchemaSettings.cpp, so docs/scene.md) takes them from these structs, and
+// tests/coupling/scene/test_scene_defaults.cpp loads every key at the default the reference
+// states and compares with these. The mechanics defaults are the mechanics library's
+// (mechanics::NscdParameters).
 struct MechanicsSettings {
-  double time_step_s = 1.0e-3;
-  double theta = 0.5;
-  std::string solver = mechanics::default_contact_solver();  // mechanics::contact_solver_names()
-  // The solver defaults are the mechanics library's (mechanics::NscdParameters).
+  double time_step_s = mechanics::NscdParameters{}.time_step;
+  double theta = mechanics::NscdParameters{}.theta;
+  std::string solver = mechanics::NscdParameters{}.solver;  // mechanics::contact_solver_names()
   double tolerance = mechanics::NscdParameters{}.tolerance;
   // Tolerance schedule (mechanics::ToleranceSchedule): fall_tolerance from the first step at
   // which fall_share of the particles move at or above fall_speed, until the fastest is below;
@@ -180,11 +186,12 @@ struct MechanicsSettings {
   bool static_warm_start = mechanics::NscdParameters{}.static_warm_start;
   int tighten_steps = mechanics::NscdParameters{}.tighten_steps;  // fall_tolerance -> tolerance over this many steps
   int max_iterations = mechanics::NscdParameters{}.max_iterations;
-  int full_sweep_every = 1;  // Gauss-Seidel active-set sweeps (mechanics::NscdParameters)
-  std::string stop_test = "siconos";  // "sweep" or "siconos" (mechanics::NscdParameters::siconos_stop)
+  int full_sweep_every = mechanics::NscdParameters{}.full_sweep_every;  // Gauss-Seidel active-set sweeps
+  // "sweep" or "siconos" (mechanics::NscdParameters::siconos_stop)
+  std::string stop_test = mechanics::NscdParameters{}.siconos_stop ? "siconos" : "sweep";
   mechanics::NormalLaw normal_law = mechanics::NscdParameters{}.normal_law;  // "rigid" or "hertz"
   double coupling_interval_s = 60.0;  // "coupled": heating time between two re-solves of the packing
-  double settle_time_s = 5.0;
+  double settle_time_s = 5.0;         // the longest settle phase
   double settle_velocity_m_per_s = 1.0e-4;
   // When "settle" ends (coupling/run/SettleRestTest.h): "network" when the normal forces have
   // stopped changing and the load carriers have stopped, "velocity" when every particle is
@@ -192,8 +199,10 @@ struct MechanicsSettings {
   std::string rest_test = "network";
   int rest_window = 5;              // steps
   double rest_force_change = 1e-2;  // relative
-  double penetration_slop = 1.0e-4;  // fraction of the smallest radius
-  double recovery_speed_m_per_s = 0.0;  // 0 = no cap
+  double penetration_slop = mechanics::NscdParameters{}.penetration_slop_fraction;  // of the smallest radius
+  double recovery_speed_m_per_s = mechanics::NscdParameters{}.recovery_speed;  // 0 = no cap
+
+  friend bool operator==(const MechanicsSettings&, const MechanicsSettings&) = default;
 };
 
 struct ThermalSettings {
@@ -204,18 +213,20 @@ struct ThermalSettings {
   double relative_tolerance = 1.0e-6;
   double absolute_tolerance_K = 1.0e-6;
   double explicit_step_s = 0.0;        // 0 = largest stable step
-  std::string conductance = "hertz";   // thermal::conductance_law_names()
+  thermal::ConductanceLawKind conductance = thermal::ConductanceLawKind::Hertz;
   double constant_conductance_W_per_K = 1.0e-4;
   // Hertz law: a loaded contact's spot radius is at least contact_flattening x R* (0: Hertz).
   double contact_flattening = 0.0;
   // The particle's own resistance in series with its contact and gas paths
-  // (thermal/modes/ParticleResistance.h): "off" | "isothermal_core" | "isothermal_core_rays"; core radius c r.
-  std::string particle_resistance = "off";
+  // (thermal/modes/ParticleResistance.h); core radius c r.
+  thermal::ParticleResistanceKind particle_resistance = thermal::ParticleResistanceKind::Off;
   double core_fraction = 0.5;
   // Dynamic runs (extension): how the implicit integrators follow the moving packing.
   // "continue": keep the step history while contacts only change force, re-initialise when
   //             contacts appear or vanish; "restart": re-initialise every mechanical step.
   std::string coupling = "continue";
+
+  friend bool operator==(const ThermalSettings&, const ThermalSettings&) = default;
 };
 
 struct OutputSettings {
@@ -223,6 +234,8 @@ struct OutputSettings {
   double interval_s = 0.1;
   bool contacts = true;
   double checkpoint_interval_s = 0.0;
+
+  friend bool operator==(const OutputSettings&, const OutputSettings&) = default;
 };
 
 // [periodic]: the axes along which space repeats, each with its period [low, high) (m). The

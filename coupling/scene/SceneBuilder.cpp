@@ -80,12 +80,13 @@ void SceneBuilder::read_simulation() {
   const SceneTable t = section("simulation", true);
   if (!t.present()) t.fail("duration", "required key is missing (no [simulation] table)");
   scene_.duration_s = t.required_number("duration");
-  scene_.dimension = static_cast<int>(t.integer("dimension", 3, 2, 3));
+  scene_.dimension = static_cast<int>(t.integer("dimension", scene_.dimension, 2, 3));
   scene_.gravity_m_per_s2 = t.optional_vec3("gravity", scene_.dimension).value_or(Vec3{});
   if (scene_.dimension == 2 && scene_.gravity_m_per_s2[2] != 0.0)
     t.fail("gravity", "in 2D (dimension = 2) motion is in the xy-plane: the z component must "
                       "be 0 (got " + format_vec3(scene_.gravity_m_per_s2) + ")");
-  scene_.seed = static_cast<std::uint64_t>(t.integer("seed", 1, 0, kIntMax));
+  scene_.seed = static_cast<std::uint64_t>(
+      t.integer("seed", std::int64_t(scene_.seed), 0, kIntMax));  // Scene's defaults
 }
 
 void SceneBuilder::read_effects() {
@@ -200,19 +201,20 @@ void SceneBuilder::read_settings() {
     th.relative_tolerance = t.number("relative_tolerance");
     th.absolute_tolerance_K = t.number("absolute_tolerance");
     th.explicit_step_s = t.number("explicit_step");
-    th.conductance = t.choice("conductance");
-    const auto law = thermal::conductance_law_from_name(th.conductance);
-    if (law == thermal::ConductanceLawKind::Bahrami) check_rough_surfaces(t);
+    // The names were checked against the schema's choices, which are the kinds' names.
+    th.conductance = thermal::conductance_law_from_name(t.choice("conductance"));
+    const std::string law_name(thermal::name_of(th.conductance));
+    if (th.conductance == thermal::ConductanceLawKind::Bahrami) check_rough_surfaces(t);
     th.constant_conductance_W_per_K = t.number("constant_conductance");
     th.contact_flattening = t.number("contact_flattening");
-    if (th.contact_flattening > 0.0 && th.conductance != "hertz")
+    if (th.contact_flattening > 0.0 && th.conductance != thermal::ConductanceLawKind::Hertz)
       t.fail("contact_flattening", "flattens the contact spot of conductance = \"hertz\", but "
-                                   "conductance = \"" + th.conductance + "\"; set conductance = "
+                                   "conductance = \"" + law_name + "\"; set conductance = "
                                    "\"hertz\" or contact_flattening = 0");
-    th.particle_resistance = t.choice("particle_resistance");
+    th.particle_resistance = thermal::parse_particle_resistance(t.choice("particle_resistance"));
     th.core_fraction = t.number("core_fraction");
     // The rays are the surrounding layer's; the Vargas-McCarthy closed form has none.
-    if (th.particle_resistance == "isothermal_core_rays")
+    if (th.particle_resistance == thermal::ParticleResistanceKind::IsothermalCoreRays)
       if (const auto* gas = thermal::find_heat_transfer_mode("gas_conduction");
           gas != nullptr && switched_on(scene_.effects, *gas)) {
         const std::string model(
@@ -225,11 +227,12 @@ void SceneBuilder::read_settings() {
       }
     // The shell's resistance is a constant conductance only for constant k; with any table and
     // the Hertz law the contacts follow the Kirchhoff form (KirchhoffContactFlow.h), not handled.
-    if (th.particle_resistance != "off")
+    if (th.particle_resistance != thermal::ParticleResistanceKind::Off)
       for (const auto& m : scene_.materials)
-        if (!m.conductivity_table.empty() || (m.temperature_dependent() && th.conductance == "hertz"))
+        if (!m.conductivity_table.empty() ||
+            (m.temperature_dependent() && th.conductance == thermal::ConductanceLawKind::Hertz))
           t.fail("particle_resistance",
-                 "\"" + th.particle_resistance + "\" needs constant conductivities, but material \"" +
+                 "\"" + std::string(thermal::name_of(th.particle_resistance)) + "\" needs constant conductivities, but material \"" +
                      m.name + "\" gives its " +
                      (m.conductivity_table.empty() ? "heat capacity as a table (with conductance = "
                                                      "\"hertz\" the contacts then follow k(T))"
@@ -237,7 +240,7 @@ void SceneBuilder::read_settings() {
                      "; set particle_resistance = \"off\" or constant properties");
     th.coupling = t.choice("coupling");
     // Forces imported with the packing ([[import]] contacts) stand in for the mechanics'.
-    if (contacts_carry_heat(scene_.effects) && !mechanics_on && thermal::conductance_law_uses_force(law) &&
+    if (contacts_carry_heat(scene_.effects) && !mechanics_on && thermal::conductance_law_uses_force(th.conductance) &&
         !scene_.imported_forces.covers_every_particle(scene_.particles.size())) {
       const std::string imported =
           scene_.imported_forces.wall_gap.empty()
@@ -246,7 +249,7 @@ void SceneBuilder::read_settings() {
                 "have none)";
       if (t.has("conductance"))
         t.fail("conductance",
-               "\"" + th.conductance + "\" needs contact forces but effects.mechanics = \"off\"; "
+               "\"" + law_name + "\" needs contact forces but effects.mechanics = \"off\"; "
                "use conductance = \"constant\" or mechanics = \"settle\" or \"dynamic\", or " +
                    imported);
       const SceneTable effects = section("effects", true);

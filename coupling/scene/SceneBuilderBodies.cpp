@@ -7,7 +7,6 @@
 namespace tmdem::coupling {
 
 namespace {
-constexpr double kDefaultTemperature_K = 293.15;  // new particles without a temperature
 
 // A material property that is a number > 0, or a table [[T_K, value], ...] with temperatures
 // increasing strictly and values > 0 (piecewise linear in T, clamped outside it). Returns the
@@ -91,10 +90,9 @@ void SceneBuilder::add_particle(const Vec3& position, double radius, const Parti
                   const std::string& origin, const SceneTable& t) {
   if (static_cast<std::int64_t>(scene_.particles.size()) >= kMaxParticles)
     t.fail_here("too many particles (at most " + std::to_string(kMaxParticles) + ")");
-  Particle p;
+  Particle p;  // Particle's defaults (Scene.h) for what the settings leave out
   p.position_m = position;
   p.radius_m = radius;
-  p.temperature_K = kDefaultTemperature_K;
   settings.apply_to(p);
   scene_.particles.push_back(p);
   origins_.push_back(origin);

@@ -5,6 +5,7 @@
 #include <map>
 
 #include "mechanics/integrator/NscdParameters.h"
+#include "coupling/scene/PackingFormats.h"
 #include "coupling/scene/SceneProbes.h"
 #include "mechanics/solvers/ContactSolverRegistry.h"
 #include "thermal/integrators/IntegratorKind.h"
@@ -65,6 +66,7 @@ std::vector<Section> mode_sections() {
 
 std::vector<Section> build_sections() {
   const auto modes = mode_sections();
+  const Scene scene_defaults;  // [simulation]'s defaults, written once in Scene.h
   std::vector<Key> top{
       value("format", "", "", "\"tmdem-scene-1\"", "scene format version", true),
       table("simulation", Kind::Table, "duration, dimension, gravity, seed", true),
@@ -100,9 +102,10 @@ std::vector<Section> build_sections() {
       {"", "the top level of the file", top},
       {"simulation", "the run",
        {required_number("duration", "s", Range::greater(0.0), "simulated time of the run"),
-        value("dimension", "", "3", "2 or 3", "2: motion in the xy-plane (particles are still spheres)"),
+        value("dimension", "", std::to_string(scene_defaults.dimension), "2 or 3",
+              "2: motion in the xy-plane (particles are still spheres)"),
         vector3("gravity", "m/s^2", "[0, 0, 0]", "gravitational acceleration; z = 0 in 2D", false),
-        value("seed", "", "1", "integer >= 0",
+        value("seed", "", std::to_string(scene_defaults.seed), "integer >= 0",
               "seed of the random generators ([[generate]] number k draws with seed + k)")}},
       {"effects", "only what is switched on is computed", effects},
       {"material", "one material",
@@ -180,7 +183,7 @@ std::vector<Section> build_sections() {
        "particle, overriding the file",
        concat({value("file", "", "", "path of a regular file", "particle file; relative paths "
                      "are relative to the current folder", true),
-               choice("format", "auto", {"auto", "csv", "lammps", "tmdem"},
+               choice("format", "auto", packing_format_choices(),
                       "\"csv\": header line then one particle per line; \"lammps\": the last "
                       "snapshot of a text dump (ITEM: ATOMS ...); \"tmdem\": a frame of a "
                       "result file; \"auto\": .csv, .h5/.hdf5, or a dump by its first line"),

@@ -48,6 +48,8 @@ Key boolean(std::string name, std::string default_text, std::string description)
   return value(std::move(name), "", std::move(default_text), "true, false", std::move(description));
 }
 
+std::string bool_text(bool value) { return value ? "true" : "false"; }
+
 // A registry's names as the schema's strings.
 std::vector<std::string> names_of(const std::vector<std::string_view>& names) {
   return {names.begin(), names.end()};
@@ -91,21 +93,21 @@ Key material_reference() {
 }
 
 // temperature, fixed_temperature, heat_source, fixed: what [[particle]], [[generate]] and
-// [[assign]] may set on particles. New particles start at 293.15 K, not held, without a source,
-// free to move (SceneLoader's particle defaults); [[assign]] changes only what it gives.
+// [[assign]] may set on particles. New particles start at Particle's defaults (Scene.h: 293.15 K,
+// not held, without a source, free to move); [[assign]] changes only what it gives.
 std::vector<Key> particle_settings(bool new_particles) {
   std::vector<Key> keys{
       number("temperature", "K", std::nullopt, Range::greater(0.0), "initial temperature"),
       boolean("fixed_temperature", "", "held at its temperature for the whole run"),
       number("heat_source", "W", std::nullopt, Range::any(), "imposed power"),
       boolean("fixed", "", "does not move")};
-  if (new_particles) {
-    // Swapped in, not assigned: GCC 12 warns falsely (-Wrestrict) on these literal assignments.
-    const char* defaults[4] = {"293.15", "false", "0", "false"};
-    for (int i = 0; i < 4; ++i) {
-      std::string text(defaults[i]);
-      keys[std::size_t(i)].default_text.swap(text);
-    }
+  if (new_particles) {  // Particle's defaults (Scene.h)
+    const Particle fresh;
+    const std::string defaults[4] = {thermal::parameter_text(fresh.temperature_K),
+                                     fresh.fixed_temperature ? "true" : "false",
+                                     thermal::parameter_text(fresh.heat_source_W),
+                                     fresh.fixed ? "true" : "false"};
+    for (std::size_t i = 0; i < 4; ++i) keys[i].default_text = defaults[i];
   }
   return keys;
 }

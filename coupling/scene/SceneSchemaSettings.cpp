@@ -1,5 +1,5 @@
-// The scene schema's settings sections, [mechanics], [thermal] and [output] (SceneSchema.h),
-// moved out of SceneSchema.cpp as they were: the generated reference is unchanged.
+// The scene schema's settings sections, [mechanics], [thermal] and [output] (SceneSchema.h). Their
+// defaults are Scene.h's (MechanicsSettings, ThermalSettings, OutputSettings), written there once.
 #include "coupling/scene/SceneSchemaKeys.h"
 
 #include "mechanics/solvers/ContactSolverRegistry.h"
@@ -12,30 +12,33 @@
 namespace tmdem::coupling::schema_keys {
 
 std::vector<Section> settings_sections() {
+  const auto& kM = kMechanicsDefaults;
+  const auto& kT = kThermalDefaults;
+  const auto& kO = kOutputDefaults;
   std::vector<Section> sections;
   sections.push_back(
       {"mechanics", "NSCD (Moreau-Jean, Gauss-Seidel); range checks apply when mechanics is on",
-       {number("time_step", "s", 1.0e-3, Range::greater(0.0), "mechanical time step"),
-        number("theta", "", 0.5, Range::open_closed(0.0, 1.0), "Moreau-Jean theta"),
-        choice("solver", mechanics::default_contact_solver(), mechanics::contact_solver_names(),
+       {number("time_step", "s", kM.time_step_s, Range::greater(0.0), "mechanical time step"),
+        number("theta", "", kM.theta, Range::open_closed(0.0, 1.0), "Moreau-Jean theta"),
+        choice("solver", kM.solver, mechanics::contact_solver_names(),
                "contact solver by name (mechanics::ContactSolverRegistry)"),
-        choice("stop_test", "siconos", {"sweep", "siconos"},
+        choice("stop_test", kM.stop_test, {"sweep", "siconos"},
                "when a step's solve counts as converged: \"siconos\", when Siconos' residual "
                "(relative to |q|) is below tolerance too, nncg sweeping on as needed; \"sweep\", "
                "when the change of one sweep is (the other solvers always stop on their own "
                "test; docs/mechanics.md \"Honest convergence\")"),
-        choice("normal_law", mechanics::normal_law_name(kNscd.normal_law), mechanics::normal_law_names(),
+        choice("normal_law", mechanics::normal_law_name(kM.normal_law), mechanics::normal_law_names(),
                "normal contact law: \"rigid\", unilateral contacts without overlap (NSCD); "
                "\"hertz\", elastic contacts at the materials' young_modulus and poisson_ratio, "
                "F = (4/3) E* sqrt(R*) delta^(3/2) for an overlap delta, solved in the same "
                "Moreau-Jean step as a normal compliance: forces unique in a hyperstatic packing, "
                "elastic overlaps kept (the position step removes only what lies beyond them); "
                "not with solver apgd or nlgs_block (docs/mechanics.md \"The normal law\")"),
-        number("tolerance", "", kNscd.tolerance, Range::greater(0.0),
+        number("tolerance", "", kM.tolerance, Range::greater(0.0),
                "relative contact-law residual of a Gauss-Seidel sweep that counts as converged "
                "(scale-free: the change of the reactions over one sweep relative to the "
                "reactions; docs/mechanics.md \"The defaults\")"),
-        number("fall_tolerance", "", kNscd.fall_tolerance, Range::at_least(0.0),
+        number("fall_tolerance", "", kM.fall_tolerance, Range::at_least(0.0),
                "tolerance schedule: the solves stop at this tolerance instead of `tolerance` "
                "from the first step at which fall_share of the particles move at or above "
                "fall_speed (never tighter than `tolerance`); once the fastest particle is below "
@@ -46,63 +49,63 @@ std::vector<Section> settings_sections() {
                "tolerance schedule: the particle speed at or above which a particle "
                "counts as falling (fall_tolerance applies); absent: a tenth of the smallest "
                "radius per time_step (0.05 m/s for 0.5 mm spheres at 1 ms)"),
-        number("fall_share", "", kNscd.fall_share, Range::closed(0.0, 1.0),
+        number("fall_share", "", kM.fall_share, Range::closed(0.0, 1.0),
                "tolerance schedule: the share of the moving particles (at least one) that "
                "must move at or above fall_speed for a fall to begin; 0: the fastest alone. "
                "A few spheres rolling down a laid bed's surface do not put the whole bed at "
                "fall_tolerance (docs/mechanics.md \"A tolerance schedule\")"),
-        number("stop_travel", "", kNscd.stop_travel_fraction, Range::at_least(0.0),
+        number("stop_travel", "", kM.stop_travel, Range::at_least(0.0),
                "the stop test counts a contact's impulse at most as the one that would move "
                "its bodies by this fraction of the smallest radius per time_step, so that "
                "contacts under a load far above their weight are solved to the same speed "
                "error as the rest (docs/mechanics.md \"The defaults\"); 0: off"),
-        boolean("skip_out_of_reach", kNscd.skip_out_of_reach ? "true" : "false",
+        boolean("skip_out_of_reach", bool_text(kM.skip_out_of_reach),
                 "leave out of each step's contact problem the candidates farther apart than "
                 "their two look-aheads (the bound on the step's motion the detector trusts): "
                 "about 2x faster while a large pour lands, but not exact (a struck particle can "
                 "outrun its own look-ahead), so off by default "
                 "(docs/mechanics.md \"The defaults\")"),
-        boolean("static_warm_start", kNscd.static_warm_start ? "true" : "false",
+        boolean("static_warm_start", bool_text(kM.static_warm_start),
                 "the first step's solve starts from the statics of the contact geometry (each "
                 "particle's weight and what rests on it passed down to its supports) instead of "
                 "from no forces: a deposited or imported bed's first steps take fewer sweeps "
                 "(docs/mechanics.md \"The first step\")"),
-        value("tighten_steps", "", std::to_string(kNscd.tighten_steps), "integer >= 1",
+        value("tighten_steps", "", std::to_string(kM.tighten_steps), "integer >= 1",
               "tolerance schedule: once the fall has ended, the tolerance goes from "
               "fall_tolerance to tolerance geometrically over this many steps (1: at once)"),
-        value("max_iterations", "", std::to_string(kNscd.max_iterations), "integer >= 1", "Gauss-Seidel sweeps per step, at most"),
-        value("full_sweep_every", "", "1", "integer >= 1",
+        value("max_iterations", "", std::to_string(kM.max_iterations), "integer >= 1", "Gauss-Seidel sweeps per step, at most"),
+        value("full_sweep_every", "", std::to_string(kM.full_sweep_every), "integer >= 1",
               "\"nlgs\", \"nlgs_coloured\": a sweep over every candidate at least every this "
               "many sweeps, the others visit the contacts the last full sweep left closed; "
               "convergence is judged on full sweeps (1: every sweep is full)"),
-        number("settle_time", "s", 5.0, Range::greater(0.0), "longest \"settle\" phase"),
-        number("coupling_interval", "s", 60.0, Range::greater(0.0),
+        number("settle_time", "s", kM.settle_time_s, Range::greater(0.0), "longest \"settle\" phase"),
+        number("coupling_interval", "s", kM.coupling_interval_s, Range::greater(0.0),
                "effects.mechanics = \"coupled\": heating time between two quasi-static "
                "re-solves of the packing (each settles as the first, at most settle_time of "
                "mechanics, the heating paused)"),
-        number("settle_velocity", "m/s", 1.0e-4, Range::greater(0.0),
+        number("settle_velocity", "m/s", kM.settle_velocity_m_per_s, Range::greater(0.0),
                "rest_test \"velocity\": every particle slower than this; \"network\": the "
                "mass-weighted mean speed sqrt(2 KE / M) of the load-carrying particles (pressed "
                "along gravity by at least half their weight) below this"),
-        choice("rest_test", "network", {"network", "velocity"},
+        choice("rest_test", kM.rest_test, {"network", "velocity"},
                "when \"settle\" ends: \"network\" once the contact normal forces changed by less "
                "than rest_force_change over rest_window steps and the load-carrying particles "
                "are slower than settle_velocity (rattlers and the free surface are not waited for); "
                "\"velocity\" once "
                "every particle is slower than settle_velocity"),
-        value("rest_window", "", "5", "integer >= 1",
+        value("rest_window", "", std::to_string(kM.rest_window), "integer >= 1",
               "rest_test \"network\": steps over which the normal forces are compared"),
-        number("rest_force_change", "", 1.0e-2, Range::greater(0.0),
+        number("rest_force_change", "", kM.rest_force_change, Range::greater(0.0),
                "rest_test \"network\": largest sum |F_now - F_window_before| / sum F_now"),
-        number("penetration_slop", "", 1.0e-4, Range::closed(0.0, 0.5),
+        number("penetration_slop", "", kM.penetration_slop, Range::closed(0.0, 0.5),
                "slop s, as a fraction of the smallest radius: overlaps up to 2 s are held, a "
                "deeper one is moved back to s by positions only (no speed is made of it)"),
-        number("recovery_speed", "m/s", 0.0, Range::at_least(0.0),
+        number("recovery_speed", "m/s", kM.recovery_speed_m_per_s, Range::at_least(0.0),
                "largest rate at which the position step moves an overlap out (at most h x this "
                "per step); 0 = no cap")}});
   sections.push_back(
       {"thermal", "the thermal integrator and the contact conductance",
-       {choice("integrator", std::string(thermal::name_of(thermal::kDefaultIntegrator)),
+       {choice("integrator", kT.integrator,
                names_of(thermal::thermal_integrator_names()),
                "CVODE (BDF), IDA (DAE; held temperatures algebraic) or forward Euler"),
         choice("linear_solver", std::string(thermal::kDefaultLinearSolverName),
@@ -114,24 +117,26 @@ std::vector<Section> settings_sections() {
                "gradients preconditioned by incomplete Cholesky (pcg) "
                "or by an algebraic-multigrid V-cycle (amg, hypre BoomerAMG; also the steady "
                "state of study conductivity)"),
-        number("relative_tolerance", "", 1.0e-6, Range::greater(0.0), "integrator tolerance"),
-        number("absolute_tolerance", "K", 1.0e-6, Range::greater(0.0), "integrator tolerance"),
-        number("explicit_step", "s", 0.0, Range::at_least(0.0),
+        number("relative_tolerance", "", kT.relative_tolerance, Range::greater(0.0), "integrator tolerance"),
+        number("absolute_tolerance", "K", kT.absolute_tolerance_K, Range::greater(0.0), "integrator tolerance"),
+        number("explicit_step", "s", kT.explicit_step_s, Range::at_least(0.0),
                "explicit step; 0 = largest stable step, above the bound is refused"),
-        choice("conductance", "hertz", names_of(thermal::conductance_law_names()),
+        choice("conductance", std::string(thermal::name_of(kT.conductance)),
+               names_of(thermal::kConductanceLawNames),
                "contact conductance: \"hertz\": H = 2 k a (Hertz radius a from the normal "
                "force); \"constant\": constant_conductance; \"bahrami\": rough surfaces "
                "(material roughness, asperity_slope, microhardness), the Hertz spot in series "
                "with its micro-contacts and, with effects.gas_conduction, its micro-gap "
                "(docs/heat-modes.md \"Rough contacts\")"),
-        number("constant_conductance", "W/K", 1.0e-4, Range::greater(0.0),
+        number("constant_conductance", "W/K", kT.constant_conductance_W_per_K, Range::greater(0.0),
                "H of every contact when conductance = \"constant\""),
-        number("contact_flattening", "", 0.0, Range::closed(0.0, 1.0),
+        number("contact_flattening", "", kT.contact_flattening, Range::closed(0.0, 1.0),
                "conductance = \"hertz\": a loaded contact conducts through a spot of radius at "
                "least contact_flattening x R* (R* = r1 r2 / (r1 + r2); a wall: r), the flattened "
                "contact of rough or deformed beads (ZSB's flattening term); 0 = the Hertz radius "
                "(docs/heat-modes.md \"Flattened contacts\")"),
-        choice("particle_resistance", "off", {"off", "isothermal_core", "isothermal_core_rays"},
+        choice("particle_resistance", std::string(thermal::name_of(kT.particle_resistance)),
+               names_of(thermal::kParticleResistanceNames),
                "the particle's own resistance: \"isothermal_core\" puts the solid shell between "
                "an isothermal core (radius core_fraction x r) and the surface in series with the "
                "summed contact and gas conductance of every pair, H' = 1 / (1/H + R_a + R_b), "
@@ -140,18 +145,18 @@ std::vector<Section> settings_sections() {
                "and lets the surrounding layer's gas cross the shells ray by ray, each ray's "
                "shell in series with its own gas; needs constant conductivities "
                "(docs/heat-modes.md \"The particle's own resistance\")"),
-        number("core_fraction", "", 0.5, Range::open(0.0, 1.0),
+        number("core_fraction", "", kT.core_fraction, Range::open(0.0, 1.0),
                "particle_resistance = \"isothermal_core\": radius of the isothermal core as a "
                "fraction c of the particle radius"),
-        choice("coupling", "continue", {"continue", "restart"},
+        choice("coupling", kT.coupling, {"continue", "restart"},
                "dynamic runs: keep the integrator history while only forces change, or "
                "re-initialise every mechanical step")}});
   sections.push_back(
       {"output", "the result file",
-       {value("file", "", "\"result.h5\"", "non-empty path", "result file (HDF5; RESULT.xdmf beside it)"),
-        number("interval", "s", 0.1, Range::greater(0.0), "simulated time between frames"),
-        boolean("contacts", "true", "store the contact list of every frame"),
-        number("checkpoint_interval", "s", 0.0, Range::at_least(0.0),
+       {value("file", "", "\"" + kO.file + "\"", "non-empty path", "result file (HDF5; RESULT.xdmf beside it)"),
+        number("interval", "s", kO.interval_s, Range::greater(0.0), "simulated time between frames"),
+        boolean("contacts", bool_text(kO.contacts), "store the contact list of every frame"),
+        number("checkpoint_interval", "s", kO.checkpoint_interval_s, Range::at_least(0.0),
                "simulated time between checkpoints; 0 = none")}});
   return sections;
 }

@@ -151,6 +151,36 @@ inline void apply_impulse(const ContactProblem& problem, std::size_t c, const Ve
   }
 }
 
+// The columns of M^-1 H_c at unit mobilities (inverse mass and inertia 1; a solver scales them
+// by the bodies'): column a of linear[side] and angular[side] is the velocity and angular
+// velocity change of side 0 (body i) or 1 (body j) under a unit local impulse along axis a (n,
+// t1, t2), applied by the functions above. A wall side moves along n only (a piston) and never
+// turns. The matrices of the subspace step (ActiveSetSubspaceStep.h) are built from these, so
+// they are the kinematics the sweeps apply.
+struct ContactColumns {
+  Eigen::Matrix3d linear[2], angular[2];
+};
+inline ContactColumns contact_columns(const ContactProblem& problem, std::size_t c) {
+  ContactColumns out;
+  const bool wall = is_wall(problem.body_j[c]);
+  for (int a = 0; a < 3; ++a) {
+    Eigen::Vector3d unit = Eigen::Vector3d::Zero();
+    unit[a] = 1.0;
+    const BodyImpulse<Eigen::Vector3d> impulse = body_impulse(problem, c, unit);
+    Eigen::Vector3d v = Eigen::Vector3d::Zero(), w = Eigen::Vector3d::Zero();
+    take_impulse_as_i(impulse, 1.0, 1.0, problem.lever_i[c], v, w);
+    out.linear[0].col(a) = v;
+    out.angular[0].col(a) = w;
+    v.setZero();
+    w.setZero();
+    if (wall) take_impulse_as_piston(unit[0], Eigen::Vector3d(problem.normal[c]), 1.0, v);
+    else take_impulse_as_j(impulse, 1.0, 1.0, problem.lever_j[c], v, w);
+    out.linear[1].col(a) = v;
+    out.angular[1].col(a) = w;
+  }
+  return out;
+}
+
 // Rolling (ContactProblem::rolling): the relative spin omega_i - omega_j of contact c without
 // its component along n, rad/s (a wall does not turn).
 template <class Vec>

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "mechanics/model/ParallelFrom.h"
 #include "mechanics/model/PeriodicBox.h"
 
 namespace tmdem::mechanics {
@@ -61,7 +62,7 @@ class CellGrid {
   int nx_ = 0, ny_ = 0, nz_ = 0;
   std::array<bool, 3> periodic_{false, false, false};
   bool any_periodic_ = false;
-  std::ptrdiff_t parallel_from_ = 4096;
+  std::ptrdiff_t parallel_from_ = kDefaultParallelFrom;
   std::vector<std::uint32_t> cell_of_;     // cell of each point
   std::vector<std::uint32_t> cell_start_;  // points of cell c are sorted_[start[c], start[c+1])
   std::vector<std::uint32_t> sorted_;      // point ids ordered by cell

@@ -30,6 +30,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "mechanics/model/ParallelFrom.h"
 #include "mechanics/detection/CellGrid.h"
 #include "mechanics/model/PairIndex.h"
 #include "mechanics/model/ParticleSet.h"
@@ -48,7 +49,7 @@ class ContactDetector {
   // (never below 2 * the largest look-ahead, so fast particles cannot tunnel)
   // [min_margin_m, max_margin_m] (wider when particles are fast, so rebuilds stay rare).
   // parallel_from: particles from which rebuilds and checks use OpenMP threads (0: always).
-  ContactDetector(double min_margin_m, double max_margin_m, std::ptrdiff_t parallel_from = 4096);
+  ContactDetector(double min_margin_m, double max_margin_m, std::ptrdiff_t parallel_from = kDefaultParallelFrom);
 
   // Rebuilds the table if needed (or if forced). lookahead_m[i] is how far particle i may
   // move before the next call (may be empty: 0), wall_lookahead_m[w] the same for wall w (may

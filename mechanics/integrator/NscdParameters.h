@@ -1,6 +1,7 @@
 #pragma once
 // Settings of the Moreau-Jean / bipotential contact dynamics ([mechanics] in the scene).
 
+#include "mechanics/model/ParallelFrom.h"
 #include <cstddef>
 #include <string>
 
@@ -107,7 +108,7 @@ struct NscdParameters {
   // Particles (detection) or candidates (contact set-up) from which those loops use OpenMP
   // threads; below it waking the threads costs more than the loop. 0: always (tests). The
   // results are the same bits for any thread count.
-  std::ptrdiff_t parallel_from = 4096;
+  std::ptrdiff_t parallel_from = kDefaultParallelFrom;  // mechanics/model/ParallelFrom.h
   // Particles from which the contact solver is handed the problem in a spatial order
   // (SpatialContactOrder.h: bodies along a Morton curve, contacts sorted by them; ids and
   // results keep the scene's order). Measured on the settled 2,000 pour bed tiled with ids at

@@ -14,22 +14,6 @@ namespace {
 // sweeps leave a sliding contact on the cone's edge (CoulombCone.h), to its last bits.
 constexpr double kStickMargin = 1.0 - 1e-12;
 
-// The columns n, t1, t2 of contact c.
-Eigen::Matrix3d contact_frame(const ContactProblem& problem, std::size_t c) {
-  Eigen::Matrix3d frame;
-  frame.col(0) = problem.normal[c];
-  frame.col(1) = problem.tangent1[c];
-  frame.col(2) = problem.tangent2[c];
-  return frame;
-}
-
-// n x each column of `frame`.
-Eigen::Matrix3d cross_columns(const Eigen::Vector3d& n, const Eigen::Matrix3d& frame) {
-  Eigen::Matrix3d out;
-  for (int k = 0; k < 3; ++k) out.col(k) = n.cross(frame.col(k));
-  return out;
-}
-
 // The slot of entry (row, col) in a compressed column-major matrix (present by construction).
 std::int32_t slot_of(const Eigen::SparseMatrix<double>& matrix, int row, int col) {
   const int* inner = matrix.innerIndexPtr();
@@ -124,9 +108,9 @@ void ActiveSetSubspaceStep::for_each_contribution(const ContactProblem& problem,
 bool ActiveSetSubspaceStep::assemble_and_factorise(const ContactProblem& problem) {
   const std::size_t count = active_.size(), bodies = problem.body_count();
   const int unknowns = offset_[count];
-  // Each side's velocity change per unit local impulse: body i takes +p at -R_i n, a particle j
-  // -p at +R_j n (both turn by -R n x p), a piston j -r_n n along its normal only, a fixed wall
-  // nothing (ContactKinematics.h).
+  // Each side's velocity change per unit local impulse (ContactKinematics.h, contact_columns):
+  // body i takes +p at -R_i n, a particle j -p at +R_j n (both turn by -R n x p), a piston j
+  // -r_n n along its normal only, a fixed wall nothing (not mobile: no entries).
   for (auto* v : {&linear_[0], &linear_[1], &angular_[0], &angular_[1]}) v->resize(count);
   body_start_.assign(bodies + 1, 0);
   auto mobile = [&](std::size_t b) { return problem.inverse_mass[b] > 0.0 || problem.inverse_inertia[b] > 0.0; };
@@ -137,17 +121,10 @@ bool ActiveSetSubspaceStep::assemble_and_factorise(const ContactProblem& problem
   };
   for (std::size_t k = 0; k < count; ++k) {
     const auto c = static_cast<std::size_t>(active_[k]);
-    const Eigen::Matrix3d frame = contact_frame(problem, c);
-    const Eigen::Matrix3d turn = cross_columns(problem.normal[c], frame);
-    linear_[0][k] = frame;
-    angular_[0][k] = -problem.lever_i[c] * turn;
-    if (is_wall(problem.body_j[c])) {
-      linear_[1][k].setZero();
-      linear_[1][k].col(0) = -problem.normal[c];
-      angular_[1][k].setZero();
-    } else {
-      linear_[1][k] = -frame;
-      angular_[1][k] = -problem.lever_j[c] * turn;
+    const ContactColumns columns = contact_columns(problem, c);
+    for (int side = 0; side < 2; ++side) {
+      linear_[side][k] = columns.linear[side];
+      angular_[side][k] = columns.angular[side];
     }
     for (int side = 0; side < 2; ++side)
       if (mobile(body_of(c, side))) ++body_start_[body_of(c, side) + 1];

@@ -65,8 +65,8 @@ std::optional<std::size_t> moving_body_j(const ContactProblem& problem, std::siz
 
 }  // namespace
 
-ApgdSolver::ApgdSolver(const SolverSettings& settings, std::ptrdiff_t parallel_from)
-    : settings_(settings), parallel_from_(parallel_from) {}
+ApgdSolver::ApgdSolver(const SolverSettings& settings)
+    : settings_(settings), parallel_from_(settings.parallel_from) {}
 
 void ApgdSolver::build_body_lists(const ContactProblem& problem) {
   const std::size_t bodies = problem.body_count(), count = problem.size();

@@ -49,9 +49,8 @@ namespace tmdem::mechanics {
 
 class ApgdSolver final : public ContactSolver {
  public:
-  // parallel_from: contacts from which the loops use OpenMP threads (below, waking them
-  // costs more than an iteration); 0 parallelises every problem (tests).
-  explicit ApgdSolver(const SolverSettings& settings, std::ptrdiff_t parallel_from = 4096);
+  // Its loops use OpenMP threads from SolverSettings::parallel_from contacts.
+  explicit ApgdSolver(const SolverSettings& settings);
   std::string_view name() const override { return "apgd"; }
   SolveReport solve_with_rolling(const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
                                  std::vector<Eigen::Vector3d>& m,
@@ -74,7 +73,7 @@ class ApgdSolver final : public ContactSolver {
                         std::vector<Eigen::Vector3d>& u, std::vector<Eigen::Vector3d>& spin);
 
   SolverSettings settings_;
-  std::ptrdiff_t parallel_from_;
+  std::ptrdiff_t parallel_from_;  // settings_.parallel_from, for the loops' if clauses
   double lipschitz_ = 1.0;  // of D^-1/2 W D^-1/2, kept between solves (dimensionless)
 
   // Reused between solves: no allocation once warm.

@@ -2,15 +2,11 @@
 
 namespace tmdem::mechanics {
 
-ColouredGaussSeidelSolver::ColouredGaussSeidelSolver(const SolverSettings& settings,
-                                                     std::ptrdiff_t parallel_from)
-    : settings_(settings), parallel_from_(parallel_from) {}
-
 SolveReport ColouredGaussSeidelSolver::solve_with_rolling(
     const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
     std::vector<Eigen::Vector3d>& m, std::vector<Eigen::Vector3d>& velocity,
     std::vector<Eigen::Vector3d>& angular_velocity) {
-  const bool parallel = static_cast<std::ptrdiff_t>(problem.size()) >= parallel_from_;
+  const bool parallel = static_cast<std::ptrdiff_t>(problem.size()) >= settings_.parallel_from;
   ordered_.load(problem, r, m, parallel);
   GaussSeidelSweep::Options options;
   options.full_sweep_every = settings_.full_sweep_every;

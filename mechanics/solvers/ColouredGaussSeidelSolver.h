@@ -20,7 +20,7 @@
 // over them do not depend on the thread count either.
 //
 // Cost: one barrier per colour per sweep (about 10-30 colours for sphere packings), which
-// is why small problems stay on one thread (parallel_from).
+// is why small problems stay on one thread (SolverSettings::parallel_from).
 
 #include <cstddef>
 #include <vector>
@@ -34,9 +34,7 @@ namespace tmdem::mechanics {
 
 class ColouredGaussSeidelSolver final : public ContactSolver {
  public:
-  // parallel_from: contacts from which sweeps use OpenMP threads; 0: always (tests).
-  explicit ColouredGaussSeidelSolver(const SolverSettings& settings,
-                                     std::ptrdiff_t parallel_from = 4096);
+  explicit ColouredGaussSeidelSolver(const SolverSettings& settings) : settings_(settings) {}
   std::string_view name() const override { return "nlgs_coloured"; }
   SolveReport solve_with_rolling(const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
                                  std::vector<Eigen::Vector3d>& m,
@@ -46,7 +44,6 @@ class ColouredGaussSeidelSolver final : public ContactSolver {
 
  private:
   SolverSettings settings_;
-  std::ptrdiff_t parallel_from_;
   ColourOrderedProblem ordered_;           // the problem with its contacts in colour order
   GaussSeidelSweep sweep_;                 // colour order, active set per colour
 };

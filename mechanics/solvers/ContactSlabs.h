@@ -1,6 +1,6 @@
 #pragma once
 // The contacts cut into slabs across one axis, for a Gauss-Seidel sweep that threads share
-// with few barriers ("nncg" from NncgSolver::Options::parallel_from contacts).
+// with few barriers ("nlgs" and "nncg" from SolverSettings::parallel_from contacts).
 //
 // A contact sits at the midpoint of its two particles (a wall contact: at its particle) along
 // problem.split_axis. Two contacts that share a particle are then at most `span` apart, span
@@ -31,11 +31,21 @@ namespace tmdem::mechanics {
 class ContactSlabs {
  public:
   static constexpr int kPhases = 3;  // even slabs, odd slabs, a piston's contacts
+  // How many slabs "nlgs" and "nncg" ask for: a few per thread on the machines measured, and
+  // each still several particles deep.
+  static constexpr int kDefaultSlabs = 16;
 
   // Cuts problem's contacts into about `slabs` slabs (fewer where the span allows fewer).
   // Returns false, and holds no cut, when problem gives no positions or fewer than 3 slabs
   // fit (no two slabs of one phase to share out).
   bool update(const ContactProblem& problem, int slabs);
+  // The slab decision of "nlgs" and "nncg": cut (update) only a problem of at least
+  // parallel_from contacts, into about `slabs` (0: never). Whether it was cut; when not, the
+  // sweeps keep the problem's order and the last cut is left as it was.
+  bool update_if_large(const ContactProblem& problem, int slabs, std::ptrdiff_t parallel_from) {
+    return slabs > 0 && static_cast<std::ptrdiff_t>(problem.size()) >= parallel_from &&
+           update(problem, slabs);
+  }
 
   bool valid() const { return !slab_start_.empty(); }
   std::size_t slab_count() const { return slab_start_.empty() ? 0 : slab_start_.size() - 1; }

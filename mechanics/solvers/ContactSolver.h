@@ -13,6 +13,7 @@
 #include <string_view>
 #include <vector>
 
+#include "mechanics/model/ParallelFrom.h"
 #include "mechanics/contact/ContactProblem.h"
 
 namespace tmdem::mechanics {
@@ -29,6 +30,9 @@ struct SolverSettings {
   // (SiconosResidual.h) is within `tolerance` too (scene mechanics.stop_test = "siconos", the
   // default; NscdIntegrator sets it for "nncg" only).
   bool siconos_stop = false;
+  // Contacts from which the solvers use OpenMP threads, and "nlgs" and "nncg" sweep slab by slab
+  // (ContactSlabs::update_if_large): NscdParameters::parallel_from.
+  std::ptrdiff_t parallel_from = kDefaultParallelFrom;
 };
 
 struct SolveReport {

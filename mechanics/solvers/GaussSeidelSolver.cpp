@@ -2,10 +2,6 @@
 
 namespace tmdem::mechanics {
 
-GaussSeidelSolver::GaussSeidelSolver(const SolverSettings& settings, std::ptrdiff_t parallel_from,
-                                     int slabs)
-    : settings_(settings), parallel_from_(parallel_from), slabs_wanted_(slabs) {}
-
 SolveReport GaussSeidelSolver::solve_with_rolling(const ContactProblem& problem,
                                                   std::vector<Eigen::Vector3d>& r,
                                                   std::vector<Eigen::Vector3d>& m,
@@ -16,9 +12,8 @@ SolveReport GaussSeidelSolver::solve_with_rolling(const ContactProblem& problem,
   options.stall_sweeps = settings_.stall_sweeps;
   GaussSeidelSweepHooks hooks;
   // Slab sweeps are full sweeps: the active set's partial sweeps keep the index order.
-  sliced_ = settings_.full_sweep_every == 1 && slabs_wanted_ > 0 &&
-            static_cast<std::ptrdiff_t>(problem.size()) >= parallel_from_ &&
-            slabs_.update(problem, slabs_wanted_);
+  sliced_ = settings_.full_sweep_every == 1 &&
+            slabs_.update_if_large(problem, ContactSlabs::kDefaultSlabs, settings_.parallel_from);
   if (!sliced_) {
     return sweep_.solve<GaussSeidelSweep::Order::index>(settings_, options,
                                                        {problem, r, m, velocity, angular_velocity}, hooks);

@@ -4,8 +4,9 @@
 // updates the two bodies' velocities at once. Registered as "nlgs". Most sweeps visit the
 // active contacts only, a full sweep every SolverSettings::full_sweep_every sweeps and before
 // convergence is declared (ActiveContactSet.h). With every sweep full (the default), from
-// parallel_from contacts the sweeps go slab by slab (ContactSlabs.h), OpenMP threads sharing
-// each phase's slabs, where the problem gives positions: the same bits for any thread count.
+// SolverSettings::parallel_from contacts the sweeps go slab by slab (ContactSlabs.h), OpenMP
+// threads sharing each phase's slabs, where the problem gives positions: the same bits for any
+// thread count.
 // The penetration correction (PenetrationCorrection.h) is solved by this solver.
 
 #include <cstddef>
@@ -19,9 +20,7 @@ namespace tmdem::mechanics {
 
 class GaussSeidelSolver final : public ContactSolver {
  public:
-  // slabs: about how many slabs to cut (0: index order at every size).
-  explicit GaussSeidelSolver(const SolverSettings& settings, std::ptrdiff_t parallel_from = 4096,
-                             int slabs = 16);
+  explicit GaussSeidelSolver(const SolverSettings& settings) : settings_(settings) {}
   std::string_view name() const override { return "nlgs"; }
   SolveReport solve_with_rolling(const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
                                  std::vector<Eigen::Vector3d>& m,
@@ -32,8 +31,6 @@ class GaussSeidelSolver final : public ContactSolver {
 
  private:
   SolverSettings settings_;
-  std::ptrdiff_t parallel_from_;
-  int slabs_wanted_;
   GaussSeidelSweep sweep_;  // index order, active set after SolverSettings::full_sweep_every
   ContactSlabs slabs_;       // the cut of a large problem
   ReorderedProblem ordered_; // the problem in slab order

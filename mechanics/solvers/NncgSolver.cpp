@@ -127,11 +127,9 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& given,
                                            std::vector<Eigen::Vector3d>& velocity,
                                            std::vector<Eigen::Vector3d>& angular_velocity) {
   const bool coloured = options_.coloured;
-  const bool parallel = coloured && static_cast<std::ptrdiff_t>(given.size()) >= options_.parallel_from;
+  const bool parallel = coloured && static_cast<std::ptrdiff_t>(given.size()) >= settings_.parallel_from;
   if (coloured) ordered_.load(given, given_r, given_m, parallel);
-  const bool sliced = !coloured && options_.slabs > 0 &&
-                      static_cast<std::ptrdiff_t>(given.size()) >= options_.parallel_from &&
-                      slabs_.update(given, options_.slabs);
+  const bool sliced = !coloured && slabs_.update_if_large(given, options_.slabs, settings_.parallel_from);
   // In slab order the slabs are contiguous: each thread streams through its slab's contacts
   // (visited through the order instead, 44% more time per sweep on a 10^4 pour's first steps).
   if (sliced) sliced_.load(given, slabs_.order(), given_r, given_m, true);

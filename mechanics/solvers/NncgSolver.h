@@ -38,7 +38,7 @@
 // Rolling impulses (ContactProblem::rolling) are extrapolated with the reactions, divided by
 // R_eff in the norms as in the stop test. Every sweep visits every candidate
 // (SolverSettings::full_sweep_every is not used: a partial sweep's change is not a map of all
-// the reactions). From Options::parallel_from contacts the sweeps go slab by slab
+// the reactions). From SolverSettings::parallel_from contacts the sweeps go slab by slab
 // (ContactSlabs.h: OpenMP threads share each phase's slabs) where the problem gives positions;
 // the conjugate steps stay serial. Deterministic, the same bits for any thread count; no
 // allocation once warm.
@@ -70,13 +70,13 @@ class NncgSolver final : public ContactSolver {
     int stall_restarts = 3;
     double drift_ratio = 1.003; // 1 < |d_{k+1}|^2 / |d_k|^2 <= this: beta = 1
     // "nncg_coloured": the sweeps go colour by colour (ColourOrderedProblem.h), each colour one
-    // OpenMP loop from parallel_from contacts; the conjugate steps stay serial. The same bits
-    // for any thread count, other bits than "nncg" (another visiting order).
+    // OpenMP loop from SolverSettings::parallel_from contacts; the conjugate steps stay
+    // serial. The same bits for any thread count, other bits than "nncg" (another visiting
+    // order).
     bool coloured = false;
-    std::ptrdiff_t parallel_from = 4096;
-    // From parallel_from contacts ("nncg", "nncg_subspace"): the sweeps cut into about this many
-    // slabs (ContactSlabs.h); 0: index order at every size.
-    int slabs = 16;
+    // From SolverSettings::parallel_from contacts ("nncg", "nncg_subspace"): the sweeps cut
+    // into about this many slabs (ContactSlabs.h); 0: index order at every size.
+    int slabs = ContactSlabs::kDefaultSlabs;
     // "nncg_subspace": before each conjugate step, the subspace step of ActiveSetSubspaceStep.h
     // (a sparse direct solve of the contacts the pair left closed; its schedule); when it is
     // kept the conjugate direction restarts from the new reactions (beta = 0 for the next pair).

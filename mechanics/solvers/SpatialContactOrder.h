@@ -33,6 +33,7 @@
 #include <utility>
 #include <vector>
 
+#include "mechanics/model/ParallelFrom.h"
 #include "mechanics/contact/ContactProblem.h"
 #include "mechanics/solvers/ContactSolver.h"
 
@@ -41,7 +42,7 @@ namespace tmdem::mechanics {
 class SpatialContactOrder {
  public:
   // Copy loops use OpenMP threads from this many contacts on (NscdParameters::parallel_from).
-  explicit SpatialContactOrder(std::ptrdiff_t parallel_from = 4096) : parallel_from_(parallel_from) {}
+  explicit SpatialContactOrder(std::ptrdiff_t parallel_from = kDefaultParallelFrom) : parallel_from_(parallel_from) {}
 
   // The candidate table changed: the next solve needs update() first.
   void invalidate() { valid_ = false; }

@@ -32,7 +32,7 @@ import time
 
 SKIP = 77
 # tmdem stops at sum|r - R(r)| / sum|R(r)| <= tolerance; in Siconos's measure (relative to
-# ||q||) its solutions measure 0.3 to 4 times that (docs/benchmarks.md): allow 10 times.
+# ||q||) its solutions measure 0.3 to 4 times that (docs/mechanics.md, "Cross-check with Siconos"): allow 10 times.
 ERROR_BOUND_PER_TOLERANCE = 10.0
 # Siconos's solvers: NSGS to 1e-8 (its error falls slowly at the end: 1.1e-8 after 20,000
 # iterations on first_scene), NSN to 1e-9 in at most 100 Newton iterations.

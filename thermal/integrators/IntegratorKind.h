@@ -7,6 +7,8 @@
 #include <string>
 #include <string_view>
 
+#include "thermal/network/KindName.h"
+
 namespace tmdem::thermal {
 
 enum class IntegratorKind { Cvode, Ida, Explicit };
@@ -25,32 +27,19 @@ inline constexpr IntegratorKind kDefaultIntegrator = IntegratorKind::Cvode;
 inline constexpr std::string_view kAutoLinearSolverName = "auto";
 inline constexpr std::string_view kDefaultLinearSolverName = kAutoLinearSolverName;
 
-constexpr std::string_view name_of(IntegratorKind k) { return kIntegratorNames[static_cast<int>(k)]; }
-constexpr std::string_view name_of(LinearSolverKind k) { return kLinearSolverNames[static_cast<int>(k)]; }
-
-namespace detail {
-template <class Kind, std::size_t N>
-Kind parse_kind(std::string_view name, const std::array<std::string_view, N>& names,
-                const char* what) {
-  for (std::size_t i = 0; i < N; ++i)
-    if (names[i] == name) return static_cast<Kind>(i);
-  std::string valid;
-  for (auto n : names) valid += (valid.empty() ? "" : ", ") + std::string(n);
-  throw std::invalid_argument(std::string("unknown ") + what + " \"" + std::string(name) +
-                              "\"; valid types are: " + valid);
-}
-}  // namespace detail
+constexpr std::string_view name_of(IntegratorKind k) { return kind_name(k, kIntegratorNames); }
+constexpr std::string_view name_of(LinearSolverKind k) { return kind_name(k, kLinearSolverNames); }
 
 // Unknown names throw std::invalid_argument listing the valid ones.
 inline IntegratorKind parse_integrator_kind(std::string_view name) {
-  return detail::parse_kind<IntegratorKind>(name, kIntegratorNames, "thermal integrator");
+  return parse_kind<IntegratorKind>(name, kIntegratorNames, "thermal integrator");
 }
 // "auto" reaching here is a bug of the caller (it resolves it first), hence logic_error.
 inline LinearSolverKind parse_linear_solver_kind(std::string_view name) {
   if (name == kAutoLinearSolverName)
     throw std::logic_error("linear solver \"auto\" reached the thermal side unresolved; it is "
                            "turned into klu, pcg or amg by coupling/run/LinearSolverChoice.h");
-  return detail::parse_kind<LinearSolverKind>(name, kLinearSolverNames, "linear solver");
+  return parse_kind<LinearSolverKind>(name, kLinearSolverNames, "linear solver");
 }
 
 }  // namespace tmdem::thermal

@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
-#include <string>
 
 namespace tmdem::thermal {
 
@@ -25,21 +23,6 @@ double hertz_conductance_W_per_K(const ContactBody& b1, const ContactBody& b2,
   return 2.0 * k * hertz_contact_radius_m(b1, b2, normal_force_N, flattening);
 }
 
-const std::vector<std::string_view>& conductance_law_names() {
-  static const std::vector<std::string_view> names{"hertz", "constant", "bahrami"};
-  return names;
-}
-
 bool conductance_law_uses_force(ConductanceLawKind law) { return law != ConductanceLawKind::Constant; }
-
-ConductanceLawKind conductance_law_from_name(std::string_view name) {
-  if (name == "hertz") return ConductanceLawKind::Hertz;
-  if (name == "constant") return ConductanceLawKind::Constant;
-  if (name == "bahrami") return ConductanceLawKind::Bahrami;
-  std::string valid;
-  for (auto n : conductance_law_names()) valid += (valid.empty() ? "" : ", ") + std::string(n);
-  throw std::invalid_argument("unknown conductance law \"" + std::string(name) +
-                              "\"; valid types are: " + valid);
-}
 
 }  // namespace tmdem::thermal

@@ -1,8 +1,10 @@
 #pragma once
 // Contact conductance laws (contract section 2). Walls enter with infinite radius (1/R = 0).
+#include <array>
 #include <limits>
 #include <string_view>
-#include <vector>
+
+#include "thermal/network/KindName.h"
 
 namespace tmdem::thermal {
 
@@ -33,12 +35,17 @@ double hertz_conductance_W_per_K(const ContactBody& b1, const ContactBody& b2,
                                  double normal_force_N, double flattening = 0.0);
 
 // hertz: H = 2 k a (above); constant: one H for every contact; bahrami: rough surfaces, the Hertz
-// spot in series with its micro-contacts and micro-gap (RoughContactConductance.h).
+// spot in series with its micro-contacts and micro-gap (RoughContactConductance.h). The scene's
+// thermal.conductance, parsed once where the scene is read.
 enum class ConductanceLawKind { Hertz, Constant, Bahrami };
+// The names, in the enum's order: the one list (the scene schema's choices take it).
+inline constexpr std::array<std::string_view, 3> kConductanceLawNames{"hertz", "constant", "bahrami"};
 
-// Run-time selection by name; an unknown name throws std::invalid_argument listing the valid names.
-ConductanceLawKind conductance_law_from_name(std::string_view name);
-const std::vector<std::string_view>& conductance_law_names();
+// An unknown name throws std::invalid_argument listing the valid names.
+inline ConductanceLawKind conductance_law_from_name(std::string_view name) {
+  return parse_kind<ConductanceLawKind>(name, kConductanceLawNames, "conductance law");
+}
+constexpr std::string_view name_of(ConductanceLawKind law) { return kind_name(law, kConductanceLawNames); }
 // The law reads the contact's normal force (so a run needs forces: mechanics or imported ones).
 bool conductance_law_uses_force(ConductanceLawKind law);
 

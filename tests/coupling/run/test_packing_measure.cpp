@@ -11,6 +11,7 @@
 #include "mechanics/model/ParticleSet.h"
 
 using namespace tmdem::coupling;
+namespace mechanics = tmdem::mechanics;
 
 namespace {
 

@@ -73,7 +73,7 @@ material = "m"
   EXPECT_EQ(scene.thermal.relative_tolerance, 1e-6);
   EXPECT_EQ(scene.thermal.absolute_tolerance_K, 1e-6);
   EXPECT_EQ(scene.thermal.explicit_step_s, 0.0);
-  EXPECT_EQ(scene.thermal.conductance, "hertz");
+  EXPECT_EQ(scene.thermal.conductance, thermal::ConductanceLawKind::Hertz);
   EXPECT_EQ(scene.thermal.constant_conductance_W_per_K, 1e-4);
   EXPECT_EQ(scene.output.file, "result.h5");
   EXPECT_EQ(scene.output.interval_s, 0.1);
@@ -168,7 +168,7 @@ TEST(SceneExamples, PaperTriangle) {
   ASSERT_EQ(scene.particles.size(), 14u);
   EXPECT_EQ(scene.dimension, 2);
   EXPECT_EQ(scene.effects.mechanics, MechanicsMode::Settle);
-  EXPECT_EQ(scene.thermal.conductance, "hertz");
+  EXPECT_EQ(scene.thermal.conductance, thermal::ConductanceLawKind::Hertz);
   EXPECT_EQ(scene.particles[0].temperature_K, 373.15);
   for (std::size_t i = 1; i < 14; ++i) EXPECT_EQ(scene.particles[i].temperature_K, 293.15);
   EXPECT_EQ(scene.walls.size(), 3u);
@@ -178,7 +178,7 @@ TEST(SceneExamples, LatticeConstant) {
   const Scene scene = load_scene_file((kExamples / "lattice_constant.toml").string());
   ASSERT_EQ(scene.particles.size(), 64u);
   EXPECT_EQ(scene.effects.mechanics, MechanicsMode::Off);
-  EXPECT_EQ(scene.thermal.conductance, "constant");
+  EXPECT_EQ(scene.thermal.conductance, thermal::ConductanceLawKind::Constant);
   EXPECT_EQ(scene.thermal.integrator, "cvode");
   EXPECT_EQ(scene.duration_s, 50.0);
   EXPECT_EQ(scene.particles[0].temperature_K, 373.15);

@@ -31,7 +31,7 @@ TEST(SceneRoughContacts, SurfaceKeysAreReadWithTheirDefaults) {
   EXPECT_EQ(rough.materials[0].roughness_m, 19e-9);
   EXPECT_EQ(rough.materials[0].asperity_slope, 0.056);
   EXPECT_EQ(rough.materials[0].microhardness_Pa, 3e9);
-  EXPECT_EQ(rough.thermal.conductance, "bahrami");
+  EXPECT_EQ(rough.thermal.conductance, thermal::ConductanceLawKind::Bahrami);
   EXPECT_EQ(rough.materials[1].roughness_m, 0.0);  // glass stays smooth
 }
 

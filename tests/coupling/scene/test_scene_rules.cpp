@@ -143,11 +143,11 @@ TEST(SceneRules, ContactFlatteningKey) {
 // with a conductivity table (the shell would follow k(T)), naming the key and the material.
 TEST(SceneRules, ParticleResistanceKeys) {
   const Scene plain = load_scene_text(kBaseScene, "t");
-  EXPECT_EQ(plain.thermal.particle_resistance, "off");
+  EXPECT_EQ(plain.thermal.particle_resistance, thermal::ParticleResistanceKind::Off);
   EXPECT_EQ(plain.thermal.core_fraction, 0.5);
   const Scene on = load_scene_text(
       kBaseScene, "t", {"thermal.particle_resistance=\"isothermal_core\"", "thermal.core_fraction=0.3"});
-  EXPECT_EQ(on.thermal.particle_resistance, "isothermal_core");
+  EXPECT_EQ(on.thermal.particle_resistance, thermal::ParticleResistanceKind::IsothermalCore);
   EXPECT_EQ(on.thermal.core_fraction, 0.3);
   expect_scene_error(kBaseScene, {"thermal.particle_resistance=\"shell\""},
                      {"thermal.particle_resistance", "shell", "isothermal_core", "isothermal_core_rays"});

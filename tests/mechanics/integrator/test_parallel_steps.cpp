@@ -9,6 +9,8 @@
 
 #include "mechanics/SameBits.h"
 #include "mechanics/MechanicsTestScenes.h"
+#include "mechanics/solvers/GaussSeidelSolver.h"
+#include "mechanics/solvers/NncgSolver.h"
 
 using namespace tmdem::mechanics;
 using tmdem::mechanics::test::nlgs_parameters;
@@ -59,4 +61,25 @@ TEST(ParallelSteps, OneAndTwoThreadsStepTheSameBits) {
   EXPECT_TRUE(same_bits(one.mu, two.mu));
   EXPECT_TRUE(same_bits(one.position, two.position));
   EXPECT_TRUE(same_bits(one.velocity, two.velocity));
+}
+
+// NscdParameters::parallel_from reaches the contact solvers (SolverSettings::parallel_from):
+// "nlgs" and "nncg" cut a pile of a few hundred contacts into slabs only when it is below it,
+// and never at the default (4,096 contacts). One decision for both (ContactSlabs::update_if_large).
+TEST(ParallelSteps, TheIntegratorsParallelFromReachesTheSolvers) {
+  for (const char* solver : {"nlgs", "nncg"}) {
+    auto sliced_after_a_step = [&](std::ptrdiff_t parallel_from) {
+      NscdParameters parameters = nlgs_parameters();
+      parameters.solver = solver;
+      parameters.parallel_from = parallel_from;
+      parameters.max_iterations = 50;
+      NscdIntegrator sim = test::random_pile(200, 3, 0.3, 5, parameters);
+      for (int s = 0; s < 40; ++s) sim.step();
+      EXPECT_GT(sim.problem().size(), 100u) << solver;
+      if (const auto* gs = dynamic_cast<const GaussSeidelSolver*>(&sim.solver())) return gs->sliced();
+      return dynamic_cast<const NncgSolver&>(sim.solver()).sliced();
+    };
+    EXPECT_TRUE(sliced_after_a_step(0)) << solver;
+    EXPECT_FALSE(sliced_after_a_step(kDefaultParallelFrom)) << solver;
+  }
 }

@@ -226,9 +226,11 @@ TEST(RollingFriction, EverySolverMatchesGaussSeidelWithSameBitsForAnyThreadCount
     const int before = omp_get_max_threads();
     omp_set_num_threads(threads);
     // Parallel at any size.
+    SolverSettings parallel = settings;
+    parallel.parallel_from = 0;
     std::unique_ptr<ContactSolver> solver;
-    if (std::string(name) == "apgd") solver = std::make_unique<ApgdSolver>(settings, 0);
-    else solver = std::make_unique<ColouredGaussSeidelSolver>(settings, 0);
+    if (std::string(name) == "apgd") solver = std::make_unique<ApgdSolver>(parallel);
+    else solver = std::make_unique<ColouredGaussSeidelSolver>(parallel);
     RollingSolve out = solve_rolling_cold(*solver, problem);
     omp_set_num_threads(before);
     return out;

@@ -97,7 +97,9 @@ TEST(ApgdSolver, SameThreadCountGivesBitwiseIdenticalReactions) {
   const ContactProblem& problem = lattice_pile().problem();
   // A fresh solver each time: a solver keeps its step-size estimate between solves.
   auto run = [&] {
-    ApgdSolver solver(tight(1e-8), 0);  // parallel at any size
+    SolverSettings settings = tight(1e-8);
+    settings.parallel_from = 0;  // parallel at any size
+    ApgdSolver solver(settings);
     return solve_cold(problem, solver);
   };
   const int threads = omp_get_max_threads();

@@ -115,7 +115,8 @@ TEST(ColouredGaussSeidel, SameBitsForAnyThreadCount) {
     // barrier per colour is slow on an oversubscribed machine.
     SolverSettings settings = test::tight(1e-12);
     settings.max_iterations = 60;
-    ColouredGaussSeidelSolver solver(settings, 0);  // parallel at any size
+    settings.parallel_from = 0;  // parallel at any size
+    ColouredGaussSeidelSolver solver(settings);
     return test::solve_cold(problem, solver);
   };
   const int threads_before = omp_get_max_threads();

@@ -164,9 +164,9 @@ TEST(ContactSlabs, NoCutWithoutPositionsOrRoomForThreeSlabs) {
 TEST(NncgSlabs, LatticePileMatchesGaussSeidelAndStatics) {
   constexpr double tolerance = 1e-8;
   const ContactProblem& problem = lattice_pile().problem();
-  NncgSolver::Options options;
-  options.parallel_from = 0;
-  NncgSolver sliced(tight(tolerance), options);
+  SolverSettings settings = tight(tolerance);
+  settings.parallel_from = 0;
+  NncgSolver sliced(settings);
   const Solved solved = solve_cold(problem, sliced);
   ASSERT_TRUE(sliced.sliced());
   ASSERT_TRUE(solved.report.converged) << solved.report.residual;
@@ -183,9 +183,8 @@ TEST(NncgSlabs, SameBitsForAnyThreadCount) {
     omp_set_num_threads(threads);
     SolverSettings settings = tight(1e-12);
     settings.max_iterations = 60;
-    NncgSolver::Options options;
-    options.parallel_from = 0;
-    NncgSolver solver(settings, options);
+    settings.parallel_from = 0;
+    NncgSolver solver(settings);
     Solved solved = solve_cold(problem, solver);
     EXPECT_TRUE(solver.sliced());
     EXPECT_GT(solver.steps(), 0);
@@ -205,7 +204,9 @@ TEST(NncgSlabs, SameBitsForAnyThreadCount) {
 // 2 threads after 60 sweeps of the falling pile.
 TEST(GaussSeidelSlabs, LatticePileStaticsAndSameBitsForAnyThreadCount) {
   constexpr double tolerance = 1e-8;
-  GaussSeidelSolver sliced(tight(tolerance), 0);
+  SolverSettings sliced_settings = tight(tolerance);
+  sliced_settings.parallel_from = 0;
+  GaussSeidelSolver sliced(sliced_settings);
   const Solved solved = solve_cold(lattice_pile().problem(), sliced);
   ASSERT_TRUE(sliced.sliced());
   ASSERT_TRUE(solved.report.converged) << solved.report.residual;
@@ -216,7 +217,8 @@ TEST(GaussSeidelSlabs, LatticePileStaticsAndSameBitsForAnyThreadCount) {
     omp_set_num_threads(threads);
     SolverSettings settings = tight(1e-12);
     settings.max_iterations = 60;
-    GaussSeidelSolver solver(settings, 0);
+    settings.parallel_from = 0;
+    GaussSeidelSolver solver(settings);
     Solved out = solve_cold(problem, solver);
     EXPECT_TRUE(solver.sliced());
     return out;

@@ -336,7 +336,7 @@ TEST(NncgColoured, SameBitsForAnyThreadCount) {
     settings.max_iterations = 60;
     NncgSolver::Options options;
     options.coloured = true;
-    options.parallel_from = 0;
+    settings.parallel_from = 0;
     NncgSolver solver(settings, options);
     return test::solve_cold(problem, solver);
   };

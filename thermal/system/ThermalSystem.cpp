@@ -16,9 +16,16 @@ ThermalSystem::ThermalSystem(ThermalNetwork network,
     : network_(std::move(network)), modes_(std::move(modes)) {
   network_.validate();
   network_.apply_time(time_s_);
-  pattern_.build(network_);
   for (auto& mode : modes_) mode->update_geometry(network_);
   update_series_factors();
+}
+
+const JacobianPattern& ThermalSystem::pattern() const {
+  if (!pattern_built_) {
+    pattern_.build(network_);
+    pattern_built_ = true;
+  }
+  return pattern_;
 }
 
 void ThermalSystem::update_series_factors() {
@@ -68,7 +75,8 @@ void ThermalSystem::replace_edges(const ThermalNetwork& edges) {
   if (same_shape) {
     ++values_version_;
   } else {
-    pattern_.build(network_);
+    pattern_ = JacobianPattern{};  // built again when next asked for
+    pattern_built_ = false;
     ++topology_version_;
     ++values_version_;
   }
@@ -147,10 +155,11 @@ void ThermalSystem::jacobian_values(const JacobianEvaluation& J, std::span<doubl
                                     std::span<const double> scale) const {
   check_evaluation(J);
   const auto& held = network_.held;
+  const JacobianPattern& p = pattern();
   std::fill(values.begin(), values.end(), 0.0);
   for (std::size_t i = 0; i < size(); ++i)
     if (!held[i])
-      values[pattern_.diagonal_slot[i]] +=
+      values[p.diagonal_slot[i]] +=
           J.diagonal_W_per_K[i] / capacity(J, i);
   for (std::size_t e = 0; e < network_.edge_count(); ++e) {
     const auto a = network_.edge_a[e], b = network_.edge_b[e];
@@ -158,8 +167,8 @@ void ThermalSystem::jacobian_values(const JacobianEvaluation& J, std::span<doubl
     const double h_ab = J.edge_W_per_K[e] + J.edge_ab_W_per_K[e];
     const double h_ba = J.edge_W_per_K[e] + J.edge_ba_W_per_K[e];
     const double sab = scale.empty() ? 1.0 : scale[a] / scale[b];
-    values[pattern_.slot_ab[e]] += h_ab / capacity(J, std::size_t(a)) * sab;
-    values[pattern_.slot_ba[e]] += h_ba / capacity(J, std::size_t(b)) / sab;
+    values[p.slot_ab[e]] += h_ab / capacity(J, std::size_t(a)) * sab;
+    values[p.slot_ba[e]] += h_ba / capacity(J, std::size_t(b)) / sab;
   }
 }
 
@@ -169,8 +178,9 @@ void ThermalSystem::jacobian_times(const JacobianEvaluation& J, std::span<const 
   const auto& held = network_.held;
   const auto* a = network_.edge_a.data();
   const auto* b = network_.edge_b.data();
-  const auto* start = pattern_.node_edge_start.data();
-  const auto* incident = pattern_.node_edge.data();
+  const JacobianPattern& p = pattern();  // before the threads: built here if need be
+  const auto* start = p.node_edge_start.data();
+  const auto* incident = p.node_edge.data();
   // Work in unscaled variables: u = S^-1 v, w = J u, Jv = S w. Row by row: each row adds its
   // diagonal, then its edges in edge order (JacobianPattern::node_edge), the order of a loop
   // over the edges, so every thread count gives the same bits.

@@ -14,13 +14,9 @@
 #include <sys/resource.h>
 
 #include <chrono>
-#include <ctime>
-#include <sstream>
 #include <string>
 
-#include "coupling/output/ProgressReporter.h"
-#include "coupling/run/LinearSolverChoice.h"
-#include "coupling/run/ThermalProblem.h"
+#include "bench/BenchFrozenProblem.h"
 #include "coupling/scene/SceneLoader.h"
 #include "thermal/integrators/IntegratorRegistry.h"
 
@@ -28,12 +24,6 @@ namespace {
 
 using namespace tmdem;
 using namespace tmdem::coupling;
-
-double process_cpu_s() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
 
 double peak_rss_MB() {
   rusage usage{};
@@ -49,18 +39,15 @@ void BM_Heating1e6(benchmark::State& state) {
   long steps = 0;
   std::size_t particles = 0;
   for (auto _ : state) {
-    const double cpu_start = process_cpu_s();
+    const double cpu_start = bench::process_cpu_s();
     const auto start = std::chrono::steady_clock::now();
-    std::ostringstream quiet;
-    ProgressReporter progress(quiet, true, false);
-    auto problem = build_frozen_thermal_problem(scene, progress);
-    const auto settings =
-        integrator_settings(scene, choose_linear_solver(scene, *problem.system, 1).kind);
-    auto integrator = thermal::make_thermal_integrator(scene.thermal.integrator, *problem.system, settings);
+    auto problem = bench::quiet_frozen_problem(scene);
+    auto integrator = thermal::make_thermal_integrator(scene.thermal.integrator, *problem.system,
+                                                       bench::settings_for(scene, *problem.system));
     integrator->initialize(0.0, problem.T0_K);
     integrator->advance_to(scene.duration_s);
     wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    cpu = process_cpu_s() - cpu_start;
+    cpu = bench::process_cpu_s() - cpu_start;
     steps = integrator->stats().steps;
     particles = problem.system->size();
   }

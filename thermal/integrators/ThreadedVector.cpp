@@ -10,7 +10,8 @@
 #include "thermal/network/NodeLoopThreads.h"
 
 namespace tmdem::thermal {
-namespace {
+// Named, not anonymous: the thermal library is a unity build (one translation unit).
+namespace threaded_vector_ops {
 
 // sum_i term(i) in a fixed order on the vector's threads: static blocks summed in index order,
 // then the blocks' sums in thread order (one block: the serial loop's order, bit for bit).
@@ -36,15 +37,15 @@ double fixed_order_sum(N_Vector v, Term term) {
   return sum;
 }
 
-const double* data(N_Vector v) { return NV_DATA_OMP(v); }
+const double* values(N_Vector v) { return NV_DATA_OMP(v); }
 
 sunrealtype dot(N_Vector x, N_Vector y) {
-  const double *xd = data(x), *yd = data(y);
+  const double *xd = values(x), *yd = values(y);
   return fixed_order_sum(x, [=](std::size_t i) { return xd[i] * yd[i]; });
 }
 
 sunrealtype weighted_square_sum(N_Vector x, N_Vector w) {
-  const double *xd = data(x), *wd = data(w);
+  const double *xd = values(x), *wd = values(w);
   return fixed_order_sum(x, [=](std::size_t i) {
     const double p = xd[i] * wd[i];
     return p * p;
@@ -52,7 +53,7 @@ sunrealtype weighted_square_sum(N_Vector x, N_Vector w) {
 }
 
 sunrealtype weighted_square_sum_masked(N_Vector x, N_Vector w, N_Vector id) {
-  const double *xd = data(x), *wd = data(w), *idd = data(id);
+  const double *xd = values(x), *wd = values(w), *idd = values(id);
   return fixed_order_sum(x, [=](std::size_t i) {
     if (!(idd[i] > 0.0)) return 0.0;  // adding 0.0 to a sum leaves its bits
     const double p = xd[i] * wd[i];
@@ -61,7 +62,7 @@ sunrealtype weighted_square_sum_masked(N_Vector x, N_Vector w, N_Vector id) {
 }
 
 sunrealtype l1_norm(N_Vector x) {
-  const double* xd = data(x);
+  const double* xd = values(x);
   return fixed_order_sum(x, [=](std::size_t i) { return std::abs(xd[i]); });
 }
 
@@ -74,7 +75,7 @@ sunrealtype wrms_norm_masked(N_Vector x, N_Vector w, N_Vector id) {
 }
 sunrealtype wl2_norm(N_Vector x, N_Vector w) { return std::sqrt(weighted_square_sum(x, w)); }
 
-}  // namespace
+}  // namespace threaded_vector_ops
 
 NVectorPtr make_threaded_vector(sunindextype length, int threads, SUNContext ctx, const char* what) {
   if (threads <= 1) return make_serial_vector(length, ctx, what);
@@ -86,6 +87,7 @@ NVectorPtr make_threaded_vector(sunindextype length, int threads, SUNContext ctx
   // The fused and array operations stay off (SUNDIALS' default), so every sum goes through
   // the operations below; the max, min and quotient reductions are exact in any order.
   N_VEnableFusedOps_OpenMP(v.get(), SUNFALSE);
+  using namespace threaded_vector_ops;
   auto* ops = v->ops;
   ops->nvdotprod = &dot;
   ops->nvdotprodlocal = &dot;

@@ -11,7 +11,8 @@
 namespace tmdem::thermal {
 
 CvodeIntegrator::CvodeIntegrator(ThermalSystem& system, const IntegratorSettings& settings)
-    : SundialsIntegratorBase(system, settings) {}
+    : SundialsIntegratorBase(system, settings),
+      amg_reuse_(settings.linear_solver == LinearSolverKind::Amg) {}
 
 void CvodeIntegrator::MemoryFree::operator()(void* mem) const { CVodeFree(&mem); }
 
@@ -195,8 +196,12 @@ int CvodeIntegrator::precond_setup(sunrealtype, N_Vector y, N_Vector, sunboolean
                                    sunbooleantype* jcur, sunrealtype gamma, void* self) {
   auto* me = static_cast<CvodeIntegrator*>(self);
   *jcur = jok ? SUNFALSE : SUNTRUE;
+  const auto version = me->system_.values_version();
+  if (me->amg_reuse_.may_keep(jok, gamma, version)) return 0;
   // M = I - gamma J; a breakdown is recoverable (CVODE retries with a smaller step).
-  return me->setup_preconditioner(y, jok, -gamma, 1.0, 1.0) ? 0 : 1;
+  const bool ok = me->setup_preconditioner(y, jok, -gamma, 1.0, 1.0);
+  me->amg_reuse_.factored(ok, gamma, version);
+  return ok ? 0 : 1;
 }
 
 int CvodeIntegrator::precond_solve(sunrealtype, N_Vector, N_Vector, N_Vector r, N_Vector z,

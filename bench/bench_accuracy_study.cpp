@@ -24,9 +24,7 @@
 #include <string>
 #include <vector>
 
-#include "coupling/output/ProgressReporter.h"
-#include "coupling/run/LinearSolverChoice.h"
-#include "coupling/run/ThermalProblem.h"
+#include "bench/BenchFrozenProblem.h"
 #include "coupling/scene/SceneLoader.h"
 #include "coupling/studies/AccuracyStudy.h"
 #include "thermal/integrators/KluFactorisationCost.h"
@@ -35,12 +33,6 @@ namespace {
 
 using namespace tmdem;
 using namespace tmdem::coupling;
-
-double cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
 
 Scene bed(int which) {
   const std::string examples = std::string(TMDEM_SOURCE_DIR) + "/examples/";
@@ -61,17 +53,14 @@ void BM_AccuracyStudy(benchmark::State& state) {
   AccuracyStudyResult result;
   double wall = 0.0, cpu = 0.0, factorisation_s = 0.0;
   for (auto _ : state) {
-    const double cpu_start = cpu_seconds();
+    const double cpu_start = bench::process_cpu_s();
     const auto start = std::chrono::steady_clock::now();
-    std::ostringstream quiet;
-    ProgressReporter progress(quiet, true, false);
-    auto problem = build_frozen_thermal_problem(scene, progress);
-    const auto base =
-        integrator_settings(scene, choose_linear_solver(scene, *problem.system, 1).kind);
+    auto problem = bench::quiet_frozen_problem(scene);
+    const auto base = bench::settings_for(scene, *problem.system);
     result = run_accuracy_study(*problem.system, problem.T0_K, scene.duration_s, base, options,
                                 &std::cerr);
     wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    cpu = cpu_seconds() - cpu_start;
+    cpu = bench::process_cpu_s() - cpu_start;
     state.PauseTiming();
     factorisation_s = thermal::time_klu_factorisation(problem.system->pattern()).factorisation_s;
     state.ResumeTiming();

@@ -54,7 +54,8 @@ DistributedHeating::DistributedHeating(const Scene& scene, const thermal::Therma
   for (const auto& mode : global.modes())
     modes.push_back(thermal::make_heat_transfer_mode(std::string(mode->name()),
                                                      builder.mode_settings()));
-  system_ = std::make_unique<thermal::ThermalSystem>(local_.network, std::move(modes));
+  // The piece's network moves into its system (one copy, not two; local_.network is left empty).
+  system_ = std::make_unique<thermal::ThermalSystem>(std::move(local_.network), std::move(modes));
 }
 
 std::unique_ptr<thermal::ThermalIntegrator> DistributedHeating::make_integrator(

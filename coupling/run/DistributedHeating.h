@@ -35,6 +35,8 @@ class DistributedHeating {
   // Refers to the local system: keep this object alive as long as the integrator.
   std::unique_ptr<thermal::ThermalIntegrator> make_integrator(
       const thermal::IntegratorSettings& settings);
+  // The piece's layout (owned count, nodes, rows, neighbours); its network is in the local
+  // system, which the integrator holds.
   const thermal::LocalNetwork& local() const { return local_; }
 
  private:

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "thermal/integrators/ThermalSolverError.h"
+#include "thermal/network/NodeLoopThreads.h"
 
 namespace tmdem::thermal {
 namespace {
@@ -193,7 +194,9 @@ void BoomerAmgPreconditioner::solve(std::span<const double> r, std::span<double>
     set_vector(b_, r);
   } else {
     scaled_rhs_.resize(r.size());
-    for (std::size_t i = 0; i < r.size(); ++i) scaled_rhs_[i] = scale_[i] * r[i];
+    const std::int64_t n = std::int64_t(r.size());
+#pragma omp parallel for schedule(static) num_threads(node_loop_threads(r.size()))
+    for (std::int64_t i = 0; i < n; ++i) scaled_rhs_[std::size_t(i)] = scale_[std::size_t(i)] * r[std::size_t(i)];
     set_vector(b_, scaled_rhs_);
   }
   std::fill(z.begin(), z.end(), 0.0);
@@ -201,8 +204,11 @@ void BoomerAmgPreconditioner::solve(std::span<const double> r, std::span<double>
   HYPRE_BoomerAMGSolve(as_solver(amg_), parcsr(matrix_), parvector(b_), parvector(x_));
   HYPRE_ClearAllErrors();  // "not converged" after its one cycle is the expected answer
   get_vector(x_, z);
-  if (!scale_.empty())
-    for (std::size_t i = 0; i < z.size(); ++i) z[i] *= scale_[i];
+  if (!scale_.empty()) {
+    const std::int64_t n = std::int64_t(z.size());
+#pragma omp parallel for schedule(static) num_threads(node_loop_threads(z.size()))
+    for (std::int64_t i = 0; i < n; ++i) z[std::size_t(i)] *= scale_[std::size_t(i)];
+  }
 }
 
 BoomerAmgPreconditioner::CgResult BoomerAmgPreconditioner::solve_cg(std::span<const double> b,

@@ -6,11 +6,13 @@
 #include <cmath>
 
 #include "thermal/integrators/ThermalSolverError.h"
+#include "thermal/network/NodeLoopThreads.h"
 
 namespace tmdem::thermal {
 
 CvodeIntegrator::CvodeIntegrator(ThermalSystem& system, const IntegratorSettings& settings)
-    : SundialsIntegratorBase(system, settings) {}
+    : SundialsIntegratorBase(system, settings),
+      amg_reuse_(settings.linear_solver == LinearSolverKind::Amg) {}
 
 void CvodeIntegrator::MemoryFree::operator()(void* mem) const { CVodeFree(&mem); }
 
@@ -145,12 +147,18 @@ int CvodeIntegrator::rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* self) {
   auto out = nvector_view(ydot);
   double boundary_W = 0.0;
   if (!me->system_.time_derivative(me->T_work_, out, boundary_W)) return 1;  // recoverable
-  double sum = 0.0;
-  for (std::size_t i = 0; i < out.size(); ++i) {
+  // Element by element (the same bits on any thread count); a non-finite rate is a
+  // recoverable failure.
+  bool finite = true;
+  const std::int64_t n = std::int64_t(out.size());
+#pragma omp parallel for schedule(static) num_threads(node_loop_threads(out.size())) \
+    reduction(&& : finite)
+  for (std::int64_t k = 0; k < n; ++k) {
+    const auto i = std::size_t(k);
     out[i] *= me->state_factor(i);
-    sum += out[i];
+    finite = finite && std::isfinite(out[i]);
   }
-  return std::isfinite(sum) ? 0 : 1;
+  return finite ? 0 : 1;
 }
 
 int CvodeIntegrator::boundary_rhs(sunrealtype t, N_Vector y, N_Vector qdot, void* self) {
@@ -188,8 +196,12 @@ int CvodeIntegrator::precond_setup(sunrealtype, N_Vector y, N_Vector, sunboolean
                                    sunbooleantype* jcur, sunrealtype gamma, void* self) {
   auto* me = static_cast<CvodeIntegrator*>(self);
   *jcur = jok ? SUNFALSE : SUNTRUE;
+  const auto version = me->system_.values_version();
+  if (me->amg_reuse_.may_keep(jok, gamma, version)) return 0;
   // M = I - gamma J; a breakdown is recoverable (CVODE retries with a smaller step).
-  return me->setup_preconditioner(y, jok, -gamma, 1.0, 1.0) ? 0 : 1;
+  const bool ok = me->setup_preconditioner(y, jok, -gamma, 1.0, 1.0);
+  me->amg_reuse_.factored(ok, gamma, version);
+  return ok ? 0 : 1;
 }
 
 int CvodeIntegrator::precond_solve(sunrealtype, N_Vector, N_Vector, N_Vector r, N_Vector z,

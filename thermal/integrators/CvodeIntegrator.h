@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 
+#include "thermal/integrators/PreconditionerReuse.h"
 #include "thermal/integrators/SundialsIntegratorBase.h"
 #include "thermal/integrators/ThermalSolverError.h"
 
@@ -51,6 +52,8 @@ class CvodeIntegrator final : public SundialsIntegratorBase {
 
   void reinit_at_current_state();
   void check(int flag, const char* call) const;
+
+  PreconditionerReuse amg_reuse_;  // with "amg": keep the V-cycle over small changes of gamma
   [[noreturn]] void fail(int flag, const char* call) const;
 
   struct MemoryFree {

@@ -251,13 +251,17 @@ int DistributedCvodeIntegrator::precond_setup(sunrealtype, N_Vector y, N_Vector,
     jok = SUNFALSE;
   }
   *jcur = jok ? SUNFALSE : SUNTRUE;
+  // Every process takes the same steps, so all keep or all rebuild.
+  if (me->amg_reuse_.may_keep(jok, gamma, me->system_.values_version())) return 0;
   if (!jok) {
     me->to_local(y);
     me->system_.evaluate_jacobian(me->T_local_, me->jacobian_);
     me->system_.jacobian_values(me->jacobian_, me->jacobian_values_, me->scale_);
   }
   // M = I - gamma J; a breakdown anywhere is recoverable (CVODE retries with a smaller step).
-  return MpiWorld::all(me->amg_.factor(me->jacobian_values_, -gamma, me->newton_shift_)) ? 0 : 1;
+  const bool ok = MpiWorld::all(me->amg_.factor(me->jacobian_values_, -gamma, me->newton_shift_));
+  me->amg_reuse_.factored(ok, gamma, me->system_.values_version());
+  return ok ? 0 : 1;
 }
 
 int DistributedCvodeIntegrator::precond_solve(sunrealtype, N_Vector, N_Vector, N_Vector r,

@@ -22,6 +22,7 @@
 
 #include "thermal/integrators/BoomerAmgPreconditioner.h"
 #include "thermal/integrators/GhostExchange.h"
+#include "thermal/integrators/PreconditionerReuse.h"
 #include "thermal/integrators/SundialsContext.h"
 #include "thermal/integrators/SundialsHandles.h"
 #include "thermal/integrators/ThermalIntegrator.h"
@@ -89,6 +90,7 @@ class DistributedCvodeIntegrator final : public ThermalIntegrator {
   std::vector<double> jacobian_values_;     // local pattern order, scaled
   std::vector<double> newton_shift_;        // 1 per local node (CVODES: M = I - gamma J)
   bool analysed_ = false;
+  PreconditionerReuse amg_reuse_{true};     // keep the V-cycle over small changes of gamma
   double t_ = 0.0;
   double boundary_heat0_J_ = 0.0;
   IntegratorStats history_;

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "thermal/integrators/ThermalSolverError.h"
+#include "thermal/integrators/ThreadedVector.h"
 
 namespace tmdem::thermal {
 
@@ -46,8 +47,8 @@ void IdaIntegrator::initialize(double t0_s, std::span<const double> T0_K, double
   if (!begin(t0_s, T0_K, boundary_heat0_J)) return;
   const std::size_t n = system_.size();
   if (!yp_) {
-    yp_ = make_serial_vector(sunindextype(n), ctx_, "state derivative y'");
-    id_ = make_serial_vector(sunindextype(n), ctx_, "differential/algebraic ids");
+    yp_ = make_state_vector(sunindextype(n), ctx_, "state derivative y'");
+    id_ = make_state_vector(sunindextype(n), ctx_, "differential/algebraic ids");
   }
   auto y = nvector_view(y_.get()), id = nvector_view(id_.get());
   const auto& held = system_.network().held;

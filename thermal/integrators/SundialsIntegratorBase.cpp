@@ -13,6 +13,8 @@
 #include "thermal/integrators/IncompleteCholesky.h"
 #include "thermal/integrators/IntegratorKind.h"
 #include "thermal/integrators/ThermalSolverError.h"
+#include "thermal/integrators/ThreadedVector.h"
+#include "thermal/network/NodeLoopThreads.h"
 
 namespace tmdem::thermal {
 
@@ -63,8 +65,8 @@ bool SundialsIntegratorBase::begin(double t0_s, std::span<const double> T0_K,
   reinitializations_ = 0;
   if (n == 0) return false;
   if (!y_) {
-    y_ = make_serial_vector(sunindextype(n), ctx_, "state y");
-    abstol_ = make_serial_vector(sunindextype(n), ctx_, "absolute tolerances");
+    y_ = make_state_vector(sunindextype(n), ctx_, "state y");
+    abstol_ = make_state_vector(sunindextype(n), ctx_, "absolute tolerances");
     // [0] boundary heat, [1] its part from the dissipation modes (friction heat).
     yQ_ = make_serial_vector(2, ctx_, "boundary-heat quadrature");
   }
@@ -113,13 +115,15 @@ bool SundialsIntegratorBase::pattern_changed() {
 
 void SundialsIntegratorBase::unscale(N_Vector y) {
   const double* yd = N_VGetArrayPointer(y);
-  if (energy_state_) {
-    for (std::size_t i = 0; i < T_work_.size(); ++i)
+  const std::int64_t n = std::int64_t(T_work_.size());
+  // Element by element: the same bits on any thread count.
+#pragma omp parallel for schedule(static) num_threads(node_loop_threads(T_work_.size()))
+  for (std::int64_t k = 0; k < n; ++k) {
+    const auto i = std::size_t(k);
+    if (energy_state_)
       T_work_[i] = system_.network().temperature_at_energy(i, yd[i]);
-  } else if (scale_.empty()) {
-    std::copy(yd, yd + T_work_.size(), T_work_.begin());
-  } else {
-    for (std::size_t i = 0; i < T_work_.size(); ++i) T_work_[i] = yd[i] / scale_[i];
+    else
+      T_work_[i] = scale_.empty() ? yd[i] : yd[i] / scale_[i];
   }
 }
 

@@ -45,6 +45,18 @@ void JacobianPattern::build(const ThermalNetwork& net) {
     slot_ab[e] = slot_of(net.edge_a[e], net.edge_b[e]);
     slot_ba[e] = slot_of(net.edge_b[e], net.edge_a[e]);
   }
+  node_edge_start.assign(n + 1, 0);
+  for (std::size_t e = 0; e < m; ++e) {
+    ++node_edge_start[std::size_t(net.edge_a[e]) + 1];
+    ++node_edge_start[std::size_t(net.edge_b[e]) + 1];
+  }
+  for (std::size_t i = 0; i < n; ++i) node_edge_start[i + 1] += node_edge_start[i];
+  node_edge.resize(std::size_t(node_edge_start[n]));
+  std::vector<std::int64_t> next(node_edge_start.begin(), node_edge_start.end() - 1);
+  for (std::size_t e = 0; e < m; ++e) {  // ascending e: each node's list comes out sorted
+    node_edge[std::size_t(next[std::size_t(net.edge_a[e])]++)] = std::int32_t(e);
+    node_edge[std::size_t(next[std::size_t(net.edge_b[e])]++)] = std::int32_t(e);
+  }
 }
 
 }  // namespace tmdem::thermal

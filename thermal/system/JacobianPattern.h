@@ -15,6 +15,12 @@ struct JacobianPattern {
   std::vector<std::int64_t> diagonal_slot; // n: slot of (i, i)
   std::vector<std::int64_t> slot_ab;       // per edge: slot of (row a, column b)
   std::vector<std::int64_t> slot_ba;       // per edge: slot of (row b, column a)
+  // The edges touching each node, in increasing edge order: node i's are
+  // node_edge[node_edge_start[i] .. node_edge_start[i + 1]). A loop over nodes that adds each
+  // node's edge terms in this order adds them in the order a loop over edges does, so it gives
+  // the same bits on any number of threads (ThermalSystem::jacobian_times).
+  std::vector<std::int64_t> node_edge_start;  // n + 1
+  std::vector<std::int32_t> node_edge;        // 2 per edge
 
   // Duplicate edges (the same pair twice) share one slot; assembly then adds them up.
   void build(const ThermalNetwork& network);

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "thermal/modes/ParticleResistance.h"
+#include "thermal/network/NodeLoopThreads.h"
 
 namespace tmdem::thermal {
 
@@ -15,9 +16,16 @@ ThermalSystem::ThermalSystem(ThermalNetwork network,
     : network_(std::move(network)), modes_(std::move(modes)) {
   network_.validate();
   network_.apply_time(time_s_);
-  pattern_.build(network_);
   for (auto& mode : modes_) mode->update_geometry(network_);
   update_series_factors();
+}
+
+const JacobianPattern& ThermalSystem::pattern() const {
+  if (!pattern_built_) {
+    pattern_.build(network_);
+    pattern_built_ = true;
+  }
+  return pattern_;
 }
 
 void ThermalSystem::update_series_factors() {
@@ -67,7 +75,8 @@ void ThermalSystem::replace_edges(const ThermalNetwork& edges) {
   if (same_shape) {
     ++values_version_;
   } else {
-    pattern_.build(network_);
+    pattern_ = JacobianPattern{};  // built again when next asked for
+    pattern_built_ = false;
     ++topology_version_;
     ++values_version_;
   }
@@ -101,8 +110,12 @@ bool ThermalSystem::time_derivative(std::span<const double> T, std::span<double>
                                     double& boundary_W) const {
   if (!heat_flow(T, dTdt, boundary_W)) return false;
   const auto& held = network_.held;
-  for (std::size_t i = 0; i < dTdt.size(); ++i)
+  const std::int64_t n = std::int64_t(dTdt.size());
+#pragma omp parallel for schedule(static) num_threads(node_loop_threads(dTdt.size()))
+  for (std::int64_t k = 0; k < n; ++k) {
+    const auto i = std::size_t(k);
     dTdt[i] = held[i] ? 0.0 : dTdt[i] / network_.heat_capacity_at(i, T[i]);
+  }
   return true;
 }
 
@@ -142,10 +155,11 @@ void ThermalSystem::jacobian_values(const JacobianEvaluation& J, std::span<doubl
                                     std::span<const double> scale) const {
   check_evaluation(J);
   const auto& held = network_.held;
+  const JacobianPattern& p = pattern();
   std::fill(values.begin(), values.end(), 0.0);
   for (std::size_t i = 0; i < size(); ++i)
     if (!held[i])
-      values[pattern_.diagonal_slot[i]] +=
+      values[p.diagonal_slot[i]] +=
           J.diagonal_W_per_K[i] / capacity(J, i);
   for (std::size_t e = 0; e < network_.edge_count(); ++e) {
     const auto a = network_.edge_a[e], b = network_.edge_b[e];
@@ -153,8 +167,8 @@ void ThermalSystem::jacobian_values(const JacobianEvaluation& J, std::span<doubl
     const double h_ab = J.edge_W_per_K[e] + J.edge_ab_W_per_K[e];
     const double h_ba = J.edge_W_per_K[e] + J.edge_ba_W_per_K[e];
     const double sab = scale.empty() ? 1.0 : scale[a] / scale[b];
-    values[pattern_.slot_ab[e]] += h_ab / capacity(J, std::size_t(a)) * sab;
-    values[pattern_.slot_ba[e]] += h_ba / capacity(J, std::size_t(b)) / sab;
+    values[p.slot_ab[e]] += h_ab / capacity(J, std::size_t(a)) * sab;
+    values[p.slot_ba[e]] += h_ba / capacity(J, std::size_t(b)) / sab;
   }
 }
 
@@ -162,20 +176,29 @@ void ThermalSystem::jacobian_times(const JacobianEvaluation& J, std::span<const 
                                    std::span<double> Jv, std::span<const double> scale) const {
   check_evaluation(J);
   const auto& held = network_.held;
-  // Work in unscaled variables: u = S^-1 v, w = J u, Jv = S w.
-  for (std::size_t i = 0; i < size(); ++i) {
-    const double u = scale.empty() ? v[i] : v[i] / scale[i];
-    Jv[i] = held[i] ? 0.0 : J.diagonal_W_per_K[i] * u;
+  const auto* a = network_.edge_a.data();
+  const auto* b = network_.edge_b.data();
+  const JacobianPattern& p = pattern();  // before the threads: built here if need be
+  const auto* start = p.node_edge_start.data();
+  const auto* incident = p.node_edge.data();
+  // Work in unscaled variables: u = S^-1 v, w = J u, Jv = S w. Row by row: each row adds its
+  // diagonal, then its edges in edge order (JacobianPattern::node_edge), the order of a loop
+  // over the edges, so every thread count gives the same bits.
+  const auto u = [&](std::size_t k) { return scale.empty() ? v[k] : v[k] / scale[k]; };
+  const std::int64_t n = std::int64_t(size());
+#pragma omp parallel for schedule(static) num_threads(node_loop_threads(size()))
+  for (std::int64_t row = 0; row < n; ++row) {
+    const auto i = std::size_t(row);
+    double w = held[i] ? 0.0 : J.diagonal_W_per_K[i] * u(i);
+    for (auto k = start[i]; k < start[i + 1]; ++k) {
+      const auto e = std::size_t(incident[k]);
+      const auto ea = std::size_t(a[e]), eb = std::size_t(b[e]);
+      if (held[ea] || held[eb]) continue;
+      if (ea == i) w += (J.edge_W_per_K[e] + J.edge_ab_W_per_K[e]) * u(eb);
+      if (eb == i) w += (J.edge_W_per_K[e] + J.edge_ba_W_per_K[e]) * u(ea);
+    }
+    Jv[i] = w * ((scale.empty() ? 1.0 : scale[i]) / capacity(J, i));
   }
-  for (std::size_t e = 0; e < network_.edge_count(); ++e) {
-    const auto a = network_.edge_a[e], b = network_.edge_b[e];
-    if (held[a] || held[b]) continue;
-    const double ua = scale.empty() ? v[a] : v[a] / scale[a];
-    const double ub = scale.empty() ? v[b] : v[b] / scale[b];
-    Jv[a] += (J.edge_W_per_K[e] + J.edge_ab_W_per_K[e]) * ub;
-    Jv[b] += (J.edge_W_per_K[e] + J.edge_ba_W_per_K[e]) * ua;
-  }
-  for (std::size_t i = 0; i < size(); ++i) Jv[i] *= (scale.empty() ? 1.0 : scale[i]) / capacity(J, i);
 }
 
 double ThermalSystem::explicit_stability_bound_s(double T_max_K) const {

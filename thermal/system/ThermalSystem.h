@@ -51,7 +51,10 @@ class ThermalSystem {
   bool time_derivative(std::span<const double> T_K, std::span<double> dTdt_K_per_s,
                        double& boundary_W) const;
 
-  const JacobianPattern& pattern() const { return pattern_; }
+  // Built when first asked for after each change of the contact graph's shape: a system whose
+  // Jacobian is never assembled (the whole bed's, in each process of a run over MPI, where each
+  // integrates its own piece) never holds it (152 MB at 10^6 particles).
+  const JacobianPattern& pattern() const;
   // Evaluates d q / d T of every mode at T into J (resized to the current network; no
   // allocation once J has seen the largest edge count).
   void evaluate_jacobian(std::span<const double> T_K, JacobianEvaluation& J) const;
@@ -90,7 +93,8 @@ class ThermalSystem {
 
   ThermalNetwork network_;
   std::vector<std::unique_ptr<HeatTransferMode>> modes_;
-  JacobianPattern pattern_;
+  mutable JacobianPattern pattern_;
+  mutable bool pattern_built_ = false;
   std::uint64_t topology_version_ = 0;
   std::uint64_t values_version_ = 0;
   double time_s_ = 0.0;

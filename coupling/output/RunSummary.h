@@ -26,6 +26,12 @@ struct SummaryField {
   Value Block::*member;
   bool omit_empty = false;
 };
+// Deduction guides: clang 14 (Debian 12's, the sanitizer and fuzz builds) has no class template
+// argument deduction for aggregates, which gcc 12 has.
+template <class Block, class Value>
+SummaryField(const char*, Value Block::*) -> SummaryField<Block, Value>;
+template <class Block, class Value>
+SummaryField(const char*, Value Block::*, bool) -> SummaryField<Block, Value>;
 
 // "mechanics.tolerance_schedule" (extra; only for scenes with mechanics.fall_tolerance): the
 // tolerances, how many steps were solved at fall_tolerance (and of those unconverged: every

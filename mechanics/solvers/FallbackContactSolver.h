@@ -2,34 +2,51 @@
 // A contact solver that hands the steps its first solver does not converge to a second one,
 // started from the first one's reactions ("nncg_ipm": nncg, then the interior point). Where the
 // first converges, the result is the first's, to the bit: the fallback costs nothing on the
-// steps that never needed it. Compliant problems are the first solver's alone (ContactSolverRegistry
+// steps that never needed it. The second runs only on problems up to a size, and its result is
+// kept only if it is nearer the law than the first's. Compliant problems are the first solver's alone (ContactSolverRegistry
 // lists "nncg_ipm" as taking them: it is "nncg" there).
 
+#include <cstddef>
 #include <memory>
 #include <string>
 
+#include "mechanics/contact/SiconosResidual.h"
 #include "mechanics/solvers/ContactSolver.h"
 
 namespace tmdem::mechanics {
 
 class FallbackContactSolver final : public ContactSolver {
  public:
+  // max_unknowns: the second solver is tried only on problems of at most this many body
+  // unknowns (6 per sphere, 3 per disk): "ipm" factorises them at every iteration, and above
+  // ~3e4 a 3D Cholesky takes seconds (8,765 spheres: about 100 s a fallback step).
   FallbackContactSolver(std::string name, std::unique_ptr<ContactSolver> first,
-                        std::unique_ptr<ContactSolver> second)
-      : name_(std::move(name)), first_(std::move(first)), second_(std::move(second)) {}
+                        std::unique_ptr<ContactSolver> second, std::size_t max_unknowns)
+      : name_(std::move(name)), first_(std::move(first)), second_(std::move(second)), max_unknowns_(max_unknowns) {}
 
   std::string_view name() const override { return name_; }
   SolveReport solve_with_rolling(const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
                                  std::vector<Eigen::Vector3d>& m, std::vector<Eigen::Vector3d>& velocity,
                                  std::vector<Eigen::Vector3d>& angular_velocity) override {
     const SolveReport first = first_->solve_with_rolling(problem, r, m, velocity, angular_velocity);
-    // A compliant problem (mechanics.normal_law = "hertz") stays with the first solver: the
-    // second ("ipm") takes rigid contacts only.
-    if (first.converged || problem.compliant) return first;
+    const std::size_t unknowns = problem.particle_count * (problem.dimension == 2 ? 3 : 6);
+    if (first.converged || problem.compliant || unknowns > max_unknowns_) return first;
     ++fallbacks_;
+    // The first's result is kept when the second ends further from the law (Siconos' residual).
+    const double q_norm = free_velocity_norm(problem);
+    const double first_residual = siconos_residual(problem, r, m, velocity, angular_velocity, q_norm);
+    r_ = r;
+    m_ = m;
     SolveReport second = second_->solve_with_rolling(problem, r, m, velocity, angular_velocity);
     second.sweeps += first.sweeps;
-    return second;
+    if (second.converged || siconos_residual(problem, r, m, velocity, angular_velocity, q_norm) <= first_residual)
+      return second;
+    r = r_;
+    m = m_;
+    problem.velocities_from_reactions(r, m, velocity, angular_velocity);
+    SolveReport kept = first;
+    kept.sweeps = second.sweeps;
+    return kept;
   }
   std::vector<double> carried_state() const override { return first_->carried_state(); }
   void restore_carried_state(const std::vector<double>& state) override { first_->restore_carried_state(state); }
@@ -39,6 +56,8 @@ class FallbackContactSolver final : public ContactSolver {
  private:
   std::string name_;
   std::unique_ptr<ContactSolver> first_, second_;
+  std::size_t max_unknowns_;
+  std::vector<Eigen::Vector3d> r_, m_;  // the first's result while the second runs
   long fallbacks_ = 0;
 };
 

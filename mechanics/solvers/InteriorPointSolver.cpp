@@ -22,7 +22,8 @@ InteriorPointSolver::InteriorPointSolver(const SolverSettings& settings, const O
   factor_->llt.cholmod().print = 0;  // a failed factorisation is retried (assemble_and_factorise)
   if (options_.polish_sweeps > 0) {
     SolverSettings polishing = settings_;
-    polishing.max_iterations = options_.polish_sweeps;
+    // Within the solve's own budget (mechanics.max_iterations).
+    polishing.max_iterations = std::min(options_.polish_sweeps, settings_.max_iterations);
     polishing.siconos_stop = true;
     polisher_ = std::make_unique<NncgSolver>(polishing);
   }

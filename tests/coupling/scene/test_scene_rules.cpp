@@ -377,9 +377,9 @@ TEST(SceneRules, SolverByNameListsTheValidNames) {
   expect_scene_error(kBaseScene, {"mechanics.solver=jacobi_typo"},
                      {"mechanics.solver", "\"nlgs\"", "\"jacobi_typo\""});
   EXPECT_EQ(load_scene_text(kBaseScene, "t", {"mechanics.solver=nlgs"}).mechanics.solver, "nlgs");
-  // The default is nncg (issue 10: fastest to rest and most steps converged on every example;
-  // docs/benchmarks.md "Every example").
-  EXPECT_EQ(load_scene_text(kBaseScene, "t").mechanics.solver, "nncg");
+  // The default is nncg_ipm: nncg (fastest to rest and most steps converged on every example,
+  // docs/mechanics.md), with the interior point on the steps it leaves unconverged.
+  EXPECT_EQ(load_scene_text(kBaseScene, "t").mechanics.solver, "nncg_ipm");
 }
 
 TEST(SceneRules, MaxIterationsAtLeastOne) {

@@ -154,11 +154,11 @@ TEST(SiconosResidual, OtherSolversKeepTheirOwnStopTest) {
   EXPECT_GT(with.stats().siconos_unconverged_steps, 0);  // reported, not acted on
 }
 
-// The default (nncg, stop_test "siconos"): the slow column's first step from rest meets the
+// The default (nncg_ipm, stop_test "siconos"): the slow column's first step from rest meets the
 // tolerance in Siconos' measure, and counts as converged.
 TEST(SiconosResidual, DefaultIntegratorMeetsItOnTheSlowColumn) {
   const NscdParameters parameters;  // the defaults
-  ASSERT_EQ(parameters.solver, "nncg");
+  ASSERT_EQ(parameters.solver, "nncg_ipm");
   ASSERT_TRUE(parameters.siconos_stop);
   const NscdIntegrator sim = first_step_cold(slow_column_masses(), parameters);
   EXPECT_EQ(sim.stats().unconverged_steps, 0);

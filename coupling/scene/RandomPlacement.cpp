@@ -93,11 +93,14 @@ RandomPlacement place_random(std::size_t count, const Eigen::Vector3d& box_min,
       avoid.radii.empty() ? 0.0 : *std::max_element(avoid.radii.begin(), avoid.radii.end());
   const double cell = r_max + std::max(r_max, avoid_r_max);
   int dims[3] = {1, 1, 1};
+  double cells = 1.0;
   for (int a = 0; a < axes; ++a) {
-    dims[a] = std::max(1, static_cast<int>(std::floor((box_max[a] - box_min[a]) / cell)));
+    // Counted in double first: a box 1e43 cells wide does not fit an int (the fuzzer found it).
+    const double along = std::max(1.0, std::floor((box_max[a] - box_min[a]) / cell));
+    cells *= along;
+    if (cells > 1e8) throw std::invalid_argument("place_random: box too large for the radius");
+    dims[a] = static_cast<int>(along);
   }
-  const double cells = static_cast<double>(dims[0]) * dims[1] * dims[2];
-  if (cells > 1e8) throw std::invalid_argument("place_random: box too large for the radius");
   std::vector<std::int64_t> head(static_cast<std::size_t>(cells), -1);
   std::vector<std::int64_t> next(count + avoid.positions.size(), -1);
   auto cell_coordinate = [&](const Eigen::Vector3d& x, int a) {

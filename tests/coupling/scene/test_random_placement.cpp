@@ -64,6 +64,17 @@ TEST(RandomPlacement, ThrowsWhenTheBoxIsTooSmall) {
                std::invalid_argument);
 }
 
+// A box 1e43 cells wide (found by the scene fuzzer): refused as too large, its cell count taken
+// in floating point (an int cast of it was undefined, and in practice gave one cell).
+TEST(RandomPlacement, RefusesABoxOfMoreCellsThanAnIntHolds) {
+  try {
+    place_random(1, Vector3d(0, 0, 0), Vector3d(1e40, 0.1, 0.1), {0.001}, {1.0}, 1, 3);
+    ADD_FAILURE() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("box too large"), std::string::npos) << e.what();
+  }
+}
+
 // Several generators fill one box: the spheres of `avoid` are kept clear of, and an `avoid`
 // set that touches nothing changes nothing.
 TEST(RandomPlacement, KeepsClearOfEarlierSpheres) {

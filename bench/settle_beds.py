@@ -1,0 +1,81 @@
+#!/usr/bin/env python3
+"""Settle beds at the scene defaults and print one line a bed (the beds users bring, and ours).
+
+Usage, from the project's root after a build:
+    python3 bench/settle_beds.py [--threads N] [--limit SECONDS] [BED.toml ...]
+Default beds: bench/beds/*.toml (ours: other containers, frictions, size and mass ratios, 2D,
+plates and pistons than the sample users gave us). Each bed runs
+    OMP_NUM_THREADS=N build/tmdem run BED.toml --summary S.json --quiet --set simulation.duration=1e-3
+in a temporary folder (the heating after the settle is cut to 1 ms: only the mechanics is judged)
+and its line says: particles, mechanical steps, mean sweeps, unconverged steps, the largest
+Siconos residual, the largest speed when frozen, mechanics wall seconds, CPU seconds of the
+process, and "ok" when the bed came to rest with no step unconverged within the limit.
+Exit 1 when a bed falls short. Needs only the standard library.
+"""
+import argparse
+import glob
+import json
+import os
+import resource
+import subprocess
+import sys
+import tempfile
+import time
+
+
+def settle(tmdem, bed, threads, limit, work):
+    name = os.path.splitext(os.path.basename(bed))[0]
+    summary = os.path.join(work, name + ".json")
+    command = [tmdem, "run", os.path.abspath(bed), "-o", os.path.join(work, name + ".h5"), "--summary", summary,
+               "--quiet", "--set", "simulation.duration=1e-3"]
+    env = dict(os.environ, OMP_NUM_THREADS=str(threads))
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    start = time.monotonic()
+    try:
+        result = subprocess.run(command, cwd=os.path.dirname(os.path.abspath(bed)), env=env,
+                                capture_output=True, text=True, timeout=limit)
+        code = result.returncode
+        stderr = result.stderr
+    except subprocess.TimeoutExpired as expired:
+        code = "time limit"
+        stderr = expired.stderr.decode() if isinstance(expired.stderr, bytes) else (expired.stderr or "")
+    wall = time.monotonic() - start
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    if code != 0 or not os.path.exists(summary):
+        last = stderr.strip().splitlines()[-1] if stderr.strip() else ""
+        return False, f"{name:<20} {'':>9} {'':>6} {'':>7} {'':>6} {'':>9} {'':>10} {wall:>8.1f} {cpu:>8.1f}  " \
+                      f"FALLS SHORT ({code}{': ' + last[:80] if code != 'time limit' else ''})"
+    s = json.load(open(summary))
+    m = s["mechanics"]
+    rest = s.get("settle", {})
+    ok = rest.get("at_rest") is True and m["unconverged_steps"] == 0
+    return ok, (f"{name:<20} {s.get('particles', '?')!s:>9} {m['steps']:>6} {m.get('mean_iterations', 0):>7.0f} "
+                f"{m['unconverged_steps']:>6} {m.get('max_siconos_residual', float('nan')):>9.1e} "
+                f"{rest.get('max_speed_m_s', float('nan')):>10.2e} {s['wall_time_parts']['mechanics_s']:>8.1f} "
+                f"{cpu:>8.1f}  {'ok' if ok else 'FALLS SHORT'}{'' if rest.get('at_rest') else ' (not at rest)'}")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--threads", type=int, default=2)
+    parser.add_argument("--limit", type=float, default=300.0, help="seconds per bed (wall)")
+    parser.add_argument("--tmdem", default=os.path.join(os.getcwd(), "build", "tmdem"))
+    parser.add_argument("beds", nargs="*")
+    args = parser.parse_args()
+    beds = args.beds or sorted(glob.glob(os.path.join(os.path.dirname(os.path.abspath(__file__)), "beds", "*.toml")))
+    if not os.access(args.tmdem, os.X_OK):
+        sys.exit(f"no {args.tmdem}: run from the project's root after a build, or give --tmdem")
+    print(f"{'bed':<20} {'particles':>9} {'steps':>6} {'sweeps':>7} {'unconv':>6} {'siconos':>9} "
+          f"{'speed m/s':>10} {'mech s':>8} {'cpu s':>8}  verdict", flush=True)
+    all_ok = True
+    with tempfile.TemporaryDirectory() as work:
+        for bed in beds:
+            ok, line = settle(args.tmdem, bed, args.threads, args.limit, work)
+            all_ok = all_ok and ok
+            print(line, flush=True)
+    sys.exit(0 if all_ok else 1)
+
+
+if __name__ == "__main__":
+    main()

@@ -18,6 +18,18 @@ bool gas_layer_shared(const Scene& scene) {
          "equal_solid_angle";
 }
 
+// This process's local network from its piece of the bed alone (BedPiece.h).
+thermal::LocalNetwork local_network_of_piece(const Scene& scene, std::span<const double> position_m,
+                                             const thermal::NetworkPartition& partition) {
+  const int rank = thermal::MpiWorld::rank();
+  const auto piece = BedPiece::build(scene, position_m, partition, rank);
+  auto total_W_per_K =
+      thermal::owned_flux_conductance_W_per_K(piece.network, piece.particle, partition, rank);
+  for (auto& conductance : total_W_per_K) conductance = thermal::MpiWorld::sum(conductance);
+  return thermal::extract_local_network(piece.network, piece.particle, partition, rank,
+                                        total_W_per_K);
+}
+
 }  // namespace
 
 std::string distributed_heating_refusal(const Scene& scene, int processes) {
@@ -42,11 +54,19 @@ std::string distributed_heating_refusal(const Scene& scene, int processes) {
   return "";
 }
 
+HeatingSetUp distributed_set_up(const Scene& scene) {
+  return scene.effects.mechanics == MechanicsMode::Off && !scene.output.contacts
+             ? HeatingSetUp::Piece
+             : HeatingSetUp::WholeNetwork;
+}
+
 DistributedHeating::DistributedHeating(const Scene& scene, const thermal::ThermalSystem& global,
-                                       std::span<const double> position_m)
+                                       std::span<const double> position_m, HeatingSetUp set_up)
     : partition_(thermal::NetworkPartition::slabs(position_m, thermal::MpiWorld::size())),
-      local_(thermal::extract_local_network(global.network(), partition_,
-                                            thermal::MpiWorld::rank())) {
+      local_(set_up == HeatingSetUp::Piece
+                 ? local_network_of_piece(scene, position_m, partition_)
+                 : thermal::extract_local_network(global.network(), partition_,
+                                                  thermal::MpiWorld::rank())) {
   // The same modes as the global system, built afresh for the local network (a mode prepares
   // per-edge data for the network it is given).
   ThermalNetworkBuilder builder(scene);

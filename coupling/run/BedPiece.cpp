@@ -11,8 +11,9 @@
 namespace tmdem::coupling {
 namespace {
 
-// The scene without its particles and imported forces (the piece brings its own): every other
-// member, which the contact detection and the network builder read.
+// The scene without its particles and imported forces (the piece brings its own): the members
+// the contact detection and the network builder read (not the import reports, the warnings,
+// the TOML text). Member by member: copying the whole scene would hold its particles twice.
 Scene settings_of(const Scene& s) {
   Scene out;
   out.duration_s = s.duration_s;
@@ -61,7 +62,8 @@ BedPiece BedPiece::build(const Scene& scene, std::span<const double> centre_m,
     hi = std::max(hi, x);
   }
   const double halo_m = detection_halo_m(scene);
-  const double period_m = scene.periodic.axis[std::size_t(axis)] ? scene.periodic.length_m(axis) : 0.0;
+  const double period_m =
+      scene.periodic.axis[std::size_t(axis)] ? scene.periodic.length_m(axis) : 0.0;
   const auto owned = [&](std::size_t i) { return p.owner(std::int32_t(i)) == rank; };
   std::vector<std::uint8_t> keep(n, 0);
   for (std::size_t i = 0; i < n; ++i)
@@ -82,7 +84,7 @@ BedPiece BedPiece::build(const Scene& scene, std::span<const double> centre_m,
     piece_of[i] = std::int32_t(out.particle.size());
     out.particle.push_back(std::int32_t(i));
     piece.particles.push_back(scene.particles[i]);
-    for (int k = 0; k < 3; ++k) piece.particles.back().position_m[std::size_t(k)] = centre_m[3 * i + std::size_t(k)];
+    for (std::size_t k = 0; k < 3; ++k) piece.particles.back().position_m[k] = centre_m[3 * i + k];
     if (!imported.wall_gap.empty()) piece.imported_forces.wall_gap.push_back(imported.wall_gap[i]);
   }
   for (const auto& c : imported.pairs) {

@@ -28,7 +28,8 @@ void CoupledRun::prepare_mechanics() {
     if (restart_) {
       centre_m_ = restart_->position_m;
     } else {
-      for (const auto& p : scene_.particles) centre_m_.insert(centre_m_.end(), p.position_m.begin(), p.position_m.end());
+      for (const auto& p : scene_.particles)
+        centre_m_.insert(centre_m_.end(), p.position_m.begin(), p.position_m.end());
     }
     return;
   }
@@ -113,9 +114,10 @@ double CoupledRun::max_temperature_K() const {
 void CoupledRun::prepare_thermal() {
   // Each process's piece of the bed is built in prepare_distributed_thermal: here the whole
   // bed's nodes and modes alone (energy, heat capacities, the modes' names).
-  system_ = centre_m_.empty()
-                ? build_thermal_system(scene_, contacts_, frozen_ ? &particles_ : &nscd_->particles())
-                : build_thermal_nodes(scene_);
+  if (centre_m_.empty())
+    system_ = build_thermal_system(scene_, contacts_, frozen_ ? &particles_ : &nscd_->particles());
+  else
+    system_ = build_thermal_nodes(scene_);
   if (!frozen_) {
     dynamic_network_ = std::make_unique<DynamicNetwork>(scene_, *system_);
     // The network the checkpoint's step left, on the pattern it had: the same edges, in the

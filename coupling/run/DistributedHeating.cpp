@@ -1,6 +1,7 @@
 #include "coupling/run/DistributedHeating.h"
 
 #include "coupling/bridge/ThermalNetworkBuilder.h"
+#include "coupling/run/BedPiece.h"
 #include "coupling/run/LinearSolverChoice.h"
 #include "thermal/integrators/DistributedCvodeIntegrator.h"
 #include "thermal/integrators/IntegratorKind.h"

@@ -5,14 +5,13 @@
 // thermal::DistributedCvodeIntegrator (CG, BoomerAMG across the processes). The integrator
 // gathers every temperature to every process after each advance, so the coupled run writes
 // frames and the summary from rank 0 as in one process. The local network comes from the whole
-// network every process built (SetUp::WholeNetwork: a settled bed, or frames with contacts), or
-// from the process's own particles and those within reach of its slab alone (SetUp::Piece,
-// BedPiece.h: mechanics off).
+// network every process built (HeatingSetUp::WholeNetwork: a settled bed, or frames with
+// contacts), or from the process's own particles and those within reach of its slab alone
+// (HeatingSetUp::Piece, BedPiece.h: mechanics off).
 #include <memory>
 #include <span>
 #include <string>
 
-#include "coupling/run/BedPiece.h"
 #include "coupling/scene/Scene.h"
 #include "thermal/integrators/ThermalIntegrator.h"
 #include "thermal/network/LocalNetwork.h"

@@ -69,7 +69,8 @@ LocalNetwork extract_local_network(const ThermalNetwork& g, std::span<const std:
   if (piece.size() != std::size_t(owned))
     throw std::invalid_argument("extract_local_network: the network holds " +
                                 std::to_string(piece.size()) + " of the " +
-                                std::to_string(owned) + " nodes of process " + std::to_string(rank));
+                                std::to_string(owned) + " nodes of process " +
+                                std::to_string(rank));
   std::sort(piece.begin(), piece.end(), [&](auto a, auto b) { return row(a) < row(b); });
   for (const auto k : piece) out.row.push_back(row(k));
   // Ghosts: the other end of every edge that leaves this process, and per neighbour the owned
@@ -152,7 +153,8 @@ LocalNetwork extract_local_network(const ThermalNetwork& g, std::span<const std:
   const auto mine_W_per_K = owned_flux_conductance_W_per_K(g, node_id, p, rank);
   l.flux_wall_power_W = g.flux_wall_power_W;
   for (std::size_t w = 0; w < flux_total_W_per_K.size(); ++w)
-    if (flux_total_W_per_K[w] > 0.0) l.flux_wall_power_W[w] *= mine_W_per_K[w] / flux_total_W_per_K[w];
+    if (flux_total_W_per_K[w] > 0.0)
+      l.flux_wall_power_W[w] *= mine_W_per_K[w] / flux_total_W_per_K[w];
   return out;
 }
 

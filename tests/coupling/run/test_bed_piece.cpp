@@ -4,15 +4,19 @@
 // network gives (thermal::extract_local_network on it, itself tested against the whole system
 // in tests/thermal/network/test_local_network.cpp): the same nodes, rows, ghosts and exchanges,
 // the same edges with the same conductances, gaps and shadowing, the same wall and flux edges
-// and flux powers. And a piece must be a piece: fewer particles than the bed.
+// and flux powers; on a periodic lattice, a deposited bed with near pairs, and an imported
+// column with its pair forces. And a piece must be a piece: fewer particles than the bed.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <fstream>
 #include <sstream>
 
 #include "coupling/run/BedPiece.h"
 #include "coupling/run/ThermalProblem.h"
 #include "coupling/scene/SceneLoader.h"
 #include "support/SceneBuilder.h"
+#include "support/ScratchDir.h"
 #include "thermal/network/LocalNetwork.h"
 #include "thermal/network/NetworkPartition.h"
 
@@ -149,6 +153,52 @@ TEST(BedPiece, DepositedBedWithNearPairsGivesTheWholeNetworksLocalNetworks) {
     EXPECT_GT(counts.near_edges, 0u);      // the gap modes' pairs are there
     EXPECT_GT(counts.shadowed_edges, 0u);  // and some of them shadowed
   }
+}
+
+// An imported column with its pair forces (a LIGGGHTS particle dump and local dump: ten 1 mm
+// steel spheres stacked along y on a hot floor, each contact carrying the weight above it): the
+// Hertz conductances come from the file's forces, and the floor's from the bottom sphere's
+// balance of its weight and its imported pair forces, which the process owning it must hold
+// whole. Cut across y into 3 slabs, each with its halo of neighbours.
+TEST(BedPiece, ImportedColumnWithItsForcesGivesTheWholeNetworksLocalNetworks) {
+  const int n = 10;
+  const double weight_N = 7800.0 * 4.0 / 3.0 * 3.141592653589793 * 1e-9 * 9.81;
+  std::string particles = "ITEM: TIMESTEP\n100\nITEM: NUMBER OF ATOMS\n" + std::to_string(n) +
+                          "\nITEM: BOX BOUNDS ff ff ff\n-0.01 0.01\n0 0.03\n-0.01 0.01\n"
+                          "ITEM: ATOMS id type x y z radius\n";
+  std::string pairs = "ITEM: TIMESTEP\n100\nITEM: NUMBER OF ENTRIES\n" + std::to_string(n - 1) +
+                      "\nITEM: BOX BOUNDS ff ff ff\n-0.01 0.01\n0 0.03\n-0.01 0.01\nITEM: ENTRIES";
+  for (int k = 1; k <= 12; ++k) pairs += " c_pc[" + std::to_string(k) + "]";
+  pairs += "\n";
+  char line[200];
+  for (int k = 1; k <= n; ++k) {
+    std::snprintf(line, sizeof line, "%d 1 0 %.17g 0 0.001\n", k, 0.002 * k - 0.001);
+    particles += line;
+  }
+  // Upper sphere k + 1 first; the force on it is up, the weight of it and those above.
+  for (int k = 1; k < n; ++k) {
+    std::snprintf(line, sizeof line, "0 %.17g 0 0 %.17g 0 %d %d 0 0 %.17g 0\n",
+                  0.002 * (k + 1) - 0.001, 0.002 * k - 0.001, k + 1, k, (n - k) * weight_N);
+    pairs += line;
+  }
+  const auto dir = tmdem::test::scratch_folder("tmdem_bed_piece_", "imported");
+  std::ofstream(dir + "/column.dump") << particles;
+  std::ofstream(dir + "/pairs.dump") << pairs;
+  const std::string text =
+      steel_scene()
+          .set({{"simulation.gravity", {0.0, -9.81, 0.0}}, {"effects.mechanics", "off"}})
+          .add("import", {{"file", dir + "/column.dump"},
+                          {"material", "steel"},
+                          {"contacts", dir + "/pairs.dump"},
+                          {"contact_columns",
+                           raw("{ id1 = \"c_pc[7]\", id2 = \"c_pc[8]\", force = [\"c_pc[10]\", "
+                               "\"c_pc[11]\", \"c_pc[12]\"] }")}})
+          .add("wall", floor_wall({{"temperature", 373.15}}));
+  std::ofstream(dir + "/column.toml") << text;
+  const auto scene = load_scene_file(dir + "/column.toml");
+  ASSERT_EQ(scene.imported_forces.pairs.size(), std::size_t(n - 1));
+  // Two cuts of one pair each, both ends ghosts on the other side.
+  EXPECT_EQ(compare_piece_and_whole(scene, 3).ghosts, 4u);
 }
 
 }  // namespace

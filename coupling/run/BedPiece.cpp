@@ -6,6 +6,7 @@
 #include "coupling/bridge/RestingContacts.h"
 #include "coupling/bridge/SceneToMechanics.h"
 #include "coupling/bridge/ThermalNetworkBuilder.h"
+#include "coupling/run/PieceDiagnostics.h"
 #include "coupling/scene/HeatModes.h"
 
 namespace tmdem::coupling {
@@ -101,6 +102,8 @@ BedPiece BedPiece::build(const Scene& scene, std::span<const double> centre_m,
   ThermalNetworkBuilder builder(piece);
   out.network = builder.nodes();
   builder.build_edges(contacts, out.network, nullptr, &particles);
+  out.diagnostics = diagnose_piece(scene, contacts, out.particle,
+                                   out.network.heat_capacity_J_per_K, p, rank);
   return out;
 }
 

@@ -10,6 +10,7 @@
 #include <span>
 #include <vector>
 
+#include "coupling/bridge/ThermalDiagnostics.h"
 #include "coupling/scene/Scene.h"
 #include "thermal/network/NetworkPartition.h"
 #include "thermal/network/ThermalNetwork.h"
@@ -20,7 +21,10 @@ struct BedPiece {
   // Piece index -> scene particle id, increasing: the contacts' canonical (i, j) order among the
   // piece's particles is the scene's.
   std::vector<std::int32_t> particle;
-  std::size_t contacts = 0;  // detected among the piece's particles (and with the walls)
+  std::size_t contacts = 0;  // detected among the piece's particles and with the walls
+  // This process's share of the start-up diagnostics (PieceDiagnostics.h), taken from the
+  // contacts before they are dropped: the network is all that is kept of them.
+  ThermalDiagnostics diagnostics;
   // Nodes: the piece's particles, by piece index; edges from their contacts (and near pairs for
   // the gap modes). Edges between two halo particles are there too; extraction drops them.
   thermal::ThermalNetwork network;

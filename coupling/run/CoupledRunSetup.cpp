@@ -154,10 +154,10 @@ void CoupledRun::prepare_thermal() {
     report << ", modes:";
     for (const auto& m : system_->modes()) report << " " << m->name();
     report << "\n";
-    if (centre_m_.empty())
-      print_diagnostics(report, diagnose(scene_, contacts_, *system_, s.max_temperature_K));
-    else  // they need every particle's conductances, which no process holds
-      report << "thermal: no diagnostics (each process holds only its piece of the bed)\n";
+    // Each process holding only its piece: combined from the processes' own particles.
+    print_diagnostics(report, distributed_ && distributed_->diagnostics()
+                                  ? *distributed_->diagnostics()
+                                  : diagnose(scene_, contacts_, *system_, s.max_temperature_K));
     progress_.message(report.str().substr(0, report.str().size() - 1));
   }
 }

@@ -9,9 +9,11 @@
 // contacts), or from the process's own particles and those within reach of its slab alone
 // (HeatingSetUp::Piece, BedPiece.h: mechanics off).
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 
+#include "coupling/bridge/ThermalDiagnostics.h"
 #include "coupling/scene/Scene.h"
 #include "thermal/integrators/ThermalIntegrator.h"
 #include "thermal/network/LocalNetwork.h"
@@ -49,11 +51,15 @@ class DistributedHeating {
   // The piece's layout (owned count, nodes, rows, neighbours); its network is in the local
   // system, which the integrator holds.
   const thermal::LocalNetwork& local() const { return local_; }
+  // HeatingSetUp::Piece: the whole bed's start-up diagnostics, combined over the processes
+  // (PieceDiagnostics.h); the other set-up leaves them to the whole network.
+  const std::optional<ThermalDiagnostics>& diagnostics() const { return diagnostics_; }
 
  private:
   thermal::NetworkPartition partition_;
   thermal::LocalNetwork local_;
   std::unique_ptr<thermal::ThermalSystem> system_;
+  std::optional<ThermalDiagnostics> diagnostics_;
 };
 
 }  // namespace tmdem::coupling

@@ -12,7 +12,9 @@
 #include <fstream>
 #include <sstream>
 
+#include "coupling/bridge/ThermalDiagnostics.h"
 #include "coupling/run/BedPiece.h"
+#include "coupling/run/PieceDiagnostics.h"
 #include "coupling/run/ThermalProblem.h"
 #include "coupling/scene/SceneLoader.h"
 #include "support/SceneBuilder.h"
@@ -86,6 +88,17 @@ SplitCounts compare_piece_and_whole(const Scene& scene, int ranks) {
     total_W_per_K.resize(mine.size(), 0.0);
     for (std::size_t f = 0; f < mine.size(); ++f) total_W_per_K[f] += mine[f];
   }
+  // The start-up diagnostics from the processes' own particles, combined: the whole bed's.
+  std::vector<ThermalDiagnostics> shares;
+  for (const auto& piece : pieces) shares.push_back(piece.diagnostics);
+  const auto split = combine_shares(shares);
+  const auto whole = diagnose(scene, problem.contacts, *problem.system, 400.0);
+  EXPECT_GT(whole.heat_carrying_contacts, 0u);
+  EXPECT_EQ(split.heat_carrying_contacts, whole.heat_carrying_contacts);
+  EXPECT_EQ(split.isolated_particles, whole.isolated_particles);
+  EXPECT_EQ(split.max_biot, whole.max_biot);
+  EXPECT_EQ(split.min_time_constant_s, whole.min_time_constant_s);
+  EXPECT_EQ(split.max_time_constant_s, whole.max_time_constant_s);
   SplitCounts counts;
   for (int r = 0; r < ranks; ++r) {
     SCOPED_TRACE("rank " + std::to_string(r));

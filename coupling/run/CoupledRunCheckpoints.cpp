@@ -90,8 +90,8 @@ void CoupledRun::checkpoint(double t_s) {
   if (nscd_ && !frozen_) {
     store_mechanics_state(nscd_->save_state(), cs);
   } else {
-    for (std::size_t i = 0; i < particles_.size(); ++i)
-      for (int k = 0; k < 3; ++k) cs.position_m.push_back(particles_.position[i][k]);
+    const auto x = positions();
+    cs.position_m.assign(x.begin(), x.end());
     cs.velocity_m_per_s.assign(cs.position_m.size(), 0.0);
     cs.angular_velocity_rad_per_s.assign(cs.position_m.size(), 0.0);
     if (nscd_) {
@@ -110,6 +110,8 @@ void CoupledRun::checkpoint(double t_s) {
     cs.frames_written = std::int64_t(writer_->stored_frames());
     cs.result_contact_tail = writer_->contact_tail();
   }
+  // Empty over MPI when each process built only its piece of the bed (no process holds every
+  // contact); a frozen bed without mechanics detects them again on restart.
   store_contacts(contacts_, scene_.mechanics.time_step_s, cs);
   if (dynamic_network_) cs.thermal_pattern_pair = dynamic_network_->pattern_pairs();
   store_thermal_stats(integrator_->stats(), cs);

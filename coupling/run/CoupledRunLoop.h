@@ -97,6 +97,9 @@ class CoupledRun {
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 
   mechanics::ParticleSet particles_;                  // used when mechanics is off or settled
+  // Over MPI with each process building only its piece of the bed (HeatingSetUp::Piece): the
+  // centres, 3 per particle, in place of particles_ and contacts_, which stay empty.
+  std::vector<double> centre_m_;
   std::unique_ptr<mechanics::NscdIntegrator> nscd_;   // settle and dynamic
   bool frozen_ = true;                                // positions no longer change
   std::vector<double> zero_velocity_;

@@ -11,6 +11,7 @@
 namespace tmdem::coupling::run_detail {
 
 std::span<const double> CoupledRun::positions() const {
+  if (!centre_m_.empty()) return centre_m_;  // over MPI, each process its piece of the bed
   const auto& p = nscd_ && !frozen_ ? nscd_->particles().position : particles_.position;
   return {p.empty() ? nullptr : p.front().data(), 3 * p.size()};
 }

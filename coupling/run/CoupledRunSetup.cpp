@@ -21,8 +21,19 @@
 namespace tmdem::coupling::run_detail {
 
 void CoupledRun::prepare_mechanics() {
-  particles_ = make_particle_set(scene_);
   zero_velocity_.assign(3 * scene_.particles.size(), 0.0);
+  if (thermal::MpiWorld::distributed() && distributed_set_up(scene_) == HeatingSetUp::Piece) {
+    // Each process detects contacts in its piece of the bed alone (prepare_distributed_thermal):
+    // the centres are all it keeps of the whole bed.
+    if (restart_) {
+      centre_m_ = restart_->position_m;
+    } else {
+      for (const auto& p : scene_.particles)
+        centre_m_.insert(centre_m_.end(), p.position_m.begin(), p.position_m.end());
+    }
+    return;
+  }
+  particles_ = make_particle_set(scene_);
   if (restart_) {
     for (std::size_t i = 0; i < particles_.size(); ++i)
       for (int k = 0; k < 3; ++k) {
@@ -101,7 +112,12 @@ double CoupledRun::max_temperature_K() const {
 }
 
 void CoupledRun::prepare_thermal() {
-  system_ = build_thermal_system(scene_, contacts_, frozen_ ? &particles_ : &nscd_->particles());
+  // Each process's piece of the bed is built in prepare_distributed_thermal: here the whole
+  // bed's nodes and modes alone (energy, heat capacities, the modes' names).
+  if (centre_m_.empty())
+    system_ = build_thermal_system(scene_, contacts_, frozen_ ? &particles_ : &nscd_->particles());
+  else
+    system_ = build_thermal_nodes(scene_);
   if (!frozen_) {
     dynamic_network_ = std::make_unique<DynamicNetwork>(scene_, *system_);
     // The network the checkpoint's step left, on the pattern it had: the same edges, in the
@@ -138,7 +154,10 @@ void CoupledRun::prepare_thermal() {
     report << ", modes:";
     for (const auto& m : system_->modes()) report << " " << m->name();
     report << "\n";
-    print_diagnostics(report, diagnose(scene_, contacts_, *system_, s.max_temperature_K));
+    // Each process holding only its piece: combined from the processes' own particles.
+    print_diagnostics(report, distributed_ && distributed_->diagnostics()
+                                  ? *distributed_->diagnostics()
+                                  : diagnose(scene_, contacts_, *system_, s.max_temperature_K));
     progress_.message(report.str().substr(0, report.str().size() - 1));
   }
 }
@@ -157,7 +176,8 @@ void CoupledRun::prepare_distributed_thermal(const thermal::IntegratorSettings& 
                        "is repeated in every process and must give the same bits; are their "
                        "OpenMP thread counts equal?)");
   }
-  distributed_ = std::make_unique<DistributedHeating>(scene_, *system_, positions());
+  distributed_ = std::make_unique<DistributedHeating>(scene_, *system_, positions(),
+                                                      distributed_set_up(scene_));
   integrator_ = distributed_->make_integrator(settings);
   const auto& local = distributed_->local();
   summary_.mpi = MpiSummary{thermal::MpiWorld::size(),

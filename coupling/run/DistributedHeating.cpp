@@ -1,7 +1,10 @@
 #include "coupling/run/DistributedHeating.h"
 
 #include "coupling/bridge/ThermalNetworkBuilder.h"
+#include "coupling/run/BedPiece.h"
 #include "coupling/run/LinearSolverChoice.h"
+#include "coupling/run/PieceDiagnostics.h"
+#include "coupling/run/ThermalProblem.h"
 #include "thermal/integrators/DistributedCvodeIntegrator.h"
 #include "thermal/integrators/IntegratorKind.h"
 #include "thermal/integrators/MpiWorld.h"
@@ -42,11 +45,28 @@ std::string distributed_heating_refusal(const Scene& scene, int processes) {
   return "";
 }
 
+HeatingSetUp distributed_set_up(const Scene& scene) {
+  return scene.effects.mechanics == MechanicsMode::Off && !scene.output.contacts
+             ? HeatingSetUp::Piece
+             : HeatingSetUp::WholeNetwork;
+}
+
 DistributedHeating::DistributedHeating(const Scene& scene, const thermal::ThermalSystem& global,
-                                       std::span<const double> position_m)
-    : partition_(thermal::NetworkPartition::slabs(position_m, thermal::MpiWorld::size())),
-      local_(thermal::extract_local_network(global.network(), partition_,
-                                            thermal::MpiWorld::rank())) {
+                                       std::span<const double> position_m, HeatingSetUp set_up)
+    : partition_(thermal::NetworkPartition::slabs(position_m, thermal::MpiWorld::size())) {
+  const int rank = thermal::MpiWorld::rank();
+  if (set_up == HeatingSetUp::Piece) {
+    // This process's piece of the bed alone (BedPiece.h); freed once its network is extracted.
+    const auto piece = BedPiece::build(scene, position_m, partition_, rank);
+    auto total_W_per_K =
+        thermal::owned_flux_conductance_W_per_K(piece.network, piece.particle, partition_, rank);
+    for (auto& conductance : total_W_per_K) conductance = thermal::MpiWorld::sum(conductance);
+    local_ = thermal::extract_local_network(piece.network, piece.particle, partition_, rank,
+                                            total_W_per_K);
+    diagnostics_ = piece.diagnostics;
+  } else {
+    local_ = thermal::extract_local_network(global.network(), partition_, rank);
+  }
   // The same modes as the global system, built afresh for the local network (a mode prepares
   // per-edge data for the network it is given).
   ThermalNetworkBuilder builder(scene);
@@ -56,6 +76,11 @@ DistributedHeating::DistributedHeating(const Scene& scene, const thermal::Therma
                                                      builder.mode_settings()));
   // The piece's network moves into its system (one copy, not two; local_.network is left empty).
   system_ = std::make_unique<thermal::ThermalSystem>(std::move(local_.network), std::move(modes));
+  if (diagnostics_) {
+    diagnostics_->explicit_bound_s =
+        system_->explicit_stability_bound_s(max_scene_temperature_K(scene));
+    diagnostics_ = combine_over_processes(*diagnostics_);
+  }
 }
 
 std::unique_ptr<thermal::ThermalIntegrator> DistributedHeating::make_integrator(

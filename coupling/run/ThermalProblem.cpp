@@ -114,15 +114,29 @@ void gather_contacts(const std::vector<mechanics::ContactForce>& forces, Contact
   }
 }
 
-std::unique_ptr<thermal::ThermalSystem> build_thermal_system(
-    const Scene& scene, ContactList& contacts, const mechanics::ParticleSet* geometry) {
+namespace {
+
+// Nodes from the scene, edges from `contacts` unless null, the modes the scene switches on.
+std::unique_ptr<thermal::ThermalSystem> thermal_system_of(const Scene& scene, ContactList* contacts,
+                                                          const mechanics::ParticleSet* geometry) {
   ThermalNetworkBuilder builder(scene);
   auto network = builder.nodes();
-  builder.build_edges(contacts, network, nullptr, geometry);
+  if (contacts) builder.build_edges(*contacts, network, nullptr, geometry);
   std::vector<std::unique_ptr<thermal::HeatTransferMode>> modes;
   for (const auto& name : builder.mode_names(network))
     modes.push_back(thermal::make_heat_transfer_mode(name, builder.mode_settings()));
   return std::make_unique<thermal::ThermalSystem>(std::move(network), std::move(modes));
+}
+
+}  // namespace
+
+std::unique_ptr<thermal::ThermalSystem> build_thermal_system(
+    const Scene& scene, ContactList& contacts, const mechanics::ParticleSet* geometry) {
+  return thermal_system_of(scene, &contacts, geometry);
+}
+
+std::unique_ptr<thermal::ThermalSystem> build_thermal_nodes(const Scene& scene) {
+  return thermal_system_of(scene, nullptr, nullptr);
 }
 
 double max_scene_temperature_K(const Scene& scene) {

@@ -49,6 +49,10 @@ void gather_contacts(const std::vector<mechanics::ContactForce>& forces, Contact
 std::unique_ptr<thermal::ThermalSystem> build_thermal_system(
     const Scene& scene, ContactList& contacts, const mechanics::ParticleSet* geometry = nullptr);
 
+// The same nodes and modes with no edge: the whole bed's heat capacities and energy for a
+// process over MPI that builds its network from its own piece of the bed (BedPiece.h).
+std::unique_ptr<thermal::ThermalSystem> build_thermal_nodes(const Scene& scene);
+
 // Largest temperature the run can see: particles, isothermal walls, fluid, surroundings.
 double max_scene_temperature_K(const Scene& scene);
 

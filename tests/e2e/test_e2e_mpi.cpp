@@ -24,6 +24,7 @@ struct BedShape {
   int held_id = 300;
   std::string gravity = "[0.0, 0.0, 0.0]";
   std::string periodic;  // a [periodic] table, or none
+  bool contacts = true;  // output.contacts; false: each process builds only its piece of the bed
 };
 
 // Steel spheres touching in a lattice on a hot floor under a cooled flux lid, convection, a
@@ -83,6 +84,7 @@ relative_tolerance = )" + std::to_string(kRelativeTolerance) + R"(
 absolute_tolerance = )" + std::to_string(kAbsoluteTolerance_K) + R"(
 [output]
 interval = 2.0
+contacts = )" + std::string(shape.contacts ? "true" : "false") + R"(
 )";
 }
 
@@ -118,6 +120,7 @@ struct OneAndMany {
   int processes = 2;
   std::vector<double> T1, T2;
   nlohmann::json s1, s2;
+  std::string output1, output2;  // what the one-process run and the run over `processes` printed
 };
 
 OneAndMany heat_with_one_and_many(const std::string& name, const BedShape& shape,
@@ -133,6 +136,8 @@ OneAndMany heat_with_one_and_many(const std::string& name, const BedShape& shape
   EXPECT_NE(two.output.find("heating over " + std::to_string(processes) + " MPI processes"),
             std::string::npos)
       << two.output;
+  out.output1 = one.output;
+  out.output2 = two.output;
   if (one.exit_code != 0 || two.exit_code != 0) return out;
   std::size_t frames_one = 0, frames_two = 0;
   out.T1 = final_temperatures(dir + "/one.h5", frames_one);
@@ -204,6 +209,49 @@ TEST(E2eMpi, ThreeProcessesHeatAPeriodicBedAsOne) {
   EXPECT_EQ(r.s2["mpi"]["ghosts"].get<int>(), open.s2["mpi"]["ghosts"].get<int>() + 72);
 }
 
+// Mechanics off and no contacts in the frames: each process detects the contacts of its own
+// particles and those within reach of its slab alone and builds only its piece of the network
+// (coupling/run/BedPiece.h). The same local networks as when every process builds the whole
+// bed, edges in the same order: the same temperatures as that run (to round-off: the flux
+// lid's conductance is summed over the processes) and as one process to the tolerance.
+TEST(E2eMpi, EachProcessBuildingOnlyItsPieceHeatsAsTheWholeSetUp) {
+  if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed (Debian openmpi-bin) or cannot start 2 processes";
+  BedShape pieces;
+  pieces.contacts = false;
+  const auto r = heat_with_one_and_many("mpi_pieces", pieces);
+  expect_equal_to_the_tolerance(r, 360);
+  const auto whole = heat_with_one_and_many("mpi_whole", BedShape{});
+  if (r.T2.empty() || whole.T2.empty()) return;
+  EXPECT_EQ(r.s2["mpi"]["ghosts"], 72);
+  double difference_K = 0.0;
+  for (std::size_t i = 0; i < 360; ++i) difference_K = std::max(difference_K, std::abs(r.T2[i] - whole.T2[i]));
+  EXPECT_LE(difference_K, 1e-10);
+  // The start-up diagnostics, combined from the processes' own particles: one process's lines.
+  for (const std::string figure : {"heat-carrying contacts", "largest contact Biot number",
+                                   "time constants", "explicit stability bound"}) {
+    const auto line_of = [&](const std::string& output) {
+      const auto at = output.find(figure);
+      if (at == std::string::npos) return std::string("(none)");
+      const auto start = output.rfind('\n', at) + 1;
+      return output.substr(start, output.find('\n', at) - start);
+    };
+    EXPECT_NE(line_of(r.output1), "(none)") << figure;
+    EXPECT_EQ(line_of(r.output2), line_of(r.output1));
+  }
+}
+
+// The same, periodic across the cut axis over three processes: the first and the last keep
+// the particles beyond the boundary in their halo.
+TEST(E2eMpi, ThreeProcessesBuildingOnlyTheirPiecesOfAPeriodicBedHeatAsOne) {
+  if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed (Debian openmpi-bin) or cannot start 2 processes";
+  BedShape periodic;
+  periodic.contacts = false;
+  periodic.periodic = "[periodic]\nx = [0.0, 0.02]\n";
+  const auto r = heat_with_one_and_many("mpi_periodic_pieces", periodic, 3);
+  expect_equal_to_the_tolerance(r, 360);
+  EXPECT_EQ(r.s2["mpi"]["ghosts"], 3 * 72);  // three cuts of 6 x 6 pairs, both ends ghosts
+}
+
 // Settled first (every process settles the same column and checks that they agree), then
 // frozen and split across z: the vertical contacts are cut.
 TEST(E2eMpi, TwoProcessesHeatASettledColumnAsOne) {
@@ -222,25 +270,32 @@ TEST(E2eMpi, TwoProcessesHeatASettledColumnAsOne) {
 
 // Checkpoints over MPI: rank 0 writes them from the gathered state, every process restarts from
 // one. A run stopped at 8 s and restarted to 20 s gives the uninterrupted run's file and summary
-// bit for bit (each checkpoint is an integration boundary in both).
+// bit for bit (each checkpoint is an integration boundary in both). Also when each process
+// builds only its piece of the bed (no contacts in the frames): the checkpoint then holds no
+// contacts, and the restart detects them again.
 TEST(E2eMpi, RestartFromACheckpointIsBitForBit) {
   if (!have_mpirun()) GTEST_SKIP() << "mpirun not installed (Debian openmpi-bin) or cannot start 2 processes";
-  const auto dir = scratch_dir("mpi_restart");
-  write_file(dir + "/bed.toml", lattice_bed_scene(BedShape{}));
-  const std::string every_4_s = "run bed.toml --set output.checkpoint_interval=4 ";
-  const auto whole = run_tmdem_mpi(every_4_s + "-o whole.h5 --summary whole.json", dir);
-  ASSERT_EQ(whole.exit_code, 0) << whole.output;
-  const auto first = run_tmdem_mpi(every_4_s + "--set simulation.duration=8 -o part.h5", dir);
-  ASSERT_EQ(first.exit_code, 0) << first.output;
-  const auto rest = run_tmdem_mpi(
-      every_4_s + "-o part.h5 --restart part.checkpoint.h5 --summary part.json", dir);
-  ASSERT_EQ(rest.exit_code, 0) << rest.output;
-  std::size_t compared = 0;
-  EXPECT_EQ(result_differences(dir + "/whole.h5", dir + "/part.h5", &compared),
-            std::vector<std::string>{});
-  EXPECT_GT(compared, 10u);
-  EXPECT_EQ(summary_without_wall_times(dir + "/whole.json"),
-            summary_without_wall_times(dir + "/part.json"));
+  for (const bool contacts : {true, false}) {
+    SCOPED_TRACE(contacts ? "contacts in the frames" : "pieces");
+    const auto dir = scratch_dir(contacts ? "mpi_restart" : "mpi_restart_pieces");
+    BedShape shape;
+    shape.contacts = contacts;
+    write_file(dir + "/bed.toml", lattice_bed_scene(shape));
+    const std::string every_4_s = "run bed.toml --set output.checkpoint_interval=4 ";
+    const auto whole = run_tmdem_mpi(every_4_s + "-o whole.h5 --summary whole.json", dir);
+    ASSERT_EQ(whole.exit_code, 0) << whole.output;
+    const auto first = run_tmdem_mpi(every_4_s + "--set simulation.duration=8 -o part.h5", dir);
+    ASSERT_EQ(first.exit_code, 0) << first.output;
+    const auto rest = run_tmdem_mpi(
+        every_4_s + "-o part.h5 --restart part.checkpoint.h5 --summary part.json", dir);
+    ASSERT_EQ(rest.exit_code, 0) << rest.output;
+    std::size_t compared = 0;
+    EXPECT_EQ(result_differences(dir + "/whole.h5", dir + "/part.h5", &compared),
+              std::vector<std::string>{});
+    EXPECT_GT(compared, 10u);
+    EXPECT_EQ(summary_without_wall_times(dir + "/whole.json"),
+              summary_without_wall_times(dir + "/part.json"));
+  }
 }
 
 // A scene that names no linear solver ("auto") heats over MPI with amg, and the summary says why;

@@ -7,6 +7,7 @@
 // is computed by every process from the same global network, so sender and receiver agree on
 // the order without asking each other.
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "thermal/network/NetworkPartition.h"
@@ -40,5 +41,22 @@ struct LocalNetwork {
 // process splits it.
 LocalNetwork extract_local_network(const ThermalNetwork& global, const NetworkPartition& partition,
                                    int rank);
+
+// The same from a piece of the network rather than the whole: `piece` holds some of the nodes
+// (node_id: piece index -> node id of the whole network, the partition's numbering), among them
+// every node `rank` owns, and every edge that touches one of those (others are ignored). The
+// process built it from its own particles and those within reach (a frozen bed's local set-up),
+// so it cannot sum a flux wall's conductance over the whole bed: flux_total_W_per_K gives those
+// sums (one per flux wall: owned_flux_conductance_W_per_K added over the processes). Gives what
+// the first form gives for the whole network, edges in the piece's order.
+LocalNetwork extract_local_network(const ThermalNetwork& piece,
+                                   std::span<const std::int32_t> node_id,
+                                   const NetworkPartition& partition, int rank,
+                                   std::span<const double> flux_total_W_per_K);
+
+// Per flux wall, the summed conductance of the flux edges of the nodes `rank` owns, W/K.
+std::vector<double> owned_flux_conductance_W_per_K(const ThermalNetwork& piece,
+                                                   std::span<const std::int32_t> node_id,
+                                                   const NetworkPartition& partition, int rank);
 
 }  // namespace tmdem::thermal

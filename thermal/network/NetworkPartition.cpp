@@ -26,6 +26,7 @@ NetworkPartition NetworkPartition::slabs(std::span<const double> xyz_m, int rank
     if (n > 0 && hi - lo > widest) widest = hi - lo, axis = k;
   }
   NetworkPartition p;
+  p.axis_ = axis;
   p.order_.resize(n);
   std::iota(p.order_.begin(), p.order_.end(), 0);
   std::stable_sort(p.order_.begin(), p.order_.end(), [&](std::int32_t a, std::int32_t b) {

@@ -20,6 +20,8 @@ class NetworkPartition {
   static NetworkPartition slabs(std::span<const double> xyz_m, int ranks);
 
   int ranks() const { return int(first_row_.size()) - 1; }
+  // The axis the slabs cut across (0, 1, 2: x, y, z).
+  int axis() const { return axis_; }
   std::size_t node_count() const { return order_.size(); }
   std::int32_t node_at_row(std::int32_t row) const { return order_[std::size_t(row)]; }
   std::int32_t row_of(std::int32_t node) const { return row_[std::size_t(node)]; }
@@ -33,6 +35,7 @@ class NetworkPartition {
   std::vector<std::int32_t> row_;        // node -> row
   std::vector<int> owner_;               // node -> rank
   std::vector<std::int32_t> first_row_;  // rank -> first row; one more entry: the node count
+  int axis_ = 0;
 };
 
 }  // namespace tmdem::thermal

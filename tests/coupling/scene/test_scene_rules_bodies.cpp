@@ -1,5 +1,7 @@
-// One test per validation rule of contract section 2: loading throws SceneError and the message
-// names the key path (and the allowed values or range).
+// Validation rules of contract section 2 on what the scene is made of: materials and their
+// properties, particles (required keys, overlaps, walls behind them, temperatures), walls and the
+// generators. Loading throws SceneError and the message names the key path (and the allowed
+// values or range).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,107 +9,12 @@
 
 #include "coupling/bridge/SceneToMechanics.h"
 #include "tests/coupling/SceneTestUtil.h"
+#include "tests/coupling/scene/SceneRulesText.h"
 
 namespace tmdem::coupling::test {
 namespace {
 
-std::string replaced(std::string text, std::string_view from, std::string_view to) {
-  const auto at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  if (at != std::string::npos) text.replace(at, from.size(), to);
-  return text;
-}
-
-TEST(SceneRules, BaseSceneLoads) {
-  const Scene scene = load_scene_text(kBaseScene, "test.toml");
-  EXPECT_EQ(scene.particles.size(), 2u);
-  EXPECT_EQ(scene.materials.size(), 2u);
-  EXPECT_EQ(scene.walls.size(), 1u);
-  EXPECT_EQ(scene.source, "test.toml");
-}
-
-TEST(SceneRules, UnknownTopLevelKey) {
-  expect_scene_error(kBaseScene + "\nfoo = 1\n", {"foo", "unknown key", "valid keys here:"});
-}
-
-TEST(SceneRules, UnknownKeyInSectionSuggestsAndListsValidKeys) {
-  expect_scene_error(kBaseScene + "\n[thermal]\nintegratr = \"ida\"\n",
-                     {"test.toml:", "thermal.integratr", "did you mean integrator",
-                      "integrator, linear_solver, relative_tolerance"});
-}
-
-TEST(SceneRules, UnknownKeyInArrayOfTables) {
-  expect_scene_error(replaced(kBaseScene, "emissivity = 0.9", "emissivity = 0.9\ncolour = 1"),
-                     {"material[1].colour", "unknown key"});
-}
-
-TEST(SceneRules, UnknownKeyInInlineTable) {
-  expect_scene_error(kBaseScene + "\n[[assign]]\nbox = { min = [0,0,0], max = [1,1,1], "
-                                  "maxx = 3 }\ntemperature = 300.0\n",
-                     {"assign[0].box.maxx", "unknown key", "min, max"});
-}
-
-TEST(SceneRules, WrongTypeNumber) {
-  expect_scene_error(replaced(kBaseScene, "duration = 10", "duration = \"ten\""),
-                     {"test.toml:4:", "simulation.duration", "expected a number, got a string"});
-}
-
-TEST(SceneRules, WrongTypeBoolean) {
-  expect_scene_error(kBaseScene, {"effects.conduction=1"},
-                     {"effects.conduction", "expected a boolean"});
-}
-
-TEST(SceneRules, WrongTypeString) {
-  expect_scene_error(kBaseScene, {"thermal.integrator=3"},
-                     {"thermal.integrator", "expected a string, got an integer"});
-}
-
-TEST(SceneRules, WrongTypeTable) {
-  expect_scene_error("thermal = 3\n" + kBaseScene, {"test.toml:1:11: thermal", "expected a table"});
-}
-
-TEST(SceneRules, WrongTypeArrayOfTables) {
-  expect_scene_error("format = \"tmdem-scene-1\"\nmaterial = 5\n[simulation]\nduration = 1\n",
-                     {"material", "expected an array of tables ([[material]])"});
-}
-
-TEST(SceneRules, WrongTypeInteger) {
-  expect_scene_error(kBaseScene, {"simulation.dimension=3.0"},
-                     {"simulation.dimension", "expected an integer"});
-}
-
-TEST(SceneRules, FormatRequired) {
-  expect_scene_error(replaced(kBaseScene, "format = \"tmdem-scene-1\"", ""),
-                     {"format", "required", "tmdem-scene-1"});
-}
-
-TEST(SceneRules, FormatMustMatch) {
-  expect_scene_error(kBaseScene, {"format=\"tmdem-scene-2\""},
-                     {"format", "must be \"tmdem-scene-1\"", "tmdem-scene-2"});
-}
-
-TEST(SceneRules, DurationRequired) {
-  expect_scene_error(replaced(kBaseScene, "duration = 10", ""),
-                     {"simulation.duration", "required key is missing"});
-  expect_scene_error(replaced(kBaseScene, "[simulation]\nduration = 10", ""),
-                     {"simulation.duration", "required key is missing"});
-}
-
-TEST(SceneRules, DurationPositive) {
-  expect_scene_error(kBaseScene, {"simulation.duration=0"},
-                     {"simulation.duration", "must be > 0", "got 0"});
-}
-
-TEST(SceneRules, NaNRefused) {
-  expect_scene_error(kBaseScene, {"material[0].density=nan"},
-                     {"material[0].density", "finite", "nan"});
-}
-
-TEST(SceneRules, InfinityRefused) {
-  expect_scene_error(kBaseScene, {"simulation.duration=inf"}, {"simulation.duration", "finite"});
-  expect_scene_error(kBaseScene, {"simulation.gravity=[0, -inf, 0]"},
-                     {"simulation.gravity[1]", "finite"});
-}
+using namespace scene_rules;
 
 TEST(SceneRules, RadiusPositive) {
   expect_scene_error(kBaseScene, {"particle[1].radius=0"}, {"particle[1].radius", "must be > 0"});
@@ -275,130 +182,6 @@ TEST(SceneRules, ParticleBehindWall) {
                      {"particle 1", "wall[0]", "overlap"});
 }
 
-TEST(SceneRules, DimensionTwoOrThree) {
-  expect_scene_error(kBaseScene, {"simulation.dimension=4"},
-                     {"simulation.dimension", "must be 2 or 3", "got 4"});
-}
-
-TEST(SceneRules, GravityZInTwoDimensions) {
-  expect_scene_error(kBaseScene, {"simulation.dimension=2", "simulation.gravity=[0, -9.81, 1]"},
-                     {"simulation.gravity", "z component must be 0"});
-}
-
-TEST(SceneRules, SeedNonNegative) {
-  expect_scene_error(kBaseScene, {"simulation.seed=-1"}, {"simulation.seed", ">= 0"});
-}
-
-TEST(SceneRules, IntegratorChoice) {
-  expect_scene_error(kBaseScene, {"thermal.integrator=rk4"},
-                     {"thermal.integrator", "must be one of \"cvode\", \"ida\", \"explicit\"",
-                      "got \"rk4\""});
-}
-
-TEST(SceneRules, LinearSolverChoice) {
-  expect_scene_error(kBaseScene, {"thermal.linear_solver=gmres"},
-                     {"thermal.linear_solver", "\"klu\", \"pcg\""});
-}
-
-TEST(SceneRules, ConductanceChoice) {
-  expect_scene_error(kBaseScene, {"thermal.conductance=linear"},
-                     {"thermal.conductance", "\"hertz\", \"constant\""});
-}
-
-TEST(SceneRules, MechanicsChoice) {
-  expect_scene_error(kBaseScene, {"effects.mechanics=on"},
-                     {"effects.mechanics", "\"dynamic\", \"settle\", \"coupled\", \"off\""});
-}
-
-TEST(SceneRules, TolerancesPositive) {
-  for (const char* key :
-       {"thermal.relative_tolerance", "thermal.absolute_tolerance", "mechanics.tolerance"}) {
-    SCOPED_TRACE(key);
-    expect_scene_error(kBaseScene, {std::string(key) + "=0"}, {key, "must be > 0"});
-    expect_scene_error(kBaseScene, {std::string(key) + "=-1e-6"}, {key, "must be > 0"});
-  }
-}
-
-// The tolerance schedule (mechanics::ToleranceSchedule): on by default, fall_tolerance 0 turns
-// it off, fall_speed absent is automatic (0 in the parameters), each key range-checked.
-TEST(SceneRules, ToleranceSchedule) {
-  expect_scene_error(kBaseScene, {"mechanics.fall_speed=0"}, {"mechanics.fall_speed", "must be > 0"});
-  expect_scene_error(kBaseScene, {"mechanics.fall_speed=-1"}, {"mechanics.fall_speed", "must be > 0"});
-  expect_scene_error(kBaseScene, {"mechanics.fall_tolerance=-1"}, {"mechanics.fall_tolerance", "must be >= 0"});
-  for (const char* key : {"mechanics.fall_tolerance", "mechanics.fall_speed"}) {
-    SCOPED_TRACE(key);
-    expect_scene_error(kBaseScene, {std::string(key) + "=nan"}, {key});
-    expect_scene_error(kBaseScene, {std::string(key) + "=\"fast\""}, {key});
-  }
-  expect_scene_error(kBaseScene, {"mechanics.tighten_steps=0"}, {"mechanics.tighten_steps", ">= 1"});
-  expect_scene_error(kBaseScene, {"mechanics.tighten_steps=2.5"}, {"mechanics.tighten_steps"});
-  EXPECT_EQ(make_nscd_parameters(load_scene_text(kBaseScene, "t", {"mechanics.tighten_steps=4"})).tighten_steps, 4);
-  const Scene defaults = load_scene_text(kBaseScene, "t");
-  EXPECT_EQ(make_nscd_parameters(defaults).fall_tolerance, mechanics::NscdParameters{}.fall_tolerance);
-  EXPECT_GT(make_nscd_parameters(defaults).fall_tolerance, make_nscd_parameters(defaults).tolerance);
-  EXPECT_EQ(make_nscd_parameters(defaults).fall_speed, 0.0);  // automatic
-  const Scene off = load_scene_text(kBaseScene, "t", {"mechanics.fall_tolerance=0"});
-  EXPECT_EQ(make_nscd_parameters(off).fall_tolerance, 0.0);
-  const Scene on = load_scene_text(kBaseScene, "t", {"mechanics.fall_tolerance=1e-3", "mechanics.fall_speed=0.1"});
-  EXPECT_EQ(make_nscd_parameters(on).fall_tolerance, 1e-3);
-  EXPECT_EQ(make_nscd_parameters(on).fall_speed, 0.1);
-  // Ignored, as every [mechanics] key, when mechanics is off.
-  EXPECT_NO_THROW(load_scene_text(kBaseScene, "t",
-                                  {"effects.mechanics=\"off\"", "thermal.conductance=\"constant\"",
-                                   "mechanics.fall_speed=-1"}));
-}
-
-TEST(SceneRules, ExplicitStepNonNegative) {
-  expect_scene_error(kBaseScene, {"thermal.explicit_step=-1e-3"},
-                     {"thermal.explicit_step", "must be >= 0"});
-  EXPECT_NO_THROW(load_scene_text(kBaseScene, "t", {"thermal.explicit_step=0"}));
-}
-
-TEST(SceneRules, OutputIntervalPositive) {
-  expect_scene_error(kBaseScene, {"output.interval=0"}, {"output.interval", "must be > 0"});
-}
-
-TEST(SceneRules, CheckpointIntervalNonNegative) {
-  expect_scene_error(kBaseScene, {"output.checkpoint_interval=-1"},
-                     {"output.checkpoint_interval", "must be >= 0"});
-}
-
-TEST(SceneRules, TimeStepPositive) {
-  expect_scene_error(kBaseScene, {"mechanics.time_step=0"}, {"mechanics.time_step", "must be > 0"});
-}
-
-TEST(SceneRules, ThetaInZeroOne) {
-  expect_scene_error(kBaseScene, {"mechanics.theta=0"}, {"mechanics.theta", "must be in (0, 1]"});
-  expect_scene_error(kBaseScene, {"mechanics.theta=1.5"}, {"mechanics.theta", "(0, 1]"});
-  EXPECT_NO_THROW(load_scene_text(kBaseScene, "t", {"mechanics.theta=1"}));
-}
-
-TEST(SceneRules, SolverByNameListsTheValidNames) {
-  expect_scene_error(kBaseScene, {"mechanics.solver=jacobi_typo"},
-                     {"mechanics.solver", "\"nlgs\"", "\"jacobi_typo\""});
-  EXPECT_EQ(load_scene_text(kBaseScene, "t", {"mechanics.solver=nlgs"}).mechanics.solver, "nlgs");
-  // The default is nncg_ipm: nncg (fastest to rest and most steps converged on every example,
-  // docs/mechanics.md), with the interior point on the steps it leaves unconverged.
-  EXPECT_EQ(load_scene_text(kBaseScene, "t").mechanics.solver, "nncg_ipm");
-}
-
-TEST(SceneRules, MaxIterationsAtLeastOne) {
-  expect_scene_error(kBaseScene, {"mechanics.max_iterations=0"},
-                     {"mechanics.max_iterations", ">= 1"});
-}
-
-// The Gauss-Seidel active-set period (mechanics::NscdParameters::full_sweep_every): an integer
-// >= 1, 1 (every sweep over every candidate) unless set.
-TEST(SceneRules, FullSweepEveryAtLeastOne) {
-  expect_scene_error(kBaseScene, {"mechanics.full_sweep_every=0"},
-                     {"mechanics.full_sweep_every", ">= 1"});
-  expect_scene_error(kBaseScene, {"mechanics.full_sweep_every=2.5"}, {"mechanics.full_sweep_every"});
-  EXPECT_EQ(load_scene_text(kBaseScene, "t").mechanics.full_sweep_every, 1);
-  const Scene scene = load_scene_text(kBaseScene, "t", {"mechanics.full_sweep_every=8"});
-  EXPECT_EQ(scene.mechanics.full_sweep_every, 8);
-  EXPECT_EQ(make_nscd_parameters(scene).full_sweep_every, 8);  // what the solvers are given
-}
-
 TEST(SceneRules, WallNormalNonZeroAndNormalized) {
   expect_scene_error(kBaseScene, {"wall[0].normal=[0, 0, 0]"}, {"wall[0].normal", "non-zero"});
   const Scene scene = load_scene_text(kBaseScene, "t", {"wall[0].normal=[0, 2, 0]"});
@@ -418,51 +201,6 @@ TEST(SceneRules, ParticleTemperaturePositive) {
                      {"particle[1].temperature", "must be > 0"});
 }
 
-TEST(SceneRules, MechanicsOffWithHertzConductance) {
-  expect_scene_error(kBaseScene, {"effects.mechanics=off", "thermal.conductance=hertz"},
-                     {"thermal.conductance", "\"hertz\"", "effects.mechanics = \"off\""});
-  // Without an explicit conductance the default "hertz" is meant: name effects.mechanics.
-  expect_scene_error(kBaseScene, {"effects.mechanics=off"},
-                     {"effects.mechanics", "thermal.conductance = \"constant\""});
-  EXPECT_NO_THROW(load_scene_text(kBaseScene, "t",
-                                  {"effects.mechanics=off", "thermal.conductance=constant"}));
-}
-
-TEST(SceneRules, IntegerWhereFloatExpected) {
-  const Scene scene = load_scene_text(kBaseScene, "t", {"mechanics.theta=1"});
-  EXPECT_DOUBLE_EQ(scene.duration_s, 10.0);
-  EXPECT_DOUBLE_EQ(scene.mechanics.theta, 1.0);
-}
-
-TEST(SceneRules, SwitchedOffSectionAcceptedAndIgnored) {
-  const std::string text = kBaseScene +
-                           "\n[convection]\ncoefficient = -5.0\n[radiation]\n"
-                           "ambient_temperature = -1.0\n";
-  EXPECT_NO_THROW(load_scene_text(text, "t"));
-  expect_scene_error(text, {"effects.convection=true"}, {"convection.coefficient", ">= 0"});
-  expect_scene_error(text, {"effects.radiation=true"},
-                     {"radiation.ambient_temperature", ">= 0"});
-  // Still checked for unknown keys and types.
-  expect_scene_error(kBaseScene + "\n[convection]\ncoeficient = 5.0\n",
-                     {"convection.coeficient", "unknown key"});
-  expect_scene_error(kBaseScene + "\n[convection]\ncoefficient = \"high\"\n",
-                     {"convection.coefficient", "expected a number"});
-  // [mechanics] is ignored when mechanics is off.
-  EXPECT_NO_THROW(load_scene_text(kBaseScene, "t",
-                                  {"effects.mechanics=off", "thermal.conductance=constant",
-                                   "mechanics.time_step=-1"}));
-}
-
-TEST(SceneRules, ConvectionValuesWhenOn) {
-  const Scene scene = load_scene_text(kBaseScene + "\n[effects]\nconvection = true\n"
-                                                   "[convection]\ncoefficient = 25.0\n"
-                                                   "fluid_temperature = 310.0\n",
-                                      "t");
-  EXPECT_TRUE(scene.effects.on("convection"));
-  EXPECT_DOUBLE_EQ(scene.heat_modes.find("convection", "coefficient").value(), 25.0);
-  EXPECT_DOUBLE_EQ(scene.heat_modes.find("convection", "fluid_temperature").value(), 310.0);
-}
-
 TEST(SceneRules, NoParticles) {
   const std::string text = "format = \"tmdem-scene-1\"\n[simulation]\nduration = 1\n";
   expect_scene_error(text, {"no particles"});
@@ -476,17 +214,6 @@ TEST(SceneRules, ParticleRequiredKeys) {
                      {"particle[1].radius", "required key is missing"});
   expect_scene_error(replaced(kBaseScene, "radius = 0.001\nmaterial = \"glass\"", "radius = 0.001"),
                      {"particle[1].material", "required key is missing"});
-}
-
-TEST(SceneRules, VectorShape) {
-  expect_scene_error(kBaseScene, {"particle[0].position=[0, 1]"},
-                     {"particle[0].position", "3 numbers", "2 elements"});
-  expect_scene_error(kBaseScene, {"particle[0].position=[0, \"a\", 1]"},
-                     {"particle[0].position[1]", "expected a number"});
-  // In 2D two components are enough (z = 0).
-  const Scene scene = load_scene_text(kBaseScene, "t",
-                                      {"simulation.dimension=2", "particle[0].position=[0, 0.001]"});
-  EXPECT_EQ(scene.particles[0].position_m[2], 0.0);
 }
 
 TEST(SceneRules, GeneratorErrors) {

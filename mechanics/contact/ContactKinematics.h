@@ -181,6 +181,34 @@ inline ContactColumns contact_columns(const ContactProblem& problem, std::size_t
   return out;
 }
 
+// The rows of H_c^T for one particle: the local velocity (n, t1, t2) of contact c that side 0
+// (body i) or side 1 (a particle j) gives by its own velocity v and angular velocity omega,
+// U = rows (v; omega), everything else at rest (local_velocity without the bias; the t2 row is
+// 0 in 2D). Row a is [s f_a^T, R f_a^T N] for the frame vector f_a, s = +1 for i and -1 for j,
+// R the side's lever and N the cross-product matrix of n (N w = n x w), so its angular part is
+// (R f_a) x n. Mathematically the transpose of contact_columns' [linear; angular]: the same bits
+// for the linear part, to round-off for the angular one (there -(R (n x f_a)) is rounded).
+// Computed as a matrix product, not with cross(): a block solve's Delassus entries
+// (BodyContactBlock.cpp) have always been built on this product, and the two differ in the
+// signs of their zeros, which could reach a zero reaction's sign bit.
+inline Eigen::Matrix<double, 3, 6> contact_rows(const ContactProblem& problem, std::size_t c, int side) {
+  assert((side == 0 || !is_wall(problem.body_j[c])) && "contact_rows: side 1 must be a particle");
+  const double sign = side == 0 ? 1.0 : -1.0;
+  const double lever = side == 0 ? problem.lever_i[c] : problem.lever_j[c];
+  const Eigen::Vector3d& n = problem.normal[c];
+  Eigen::Matrix3d frame_t;  // rows n, t1, t2
+  frame_t.row(0) = n.transpose();
+  frame_t.row(1) = problem.tangent1[c].transpose();
+  frame_t.row(2) = problem.tangent2[c].transpose();
+  if (problem.dimension == 2) frame_t.row(2).setZero();
+  Eigen::Matrix3d cross_n;  // N
+  cross_n << 0.0, -n[2], n[1], n[2], 0.0, -n[0], -n[1], n[0], 0.0;
+  Eigen::Matrix<double, 3, 6> rows;
+  rows.leftCols<3>() = sign * frame_t;
+  rows.rightCols<3>() = lever * frame_t * cross_n;
+  return rows;
+}
+
 // Rolling (ContactProblem::rolling): the relative spin omega_i - omega_j of contact c without
 // its component along n, rad/s (a wall does not turn).
 template <class Vec>

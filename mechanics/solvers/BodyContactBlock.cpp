@@ -41,23 +41,13 @@ BodyContactBlock::Result BodyContactBlock::solve(const ContactProblem& problem, 
     return Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(&coupling_[9 * (k * n + l)]);
   };
 
-  // Local velocity of contact c from the body's (v, omega): u = s F^T v + lever F^T (n x omega),
-  // s = +1 when the body is body_i, -1 when body_j (ContactKinematics.h).
+  // Local velocity of contact c from the body's (v, omega): the rows of H_c^T for the side the
+  // body is on (ContactKinematics.h, contact_rows).
   const double inverse_mass = problem.inverse_mass[body], inverse_inertia = problem.inverse_inertia[body];
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t c = static_cast<std::size_t>(contacts[k]);
     const bool is_i = static_cast<std::size_t>(problem.body_i[c]) == body;
-    const double sign = is_i ? 1.0 : -1.0, lever = is_i ? problem.lever_i[c] : problem.lever_j[c];
-    const Vector3d& nc = problem.normal[c];
-    Eigen::Matrix3d frame_t;  // rows n, t1, t2
-    frame_t.row(0) = nc.transpose();
-    frame_t.row(1) = problem.tangent1[c].transpose();
-    frame_t.row(2) = problem.tangent2[c].transpose();
-    if (planar) frame_t.row(2).setZero();
-    Eigen::Matrix3d cross_n;
-    cross_n << 0.0, -nc[2], nc[1], nc[2], 0.0, -nc[0], -nc[1], nc[0], 0.0;
-    jacobian_[k].leftCols<3>() = sign * frame_t;
-    jacobian_[k].rightCols<3>() = lever * frame_t * cross_n;
+    jacobian_[k] = contact_rows(problem, c, is_i ? 0 : 1);
     u_[k] = local_velocity<Vector3d>(problem, c, velocity, angular_velocity);
   }
   // Nothing to solve when every contact is unloaded and opening (most of a falling body's

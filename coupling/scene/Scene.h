@@ -29,12 +29,15 @@ using Vec3 = std::array<double, 3>;
 // temperatures (thermal expansion), and the network follows (coupling/run/ThermalExpansion.h).
 enum class MechanicsMode { Off, Settle, Dynamic, Coupled };
 
+// The defaults of a [[material]]'s optional keys are written here once: the scene schema
+// (SceneSchema.cpp, so docs/scene.md and the loader) takes them from a default Material, and
+// tests/coupling/scene/test_scene_defaults.cpp holds the two together.
 struct Material {
   std::string name;
   double density_kg_per_m3 = 0.0;
   double young_modulus_Pa = 0.0;
   double poisson_ratio = 0.0;
-  double friction = 0.0;                 // Coulomb coefficient
+  double friction = 0.3;                 // Coulomb coefficient
   double rolling_friction = 0.0;         // rolling resistance mu_r (torque <= mu_r R_eff N)
   double conductivity_W_per_mK = 0.0;    // with a table: its first value (the reference)
   double heat_capacity_J_per_kgK = 0.0;  // specific heat c; with a table: its first value

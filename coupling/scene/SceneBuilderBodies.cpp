@@ -39,8 +39,9 @@ double read_property(const SceneTable& t, std::string_view key,
 
 void SceneBuilder::read_materials() {
   // Required: name, density, young_modulus, poisson_ratio, conductivity, heat_capacity.
-  // Optional: friction (default 0.3), rolling_friction (0), emissivity (default 0.0), the surface
-  // of rough contacts: roughness (0), asperity_slope (0), microhardness (none).
+  // Optional (defaults: Material, Scene.h, through the schema): friction, rolling_friction,
+  // emissivity, thermal_expansion, the surface of rough contacts: roughness, asperity_slope,
+  // microhardness (none).
   const auto tables = root_.table_array("material", true);
   for (const SceneTable& t : tables) {
     Material m;

@@ -67,6 +67,7 @@ std::vector<Section> mode_sections() {
 std::vector<Section> build_sections() {
   const auto modes = mode_sections();
   const Scene scene_defaults;  // [simulation]'s defaults, written once in Scene.h
+  const Material material;     // [[material]]'s, likewise
   std::vector<Key> top{
       value("format", "", "", "\"tmdem-scene-1\"", "scene format version", true),
       table("simulation", Kind::Table, "duration, dimension, gravity, seed", true),
@@ -113,8 +114,8 @@ std::vector<Section> build_sections() {
         required_number("density", "kg/m^3", Range::greater(0.0), "density"),
         required_number("young_modulus", "Pa", Range::greater(0.0), "Young's modulus"),
         required_number("poisson_ratio", "", Range::open(-1.0, 0.5), "Poisson ratio"),
-        number("friction", "", 0.3, Range::at_least(0.0), "Coulomb friction coefficient"),
-        number("rolling_friction", "", 0.0, Range::closed(0.0, 1.0),
+        number("friction", "", material.friction, Range::at_least(0.0), "Coulomb friction coefficient"),
+        number("rolling_friction", "", material.rolling_friction, Range::closed(0.0, 1.0),
                "rolling resistance mu_r: a contact resists rolling with a torque up to "
                "mu_r R_eff N (R_eff = R_i R_j / (R_i + R_j), a wall R_i; the smaller mu_r of the "
                "two materials); 0 rolls freely. Solved by every mechanics.solver"),
@@ -124,16 +125,16 @@ std::vector<Section> build_sections() {
         value("heat_capacity", "J/(kg K)", "", "> 0, or [[T_K, c], ...] (T increasing, c > 0)",
               "specific heat c; a table: piecewise linear in T, clamped outside it, the energy "
               "being m int c dT (cvode or ida with klu)", true),
-        number("emissivity", "", 0.0, Range::closed(0.0, 1.0), "surface emissivity"),
-        number("thermal_expansion", "1/K", 0.0, Range::closed(-1e-3, 1e-3),
+        number("emissivity", "", material.emissivity, Range::closed(0.0, 1.0), "surface emissivity"),
+        number("thermal_expansion", "1/K", material.thermal_expansion_per_K, Range::closed(-1e-3, 1e-3),
                "linear thermal expansion coefficient alpha: with effects.mechanics = \"coupled\" "
                "a particle's radius is r0 (1 + alpha (T - T0)), r0 and T0 its radius and "
                "temperature at the start; mass and moment of inertia are kept; walls do not "
                "expand"),
-        number("roughness", "m", 0.0, Range::at_least(0.0),
+        number("roughness", "m", material.roughness_m, Range::at_least(0.0),
                "RMS surface roughness sigma, for thermal.conductance = \"bahrami\" (0: smooth; a "
                "pair's sigma is sqrt(sigma1^2 + sigma2^2); docs/heat-modes.md \"Rough contacts\")"),
-        number("asperity_slope", "", 0.0, Range::at_least(0.0),
+        number("asperity_slope", "", material.asperity_slope, Range::at_least(0.0),
                "mean absolute slope m of the surface's asperities, for thermal.conductance = "
                "\"bahrami\" (> 0 needed with roughness > 0; a pair's m is sqrt(m1^2 + m2^2))"),
         number("microhardness", "Pa", std::nullopt, Range::greater(0.0),

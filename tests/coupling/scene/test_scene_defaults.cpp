@@ -8,6 +8,7 @@
 
 #include <set>
 #include <string>
+#include <vector>
 
 #include "coupling/scene/SceneSchema.h"
 #include "../SceneTestUtil.h"
@@ -86,6 +87,29 @@ TEST(SceneDefaults, ParticleDefaultsAreTheStructs) {
     EXPECT_EQ(p.heat_source_W, fresh.heat_source_W) << name;
     EXPECT_EQ(p.fixed, fresh.fixed) << name;
   }
+}
+
+// A [[material]]'s optional keys: the reference's defaults are Material's (Scene.h), and a
+// material that states one at that default loads to the same material as one that leaves it
+// out (the base scene's steel states none of them).
+TEST(SceneDefaults, MaterialDefaultsAreTheStructs) {
+  const Material fresh;
+  auto optional_fields = [](const Material& m) {
+    return std::vector<double>{m.friction, m.rolling_friction, m.emissivity, m.thermal_expansion_per_K,
+                               m.roughness_m, m.asperity_slope};
+  };
+  const Scene plain = load_scene_text(kBaseScene, "test.toml");
+  ASSERT_EQ(plain.materials[0].name, "steel");
+  EXPECT_EQ(optional_fields(plain.materials[0]), optional_fields(fresh));
+  EXPECT_EQ(fresh.friction, 0.3);  // what scenes without a friction key have always had
+  int checked = 0;
+  for (const auto& key : *SceneSchema::keys("material")) {
+    if (key.required || key.default_text.empty()) continue;
+    const Scene stated = load_scene_text(kBaseScene, "test.toml", {"material[0]." + key.name + "=" + key.default_text});
+    EXPECT_EQ(optional_fields(stated.materials[0]), optional_fields(fresh)) << key.name << " = " << key.default_text;
+    ++checked;
+  }
+  EXPECT_EQ(checked, 6);
 }
 
 }  // namespace tmdem::coupling::test

@@ -1,9 +1,11 @@
 #pragma once
 // The kinematics of a contact, written once for every user (ContactProblem's operations, the
 // Gauss-Seidel visit, APGD's per-body gather, nncg's conjugate step, NscdIntegrator's
-// dissipation): the local velocity U_c = H_c^T v + bias n in (n, t1, t2), a local impulse
-// applied to the two bodies (velocity += M^-1 H_c r_c, a piston wall body along n only), and
-// the rolling pair (relative spin perpendicular to n; a rolling impulse applied).
+// dissipation, the matrices of the subspace step and of the block solve): the local velocity
+// U_c = H_c^T v + bias n in (n, t1, t2), a local impulse applied to the two bodies (velocity +=
+// M^-1 H_c r_c, a piston wall body along n only), H_c as matrices (contact_columns,
+// contact_rows), and the rolling pair (relative spin perpendicular to n; a rolling impulse
+// applied).
 //
 // Each function is an inline template (declared inline: gcc then inlines them into the visit as
 // it did the hand-written code) over the vector type Vec it computes in: Eigen::Vector3d, or

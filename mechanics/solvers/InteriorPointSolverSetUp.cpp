@@ -59,7 +59,6 @@ void InteriorPointSolver::set_up(const ContactProblem& problem) {
     col.count = 0;
     if (!problem.solvable(c)) continue;
     const Eigen::Vector3d n = problem.normal[c], t1 = problem.tangent1[c], t2 = problem.tangent2[c];
-    const Eigen::Vector3d nt1 = n.cross(t1), nt2 = n.cross(t2);
     const Eigen::Matrix3d perp = Eigen::Matrix3d::Identity() - n * n.transpose();
     auto add = [&](std::int32_t dof, const Eigen::Vector3d& g, const Eigen::Vector3d& roll) {
       col.dof[col.count] = dof;
@@ -69,21 +68,23 @@ void InteriorPointSolver::set_up(const ContactProblem& problem) {
           planar_ ? Eigen::Vector3d(0.0, roll.dot(t2), 0.0) : Eigen::Vector3d(0.0, roll.dot(t1), roll.dot(t2));
       ++col.count;
     };
-    auto add_particle = [&](std::size_t b, double sign, double lever) {
+    // A particle's columns of U_c per unknown: the rows of H_c^T the sweeps apply
+    // (ContactKinematics.h, contact_rows; in the plane its t2 row is zero, which the plane's
+    // cones never read), column by column: v_x, v_y (, v_z), then the spins (the plane: omega_z).
+    auto add_particle = [&](std::size_t b, int side) {
       const int f = first_dof_[b];
       if (f < 0) return;
+      const Eigen::Matrix<double, 3, 6> rows = contact_rows(problem, c, side);
+      const double sign = side == 0 ? 1.0 : -1.0;
       const int linear = planar_ ? 2 : 3;
-      for (int k = 0; k < linear; ++k) add(f + k, sign * Eigen::Vector3d(n[k], t1[k], t2[k]), Eigen::Vector3d::Zero());
-      for (int k = planar_ ? 2 : 0; k < 3; ++k) {
-        const int dof = planar_ ? f + 2 : f + linear + k;
-        add(dof, -lever * Eigen::Vector3d(0.0, nt1[k], nt2[k]), sign * perp.col(k));
-      }
+      for (int k = 0; k < linear; ++k) add(f + k, rows.col(k), Eigen::Vector3d::Zero());
+      for (int k = planar_ ? 2 : 0; k < 3; ++k) add(planar_ ? f + 2 : f + linear + k, rows.col(3 + k), sign * perp.col(k));
     };
     const std::int32_t i = problem.body_i[c], j = problem.body_j[c];
-    add_particle(i, 1.0, problem.lever_i[c]);
+    add_particle(i, 0);
     std::int64_t other = -1;
     if (!is_wall(j)) {
-      add_particle(j, -1.0, problem.lever_j[c]);
+      add_particle(j, 1);
       other = first_dof_[j];
     } else if (const std::size_t b = problem.wall_body(j); first_dof_[b] >= 0) {
       const Eigen::Vector3d& N = piston_normal_[b];

@@ -28,7 +28,12 @@ SettleSummary settle_packing(mechanics::NscdIntegrator& nscd, const Scene& scene
                              ProgressReporter& progress, const std::function<bool()>& stop) {
   const double h = scene.mechanics.time_step_s;
   const double t_max = scene.mechanics.settle_time_s;
+  // This settle's own counts: a study settles the same integrator once per load, and its
+  // stats() add up over all of them.
   const std::int64_t steps_before = nscd.stats().steps;
+  const std::int64_t unconverged_before = nscd.stats().unconverged_steps;
+  std::int64_t unconverged = 0;
+  double max_penetration_m = 0.0;
   SceneRestTest rest_test(scene, nscd);
   const bool network_test = rest_test.network_test();
   const SettleRestTest& rest = rest_test.network();
@@ -37,9 +42,11 @@ SettleSummary settle_packing(mechanics::NscdIntegrator& nscd, const Scene& scene
   while (t < t_max - 0.5 * h) {
     const auto report = nscd.step(h);
     t += h;
-    if (!report.converged && nscd.stats().unconverged_steps <= 10) {
+    unconverged = nscd.stats().unconverged_steps - unconverged_before;
+    max_penetration_m = std::max(max_penetration_m, report.max_penetration_m);
+    if (!report.converged && unconverged <= 10) {
       std::string msg = unconverged_step_warning("settle step", t, nscd, report, report.tolerance);
-      if (nscd.stats().unconverged_steps == 10) msg += "; further such warnings are not shown";
+      if (unconverged == 10) msg += "; further such warnings are not shown";
       progress.message(msg);
     }
     const double speed = nscd.max_speed();
@@ -82,12 +89,13 @@ SettleSummary settle_packing(mechanics::NscdIntegrator& nscd, const Scene& scene
     else
       msg << "largest speed " << outcome.max_speed_m_s << " m/s (settle_velocity "
           << scene.mechanics.settle_velocity_m_per_s << " m/s)";
-    msg << "; freezing the packing as it is";
+    msg << "; freezing the packing as it is (" << outcome.steps << " steps, " << unconverged
+        << " unconverged)";
   } else {
     msg << "settle: at rest (" << outcome.ended_by << " test) after " << t << " s ("
         << outcome.steps << " steps, " << nscd.contacts().size() << " contacts, "
-        << outcome.rattlers << " rattlers, max penetration " << nscd.stats().max_penetration_m
-        << " m, " << nscd.stats().unconverged_steps << " unconverged steps)";
+        << outcome.rattlers << " rattlers, max penetration " << max_penetration_m << " m, "
+        << unconverged << " unconverged steps)";
     if (outcome.porosity)
       msg << "; bed " << *outcome.bed_height_m << " m tall, porosity " << *outcome.porosity
           << " (the box bounding the particles)";

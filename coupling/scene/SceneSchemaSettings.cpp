@@ -24,9 +24,10 @@ std::vector<Section> settings_sections() {
                "contact solver by name (mechanics::ContactSolverRegistry)"),
         choice("stop_test", kM.stop_test, {"sweep", "siconos"},
                "when a step's solve counts as converged: \"siconos\", when Siconos' residual "
-               "(relative to |q|) is below tolerance too, nncg sweeping on as needed; \"sweep\", "
-               "when the change of one sweep is (the other solvers always stop on their own "
-               "test; docs/mechanics.md \"Honest convergence\")"),
+               "(relative to |q|) is below tolerance (nncg sweeping on as needed; a solve out of "
+               "sweeps or stalled on its sweep change with the residual below tolerance counts "
+               "as converged); \"sweep\", when the change of one sweep is (the other solvers "
+               "always stop and count on their own test; docs/mechanics.md \"Honest convergence\")"),
         choice("normal_law", mechanics::normal_law_name(kM.normal_law), mechanics::normal_law_names(),
                "normal contact law: \"rigid\", unilateral contacts without overlap (NSCD); "
                "\"hertz\", elastic contacts at the materials' young_modulus and poisson_ratio, "

@@ -165,3 +165,24 @@ TEST(SiconosResidual, DefaultIntegratorMeetsItOnTheSlowColumn) {
   EXPECT_LE(sim.stats().max_siconos_residual, parameters.tolerance);
   EXPECT_EQ(sim.stats().siconos_unconverged_steps, 0);
 }
+
+// With the "siconos" stop test a step counts as converged when e is within the tolerance in
+// force, whatever the sweep test says: one sphere on the floor, one sweep allowed, solved
+// exactly by that sweep (e at round-off) while the sweep test sees the whole reaction change.
+// With "sweep" the same solve counts as unconverged.
+TEST(SiconosResidual, StepWithinToleranceCountsAsConvergedOutOfSweeps) {
+  auto one_sweep = [](bool siconos_stop) {
+    NscdParameters parameters;
+    parameters.solver = "nncg";
+    parameters.max_iterations = 1;
+    parameters.siconos_stop = siconos_stop;
+    return first_step_cold({1e-2}, parameters);
+  };
+  const NscdIntegrator honest = one_sweep(true), sweep = one_sweep(false);
+  EXPECT_LE(honest.stats().max_siconos_residual, 1e-12);
+  EXPECT_EQ(honest.stats().total_sweeps, 1);
+  EXPECT_EQ(honest.stats().unconverged_steps, 0);
+  EXPECT_EQ(honest.stats().stalled_steps, 0);
+  EXPECT_EQ(sweep.stats().max_siconos_residual, honest.stats().max_siconos_residual);  // the same solve
+  EXPECT_EQ(sweep.stats().unconverged_steps, 1);
+}

@@ -41,9 +41,11 @@ std::unique_ptr<ContactSolver> make_subspace_nncg(const SolverSettings& settings
 }
 
 std::unique_ptr<ContactSolver> make_nncg_ipm(const SolverSettings& settings) {
-  // 30,000 unknowns: 5,000 spheres, 10,000 disks (FallbackContactSolver.h).
+  // 30,000 unknowns: 5,000 spheres, 10,000 disks; nncg once more within 2x the tolerance
+  // (FallbackContactSolver.h).
   return std::make_unique<FallbackContactSolver>("nncg_ipm", std::make_unique<NncgSolver>(settings),
-                                                 std::make_unique<InteriorPointSolver>(settings), 30000);
+                                                 std::make_unique<InteriorPointSolver>(settings), 30000,
+                                                 settings.tolerance, 2.0);
 }
 
 const std::vector<Entry>& entries() {

@@ -37,40 +37,16 @@ class FallbackContactSolver final : public ContactSolver {
   SolveReport solve_with_rolling(const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
                                  std::vector<Eigen::Vector3d>& m, std::vector<Eigen::Vector3d>& velocity,
                                  std::vector<Eigen::Vector3d>& angular_velocity) override {
-    const SolveReport first = first_->solve_with_rolling(problem, r, m, velocity, angular_velocity);
+    SolveReport kept = first_->solve_with_rolling(problem, r, m, velocity, angular_velocity);
     const std::size_t unknowns = problem.particle_count * (problem.dimension == 2 ? 3 : 6);
-    if (first.converged || problem.compliant || unknowns > max_unknowns_) return first;
+    if (kept.converged || problem.compliant || unknowns > max_unknowns_) return kept;
     ++fallbacks_;
-    // The first's result is kept when the second ends further from the law (Siconos' residual).
     const double q_norm = free_velocity_norm(problem);
-    const double first_residual = siconos_residual(problem, r, m, velocity, angular_velocity, q_norm);
-    r_ = r;
-    m_ = m;
-    SolveReport second = second_->solve_with_rolling(problem, r, m, velocity, angular_velocity);
-    second.sweeps += first.sweeps;
-    if (second.converged) return second;
-    SolveReport kept = second;
     double kept_residual = siconos_residual(problem, r, m, velocity, angular_velocity, q_norm);
-    if (kept_residual > first_residual) {
-      r = r_;
-      m = m_;
-      problem.velocities_from_reactions(r, m, velocity, angular_velocity);
-      kept = first;
-      kept.sweeps = second.sweeps;
-      kept_residual = first_residual;
-    }
-    if (!(kept_residual <= near_miss_residual_)) return kept;
+    run_from_kept(*second_, problem, r, m, velocity, angular_velocity, q_norm, kept, kept_residual);
+    if (kept.converged || !(kept_residual <= near_miss_residual_)) return kept;
     ++near_misses_;
-    r_ = r;
-    m_ = m;
-    SolveReport again = first_->solve_with_rolling(problem, r, m, velocity, angular_velocity);
-    again.sweeps += kept.sweeps;
-    if (again.converged || siconos_residual(problem, r, m, velocity, angular_velocity, q_norm) <= kept_residual)
-      return again;
-    r = r_;
-    m = m_;
-    problem.velocities_from_reactions(r, m, velocity, angular_velocity);
-    kept.sweeps = again.sweeps;
+    run_from_kept(*first_, problem, r, m, velocity, angular_velocity, q_norm, kept, kept_residual);
     return kept;
   }
   std::vector<double> carried_state() const override { return first_->carried_state(); }
@@ -80,6 +56,29 @@ class FallbackContactSolver final : public ContactSolver {
   long near_misses() const { return near_misses_; }  // solves given to the first once more
 
  private:
+  // `solver` from the reactions in r, the result so far (`kept`, Siconos' residual
+  // `kept_residual`): its result replaces them when it converged or ends no further from the
+  // law, else the kept ones are put back. The report counts the sweeps of every run so far.
+  void run_from_kept(ContactSolver& solver, const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
+                     std::vector<Eigen::Vector3d>& m, std::vector<Eigen::Vector3d>& velocity,
+                     std::vector<Eigen::Vector3d>& angular_velocity, double q_norm, SolveReport& kept,
+                     double& kept_residual) {
+    r_ = r;
+    m_ = m;
+    SolveReport next = solver.solve_with_rolling(problem, r, m, velocity, angular_velocity);
+    next.sweeps += kept.sweeps;
+    const double residual = siconos_residual(problem, r, m, velocity, angular_velocity, q_norm);
+    if (next.converged || residual <= kept_residual) {
+      kept = next;
+      kept_residual = residual;
+      return;
+    }
+    r = r_;
+    m = m_;
+    problem.velocities_from_reactions(r, m, velocity, angular_velocity);
+    kept.sweeps = next.sweeps;
+  }
+
   std::string name_;
   std::unique_ptr<ContactSolver> first_, second_;
   std::size_t max_unknowns_;

@@ -8,11 +8,6 @@
 #include "mechanics/contact/ContactKinematics.h"
 
 namespace tmdem::mechanics {
-namespace {
-
-bool is_zero(const Eigen::Vector3d& x) { return x[0] == 0.0 && x[1] == 0.0 && x[2] == 0.0; }
-
-}  // namespace
 
 NncgSolver::NncgSolver(const SolverSettings& settings, const Options& options)
     : settings_(settings), options_(options) {}
@@ -20,13 +15,6 @@ NncgSolver::NncgSolver(const SolverSettings& settings, const Options& options)
 int NncgSolver::stall_window() const {
   const long long window = static_cast<long long>(options_.stall_patience) * settings_.stall_sweeps;
   return static_cast<int>(std::min<long long>(window, std::numeric_limits<int>::max()));
-}
-
-void NncgSolver::enter(const ContactProblem& problem, std::size_t c,
-                       const std::vector<Eigen::Vector3d>& r, const std::vector<Eigen::Vector3d>& m) {
-  if (in_support_[c] || (is_zero(r[c]) && (!problem.rolling || is_zero(m[c])))) return;
-  in_support_[c] = 1;
-  if (!sliced_run_) support_.push_back(static_cast<std::int32_t>(c));
 }
 
 template <bool WritesBodies, class Each>
@@ -157,7 +145,11 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& given,
   // visit from several threads, so the support is then brought up to date after the pair.
   struct Hooks : GaussSeidelSweepHooks {
     NncgSolver& solver;
-    bool scan = false;  // the support by a scan after each pair
+    // Coloured, the support by a scan after each pair (enter() appends to support_, which
+    // threads may not share). Sliced, each visit flags its own contact's slot (enter() writes
+    // nothing else), so the threads keep it up to date as they sweep: a scan of every candidate
+    // after each pair cost 9% of pour_3d's time (perf, 1 thread).
+    bool scan = false;
     double previous = 0.0;  // |d|^2 of the last sweep pair; 0: no direction yet
     int max_sweeps = 0;     // of the current run of sweeps: its last is never followed by a step
 
@@ -196,7 +188,7 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& given,
       solver.conjugate_step(state.problem, beta, state.r, state.m, state.velocity, state.angular_velocity);
       previous = current;
     }
-  } hooks{{}, *this, coloured || sliced};
+  } hooks{{}, *this, coloured};
   GaussSeidelSweep::Options options;
   options.full_sweep_every = 1;  // a partial sweep's change is not a map of all the reactions
   options.stall_sweeps = stall_window();

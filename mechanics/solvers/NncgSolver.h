@@ -112,8 +112,15 @@ class NncgSolver final : public ContactSolver {
 
  private:
   // Puts contact c into the support when its reaction (or rolling impulse) is not zero.
-  void enter(const ContactProblem& problem, std::size_t c, const std::vector<Eigen::Vector3d>& r,
-             const std::vector<Eigen::Vector3d>& m);
+  // Inlined into the sweeps' visits (out of line it cost 8% of pour_3d's time).
+  [[gnu::always_inline]] void enter(const ContactProblem& problem, std::size_t c,
+                                    const std::vector<Eigen::Vector3d>& r,
+                                    const std::vector<Eigen::Vector3d>& m) {
+    if (in_support_[c] || (is_zero(r[c]) && (!problem.rolling || is_zero(m[c])))) return;
+    in_support_[c] = 1;
+    if (!sliced_run_) support_.push_back(static_cast<std::int32_t>(c));
+  }
+  static bool is_zero(const Eigen::Vector3d& x) { return x[0] == 0.0 && x[1] == 0.0 && x[2] == 0.0; }
   // each(c, sum) over the support, each adding what it sums to `sum`; returns the total: in
   // support_ order, or slab by slab with OpenMP threads in a sliced solve (a sum per slab, added
   // in slab order; phase by phase where each writes velocities).

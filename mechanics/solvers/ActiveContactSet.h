@@ -1,6 +1,6 @@
 #pragma once
-// Active-set sweeps of the Gauss-Seidel solvers ("nlgs", "nlgs_coloured"): which contacts a
-// sweep visits.
+// Active-set sweeps of the Gauss-Seidel solvers ("nlgs", "nlgs_coloured", and "nncg" in its
+// sliced solves): which contacts a sweep visits.
 //
 // Look-ahead detection hands the solver every pair that might touch within the step
 // (NscdIntegrator::refresh_candidates); most of them stay open (pouring 2,000 spheres: 20k-68k
@@ -94,6 +94,8 @@ class ActiveContactSet {
     full_next_ = (!was_full && tolerance_met) || since_full_ + 1 >= every_;
   }
 
+  // Whether the last full sweep left contact c passive.
+  bool passive(std::size_t c) const { return passive_[c] != 0; }
   const std::vector<std::int32_t>& active() const { return active_; }
   const std::vector<std::int32_t>& active_start() const { return active_start_; }
   int full_sweeps() const { return full_sweeps_; }

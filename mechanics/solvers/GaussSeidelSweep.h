@@ -21,7 +21,10 @@
 //                   block to the solver (Hooks::visit_block) at the first of the block's
 //                   contacts a sweep reaches, once per sweep;
 //   - the active set (ActiveContactSet.h): full_sweep_every > 1 lets most sweeps visit the
-//     active contacts only (index and colour orders).
+//     active contacts only (index, colour and slab orders; in slab order each slab's thread
+//     collects the slab's active list at the end of its part of a full sweep, so the lists
+//     do not depend on the thread count). Hooks::stays_active keeps a contact active that
+//     its visit left open.
 // The solver's own steps are hooks called from the loop (static, no virtual call per contact;
 // GaussSeidelSweepHooks lists them). Sums: index and body_block orders add each visit's change
 // and total in visiting order; colour order as above. No allocation once warm.
@@ -56,6 +59,9 @@ struct GaussSeidelSweepHooks {
   // After the single visit of solvable contact c (colour order: from several threads at once,
   // each with its own c).
   void after_visit(const GaussSeidelSweepState& /*state*/, std::size_t /*c*/) {}
+  // Active sets: whether contact c stays active although its last visit left it open (nncg:
+  // a contact of its support, whose conjugate steps may move a reaction it left at zero).
+  bool stays_active(const GaussSeidelSweepState& /*state*/, std::size_t /*c*/) const { return false; }
   // body_block order: the visit of block b, `forward` as the sweep goes. single(c) visits
   // contact c alone and adds it to `sums`, the sweep's running change and total (N s).
   template <class Single>
@@ -86,6 +92,9 @@ class GaussSeidelSweep {
   template <Order order, class Hooks>
   SolveReport solve(const SolverSettings& settings, const Options& options,
                     const GaussSeidelSweepState& state, Hooks& hooks);
+  // Of the last solve: the sweeps that visited every candidate (with active sets, the others
+  // visited the active contacts only).
+  int full_sweeps() const { return active_.full_sweeps(); }
 
  private:
   // One sweep in index order (Blocks: body_block order); returns its change and total.
@@ -97,13 +106,16 @@ class GaussSeidelSweep {
                               bool mark, const GaussSeidelSweepState& state, Hooks& hooks);
 
   template <class Hooks>
-  ContactUpdate sweep_slabs(const Options& options, double relaxation, bool forward,
-                            const GaussSeidelSweepState& state, Hooks& hooks);
+  ContactUpdate sweep_slabs(const Options& options, double relaxation, bool forward, bool full,
+                            bool mark, const GaussSeidelSweepState& state, Hooks& hooks);
 
   ActiveContactSet active_;             // the contacts partial sweeps visit
   std::vector<double> change_, total_;  // colour order: per visit slot, this sweep, N s
   std::vector<double> block_sums_;      // colour order: per block of slots: change, total
   std::vector<double> slab_sums_;       // slab order: per slab: change, total
+  // slab order with active sets: slab s's active contacts, in increasing order, are
+  // slab_active_[slab_start[s], slab_active_end_[s]) (each slab's thread collects its own).
+  std::vector<std::int32_t> slab_active_, slab_active_end_;
   std::vector<int> visited_;            // body_block order: per block, the sweep that last visited it
 };
 
@@ -118,12 +130,16 @@ SolveReport GaussSeidelSweep::solve(const SolverSettings& settings, const Option
     block_sums_.resize(static_cast<std::size_t>(2 * sum_block_count(static_cast<std::ptrdiff_t>(count))));
   } else if constexpr (order == Order::slab) {
     slab_sums_.resize(2 * options.slabs->slab_count() + 2);
+    if (options.full_sweep_every > 1) {
+      slab_active_.resize(count);
+      slab_active_end_.resize(options.slabs->slab_count());
+    }
   } else if constexpr (order == Order::body_block) {
     visited_.assign(options.block_count, 0);
   }
   SolveReport report;
   GaussSeidelStopTest stop(settings.tolerance, options.stall_sweeps);
-  active_.start(count, order == Order::slab ? 1 : options.full_sweep_every, settings.max_iterations);
+  active_.start(count, options.full_sweep_every, settings.max_iterations);
   while (report.sweeps < settings.max_iterations) {
     ++report.sweeps;
     const bool forward = report.sweeps % 2 == 1;
@@ -135,7 +151,7 @@ SolveReport GaussSeidelSweep::solve(const SolverSettings& settings, const Option
     if constexpr (order == Order::colour) {
       sums = sweep_colours(options, settings.relaxation, forward, full, mark, state, hooks);
     } else if constexpr (order == Order::slab) {
-      sums = sweep_slabs(options, settings.relaxation, forward, state, hooks);
+      sums = sweep_slabs(options, settings.relaxation, forward, full, mark, state, hooks);
     } else {
       sums = sweep_index<order == Order::body_block>(options, settings.relaxation, report.sweeps,
                                                       forward, full, mark, state, hooks);
@@ -144,6 +160,8 @@ SolveReport GaussSeidelSweep::solve(const SolverSettings& settings, const Option
     if (mark) {
       if constexpr (order == Order::colour) {
         active_.collect(*options.colour_start);
+      } else if constexpr (order == Order::slab) {
+        // collected slab by slab in the sweep
       } else {
         active_.collect(count);
       }
@@ -188,7 +206,7 @@ ContactUpdate GaussSeidelSweep::sweep_index(const Options& options, double relax
       }
     }
     const ContactUpdate u = single(c);
-    if (mark) active_.mark_visited(c, u.total);
+    if (mark) active_.mark_visited(c, hooks.stays_active(state, c) ? 1.0 : u.total);
     hooks.after_visit(state, c);
   }
   return sums;
@@ -220,7 +238,7 @@ ContactUpdate GaussSeidelSweep::sweep_colours(const Options& options, double rel
         ContactUpdate u;
         if (problem.solvable(c)) {
           u = gauss_seidel_visit(problem, c, relaxation, r[c], m, velocity, angular_velocity);
-          if (mark) active_.mark_visited(c, u.total);
+          if (mark) active_.mark_visited(c, hooks.stays_active(state, c) ? 1.0 : u.total);
           hooks.after_visit(state, c);
         } else if (mark) {
           active_.mark_unsolvable(c);
@@ -246,7 +264,8 @@ ContactUpdate GaussSeidelSweep::sweep_colours(const Options& options, double rel
 
 template <class Hooks>
 ContactUpdate GaussSeidelSweep::sweep_slabs(const Options& options, double relaxation, bool forward,
-                                            const GaussSeidelSweepState& state, Hooks& hooks) {
+                                            bool full, bool mark, const GaussSeidelSweepState& state,
+                                            Hooks& hooks) {
   const ContactSlabs& slabs = *options.slabs;
   const std::vector<std::int32_t>& start = slabs.slab_start();
   const std::vector<std::int32_t>& phase = slabs.phase_start();
@@ -259,15 +278,28 @@ ContactUpdate GaussSeidelSweep::sweep_slabs(const Options& options, double relax
 #pragma omp for schedule(dynamic, 1)
     for (std::int32_t s = phase[p]; s < phase[p + 1]; ++s) {
       double change = 0.0, total = 0.0;
-      const std::int32_t first = start[s], end = start[s + 1];
+      const std::int32_t first = start[s];
+      // A partial sweep visits the slab's active list, a full one the whole slab.
+      const std::int32_t end = full ? start[s + 1] : slab_active_end_[static_cast<std::size_t>(s)];
       for (std::int32_t k = 0; k < end - first; ++k) {
-        const auto c = static_cast<std::size_t>(forward ? first + k : end - 1 - k);
-        if (!state.problem.solvable(c)) continue;
+        const std::int32_t slot = forward ? first + k : end - 1 - k;
+        const auto c = static_cast<std::size_t>(full ? slot : slab_active_[static_cast<std::size_t>(slot)]);
+        if (!state.problem.solvable(c)) {
+          if (mark) active_.mark_unsolvable(c);
+          continue;
+        }
         const ContactUpdate u = gauss_seidel_visit(state.problem, c, relaxation, state.r[c], state.m,
                                                    state.velocity, state.angular_velocity);
         change += u.change;
         total += u.total;
         hooks.after_visit(state, c);
+        if (mark) active_.mark_visited(c, hooks.stays_active(state, c) ? 1.0 : u.total);
+      }
+      if (mark) {  // this slab's active contacts for the partial sweeps, in increasing order
+        std::int32_t n = first;
+        for (std::int32_t c = first; c < start[s + 1]; ++c)
+          if (!active_.passive(static_cast<std::size_t>(c))) slab_active_[static_cast<std::size_t>(n++)] = c;
+        slab_active_end_[static_cast<std::size_t>(s)] = n;
       }
       slab_sums_[2 * static_cast<std::size_t>(s)] = change;
       slab_sums_[2 * static_cast<std::size_t>(s) + 1] = total;

@@ -156,6 +156,7 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& given,
     void after_visit(const GaussSeidelSweepState& state, std::size_t c) {
       if (!scan) solver.enter(state.problem, c, state.r, state.m);
     }
+    bool stays_active(const GaussSeidelSweepState&, std::size_t c) const { return solver.in_support_[c] != 0; }
     // A symmetric pair (forward, backward) is one application of the map the conjugate
     // directions are built on. The solve only stops before a step (GaussSeidelSweep stops
     // right after a sweep), so it returns a sweep's reactions.
@@ -190,7 +191,9 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& given,
     }
   } hooks{{}, *this, coloured};
   GaussSeidelSweep::Options options;
-  options.full_sweep_every = 1;  // a partial sweep's change is not a map of all the reactions
+  // Active-set sweeps in sliced solves only (Options::full_sweep_every): small problems keep
+  // every sweep full.
+  options.full_sweep_every = sliced ? options_.full_sweep_every : 1;
   options.stall_sweeps = stall_window();
   if (coloured) {
     options.colour_start = &ordered_.colour_start();

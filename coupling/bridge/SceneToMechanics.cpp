@@ -73,9 +73,24 @@ namespace tmdem::coupling {
 std::unique_ptr<mechanics::NscdIntegrator> make_nscd_integrator(const Scene& scene,
                                                                 mechanics::ParticleSet particles) {
   const auto& g = scene.gravity_m_per_s2;
-  return std::make_unique<mechanics::NscdIntegrator>(
+  const std::size_t count = particles.size();
+  auto integrator = std::make_unique<mechanics::NscdIntegrator>(
       std::move(particles), make_mechanics_materials(scene), make_mechanics_walls(scene),
       Eigen::Vector3d(g[0], g[1], g[2]), scene.dimension, make_nscd_parameters(scene));
+  // [[import]] overlaps = "hold" (the default): the overlaps an import brought are its
+  // packing's, held by the position step (NscdIntegrator::hold_initial_overlaps). A "hertz"
+  // law reads every overlap as elastic: nothing is held there.
+  if (count == scene.particles.size() && scene.mechanics.normal_law != mechanics::NormalLaw::hertz) {
+    std::vector<std::uint8_t> holds(count, 0);
+    bool any = false;
+    for (const ImportReport& i : scene.imports) {
+      if (!i.hold_overlaps || !(i.largest_overlap > 0.0)) continue;
+      std::fill_n(holds.begin() + std::ptrdiff_t(i.first_id), i.count, std::uint8_t{1});
+      any = true;
+    }
+    if (any) integrator->hold_initial_overlaps(std::move(holds));
+  }
+  return integrator;
 }
 
 }  // namespace tmdem::coupling

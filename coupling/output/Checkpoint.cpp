@@ -56,6 +56,8 @@ void write_contents(hid_t file, const CheckpointState& s) {
     hdf5::write_array(mechanics.get(), "solver_state", s.contact_solver_state, 0, "1");
     if (!s.candidate_rolling_torque_Nm.empty())
       hdf5::write_array(mechanics.get(), "candidate_rolling_torque", s.candidate_rolling_torque_Nm, 3, "N m");
+    if (!s.candidate_held_overlap_m.empty())
+      hdf5::write_array(mechanics.get(), "candidate_held_overlap", s.candidate_held_overlap_m, 0, "m");
     if (!s.wall_point_m.empty()) {
       hdf5::write_array(mechanics.get(), "wall_point", s.wall_point_m, 3, "m");
       hdf5::write_array(mechanics.get(), "wall_velocity", s.wall_velocity_m_per_s, 0, "m/s");
@@ -142,6 +144,8 @@ CheckpointState read_contents(hid_t file) {
     s.candidate_force_N = hdf5::read_double_array(mechanics.get(), "candidate_force", 3);
     if (hdf5::exists(mechanics.get(), "candidate_rolling_torque"))
       s.candidate_rolling_torque_Nm = hdf5::read_double_array(mechanics.get(), "candidate_rolling_torque", 3);
+    if (hdf5::exists(mechanics.get(), "candidate_held_overlap"))
+      s.candidate_held_overlap_m = hdf5::read_double_array(mechanics.get(), "candidate_held_overlap", 0);
     if (hdf5::exists(mechanics.get(), "solver_state"))
       s.contact_solver_state = hdf5::read_double_array(mechanics.get(), "solver_state", 0);
     if (hdf5::exists(mechanics.get(), "wall_point")) {
@@ -209,11 +213,13 @@ void write_checkpoint(const std::string& path, const CheckpointState& s) {
                           s.candidate_force_N.size() != 3 * (s.candidate_pair.size() / 2) ||
                           (!s.candidate_rolling_torque_Nm.empty() &&
                            s.candidate_rolling_torque_Nm.size() != s.candidate_force_N.size()) ||
+                          (!s.candidate_held_overlap_m.empty() &&
+                           3 * s.candidate_held_overlap_m.size() != s.candidate_force_N.size()) ||
                           (!s.detector_reference_position_m.empty() &&
                            s.detector_reference_position_m.size() != 3 * n))) {
     throw std::invalid_argument(
         "CheckpointState: candidate_pair needs 2 K values, candidate_force_N 3 K, "
-        "candidate_rolling_torque_Nm 3 K or none and "
+        "candidate_rolling_torque_Nm 3 K or none, candidate_held_overlap_m K or none and "
         "detector_reference_position_m 3 N or none");
   }
   const std::string temporary = path + ".tmp";
@@ -271,6 +277,7 @@ CheckpointState read_checkpoint(const std::string& path) {
       s.candidate_force_N.size() != 3 * (s.candidate_pair.size() / 2) ||
       (!s.candidate_rolling_torque_Nm.empty() &&
        s.candidate_rolling_torque_Nm.size() != s.candidate_force_N.size()) ||
+      (!s.candidate_held_overlap_m.empty() && 3 * s.candidate_held_overlap_m.size() != s.candidate_force_N.size()) ||
       (!s.detector_reference_position_m.empty() && s.detector_reference_position_m.size() != 3 * n)) {
     throw OutputError("cannot read checkpoint '" + path +
                       "': particle or contact counts of its datasets disagree");

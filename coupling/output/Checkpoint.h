@@ -8,7 +8,8 @@
 // /contacts/normal_force [C] N, /extra/<name> scalar double; for a bitwise restart (docs/restart-and-files.md
 // "Restart, interruption and files") also /mechanics (attributes margin_m, rebuilds; datasets
 // reference_position [N,3] or [0,3] m, candidate_pair [K,2], candidate_force [K,3] N,
-// candidate_rolling_torque [K,3] N m (only with rolling resistance),
+// candidate_rolling_torque [K,3] N m (only with rolling resistance), candidate_held_overlap [K] m
+// (only while an imported overlap is held),
 // solver_state [S], wall_point [W,3] m, wall_velocity [W] m/s, reference_wall_point [W,3] m:
 // the mechanics' MechanicsState; the wall datasets may be absent: walls as built) when the packing moves, and /thermal/pattern_pair [P,2] (a dynamic
 // run's sticky edge set), /settled_wall_point [W,3] m (a settled run: the walls where settling
@@ -56,6 +57,7 @@ struct CheckpointState {
   std::vector<std::int64_t> candidate_pair;          // K*2
   std::vector<double> candidate_force_N;             // K*3, global frame, on i
   std::vector<double> candidate_rolling_torque_Nm;   // K*3 or none (no rolling resistance)
+  std::vector<double> candidate_held_overlap_m;      // K or none (no overlap held)
   std::vector<double> contact_solver_state;          // the contact solver's carried numbers
   std::vector<double> wall_point_m;                  // W*3, walls' points (pistons move), or empty
   std::vector<double> wall_velocity_m_per_s;         // W, along each wall's normal

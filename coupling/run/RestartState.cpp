@@ -123,6 +123,7 @@ void store_mechanics_state(const mechanics::MechanicsState& m, CheckpointState& 
   for (const auto& p : m.candidates) cs.candidate_pair.insert(cs.candidate_pair.end(), {p.i, p.j});
   cs.candidate_force_N = flat_of(m.candidate_force_N);
   cs.candidate_rolling_torque_Nm = flat_of(m.candidate_rolling_torque_Nm);
+  cs.candidate_held_overlap_m = m.candidate_held_overlap_m;
   cs.contact_solver_state = m.solver_state;
   cs.wall_point_m = flat_of(m.wall_point_m);
   cs.wall_velocity_m_per_s = m.wall_velocity_m_per_s;
@@ -145,6 +146,7 @@ mechanics::MechanicsState mechanics_state_of(const CheckpointState& cs) {
     m.candidates.push_back({std::int32_t(cs.candidate_pair[k]), std::int32_t(cs.candidate_pair[k + 1])});
   m.candidate_force_N = vectors_of(cs.candidate_force_N);
   m.candidate_rolling_torque_Nm = vectors_of(cs.candidate_rolling_torque_Nm);
+  m.candidate_held_overlap_m = cs.candidate_held_overlap_m;
   m.solver_state = cs.contact_solver_state;
   m.wall_point_m = vectors_of(cs.wall_point_m);
   m.wall_velocity_m_per_s = cs.wall_velocity_m_per_s;

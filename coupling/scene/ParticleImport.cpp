@@ -46,7 +46,8 @@ std::string describe_import(const ImportReport& r) {
   if (r.largest_overlap > 0.0)
     out += "largest overlap " + brief(r.largest_overlap) + " of the smaller radius (" +
            r.largest_overlap_between + ", " + brief(r.largest_overlap_m) +
-           " m), accepted up to " + brief(r.overlap_tolerance);
+           " m), accepted up to " + brief(r.overlap_tolerance) +
+           (r.hold_overlaps ? ", overlaps = \"hold\"" : ", overlaps = \"push_out\"");
   else
     out += "no overlap";
   if (!r.contacts_file.empty())
@@ -69,6 +70,7 @@ void SceneBuilder::read_imports() {
     if (report.file.empty()) t.fail("file", "must not be empty");
     report.format = t.choice("format");
     report.overlap_tolerance = t.number("overlap_tolerance");
+    report.hold_overlaps = t.choice("overlaps") == "hold";
     const double scale = t.number("length_scale");
     const Vec3 offset = t.optional_vec3("offset", scene_.dimension).value_or(Vec3{});
     const std::string temperature_column =

@@ -118,6 +118,9 @@ struct ImportReport {
   std::size_t count = 0;
   std::vector<std::string> ignored_columns;
   double overlap_tolerance = 1e-9;  // fraction of the smaller radius accepted among its particles
+  // overlaps = "hold": the overlaps found are the packing's, held by the position step
+  // (NscdIntegrator::hold_initial_overlaps); "push_out": the position step removes them.
+  bool hold_overlaps = true;
   // Largest overlap among its particles (and between them and the walls), as a fraction of the
   // smaller radius, and in m; 0 when none overlap. largest_overlap_between: "particles 3 and 17".
   double largest_overlap = 0.0;

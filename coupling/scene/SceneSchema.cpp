@@ -202,6 +202,14 @@ std::vector<Section> build_sections() {
                       "overlap accepted between two particles of this import, and between one "
                       "of them and a wall, as a fraction of the smaller radius (settled packings "
                       "overlap slightly); the largest found is reported"),
+               choice("overlaps", "hold", {"hold", "push_out"},
+                      "what the mechanics makes of the overlaps accepted: \"hold\": they are the "
+                      "packing's (a bed made at a softened modulus, as LIGGGHTS makes them), so the "
+                      "position step never pushes them out; each pair's held overlap only shrinks "
+                      "(to the pair's overlap after each step) and is gone once the pair opens "
+                      "(normal_law = \"rigid\"; a \"hertz\" law reads every overlap as elastic). "
+                      "\"push_out\": the position step removes them in the first steps (with 4% of "
+                      "a radius the whole bed expands, then resettles: docs/mechanics.md)"),
                value("contacts", "", "", "path of a regular file",
                      "a LAMMPS/LIGGGHTS local dump (ITEM: ENTRIES ...) of the pair contacts "
                      "with their forces in N, the snapshot of the particle dump's timestep (else "

@@ -33,6 +33,8 @@ struct MechanicsState {
   // Per candidate, global, on i: the rolling resistance torque (warm start); empty when no
   // material has rolling_friction (and in states saved before it existed: zeros).
   std::vector<Eigen::Vector3d> candidate_rolling_torque_Nm;
+  // Per candidate: the overlap held (NscdIntegrator::hold_initial_overlaps), m; empty when none.
+  std::vector<double> candidate_held_overlap_m;
   std::vector<double> solver_state;                    // ContactSolver::carried_state()
 
   // Walls, one entry each (pistons move; fixed walls keep the scene's values). Empty: the

@@ -270,6 +270,7 @@ StepReport NscdIntegrator::step(double h) {
                               ? std::array<double, 2>{particles_.box.low[problem_.split_axis],
                                                       particles_.box.high[problem_.split_axis]}
                               : std::array<double, 2>{0.0, 0.0};
+  if (hold_pending_) take_initial_overlaps();
   if (static_start_pending_) {
     static_start_pending_ = false;
     // Heights along a periodic axis have no order.
@@ -328,6 +329,7 @@ StepReport NscdIntegrator::step(double h) {
   lap();
   gaps_after_step(gap_after_);
   if (compliant()) add_elastic_overlaps(h, gap_after_);  // a compliant law's overlaps are its own
+  if (!held_overlap_.empty()) add_held_overlaps(gap_after_);  // and a held one the packing's
   const SolveReport corrected = correction_.correct(problem_, gap_after_, slop_m_,
                                                     parameters_.recovery_speed, h,
                                                     particles_.position);
@@ -337,7 +339,7 @@ StepReport NscdIntegrator::step(double h) {
     report.stalled = report.stalled || corrected.stalled;
     report.residual = std::max(report.residual, corrected.residual);
   }
-  if (corrected.sweeps > 0 || compliant()) gaps_after_step(gap_after_);
+  if (corrected.sweeps > 0 || compliant() || !held_overlap_.empty()) gaps_after_step(gap_after_);
   if (corrected.sweeps > 0) {
     const auto& pseudo = correction_.pseudo_velocity();
     for (std::size_t i = 0; i < n; ++i) {

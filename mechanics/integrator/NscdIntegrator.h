@@ -122,6 +122,18 @@ class NscdIntegrator {
   const std::vector<Wall>& walls() const { return walls_; }
   // Changes the imposed force of piston `wall`, N (throws for a fixed wall or a non-finite load).
   void set_piston_load(std::size_t wall, double load_N);
+  // Overlaps the bed starts with that belong to the packing (an imported bed made at a softened
+  // modulus, LIGGGHTS' 4% of a radius): call before the first step. Every pair that overlaps at
+  // the first step, of two particles with holds[i] != 0 (or one and a wall), keeps its overlap:
+  // the position step (PenetrationCorrection.h) reads its gap as gap + held, so it never pushes
+  // it out, and the held overlap only shrinks, to the pair's overlap after each step, gone once
+  // the pair opens. Without it the position step pushes every such pair apart in the first
+  // step, and the whole bed expands and falls back (liggghts_import: 131 steps of up to 10,000
+  // sweeps). holds: one per particle.
+  void hold_initial_overlaps(std::vector<std::uint8_t> holds);
+  // Pairs whose overlap is held now, and the largest held overlap, m.
+  std::size_t held_overlaps() const;
+  double largest_held_overlap_m() const;
   const std::vector<Material>& materials() const { return materials_; }
   const Eigen::Vector3d& gravity() const { return gravity_; }
   int dimension() const { return dimension_; }
@@ -154,6 +166,10 @@ class NscdIntegrator {
   // The step's energy change and numerical damping (see above), from v- and v+.
   void account_energy(double h, StepReport& report) const;
   void gaps_after_step(std::vector<double>& gap) const;  // per candidate, current positions, m
+  // hold_initial_overlaps: the held overlaps from the first step's gaps (gap_), and each step
+  // the held overlaps shrunk to the pairs' overlaps in gap_m (after the step), then added to it.
+  void take_initial_overlaps();
+  void add_held_overlaps(std::vector<double>& gap_m);
   // The contact solver on problem_ (in a spatial order from parameters_.spatial_order_from).
   SolveReport solve_contacts();
   // The solver at this tolerance from now on (a no-op when it already is).
@@ -180,6 +196,12 @@ class NscdIntegrator {
   mutable std::vector<double> speed_;   // fall_judged_speed's work space, m/s
   bool has_piston_ = false;
   bool static_start_pending_ = true;  // the next step is the first, and knows no forces
+  // hold_initial_overlaps: per particle (empty: none), and per candidate the overlap held, m
+  // (empty when none is held; carried over candidate rebuilds as force_ is).
+  std::vector<std::uint8_t> holds_overlap_;
+  bool hold_pending_ = false;
+  std::vector<double> held_overlap_;
+  std::vector<double> old_held_overlap_;
   double slop_m_ = 0.0;  // penetration slop (NscdParameters), m
   double stop_speed_m_per_s_ = 0.0;  // ContactProblem::stop_speed outside the fall
   ContactProblem problem_;

@@ -48,6 +48,12 @@ void NscdIntegrator::refresh_candidates(double h) {
   for (std::size_t k = 0; k < force_.size(); ++k) {
     force_[k] = previous[k] >= 0 ? old_force_[previous[k]] : Eigen::Vector3d::Zero();
   }
+  if (!held_overlap_.empty()) {
+    std::swap(held_overlap_, old_held_overlap_);
+    held_overlap_.resize(force_.size());
+    for (std::size_t k = 0; k < held_overlap_.size(); ++k)
+      held_overlap_[k] = previous[k] >= 0 ? old_held_overlap_[previous[k]] : 0.0;
+  }
   if (!rolling_) return;
   std::swap(torque_, old_torque_);
   torque_.resize(force_.size());

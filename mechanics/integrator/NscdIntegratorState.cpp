@@ -25,6 +25,7 @@ MechanicsState NscdIntegrator::save_state() const {
     for (std::size_t k = 0; k < s.candidates.size() && k < torque_.size(); ++k)
       s.candidate_rolling_torque_Nm[k] = torque_[k];
   }
+  s.candidate_held_overlap_m = held_overlap_;
   s.solver_state = solver_->carried_state();
   s.stats = stats_;
   s.tolerance_schedule = schedule_.state();
@@ -52,6 +53,10 @@ void NscdIntegrator::restore_state(const MechanicsState& s) {
     throw std::invalid_argument("mechanics: a saved state needs one rolling torque per candidate (" +
                                 std::to_string(s.candidates.size()) + " candidates, " +
                                 std::to_string(s.candidate_rolling_torque_Nm.size()) + " torques)");
+  if (!s.candidate_held_overlap_m.empty() && s.candidate_held_overlap_m.size() != s.candidates.size())
+    throw std::invalid_argument("mechanics: a saved state needs one held overlap per candidate (" +
+                                std::to_string(s.candidates.size()) + " candidates, " +
+                                std::to_string(s.candidate_held_overlap_m.size()) + " held overlaps)");
   const std::size_t w = walls_.size();
   if ((!s.wall_point_m.empty() && s.wall_point_m.size() != w) ||
       s.wall_velocity_m_per_s.size() != s.wall_point_m.size() ||
@@ -75,6 +80,8 @@ void NscdIntegrator::restore_state(const MechanicsState& s) {
   torque_ = s.candidate_rolling_torque_Nm;
   if (rolling_) torque_.resize(s.candidates.size(), Eigen::Vector3d::Zero());
   old_torque_.clear();
+  held_overlap_ = s.candidate_held_overlap_m;
+  hold_pending_ = false;  // the state carries what is held
   contacts_.clear();
   schedule_.restore(s.tolerance_schedule);
   solver_->restore_carried_state(s.solver_state);

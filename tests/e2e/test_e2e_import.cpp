@@ -131,5 +131,48 @@ TEST(E2eImport, SettledBedImportedIntoASettleRunReSettlesWithinTenSteps) {
   EXPECT_EQ(summary["mechanics"]["unconverged_steps"].get<int>(), 0);
 }
 
+// [[import]] overlaps: a column of 6 disks (r = 1 mm) written as another code leaves a bed made
+// at a softened modulus, each overlapping the one below and the floor by 3% of the radius.
+// Settled at the defaults ("hold") the column stays where the file put it, to round-off; with
+// "push_out" the position step removes the overlaps and the top disk rises by the six overlaps
+// (0.18 mm); a value outside the two is refused, naming the key and the valid ones.
+TEST(E2eImport, OverlapsOfAnImportAreHeldOrPushedOut) {
+  const std::string dir = scratch_dir("import_overlaps");
+  const double r = 1e-3, overlap = 0.03 * r;
+  std::string csv = "x,y,radius\n";
+  std::vector<double> y;
+  for (int k = 0; k < 6; ++k) {
+    y.push_back(r - overlap + k * (2 * r - overlap));
+    char line[96];
+    std::snprintf(line, sizeof line, "0.01,%.17g,0.001\n", y.back());
+    csv += line;
+  }
+  write_file(dir + "/column.csv", csv);
+  auto settle = [&](const std::string& keys, const std::string& name) {
+    write_file(dir + "/" + name + ".toml", imported_bed("file = \"column.csv\"\nmaterial = \"copper\"\ntemperature = 293.15\noverlap_tolerance = 0.05\n" + keys));
+    return run_tmdem("run " + name + ".toml -o " + name + ".h5 --summary " + name +
+                     ".json --set effects.mechanics=\"settle\" --set simulation.duration=0.05", dir);
+  };
+  auto top_rise = [&](const std::string& name) {
+    const H5::H5File f(dir + "/" + name + ".h5", H5F_ACC_RDONLY);
+    std::vector<hsize_t> dims;
+    const auto position = read_doubles(f, "/frames/position", &dims);
+    double largest = 0.0;
+    for (int k = 0; k < 6; ++k) largest = std::max(largest, std::abs(position[3 * k + 1] - y[k]));
+    return std::pair{position[3 * 5 + 1] - y[5], largest};
+  };
+  const auto held = settle("", "held");
+  ASSERT_EQ(held.exit_code, 0) << held.output;
+  EXPECT_NE(held.output.find("overlaps = \"hold\""), std::string::npos) << held.output;
+  EXPECT_LT(top_rise("held").second, 1e-9 * r);
+  const auto pushed = settle("overlaps = \"push_out\"", "pushed");
+  ASSERT_EQ(pushed.exit_code, 0) << pushed.output;
+  EXPECT_NEAR(top_rise("pushed").first, 6 * overlap, 0.05 * 6 * overlap);
+  const auto refused = settle("overlaps = \"keep\"", "refused");
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.output.find("import[0].overlaps"), std::string::npos) << refused.output;
+  EXPECT_NE(refused.output.find("push_out"), std::string::npos) << refused.output;
+}
+
 }  // namespace
 }  // namespace tmdem::e2e

@@ -54,6 +54,7 @@ void expect_equal(const CheckpointState& a, const CheckpointState& b) {
   EXPECT_EQ(a.candidate_pair, b.candidate_pair);
   EXPECT_EQ(a.candidate_force_N, b.candidate_force_N);
   EXPECT_EQ(a.candidate_rolling_torque_Nm, b.candidate_rolling_torque_Nm);
+  EXPECT_EQ(a.candidate_held_overlap_m, b.candidate_held_overlap_m);
   EXPECT_EQ(a.contact_solver_state, b.contact_solver_state);
   EXPECT_EQ(a.thermal_pattern_pair, b.thermal_pattern_pair);
   EXPECT_EQ(a.result_contact_tail.start, b.result_contact_tail.start);
@@ -76,6 +77,7 @@ CheckpointState sample_with_mechanics() {
   s.candidate_pair = {0, -2, 0, -1, 0, 1, 0, 2, 1, 2};
   s.candidate_force_N = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, -1e-300};
   s.candidate_rolling_torque_Nm = {0, 0, 0, 1e-9, 0, -2e-9, 0, 0, 0, 0, 0, 0, 3.0 / 7.0, 1e-300, 0};
+  s.candidate_held_overlap_m = {0, 1.25e-4, 0, 3.0 / 7.0 * 1e-5, 1e-300};
   s.thermal_pattern_pair = {0, -1, 0, 1, 1, 2};
   s.contact_solver_state = {1.7976931348623157e308 / 3.0};
   // The result file's contacts in their last chunk: rows 256 and 257 (frozen pairs and forces

@@ -49,6 +49,7 @@ void write_contents(hid_t file, const CheckpointState& s) {
   if (s.has_mechanics) {
     Hdf5Handle mechanics = hdf5::create_group(file, "mechanics");
     hdf5::write_double_attribute(mechanics.get(), "margin_m", s.detector_margin_m);
+    hdf5::write_double_attribute(mechanics.get(), "wall_margin_m", s.detector_wall_margin_m);
     hdf5::write_int64_attribute(mechanics.get(), "rebuilds", s.detector_rebuilds);
     hdf5::write_array(mechanics.get(), "reference_position", s.detector_reference_position_m, 3, "m");
     hdf5::write_array(mechanics.get(), "candidate_pair", s.candidate_pair, 2, "1");
@@ -137,6 +138,9 @@ CheckpointState read_contents(hid_t file) {
     };
     require_attribute(hdf5::read_double_attribute(mechanics.get(), "margin_m", s.detector_margin_m),
                       "margin_m");
+    // Absent in checkpoints older than it: 0, read as margin_m (ContactDetector::restore).
+    if (!hdf5::read_double_attribute(mechanics.get(), "wall_margin_m", s.detector_wall_margin_m))
+      s.detector_wall_margin_m = 0.0;
     require_attribute(hdf5::read_int64_attribute(mechanics.get(), "rebuilds", s.detector_rebuilds),
                       "rebuilds");
     s.detector_reference_position_m = hdf5::read_double_array(mechanics.get(), "reference_position", 3);

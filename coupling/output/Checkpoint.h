@@ -6,7 +6,8 @@
 // /velocity [N,3] m/s, /angular_velocity [N,3] rad/s, /temperature [N] K,
 // /contacts/pair [C,2] int64, /contacts/impulse [C,3] N s, /contacts/tangential_force [C,3] N,
 // /contacts/normal_force [C] N, /extra/<name> scalar double; for a bitwise restart (docs/restart-and-files.md
-// "Restart, interruption and files") also /mechanics (attributes margin_m, rebuilds; datasets
+// "Restart, interruption and files") also /mechanics (attributes margin_m, wall_margin_m
+// (absent in checkpoints older than it: margin_m), rebuilds; datasets
 // reference_position [N,3] or [0,3] m, candidate_pair [K,2], candidate_force [K,3] N,
 // candidate_rolling_torque [K,3] N m (only with rolling resistance), candidate_held_overlap [K] m
 // (only while an imported overlap is held),
@@ -52,6 +53,7 @@ struct CheckpointState {
   // The moving mechanics' state (mechanics/integrator/MechanicsState.h), flat.
   bool has_mechanics = false;
   double detector_margin_m = 0.0;
+  double detector_wall_margin_m = 0.0;               // 0: detector_margin_m
   std::int64_t detector_rebuilds = 0;
   std::vector<double> detector_reference_position_m; // N*3, or empty: no candidate table yet
   std::vector<std::int64_t> candidate_pair;          // K*2

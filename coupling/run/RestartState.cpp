@@ -117,6 +117,7 @@ void store_mechanics_state(const mechanics::MechanicsState& m, CheckpointState& 
   cs.angular_velocity_rad_per_s = flat_of(m.angular_velocity_rad_per_s);
   cs.has_mechanics = true;
   cs.detector_margin_m = m.margin_m;
+  cs.detector_wall_margin_m = m.wall_margin_m;
   cs.detector_rebuilds = m.rebuilds;
   cs.detector_reference_position_m = flat_of(m.reference_position_m);
   cs.candidate_pair.clear();
@@ -140,6 +141,7 @@ mechanics::MechanicsState mechanics_state_of(const CheckpointState& cs) {
   m.velocity_m_per_s = vectors_of(cs.velocity_m_per_s);
   m.angular_velocity_rad_per_s = vectors_of(cs.angular_velocity_rad_per_s);
   m.margin_m = cs.detector_margin_m;
+  m.wall_margin_m = cs.detector_wall_margin_m;
   m.rebuilds = cs.detector_rebuilds;
   m.reference_position_m = vectors_of(cs.detector_reference_position_m);
   for (std::size_t k = 0; k + 1 < cs.candidate_pair.size(); k += 2)

@@ -29,11 +29,13 @@ ContactDetector::ContactDetector(double min_margin_m, double max_margin_m,
 void ContactDetector::restore(double margin_m, std::size_t rebuilds,
                               std::vector<Eigen::Vector3d> reference_m,
                               std::vector<CandidatePair> pairs,
-                              std::vector<Eigen::Vector3d> reference_wall_points_m) {
+                              std::vector<Eigen::Vector3d> reference_wall_points_m,
+                              double wall_margin_m) {
   for (std::size_t p = 1; p < pairs.size(); ++p)
     if (!pair_less(pairs[p - 1], pairs[p]))
       throw std::invalid_argument("ContactDetector::restore: pairs not in strictly increasing (i, j) order");
   margin_ = margin_m;
+  wall_margin_ = wall_margin_m > 0.0 ? wall_margin_m : margin_m;
   rebuilds_ = rebuilds;
   valid_ = !reference_m.empty();
   reference_position_ = std::move(reference_m);
@@ -71,20 +73,36 @@ bool ContactDetector::update(const ParticleSet& particles, const std::vector<Wal
         need = true;
     }
   }
-  const double particle_lookahead_max = lookahead_max;
   // A restored table without wall points takes today's (fixed walls never move).
   if (reference_wall_point_.size() != walls.size()) {
     reference_wall_point_.clear();
     for (const auto& w : walls) reference_wall_point_.push_back(w.point);
   }
+  double wall_lookahead_max = 0.0;
+  // The largest look-ahead of a moving wall that can touch a particle within the coming step:
+  // such a wall may hand its speed to the bed (a piston landing at 7 m/s), so the particles'
+  // pairs are listed within its reach too (as all pairs were before walls had a margin of their
+  // own). A wall that touches nothing this step hands nothing on.
+  double engaged_lookahead_max = 0.0;
   for (std::size_t w = 0; w < wall_lookahead_m.size() && w < walls.size(); ++w) {
-    lookahead_max = std::max(lookahead_max, wall_lookahead_m[w]);
-    if ((walls[w].point - reference_wall_point_[w]).norm() + wall_lookahead_m[w] > 0.5 * margin_)
+    wall_lookahead_max = std::max(wall_lookahead_max, wall_lookahead_m[w]);
+    if ((walls[w].point - reference_wall_point_[w]).norm() + wall_lookahead_m[w] > 0.5 * wall_margin_)
       need = true;
+    if (wall_lookahead_m[w] <= engaged_lookahead_max) continue;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double ahead = lookahead_m.empty() ? 0.0 : lookahead_m[i];
+      if (walls[w].signed_distance(particles.position[i]) - particles.radius[i] <= wall_lookahead_m[w] + ahead) {
+        engaged_lookahead_max = wall_lookahead_m[w];
+        break;
+      }
+    }
   }
+  const double reach_lookahead_max = std::max(lookahead_max, engaged_lookahead_max);
+  // An engaged wall the particles' margin does not cover: list their pairs within its reach now.
+  if (engaged_lookahead_max > 0.0 && 2.0 * engaged_lookahead_max > margin_) need = true;
   if (!need) return false;
-  rebuild(particles, walls, lookahead_max);
-  if (particles.box.any()) check_period(particles, particle_lookahead_max);
+  rebuild(particles, walls, reach_lookahead_max, wall_lookahead_max);
+  if (particles.box.any()) check_period(particles, lookahead_max);
   return true;
 }
 
@@ -129,13 +147,15 @@ void ContactDetector::check_period(const ParticleSet& particles, double lookahea
 }
 
 void ContactDetector::rebuild(const ParticleSet& particles, const std::vector<Wall>& walls,
-                              double lookahead_max) {
+                              double lookahead_max, double wall_lookahead_max) {
   const std::size_t n = particles.size();
   // Two particles can close by at most the sum of their look-aheads before the next check,
   // so the margin is never below twice the largest one, whatever max_margin says: a fast
   // particle widens the table rather than tunnel through an unlisted neighbour or wall.
-  margin_ = std::max(std::clamp(4.0 * lookahead_max, min_margin_, max_margin_),
-                     2.0 * lookahead_max);
+  margin_ = margin_for(lookahead_max);
+  // A moving wall's pairs: the same rule on its own look-ahead, never below the particles'
+  // margin (a particle-wall gap closes by both displacements; see the header).
+  wall_margin_ = std::max(margin_, margin_for(wall_lookahead_max));
   std::swap(pairs_, previous_pairs_);
   const auto& x = particles.position;
   const auto& r = particles.radius;
@@ -164,7 +184,7 @@ void ContactDetector::rebuild(const ParticleSet& particles, const std::vector<Wa
       const auto ii = static_cast<std::int32_t>(i);
       if (!fixed[a]) {
         for (std::size_t w = walls.size(); w-- > 0;) {
-          if (walls[w].signed_distance(x[a]) - r[a] <= margin_) {
+          if (walls[w].signed_distance(x[a]) - r[a] <= (walls[w].moves() ? wall_margin_ : margin_)) {
             local.push_back({ii, wall_code<std::int32_t>(w)});
           }
         }

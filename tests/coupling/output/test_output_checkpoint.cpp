@@ -49,6 +49,7 @@ void expect_equal(const CheckpointState& a, const CheckpointState& b) {
   EXPECT_EQ(a.contact_normal_force_N, b.contact_normal_force_N);
   EXPECT_EQ(a.has_mechanics, b.has_mechanics);
   EXPECT_EQ(a.detector_margin_m, b.detector_margin_m);
+  EXPECT_EQ(a.detector_wall_margin_m, b.detector_wall_margin_m);
   EXPECT_EQ(a.detector_rebuilds, b.detector_rebuilds);
   EXPECT_EQ(a.detector_reference_position_m, b.detector_reference_position_m);
   EXPECT_EQ(a.candidate_pair, b.candidate_pair);
@@ -72,6 +73,7 @@ CheckpointState sample_with_mechanics() {
   s.contact_normal_force_N = {0.1 / 3.0, 2e-3, 1e300};
   s.has_mechanics = true;
   s.detector_margin_m = 1.0 / 3.0 * 1e-4;
+  s.detector_wall_margin_m = 2.0 / 3.0 * 1e-3;
   s.detector_rebuilds = 4096;
   s.detector_reference_position_m = {1, 2, 3, 4, 5, 6, 7, 8, 9.000000000000002};
   s.candidate_pair = {0, -2, 0, -1, 0, 1, 0, 2, 1, 2};

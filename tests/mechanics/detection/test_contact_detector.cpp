@@ -194,3 +194,38 @@ TEST(ContactDetector, OneAndTwoThreadsListTheSameTable) {
   }
   EXPECT_EQ(found, expected);
 }
+
+// A moving wall (a piston) has a margin of its own: falling fast far above the bed it lists its
+// own pairs within its reach but leaves the particles' table to their own look-aheads (a piston
+// at 7 m/s had made every pair of 1,000 spheres a candidate while it fell). Once it can touch a
+// particle within the coming step it may hand its speed to the bed, and the particles' pairs are
+// listed within its reach too.
+TEST(ContactDetector, AFallingPistonWidensItsOwnPairsUntilItCanTouchTheBed) {
+  ParticleSet set = random_set(800, 3);
+  const std::vector<double> still(set.size(), 1e-6);  // m: the particles' look-aheads
+  const double piston_ahead = 4e-3;                      // m: the piston's
+  auto table = [&](double piston_height) {
+    std::vector<Wall> walls = {Wall::through({0, 0, 0}, {0, 1, 0}, 0),
+                               Wall::through({0, piston_height, 0}, {0, -1, 0}, 0)};
+    walls[1].make_piston(0.01, 4.0);
+    ContactDetector detector(4e-4, 4e-4);
+    EXPECT_TRUE(detector.update(set, walls, still, {0.0, piston_ahead}));
+    std::set<std::pair<int, int>> found;
+    for (const auto& p : detector.pairs()) found.insert({p.i, p.j});
+    return std::tuple{found, detector.margin(), detector.wall_margin(), walls};
+  };
+  // 10 mm above the bed's top (0.02 m): out of reach within the step.
+  const auto [far, far_margin, far_wall_margin, far_walls] = table(0.03 + 0.001);
+  EXPECT_EQ(far_margin, 4e-4);
+  EXPECT_EQ(far_wall_margin, 2.0 * piston_ahead);  // 4 x the look-ahead, clamped, never below 2 x
+  std::set<std::pair<int, int>> expected = brute_force(set, {far_walls[0]}, 4e-4);
+  for (std::size_t i = 0; i < set.size(); ++i)
+    if (far_walls[1].signed_distance(set.position[i]) - set.radius[i] <= 2.0 * piston_ahead)
+      expected.insert({static_cast<int>(i), -2});
+  EXPECT_EQ(far, expected);
+  // 3 mm above the top: within its look-ahead, every pair within its reach is listed.
+  const auto [near, near_margin, near_wall_margin, near_walls] = table(0.02 + 0.003);
+  EXPECT_EQ(near_margin, 2.0 * piston_ahead);
+  EXPECT_EQ(near, brute_force(set, near_walls, 2.0 * piston_ahead));
+  EXPECT_GT(near.size(), 3 * far.size());
+}

@@ -270,7 +270,7 @@ StepReport NscdIntegrator::step(double h) {
                               ? std::array<double, 2>{particles_.box.low[problem_.split_axis],
                                                       particles_.box.high[problem_.split_axis]}
                               : std::array<double, 2>{0.0, 0.0};
-  if (hold_pending_) take_initial_overlaps();
+  if (!holds_overlap_.empty()) take_initial_overlaps();
   if (static_start_pending_) {
     static_start_pending_ = false;
     // Heights along a periodic axis have no order.

@@ -196,10 +196,10 @@ class NscdIntegrator {
   mutable std::vector<double> speed_;   // fall_judged_speed's work space, m/s
   bool has_piston_ = false;
   bool static_start_pending_ = true;  // the next step is the first, and knows no forces
-  // hold_initial_overlaps: per particle (empty: none), and per candidate the overlap held, m
-  // (empty when none is held; carried over candidate rebuilds as force_ is).
+  // hold_initial_overlaps: per particle until the first step takes the overlaps (empty: none
+  // to take), and per candidate the overlap held, m (empty when none is held; carried over
+  // candidate rebuilds as force_ is).
   std::vector<std::uint8_t> holds_overlap_;
-  bool hold_pending_ = false;
   std::vector<double> held_overlap_;
   std::vector<double> old_held_overlap_;
   double slop_m_ = 0.0;  // penetration slop (NscdParameters), m

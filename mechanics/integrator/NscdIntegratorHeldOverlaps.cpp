@@ -15,11 +15,9 @@ void NscdIntegrator::hold_initial_overlaps(std::vector<std::uint8_t> holds) {
     throw std::invalid_argument("mechanics: hold_initial_overlaps needs one flag per particle (" +
                                 std::to_string(particles_.size()) + "), got " + std::to_string(holds.size()));
   holds_overlap_ = std::move(holds);
-  hold_pending_ = true;
 }
 
 void NscdIntegrator::take_initial_overlaps() {
-  hold_pending_ = false;
   held_overlap_.assign(problem_.size(), 0.0);
   bool any = false;
   for (std::size_t k = 0; k < problem_.size(); ++k) {
@@ -29,6 +27,7 @@ void NscdIntegrator::take_initial_overlaps() {
     any = true;
   }
   if (!any) held_overlap_.clear();
+  holds_overlap_.clear();  // taken: the first step's overlaps only
 }
 
 void NscdIntegrator::add_held_overlaps(std::vector<double>& gap_m) {

@@ -82,7 +82,7 @@ void NscdIntegrator::restore_state(const MechanicsState& s) {
   if (rolling_) torque_.resize(s.candidates.size(), Eigen::Vector3d::Zero());
   old_torque_.clear();
   held_overlap_ = s.candidate_held_overlap_m;
-  hold_pending_ = false;  // the state carries what is held
+  holds_overlap_.clear();  // the state carries what is held
   contacts_.clear();
   schedule_.restore(s.tolerance_schedule);
   solver_->restore_carried_state(s.solver_state);

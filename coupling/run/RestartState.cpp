@@ -118,6 +118,8 @@ void store_mechanics_state(const mechanics::MechanicsState& m, CheckpointState& 
   cs.has_mechanics = true;
   cs.detector_margin_m = m.margin_m;
   cs.detector_wall_margin_m = m.wall_margin_m;
+  // 1 when a landing wall set the table's margin (0 in checkpoints older than it).
+  cs.extra["mechanics_margin_widened_by_wall"] = m.margin_widened_by_wall ? 1.0 : 0.0;
   cs.detector_rebuilds = m.rebuilds;
   cs.detector_reference_position_m = flat_of(m.reference_position_m);
   cs.candidate_pair.clear();
@@ -142,6 +144,7 @@ mechanics::MechanicsState mechanics_state_of(const CheckpointState& cs) {
   m.angular_velocity_rad_per_s = vectors_of(cs.angular_velocity_rad_per_s);
   m.margin_m = cs.detector_margin_m;
   m.wall_margin_m = cs.detector_wall_margin_m;
+  m.margin_widened_by_wall = extra_or_zero(cs, "mechanics_margin_widened_by_wall") != 0.0;
   m.rebuilds = cs.detector_rebuilds;
   m.reference_position_m = vectors_of(cs.detector_reference_position_m);
   for (std::size_t k = 0; k + 1 < cs.candidate_pair.size(); k += 2)

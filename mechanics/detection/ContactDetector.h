@@ -74,19 +74,23 @@ class ContactDetector {
   std::size_t rebuild_count() const { return rebuilds_; }
   double margin() const { return margin_; }
   double wall_margin() const { return wall_margin_; }  // particle-wall pairs, m (>= margin())
+  // Whether the last rebuild's margin was set by an engaged moving wall rather than by the
+  // particles' own look-aheads (such a table is rebuilt once the wall has stopped).
+  bool widened_by_wall() const { return widened_by_wall_; }
   // Positions at the last rebuild (empty before the first one or after invalidate()).
   const std::vector<Eigen::Vector3d>& reference_positions() const { return reference_position_; }
   // Wall points at the last rebuild (empty before the first one).
   const std::vector<Eigen::Vector3d>& reference_wall_points() const { return reference_wall_point_; }
 
   // Puts back a table saved from pairs(), reference_positions(), reference_wall_points(),
-  // margin(), wall_margin() and rebuild_count() (restart from a checkpoint): the next update()
-  // decides exactly as the saved detector would. Empty reference positions leave the table
+  // margin(), wall_margin(), widened_by_wall() and rebuild_count() (restart from a checkpoint):
+  // the next update() decides exactly as the saved detector would. Empty reference positions leave the table
   // invalid (rebuilt at the next update); empty wall points: the walls' points at the next
   // update; wall_margin_m 0 (a state saved before it existed): margin_m.
   void restore(double margin_m, std::size_t rebuilds, std::vector<Eigen::Vector3d> reference_m,
                std::vector<CandidatePair> pairs,
-               std::vector<Eigen::Vector3d> reference_wall_points_m = {}, double wall_margin_m = 0.0);
+               std::vector<Eigen::Vector3d> reference_wall_points_m = {}, double wall_margin_m = 0.0,
+               bool widened_by_wall = false);
 
  private:
   // lookahead_max: the particles' largest look-ahead; wall_lookahead_max: the moving walls'.
@@ -106,6 +110,7 @@ class ContactDetector {
   double max_margin_;
   double margin_ = 0.0;
   double wall_margin_ = 0.0;
+  bool widened_by_wall_ = false;
   bool valid_ = false;
   std::size_t rebuilds_ = 0;
   std::vector<Eigen::Vector3d> reference_position_;  // positions at the last rebuild

@@ -27,6 +27,7 @@ struct MechanicsState {
   // Candidate table; empty reference positions: no table yet (the next step rebuilds).
   double margin_m = 0.0;
   double wall_margin_m = 0.0;  // particle-wall pairs (ContactDetector::wall_margin); 0: margin_m
+  bool margin_widened_by_wall = false;  // ContactDetector::widened_by_wall
   std::int64_t rebuilds = 0;
   std::vector<Eigen::Vector3d> reference_position_m;  // per particle, at the last rebuild
   std::vector<CandidatePair> candidates;               // sorted as ContactDetector::pairs()

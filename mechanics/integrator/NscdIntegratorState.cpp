@@ -14,6 +14,7 @@ MechanicsState NscdIntegrator::save_state() const {
   s.angular_velocity_rad_per_s = particles_.angular_velocity;
   s.margin_m = detector_.margin();
   s.wall_margin_m = detector_.wall_margin();
+  s.margin_widened_by_wall = detector_.widened_by_wall();
   s.rebuilds = std::int64_t(detector_.rebuild_count());
   s.reference_position_m = detector_.reference_positions();
   s.candidates = detector_.pairs();
@@ -72,7 +73,8 @@ void NscdIntegrator::restore_state(const MechanicsState& s) {
   particles_.velocity = s.velocity_m_per_s;
   particles_.angular_velocity = s.angular_velocity_rad_per_s;
   detector_.restore(s.margin_m, std::size_t(s.rebuilds), s.reference_position_m, s.candidates,
-                    s.reference_wall_point_m, s.wall_margin_m);
+                    s.reference_wall_point_m, s.wall_margin_m,
+                    s.margin_widened_by_wall);
   order_.invalidate();
   force_ = s.candidate_force_N;
   old_force_.clear();

@@ -84,9 +84,9 @@ class ContactDetector {
 
   // Puts back a table saved from pairs(), reference_positions(), reference_wall_points(),
   // margin(), wall_margin(), widened_by_wall() and rebuild_count() (restart from a checkpoint):
-  // the next update() decides exactly as the saved detector would. Empty reference positions leave the table
-  // invalid (rebuilt at the next update); empty wall points: the walls' points at the next
-  // update; wall_margin_m 0 (a state saved before it existed): margin_m.
+  // the next update() decides exactly as the saved detector would. Empty reference positions
+  // leave the table invalid (rebuilt at the next update); empty wall points: the walls' points
+  // at the next update; wall_margin_m 0 (a state saved before it existed): margin_m.
   void restore(double margin_m, std::size_t rebuilds, std::vector<Eigen::Vector3d> reference_m,
                std::vector<CandidatePair> pairs,
                std::vector<Eigen::Vector3d> reference_wall_points_m = {}, double wall_margin_m = 0.0,

@@ -27,6 +27,18 @@ void sync_file(const std::string& path) {
   ::close(fd);
 }
 
+// The candidate datasets hold one entry per candidate pair (K): candidate_pair 2 K values,
+// candidate_force_N 3 K, candidate_rolling_torque_Nm 3 K or none, candidate_held_overlap_m K or
+// none; and detector_reference_position_m 3 N values (n particles) or none. Checked on writing
+// and on reading alike.
+bool candidate_counts_agree(const CheckpointState& s, std::size_t n) {
+  const std::size_t k = s.candidate_pair.size() / 2;
+  return s.candidate_pair.size() % 2 == 0 && s.candidate_force_N.size() == 3 * k &&
+         (s.candidate_rolling_torque_Nm.empty() || s.candidate_rolling_torque_Nm.size() == 3 * k) &&
+         (s.candidate_held_overlap_m.empty() || s.candidate_held_overlap_m.size() == k) &&
+         (s.detector_reference_position_m.empty() || s.detector_reference_position_m.size() == 3 * n);
+}
+
 void write_contents(hid_t file, const CheckpointState& s) {
   hdf5::write_string_attribute(file, "format", kCheckpointFormat);
   hdf5::write_string_attribute(file, "version", TMDEM_VERSION);
@@ -213,14 +225,7 @@ void write_checkpoint(const std::string& path, const CheckpointState& s) {
         "CheckpointState: contact_pair needs 2 C values, contact_impulse_N_s 3 C, "
         "contact_tangential_force_N 3 C or none and contact_normal_force_N C or none");
   }
-  if (s.has_mechanics && (s.candidate_pair.size() % 2 != 0 ||
-                          s.candidate_force_N.size() != 3 * (s.candidate_pair.size() / 2) ||
-                          (!s.candidate_rolling_torque_Nm.empty() &&
-                           s.candidate_rolling_torque_Nm.size() != s.candidate_force_N.size()) ||
-                          (!s.candidate_held_overlap_m.empty() &&
-                           3 * s.candidate_held_overlap_m.size() != s.candidate_force_N.size()) ||
-                          (!s.detector_reference_position_m.empty() &&
-                           s.detector_reference_position_m.size() != 3 * n))) {
+  if (s.has_mechanics && !candidate_counts_agree(s, n)) {
     throw std::invalid_argument(
         "CheckpointState: candidate_pair needs 2 K values, candidate_force_N 3 K, "
         "candidate_rolling_torque_Nm 3 K or none, candidate_held_overlap_m K or none and "
@@ -278,11 +283,7 @@ CheckpointState read_checkpoint(const std::string& path) {
       s.angular_velocity_rad_per_s.size() != 3 * n || s.contact_impulse_N_s.size() != 3 * c ||
       s.contact_tangential_force_N.size() != 3 * c ||
       (!s.contact_normal_force_N.empty() && s.contact_normal_force_N.size() != c) ||
-      s.candidate_force_N.size() != 3 * (s.candidate_pair.size() / 2) ||
-      (!s.candidate_rolling_torque_Nm.empty() &&
-       s.candidate_rolling_torque_Nm.size() != s.candidate_force_N.size()) ||
-      (!s.candidate_held_overlap_m.empty() && 3 * s.candidate_held_overlap_m.size() != s.candidate_force_N.size()) ||
-      (!s.detector_reference_position_m.empty() && s.detector_reference_position_m.size() != 3 * n)) {
+      !candidate_counts_agree(s, n)) {
     throw OutputError("cannot read checkpoint '" + path +
                       "': particle or contact counts of its datasets disagree");
   }

@@ -30,6 +30,20 @@ void tangent_frame(const Eigen::Vector3d& n, int dimension, Eigen::Vector3d& t1,
   t2 = n.cross(t1);
 }
 
+// Per-candidate values onto a rebuilt table: values[k] = old[previous[k]] for a pair that stays a
+// candidate (previous: ContactDetector::previous_index), `none` for a new one or one the old
+// values did not reach (a table restored without torques); `old` keeps the vector for reuse.
+template <class T>
+void carry_over(std::vector<T>& values, std::vector<T>& old, const std::vector<std::int32_t>& previous,
+                const T& none) {
+  std::swap(values, old);
+  values.resize(previous.size());
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    const bool kept = previous[k] >= 0 && std::size_t(previous[k]) < old.size();
+    values[k] = kept ? old[static_cast<std::size_t>(previous[k])] : none;
+  }
+}
+
 }  // namespace
 
 void NscdIntegrator::refresh_candidates(double h) {
@@ -41,26 +55,12 @@ void NscdIntegrator::refresh_candidates(double h) {
   }
   if (!detector_.update(particles_, walls_, lookahead_, wall_lookahead_)) return;
   order_.invalidate();
-  // Carry the forces of pairs that stay candidates over to the new table (warm start).
-  std::swap(force_, old_force_);
+  // Carry what pairs that stay candidates hold over to the new table: the forces (warm start),
+  // the held overlaps and the rolling torques.
   const auto& previous = detector_.previous_index();
-  force_.resize(detector_.pairs().size());
-  for (std::size_t k = 0; k < force_.size(); ++k) {
-    force_[k] = previous[k] >= 0 ? old_force_[previous[k]] : Eigen::Vector3d::Zero();
-  }
-  if (!held_overlap_.empty()) {
-    std::swap(held_overlap_, old_held_overlap_);
-    held_overlap_.resize(force_.size());
-    for (std::size_t k = 0; k < held_overlap_.size(); ++k)
-      held_overlap_[k] = previous[k] >= 0 ? old_held_overlap_[previous[k]] : 0.0;
-  }
-  if (!rolling_) return;
-  std::swap(torque_, old_torque_);
-  torque_.resize(force_.size());
-  for (std::size_t k = 0; k < torque_.size(); ++k) {
-    const bool kept = previous[k] >= 0 && std::size_t(previous[k]) < old_torque_.size();
-    torque_[k] = kept ? old_torque_[previous[k]] : Eigen::Vector3d::Zero();
-  }
+  carry_over(force_, old_force_, previous, Eigen::Vector3d::Zero().eval());
+  if (!held_overlap_.empty()) carry_over(held_overlap_, old_held_overlap_, previous, 0.0);
+  if (rolling_) carry_over(torque_, old_torque_, previous, Eigen::Vector3d::Zero().eval());
 }
 
 void NscdIntegrator::setup_contacts(double h) {

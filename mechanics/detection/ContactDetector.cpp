@@ -48,12 +48,12 @@ void ContactDetector::restore(double margin_m, std::size_t rebuilds,
 
 bool ContactDetector::update(const ParticleSet& particles, const std::vector<Wall>& walls,
                              const std::vector<double>& lookahead_m,
-                             const std::vector<double>& wall_lookahead_m) {
+                             const std::vector<double>& wall_lookahead_m,
+                             const std::vector<double>& periodic_lookahead_m) {
   const std::size_t n = particles.size();
   double lookahead_max = 0.0;
+  double periodic_lookahead_max = 0.0;
   bool need = !valid_ || reference_position_.size() != n;
-  // Particles are held to the margin that fits the periods (margin_ without periodic axes).
-  const double particle_margin = particle_margin_m(particles);
   // Serial on purpose: about 3 ns per particle, less than waking threads costs on a loaded
   // machine (measured: 100,000 particles, 0.3 ms serial, 1 to 20 ms with 2 threads at load 11).
   const PeriodicBox& box = particles.box;
@@ -65,12 +65,20 @@ bool ContactDetector::update(const ParticleSet& particles, const std::vector<Wal
     }
   } else {
     // Through the nearest image: a particle wrapped across a periodic boundary has moved by
-    // its displacement, not by the period.
+    // its displacement, not by the period. Two tests (see the header): within half the listing
+    // margin, and along the periodic axes within half the fitted margin.
+    const double fitted_m = fitted_margin_m(particles);
     for (std::size_t i = 0; i < n; ++i) {
       const double ahead = lookahead_m.empty() ? 0.0 : lookahead_m[i];
+      const double periodic_ahead = periodic_lookahead_m.empty() ? ahead : periodic_lookahead_m[i];
       lookahead_max = std::max(lookahead_max, ahead);
-      if (!need && box.minimum_image(particles.position[i] - reference_position_[i]).norm() + ahead >
-                       0.5 * particle_margin)
+      periodic_lookahead_max = std::max(periodic_lookahead_max, periodic_ahead);
+      if (need) continue;
+      const Eigen::Vector3d moved = box.minimum_image(particles.position[i] - reference_position_[i]);
+      double across_sq = 0.0;  // squared displacement along the periodic axes
+      for (int a = 0; a < 3; ++a)
+        if (box.along(a)) across_sq += moved[a] * moved[a];
+      if (moved.norm() + ahead > 0.5 * margin_ || std::sqrt(across_sq) + periodic_ahead > 0.5 * fitted_m)
         need = true;
     }
   }
@@ -114,27 +122,25 @@ bool ContactDetector::update(const ParticleSet& particles, const std::vector<Wal
   if (!need) return false;
   widened_by_wall_ = engaged_lookahead_max > lookahead_max || shrink;
   rebuild(particles, walls, reach_lookahead_max, wall_lookahead_max);
-  if (particles.box.any()) check_period(particles, lookahead_max);
+  if (particles.box.any()) check_period(particles, periodic_lookahead_max);
   return true;
 }
 
-double ContactDetector::particle_margin_m(const ParticleSet& particles) const {
-  // The nearest image is the only one that can touch while a pair's relative motion between
-  // rebuilds (at most the particle margin: half of it each) stays below half a period less a
-  // diameter; past that a pair could touch twice (two images), which one candidate cannot
-  // hold. So along periodic axes the particles are held to that margin (more rebuilds, never a
-  // missed pair). Walls (a fast piston) keep the whole margin: their gaps are not periodic.
-  if (!particles.box.any()) return margin_;
+double ContactDetector::fitted_margin_m(const ParticleSet& particles) const {
+  // The nearest image is the only one that can touch while a pair's relative motion across the
+  // periods between rebuilds stays below half a period less a diameter; past that a pair could
+  // touch twice (two images), which one candidate cannot hold.
   double period_m = INFINITY;
   for (int a = 0; a < 3; ++a)
     if (particles.box.along(a)) period_m = std::min(period_m, particles.box.length(a));
-  return std::min(margin_, 0.5 * period_m - 2.0 * particles.max_radius());
+  return 0.5 * period_m - 2.0 * particles.max_radius();
 }
 
-void ContactDetector::check_period(const ParticleSet& particles, double lookahead_max) const {
-  // The half-margin test is sound only with a margin of at least twice the largest look-ahead.
-  const double fitted_m = particle_margin_m(particles);
-  if (fitted_m > 0.0 && fitted_m >= 2.0 * lookahead_max) return;
+void ContactDetector::check_period(const ParticleSet& particles, double periodic_lookahead_max) const {
+  // The test along the periodic axes is sound only with a fitted margin of at least twice the
+  // largest look-ahead along them: a rebuild cannot help beyond that.
+  const double fitted_m = fitted_margin_m(particles);
+  if (fitted_m > 0.0 && fitted_m >= 2.0 * periodic_lookahead_max) return;
   double period_m = INFINITY;
   for (int a = 0; a < 3; ++a)
     if (particles.box.along(a)) period_m = std::min(period_m, particles.box.length(a));
@@ -143,13 +149,13 @@ void ContactDetector::check_period(const ParticleSet& particles, double lookahea
   std::ostringstream message;
   message << "a periodic period is too short for the contact reach: half the shortest period "
              "less the largest diameter leaves "
-          << fitted_m << " m, less than twice the largest look-ahead " << lookahead_max
-          << " m (how far a particle may move in a step)";
+          << fitted_m << " m, less than twice the largest look-ahead along the periodic axes "
+          << periodic_lookahead_max << " m (how far a particle may move across the period in a step)";
   // A look-ahead beyond a whole period is a particle crossing the box within a step: a speed no
   // period could hold, left by a step that went wrong before (a bed deposited 1 mm above its
   // floor had its first contact solve diverge to 1e10 m/s, and this message asked for a longer
   // period than 9e7 m).
-  if (lookahead_max >= period_m)
+  if (periodic_lookahead_max >= period_m)
     message << ", longer than the whole period " << period_m
             << " m: a particle that fast points to an earlier step that went wrong (an "
                "unconverged contact solve, see the warnings above), not to the period";

@@ -192,6 +192,7 @@ class NscdIntegrator {
   std::vector<Eigen::Vector3d> old_velocity_, old_angular_velocity_;
   std::vector<Eigen::Vector3d> body_velocity_, body_angular_velocity_;
   std::vector<double> lookahead_;
+  std::vector<double> periodic_lookahead_;  // m, along the periodic axes; empty without them
   std::vector<double> wall_lookahead_;  // m; empty when no wall moves
   mutable std::vector<double> speed_;   // fall_judged_speed's work space, m/s
   bool has_piston_ = false;

@@ -125,7 +125,7 @@ RunOutcome CoupledRun::run() {
     return failed(kExitSolverFailed, e.what());
   } catch (const std::exception& e) {
     local_failure_ = true;
-    return failed(kExitSolverFailed, std::string("setting up the run failed: ") + e.what());
+    return failed(kExitSolverFailed, std::string("the run stopped before its first output: ") + e.what());
   }
 
   // Rank 0 opens the result file; over MPI the others must learn whether it could, or they

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "coupling/bridge/DynamicNetwork.h"
+#include "coupling/output/OutputError.h"
 #include "coupling/bridge/RestingContacts.h"
 #include "coupling/bridge/SceneToMechanics.h"
 #include "coupling/bridge/ThermalDiagnostics.h"
@@ -96,7 +97,21 @@ void CoupledRun::settle() {
   // A signal ends settling after the current step; the run then stops before t = 0: there is
   // no frame to write and nothing to resume (a restart starts from a settled packing).
   const auto mechanics_start = std::chrono::steady_clock::now();
-  summary_.settle = settle_packing(*nscd_, scene_, progress_, [] { return Interruption::pending() != 0; });
+  // A mechanics error within the settle (a period too short for a particle kicked by a landing
+  // piston) says when it came: it is not a scene refused at set-up.
+  try {
+    summary_.settle = settle_packing(*nscd_, scene_, progress_, [] { return Interruption::pending() != 0; });
+  } catch (const StartError&) {
+    throw;
+  } catch (const OutputError&) {
+    throw;
+  } catch (const std::runtime_error& e) {
+    const auto steps = nscd_->stats().steps;
+    std::ostringstream message;
+    message << "settling stopped at mechanics step " << steps + 1 << " (t = "
+            << double(steps) * scene_.mechanics.time_step_s << " s of settle): " << e.what();
+    throw std::runtime_error(message.str());
+  }
   mechanics_seconds_ += seconds_since(mechanics_start);
   if (const int signal = Interruption::pending(); signal != 0)
     throw Interrupted{signal, summary_.settle->time_s};

@@ -15,6 +15,21 @@ bool pair_less(const CandidatePair& a, const CandidatePair& b) {
   return a.i != b.i ? a.i < b.i : a.j < b.j;
 }
 
+// The two largest of a series of lengths, summed: the most any pair of particles can move
+// apart when each moves at most its own length.
+struct LargestTwo {
+  double first = 0.0, second = 0.0;
+  void add(double x) {
+    if (x > first) {
+      second = first;
+      first = x;
+    } else if (x > second) {
+      second = x;
+    }
+  }
+  double sum() const { return first + second; }
+};
+
 }  // namespace
 
 ContactDetector::ContactDetector(double min_margin_m, double max_margin_m,
@@ -52,7 +67,7 @@ bool ContactDetector::update(const ParticleSet& particles, const std::vector<Wal
                              const std::vector<double>& periodic_lookahead_m) {
   const std::size_t n = particles.size();
   double lookahead_max = 0.0;
-  double periodic_lookahead_max = 0.0;
+  double periodic_pair_lookahead = 0.0;  // the two largest look-aheads across the periods, summed
   bool need = !valid_ || reference_position_.size() != n;
   // Serial on purpose: about 3 ns per particle, less than waking threads costs on a loaded
   // machine (measured: 100,000 particles, 0.3 ms serial, 1 to 20 ms with 2 threads at load 11).
@@ -65,22 +80,27 @@ bool ContactDetector::update(const ParticleSet& particles, const std::vector<Wal
     }
   } else {
     // Through the nearest image: a particle wrapped across a periodic boundary has moved by
-    // its displacement, not by the period. Two tests (see the header): within half the listing
-    // margin, and along the periodic axes within half the fitted margin.
+    // its displacement, not by the period. Two tests (see the header): each particle within
+    // half the listing margin, and every pair's motion across the periods (the sum of the two
+    // particles' displacements and look-aheads along the periodic axes) within the fitted
+    // margin, which the two largest decide.
     const double fitted_m = fitted_margin_m(particles);
+    LargestTwo across_reach, across_ahead;
     for (std::size_t i = 0; i < n; ++i) {
       const double ahead = lookahead_m.empty() ? 0.0 : lookahead_m[i];
       const double periodic_ahead = periodic_lookahead_m.empty() ? ahead : periodic_lookahead_m[i];
       lookahead_max = std::max(lookahead_max, ahead);
-      periodic_lookahead_max = std::max(periodic_lookahead_max, periodic_ahead);
+      across_ahead.add(periodic_ahead);
       if (need) continue;
       const Eigen::Vector3d moved = box.minimum_image(particles.position[i] - reference_position_[i]);
+      if (moved.norm() + ahead > 0.5 * margin_) need = true;
       double across_sq = 0.0;  // squared displacement along the periodic axes
       for (int a = 0; a < 3; ++a)
         if (box.along(a)) across_sq += moved[a] * moved[a];
-      if (moved.norm() + ahead > 0.5 * margin_ || std::sqrt(across_sq) + periodic_ahead > 0.5 * fitted_m)
-        need = true;
+      across_reach.add(std::sqrt(across_sq) + periodic_ahead);
     }
+    if (across_reach.sum() > fitted_m) need = true;
+    periodic_pair_lookahead = across_ahead.sum();
   }
   // A restored table without wall points takes today's (fixed walls never move).
   if (reference_wall_point_.size() != walls.size()) {
@@ -122,7 +142,7 @@ bool ContactDetector::update(const ParticleSet& particles, const std::vector<Wal
   if (!need) return false;
   widened_by_wall_ = engaged_lookahead_max > lookahead_max || shrink;
   rebuild(particles, walls, reach_lookahead_max, wall_lookahead_max);
-  if (particles.box.any()) check_period(particles, periodic_lookahead_max);
+  if (particles.box.any()) check_period(particles, periodic_pair_lookahead);
   return true;
 }
 
@@ -136,11 +156,11 @@ double ContactDetector::fitted_margin_m(const ParticleSet& particles) const {
   return 0.5 * period_m - 2.0 * particles.max_radius();
 }
 
-void ContactDetector::check_period(const ParticleSet& particles, double periodic_lookahead_max) const {
-  // The test along the periodic axes is sound only with a fitted margin of at least twice the
-  // largest look-ahead along them: a rebuild cannot help beyond that.
+void ContactDetector::check_period(const ParticleSet& particles, double pair_lookahead_m) const {
+  // The test across the periods is sound only while the two largest look-aheads across them
+  // fit in the fitted margin together: a rebuild cannot help beyond that.
   const double fitted_m = fitted_margin_m(particles);
-  if (fitted_m > 0.0 && fitted_m >= 2.0 * periodic_lookahead_max) return;
+  if (fitted_m > 0.0 && fitted_m >= pair_lookahead_m) return;
   double period_m = INFINITY;
   for (int a = 0; a < 3; ++a)
     if (particles.box.along(a)) period_m = std::min(period_m, particles.box.length(a));
@@ -149,13 +169,13 @@ void ContactDetector::check_period(const ParticleSet& particles, double periodic
   std::ostringstream message;
   message << "a periodic period is too short for the contact reach: half the shortest period "
              "less the largest diameter leaves "
-          << fitted_m << " m, less than twice the largest look-ahead along the periodic axes "
-          << periodic_lookahead_max << " m (how far a particle may move across the period in a step)";
+          << fitted_m << " m, less than the two largest look-aheads along the periodic axes together, "
+          << pair_lookahead_m << " m (how far two particles may move apart across the period in a step)";
   // A look-ahead beyond a whole period is a particle crossing the box within a step: a speed no
   // period could hold, left by a step that went wrong before (a bed deposited 1 mm above its
   // floor had its first contact solve diverge to 1e10 m/s, and this message asked for a longer
   // period than 9e7 m).
-  if (periodic_lookahead_max >= period_m)
+  if (pair_lookahead_m >= period_m)
     message << ", longer than the whole period " << period_m
             << " m: a particle that fast points to an earlier step that went wrong (an "
                "unconverged contact solve, see the warnings above), not to the period";

@@ -18,13 +18,14 @@
 // Periodic axes (particles.box): the grid wraps, pairs and displacements are measured through
 // the nearest image, and a pair across a boundary is the same (i, j) entry as inside the box,
 // so wrapping a particle keeps its candidates and their warm starts. Only the nearest image is
-// listed, so a second test holds each particle's motion *along the periodic axes* (displacement
-// since the rebuild plus look-ahead, both along those axes) to half of the fitted margin: half
-// the shortest period less 2 r_max. Relative motion across the periods then stays below it, and
-// no second image can come into reach. Motion along the other axes is held to the listing
+// listed, so a second test holds the motion of every pair *along the periodic axes* (the two
+// particles' displacements since the rebuild plus their look-aheads, along those axes) to the
+// fitted margin, half the shortest period less 2 r_max: no second image can then come into
+// reach. The two largest of the particles' sums decide it, so one sphere kicked sideways may
+// use most of the margin alone. Motion along the other axes is held to the listing
 // margin only: a piston landing at 8 m/s across a bed periodic in x and z (periodic_pressed,
-// seed 12) moves the particles about 4 mm a step along y, more than the 3 mm the 20 mm periods
-// allow, and had stopped the run when every axis was held to the fitted margin. Below the
+// seed 12) kicks a sphere 4.1 mm a step along y (its look-ahead), more than half the 8 mm the
+// 20 mm periods leave, and had stopped the run when every axis was held to the fitted margin. Below the
 // fitted margin the second test is implied by the first: the tables are those of one test.
 //
 // Everything lives in reused vectors: no allocation once warm.
@@ -112,9 +113,9 @@ class ContactDetector {
   // Half the shortest period less 2 r_max: how far two particles may move apart along the
   // periodic axes between rebuilds (INFINITY without periodic axes).
   double fitted_margin_m(const ParticleSet& particles) const;
-  // Throws std::runtime_error when the fitted margin is below twice the particles' largest
-  // look-ahead along the periodic axes.
-  void check_period(const ParticleSet& particles, double periodic_lookahead_max) const;
+  // Throws std::runtime_error when the fitted margin is below the two largest look-aheads
+  // along the periodic axes together (pair_lookahead_m).
+  void check_period(const ParticleSet& particles, double pair_lookahead_m) const;
 
   double min_margin_;
   double max_margin_;

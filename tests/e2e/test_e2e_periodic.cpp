@@ -235,6 +235,9 @@ TEST(E2ePeriodic, APeriodTooShortForTheFallIsWarnedOfAndStopsTheRun) {
   EXPECT_NE(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("a periodic period is too short for the contact reach"), std::string::npos)
       << r.output;
+  // It says when: within the settle, not at set-up.
+  EXPECT_NE(r.output.find("settling stopped at mechanics step "), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("setting up"), std::string::npos) << r.output;
   for (const std::string name : {"short", "wide"}) {
     r = run_tmdem("check " + name + ".toml", dir);
     ASSERT_EQ(r.exit_code, 0) << r.output;

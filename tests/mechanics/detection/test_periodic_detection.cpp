@@ -161,10 +161,17 @@ TEST(PeriodicDetection, AFastMoveAlongTheWalledAxisIsHeldToTheListingMarginOnly)
   const auto touching = brute_force(set, 0.0);
   EXPECT_GT(touching.size(), 20u);
   for (const auto& pair : touching) EXPECT_TRUE(listed.count(pair)) << pair.first << " " << pair.second;
-  // Across the periods the fitted margin holds: a move of 0.35 mm along x passes half of it.
-  set.position[0] = set.box.wrap(set.position[0] + Vector3d(0.35e-3, 0, 0));
+  // Across the periods the fitted margin holds for every pair: sphere 0 moved 0.85 mm along x
+  // from where the table was built (within the listing margin: 0.85 + 1.5 < 3 mm) and another
+  // sphere, both with their 0.2 mm look-aheads, may move apart by more than 1 mm: rebuilt.
+  set.position[0] = set.box.wrap(detector.reference_positions()[0] + Vector3d(0.85e-3, 0, 0));
   EXPECT_TRUE(detector.update(set, {}, ahead, {}, across));
-  // A look-ahead across the periods beyond half the fitted margin is refused.
+  // One sphere kicked sideways may take most of the fitted margin alone: 0.7 mm across with the
+  // others at 0.2 mm (0.9 mm a pair at most) is taken; all at 0.6 mm (1.2 mm) is refused.
+  std::vector<double> kicked = across;
+  kicked[7] = 0.7e-3;
+  ContactDetector one(0.1e-3, 10e-3);
+  EXPECT_TRUE(one.update(set, {}, ahead, {}, kicked));
   ContactDetector fast(0.1e-3, 10e-3);
   EXPECT_THROW(fast.update(set, {}, ahead, {}, std::vector<double>(set.size(), 0.6e-3)), std::runtime_error);
 }
@@ -175,9 +182,10 @@ TEST(PeriodicDetection, APeriodTooShortForTheReachIsRefused) {
   ParticleSet set = two_spheres(2.6e-3, box);
   ContactDetector detector(0.1e-3, 2e-3);
   EXPECT_THROW(detector.update(set, {}, {}), std::runtime_error);
-  // 4.6 mm: the margin (4 x the look-ahead of 0.1 mm) is 0.4 mm, but the particles are held
-  // to the 0.3 mm that fits (half the period less a diameter): a move of 0.06 mm plus the
-  // look-ahead passes half of it and rebuilds. A look-ahead of 0.2 mm needs 0.4 mm: refused.
+  // 4.6 mm: the margin (4 x the look-ahead of 0.1 mm) is 0.4 mm, but the pair is held to the
+  // 0.3 mm that fits (half the period less a diameter) across the period: a move of 0.04 mm
+  // plus both look-aheads stays within it, 0.11 mm does not and rebuilds. Look-aheads of 0.2
+  // mm need 0.4 mm together: refused.
   set.box.high.x() = 4.6e-3;
   ContactDetector fitted(0.1e-3, 2e-3);
   const std::vector<double> ahead{0.1e-3, 0.1e-3};
@@ -186,7 +194,7 @@ TEST(PeriodicDetection, APeriodTooShortForTheReachIsRefused) {
   EXPECT_EQ(fitted.pairs().size(), 1u);
   set.position[1].x() += 0.04e-3;
   EXPECT_FALSE(fitted.update(set, {}, ahead));
-  set.position[1].x() += 0.02e-3;
+  set.position[1].x() += 0.07e-3;
   EXPECT_TRUE(fitted.update(set, {}, ahead));
   ContactDetector fast(0.1e-3, 2e-3);
   EXPECT_THROW(fast.update(set, {}, {0.2e-3, 0.2e-3}), std::runtime_error);
@@ -214,10 +222,11 @@ TEST(PeriodicDetection, APeriodRefusalGivesItsFiguresAndBlamesARunawaySpeed) {
   ParticleSet set = two_spheres(2.6e-3, box);
   const std::string short_period = refusal(set, 0.2e-3);
   EXPECT_NE(short_period.find("leaves 0.0003 m"), std::string::npos) << short_period;
-  EXPECT_NE(short_period.find("look-ahead along the periodic axes 0.0002 m"), std::string::npos) << short_period;
+  EXPECT_NE(short_period.find("look-aheads along the periodic axes together, 0.0004 m"), std::string::npos)
+      << short_period;
   EXPECT_NE(short_period.find("enlarge the period"), std::string::npos) << short_period;
   const std::string runaway = refusal(set, 9e7);
-  EXPECT_NE(runaway.find("look-ahead along the periodic axes 9e+07 m"), std::string::npos) << runaway;
+  EXPECT_NE(runaway.find("look-aheads along the periodic axes together, 1.8e+08 m"), std::string::npos) << runaway;
   EXPECT_NE(runaway.find("whole period 0.0046 m"), std::string::npos) << runaway;
   EXPECT_EQ(runaway.find("enlarge the period"), std::string::npos) << runaway;
 }

@@ -90,6 +90,9 @@ void print_run_end(const RunSummary& summary, const Scene& scene, const std::str
       if (summary.energy.mechanical)
         out << " (potential energy " << summary.energy.mechanical->correction_potential_J << " J)";
     }
+    if (m.halved_steps > 0)
+      out << ", " << m.halved_steps << " steps halved: particles fast across the periods (docs/mechanics.md "
+          << "\"Periodic boundaries\")";
     out << "\n";
     // Nothing to say of a schedule whose fall never began (on by default: most small scenes).
     if (const auto& ts = m.tolerance_schedule; ts && ts->fall_steps > 0) {

@@ -156,6 +156,15 @@ double ContactDetector::fitted_margin_m(const ParticleSet& particles) const {
   return 0.5 * period_m - 2.0 * particles.max_radius();
 }
 
+bool ContactDetector::fits_periods(const ParticleSet& particles,
+                                   const std::vector<double>& periodic_lookahead_m) const {
+  if (!particles.box.any()) return true;
+  LargestTwo ahead;
+  for (const double a : periodic_lookahead_m) ahead.add(a);
+  const double fitted_m = fitted_margin_m(particles);
+  return fitted_m > 0.0 && fitted_m >= ahead.sum();
+}
+
 void ContactDetector::check_period(const ParticleSet& particles, double pair_lookahead_m) const {
   // The test across the periods is sound only while the two largest look-aheads across them
   // fit in the fitted margin together: a rebuild cannot help beyond that.

@@ -72,6 +72,11 @@ class ContactDetector {
               const std::vector<double>& wall_lookahead_m = {},
               const std::vector<double>& periodic_lookahead_m = {});
 
+  // Whether the two largest look-aheads along the periodic axes (m, per particle) fit together in
+  // half the shortest period less 2 r_max, as update() needs (true without periodic axes). A
+  // step that fails it is taken in parts (NscdIntegrator::step).
+  bool fits_periods(const ParticleSet& particles, const std::vector<double>& periodic_lookahead_m) const;
+
   // Forces a rebuild at the next update (after particles were moved by hand).
   void invalidate() { valid_ = false; }
 

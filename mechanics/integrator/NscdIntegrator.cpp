@@ -217,6 +217,18 @@ StepReport NscdIntegrator::step() { return step(parameters_.time_step); }
 
 StepReport NscdIntegrator::step(double h) {
   if (!(h > 0.0) || !std::isfinite(h)) throw std::invalid_argument("mechanics: step must be > 0");
+  // A step too long for the periods is taken as two halves, before anything changes (the
+  // schedule's phase included). Only where the run would otherwise stop: a landing piston on a
+  // narrow periodic bed that kicks two spheres sideways (bench/beds/periodic_landing.toml, seed
+  // 7: 5.2 mm of look-aheads across 14 mm periods that leave 5 mm).
+  if (particles_.box.any() && h > std::ldexp(parameters_.time_step, -kMaxHalvings) * (1.0 + 1e-9)) {
+    fill_periodic_lookahead(h);
+    if (!detector_.fits_periods(particles_, periodic_lookahead_)) {
+      ++stats_.halved_steps;
+      const StepReport first = step(0.5 * h);
+      return merged(first, step(0.5 * h));
+    }
+  }
   StepReport report;
   const std::size_t n = particles_.size();
   // Only the schedule reads it (and the cap, while the schedule says falling).

@@ -83,7 +83,12 @@ class NscdIntegrator {
                  NscdParameters parameters = {});
 
   StepReport step();          // one step of parameters().time_step
-  StepReport step(double h);  // one step of h seconds
+  // One step of h seconds. On a periodic scene where two particles could move apart across the
+  // periods by more than they allow within h (a landing piston kicking spheres sideways), the
+  // step is taken as two halves, and so on down to 2^-kMaxHalvings of the time step; beyond,
+  // the detector stops the run with an error naming the lengths.
+  StepReport step(double h);
+  static constexpr int kMaxHalvings = 4;  // a step is halved at most this many times
 
   // Contacts with r_n > 0 after the last step (forces are the step means, impulse / h), in
   // strictly increasing (i, j) order, j signed (walls first for each i), as the candidates are.
@@ -153,6 +158,8 @@ class NscdIntegrator {
 
  private:
   void refresh_candidates(double h);
+  // periodic_lookahead_ for a step of h (periodic scenes).
+  void fill_periodic_lookahead(double h);
   void setup_contacts(double h);
   // The "hertz" normal law (NscdIntegratorHertz.cpp): each solvable candidate's compliance and
   // bias from its linearised Hertz law, after setup_contacts.

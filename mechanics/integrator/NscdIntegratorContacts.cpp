@@ -46,6 +46,23 @@ void carry_over(std::vector<T>& values, std::vector<T>& old, const std::vector<s
 
 }  // namespace
 
+void NscdIntegrator::fill_periodic_lookahead(double h) {
+  // The look-ahead's bound on the motion across the periods, which alone decides whether a
+  // second image could come into reach (ContactDetector.h): a bed pressed along its one walled
+  // axis moves fast along it, hardly across.
+  const PeriodicBox& box = particles_.box;
+  periodic_lookahead_.resize(particles_.size());  // allocates once
+  const auto across = [&box](const Eigen::Vector3d& x) {
+    double sq = 0.0;
+    for (int a = 0; a < 3; ++a)
+      if (box.along(a)) sq += x[a] * x[a];
+    return std::sqrt(sq);
+  };
+  const double g_across = across(gravity_);
+  for (std::size_t i = 0; i < particles_.size(); ++i)
+    periodic_lookahead_[i] = 2.0 * h * (across(particles_.velocity[i]) + h * g_across);
+}
+
 void NscdIntegrator::refresh_candidates(double h) {
   // Look-ahead: a bound on the displacement during the coming step, doubled for the
   // contact impulses and the (1 - theta) part of the next position term.
@@ -53,22 +70,7 @@ void NscdIntegrator::refresh_candidates(double h) {
   for (std::size_t i = 0; i < particles_.size(); ++i) {
     lookahead_[i] = 2.0 * h * (particles_.velocity[i].norm() + h * g);
   }
-  // The same bound on the motion across the periods, which alone decides whether a second
-  // image could come into reach (ContactDetector.h): a bed pressed along its one walled axis
-  // moves fast along it, hardly across.
-  if (particles_.box.any()) {
-    const PeriodicBox& box = particles_.box;
-    periodic_lookahead_.resize(particles_.size());  // allocates once
-    const auto across = [&box](const Eigen::Vector3d& x) {
-      double sq = 0.0;
-      for (int a = 0; a < 3; ++a)
-        if (box.along(a)) sq += x[a] * x[a];
-      return std::sqrt(sq);
-    };
-    const double g_across = across(gravity_);
-    for (std::size_t i = 0; i < particles_.size(); ++i)
-      periodic_lookahead_[i] = 2.0 * h * (across(particles_.velocity[i]) + h * g_across);
-  }
+  if (particles_.box.any()) fill_periodic_lookahead(h);
   if (!detector_.update(particles_, walls_, lookahead_, wall_lookahead_, periodic_lookahead_)) return;
   order_.invalidate();
   // Carry what pairs that stay candidates hold over to the new table: the forces (warm start),

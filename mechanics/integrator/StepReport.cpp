@@ -28,4 +28,26 @@ void MechanicsStats::add(const StepReport& report) {
   correction_s += report.correction_s;
 }
 
+StepReport merged(const StepReport& first, const StepReport& second) {
+  StepReport m = second;
+  m.sweeps = first.sweeps + second.sweeps;
+  m.residual = std::max(first.residual, second.residual);
+  m.converged = first.converged && second.converged;
+  m.siconos_residual = std::max(first.siconos_residual, second.siconos_residual);
+  m.fall = first.fall || second.fall;
+  m.stalled = first.stalled || second.stalled;
+  m.correction_sweeps = first.correction_sweeps + second.correction_sweeps;
+  m.correction_potential_J = first.correction_potential_J + second.correction_potential_J;
+  m.max_penetration_m = std::max(first.max_penetration_m, second.max_penetration_m);
+  m.max_travel_m = first.max_travel_m + second.max_travel_m;  // a bound on the whole step's
+  m.rebuilt_candidates = first.rebuilt_candidates || second.rebuilt_candidates;
+  m.energy_change_J = first.energy_change_J + second.energy_change_J;
+  m.contact_dissipation_J = first.contact_dissipation_J + second.contact_dissipation_J;
+  m.numerical_dissipation_J = first.numerical_dissipation_J + second.numerical_dissipation_J;
+  m.detection_s = first.detection_s + second.detection_s;
+  m.solve_s = first.solve_s + second.solve_s;
+  m.correction_s = first.correction_s + second.correction_s;
+  return m;
+}
+
 }  // namespace tmdem::mechanics

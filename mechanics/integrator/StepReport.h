@@ -41,6 +41,11 @@ struct StepReport {
   double correction_s = 0.0;  // gaps after the step + penetration correction
 };
 
+// One report for a step taken as two halves (NscdIntegrator::step: a step too long for the
+// periods): sums of the work and energies, the worse of the flags and residuals, the second
+// half's state (tolerance, candidates, contacts).
+StepReport merged(const StepReport& first, const StepReport& second);
+
 struct MechanicsStats {
   std::int64_t steps = 0;
   std::int64_t total_sweeps = 0;
@@ -58,6 +63,9 @@ struct MechanicsStats {
   double max_siconos_residual = 0.0;
   std::int64_t siconos_unconverged_steps = 0;
   std::int64_t correction_sweeps = 0;  // sum of the steps' correction_sweeps
+  // Steps taken as two halves because particles could move apart across the periods by more
+  // than the periods allow (NscdIntegrator::step); each half counts in `steps`.
+  std::int64_t halved_steps = 0;
   double correction_potential_J = 0.0; // sum of the steps' correction_potential_J
   double max_travel_m = 0.0;           // largest of the steps' max_travel_m
   double energy_change_J = 0.0;          // sums of the steps' energy accounts (StepReport)

@@ -202,11 +202,12 @@ TEST(E2ePeriodic, APairCrossingTheBoundaryKeepsItsContactAndItsHeat) {
 // Only the motion across the periods is held to them (mechanics/detection/ContactDetector.h).
 // Poured from 30 mm into 8 mm periods at the default 1 ms step, a sphere lands at about
 // 0.78 m/s, along y, the walled axis: `tmdem check` does not warn and the run settles (it
-// stopped when every axis was held to the periods). With gravity tilted 45 degrees towards x,
-// a periodic axis, the fall crosses the periods at about 0.77 m/s: the detector needs twice
-// the look-ahead across them, about 3.1 mm, where the periods leave 8 / 2 - 2 = 2 mm. `tmdem
-// check` warns, and the run stops with an error naming both rather than miss contacts; with
-// gravity along y and 10 mm periods, neither.
+// stopped when every axis was held to the periods). With gravity tilted 72 degrees towards x,
+// a periodic axis, the spheres fall and then slide across the periods ever faster: the
+// detector needs the look-aheads across them of two spheres together to fit in 8 / 2 - 2 = 2
+// mm. `tmdem check` warns; the run halves its steps as the spheres speed up (down to 1/16 of
+// the time step), then stops with an error naming both lengths rather than miss contacts.
+// With gravity along y and 8 or 10 mm periods, neither.
 TEST(E2ePeriodic, APeriodTooShortForTheFallIsWarnedOfAndStopsTheRun) {
   const auto dir = scratch_dir("periodic_short");
   auto pour = [](double period, double height, double gravity_x) {
@@ -224,7 +225,7 @@ TEST(E2ePeriodic, APeriodTooShortForTheFallIsWarnedOfAndStopsTheRun) {
         .add("wall", floor_wall({{"material", "glass"}}))
         .str();
   };
-  write_file(dir + "/across.toml", pour(0.008, 0.03, -9.81));
+  write_file(dir + "/across.toml", pour(0.008, 0.03, -30.0));
   write_file(dir + "/short.toml", pour(0.008, 0.03, 0.0));
   write_file(dir + "/wide.toml", pour(0.01, 0.02, 0.0));
   auto r = run_tmdem("check across.toml", dir);

@@ -68,3 +68,54 @@ TEST(PeriodicSteps, APushedPairCrossesTheBoundaryWithItsContactAndForce) {
   const double t = 1500 * 1e-4, travel = 5.0 / 6.0 * kG * std::sin(angle) * t * t / 2.0;
   EXPECT_NEAR(sim.particles().position[1].x(), std::fmod(8e-3 + travel, 10e-3), 2e-6);
 }
+
+namespace {
+
+// Two free spheres (radius 1 mm, no gravity) in a box periodic along x with a 10 mm period,
+// moving apart along x at `speed` m/s each: the period leaves 10 / 2 - 2 = 3 mm for two
+// particles' motion across it between rebuilds.
+NscdIntegrator flying_apart(double speed) {
+  ParticleSet set;
+  set.box.periodic = {true, false, false};
+  set.box.high = Vector3d(10e-3, 0.0, 0.0);
+  const double m = sphere_mass(kRadius, kDensity);
+  set.add(Vector3d(2e-3, 5e-3, 5e-3), kRadius, m, 0);
+  set.add(Vector3d(6e-3, 5e-3, 5e-3), kRadius, m, 0);
+  set.velocity[0] = Vector3d(-speed, 0, 0);
+  set.velocity[1] = Vector3d(speed, 0, 0);
+  NscdParameters parameters = nlgs_parameters();
+  parameters.time_step = 1e-3;
+  return NscdIntegrator(std::move(set), {steel(0.5)}, {}, Vector3d::Zero(), 3, parameters);
+}
+
+}  // namespace
+
+// A step in which two particles could move apart across the periods by more than they allow
+// is taken as two halves, the same bits as two steps of half the time step; it was refused
+// before. At 1 m/s each, the look-aheads across (2 h v = 2 mm each, 4 mm together) pass the
+// 3 mm of the period; at h / 2 they fit. Beyond four halvings the run stops as before: at 20
+// m/s each, 5 mm together even at h / 16.
+TEST(PeriodicSteps, AStepTooLongForThePeriodsIsTakenInHalves) {
+  NscdIntegrator whole = flying_apart(1.0);
+  NscdIntegrator halves = flying_apart(1.0);
+  const StepReport report = whole.step(1e-3);
+  halves.step(0.5e-3);
+  halves.step(0.5e-3);
+  EXPECT_EQ(whole.stats().halved_steps, 1);
+  EXPECT_EQ(whole.stats().steps, 2);
+  EXPECT_EQ(halves.stats().halved_steps, 0);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(whole.particles().position[i], halves.particles().position[i]) << i;
+    EXPECT_EQ(whole.particles().velocity[i], halves.particles().velocity[i]) << i;
+  }
+  // Free flight: each sphere moved 1 mm.
+  EXPECT_NEAR(whole.particles().position[1].x(), 7e-3, 1e-15);
+  EXPECT_NEAR(report.max_travel_m, 1e-3, 1e-15);  // the halves' travels summed
+  // A slower pair is not halved (1 mm each, 2 mm together).
+  NscdIntegrator slow = flying_apart(0.5);
+  slow.step(1e-3);
+  EXPECT_EQ(slow.stats().halved_steps, 0);
+  NscdIntegrator fast = flying_apart(20.0);
+  EXPECT_THROW(fast.step(1e-3), std::runtime_error);
+  EXPECT_EQ(fast.stats().halved_steps, NscdIntegrator::kMaxHalvings);
+}

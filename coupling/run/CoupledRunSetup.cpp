@@ -6,11 +6,11 @@
 #include <sstream>
 
 #include "coupling/bridge/DynamicNetwork.h"
-#include "coupling/output/OutputError.h"
 #include "coupling/bridge/RestingContacts.h"
 #include "coupling/bridge/SceneToMechanics.h"
 #include "coupling/bridge/ThermalDiagnostics.h"
 #include "coupling/bridge/ThermalNetworkBuilder.h"
+#include "coupling/output/OutputError.h"
 #include "coupling/run/CoupledRunLoop.h"
 #include "coupling/run/Interruption.h"
 #include "coupling/run/LinearSolverChoice.h"

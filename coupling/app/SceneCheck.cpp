@@ -104,23 +104,17 @@ void check_scene(const Scene& scene, std::ostream& out) {
     // speed estimated is a fall along gravity or a piston's stroke along its normal: each
     // counts by its share along the periodic axes (a bed pressed or poured along its walled
     // axis moves hardly across the periods).
-    double period_m = INFINITY, r_max = 0.0;
-    for (int a = 0; a < 3; ++a)
-      if (scene.periodic.axis[std::size_t(a)]) period_m = std::min(period_m, scene.periodic.length_m(a));
+    const mechanics::PeriodicBox box = periodic_box(scene.periodic);
+    double r_max = 0.0;
     for (const auto& p : scene.particles) r_max = std::max(r_max, p.radius_m);
-    const auto across = [&scene](const Vec3& x) {
-      double sq = 0.0;
-      for (std::size_t a = 0; a < 3; ++a)
-        if (scene.periodic.axis[a]) sq += x[a] * x[a];
-      return std::sqrt(sq);
-    };
+    const auto across = [&box](const Vec3& x) { return box.norm_across(Eigen::Vector3d(x[0], x[1], x[2])); };
     const double h = scene.mechanics.time_step_s;
     const double g = std::hypot(scene.gravity_m_per_s2[0], scene.gravity_m_per_s2[1], scene.gravity_m_per_s2[2]);
     double share = g > 0.0 ? across(scene.gravity_m_per_s2) / g : 0.0;
     for (const auto& w : scene.walls)
       if (w.piston) share = std::max(share, across(w.normal));
     const double needed_m = 4.0 * h * (share * travel.speed_m_per_s + h * across(scene.gravity_m_per_s2));
-    const double room_m = 0.5 * period_m - 2.0 * r_max;
+    const double room_m = 0.5 * box.shortest_period() - 2.0 * r_max;
     if (needed_m > room_m)
       out << "warning: at the estimated speed the detection needs " << needed_m
           << " m of margin (twice the look-ahead across the periods), more than the periods leave (" << room_m

@@ -94,10 +94,7 @@ bool ContactDetector::update(const ParticleSet& particles, const std::vector<Wal
       if (need) continue;
       const Eigen::Vector3d moved = box.minimum_image(particles.position[i] - reference_position_[i]);
       if (moved.norm() + ahead > 0.5 * margin_) need = true;
-      double across_sq = 0.0;  // squared displacement along the periodic axes
-      for (int a = 0; a < 3; ++a)
-        if (box.along(a)) across_sq += moved[a] * moved[a];
-      across_reach.add(std::sqrt(across_sq) + periodic_ahead);
+      across_reach.add(box.norm_across(moved) + periodic_ahead);
     }
     if (across_reach.sum() > fitted_m) need = true;
     periodic_pair_lookahead = across_ahead.sum();
@@ -150,10 +147,7 @@ double ContactDetector::fitted_margin_m(const ParticleSet& particles) const {
   // The nearest image is the only one that can touch while a pair's relative motion across the
   // periods between rebuilds stays below half a period less a diameter; past that a pair could
   // touch twice (two images), which one candidate cannot hold.
-  double period_m = INFINITY;
-  for (int a = 0; a < 3; ++a)
-    if (particles.box.along(a)) period_m = std::min(period_m, particles.box.length(a));
-  return 0.5 * period_m - 2.0 * particles.max_radius();
+  return 0.5 * particles.box.shortest_period() - 2.0 * particles.max_radius();
 }
 
 bool ContactDetector::fits_periods(const ParticleSet& particles,
@@ -170,9 +164,7 @@ void ContactDetector::check_period(const ParticleSet& particles, double pair_loo
   // fit in the fitted margin together: a rebuild cannot help beyond that.
   const double fitted_m = fitted_margin_m(particles);
   if (fitted_m > 0.0 && fitted_m >= pair_lookahead_m) return;
-  double period_m = INFINITY;
-  for (int a = 0; a < 3; ++a)
-    if (particles.box.along(a)) period_m = std::min(period_m, particles.box.length(a));
+  const double period_m = particles.box.shortest_period();
   // Significant digits, not std::to_string's six decimals (a look-ahead of 2e-7 m printed as
   // 0.000000 m).
   std::ostringstream message;

@@ -221,9 +221,12 @@ StepReport NscdIntegrator::step(double h) {
   // schedule's phase included). Only where the run would otherwise stop: a landing piston on a
   // narrow periodic bed that kicks two spheres sideways (bench/beds/periodic_landing.toml, seed
   // 7: 5.2 mm of look-aheads across 14 mm periods that leave 5 mm).
-  if (particles_.box.any() && h > std::ldexp(parameters_.time_step, -kMaxHalvings) * (1.0 + 1e-9)) {
+  // The look-aheads across the periods are those refresh_candidates hands the detector: the
+  // velocities do not change before it.
+  if (particles_.box.any()) {
     fill_periodic_lookahead(h);
-    if (!detector_.fits_periods(particles_, periodic_lookahead_)) {
+    if (h > std::ldexp(parameters_.time_step, -kMaxHalvings) * (1.0 + 1e-9) &&
+        !detector_.fits_periods(particles_, periodic_lookahead_)) {
       ++stats_.halved_steps;
       const StepReport first = step(0.5 * h);
       return merged(first, step(0.5 * h));

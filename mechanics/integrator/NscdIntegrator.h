@@ -158,7 +158,8 @@ class NscdIntegrator {
 
  private:
   void refresh_candidates(double h);
-  // periodic_lookahead_ for a step of h (periodic scenes).
+  // periodic_lookahead_ for a step of h (periodic scenes; step() fills it before
+  // refresh_candidates reads it).
   void fill_periodic_lookahead(double h);
   void setup_contacts(double h);
   // The "hertz" normal law (NscdIntegratorHertz.cpp): each solvable candidate's compliance and

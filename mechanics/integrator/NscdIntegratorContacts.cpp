@@ -52,15 +52,9 @@ void NscdIntegrator::fill_periodic_lookahead(double h) {
   // axis moves fast along it, hardly across.
   const PeriodicBox& box = particles_.box;
   periodic_lookahead_.resize(particles_.size());  // allocates once
-  const auto across = [&box](const Eigen::Vector3d& x) {
-    double sq = 0.0;
-    for (int a = 0; a < 3; ++a)
-      if (box.along(a)) sq += x[a] * x[a];
-    return std::sqrt(sq);
-  };
-  const double g_across = across(gravity_);
+  const double g_across = box.norm_across(gravity_);
   for (std::size_t i = 0; i < particles_.size(); ++i)
-    periodic_lookahead_[i] = 2.0 * h * (across(particles_.velocity[i]) + h * g_across);
+    periodic_lookahead_[i] = 2.0 * h * (box.norm_across(particles_.velocity[i]) + h * g_across);
 }
 
 void NscdIntegrator::refresh_candidates(double h) {
@@ -70,7 +64,6 @@ void NscdIntegrator::refresh_candidates(double h) {
   for (std::size_t i = 0; i < particles_.size(); ++i) {
     lookahead_[i] = 2.0 * h * (particles_.velocity[i].norm() + h * g);
   }
-  if (particles_.box.any()) fill_periodic_lookahead(h);
   if (!detector_.update(particles_, walls_, lookahead_, wall_lookahead_, periodic_lookahead_)) return;
   order_.invalidate();
   // Carry what pairs that stay candidates hold over to the new table: the forces (warm start),

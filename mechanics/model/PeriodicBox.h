@@ -9,6 +9,7 @@
 // a scene without [periodic] computes the same bits as before periodic boundaries existed.
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -22,6 +23,21 @@ struct PeriodicBox {
   bool any() const { return periodic[0] || periodic[1] || periodic[2]; }
   bool along(int axis) const { return periodic[static_cast<std::size_t>(axis)]; }
   double length(int axis) const { return high[axis] - low[axis]; }  // m, the period
+  // m, the shortest period (INFINITY without a periodic axis).
+  double shortest_period() const {
+    double period = INFINITY;
+    for (int a = 0; a < 3; ++a)
+      if (along(a)) period = std::min(period, length(a));
+    return period;
+  }
+  // The length of x's part along the periodic axes (a displacement or velocity across the
+  // periods; 0 without a periodic axis).
+  double norm_across(const Eigen::Vector3d& x) const {
+    double sq = 0.0;
+    for (int a = 0; a < 3; ++a)
+      if (along(a)) sq += x[a] * x[a];
+    return std::sqrt(sq);
+  }
 
   // The image of the branch vector d (m) nearest to 0: each periodic component in
   // [-L/2, L/2] (round to nearest, ties away from 0 do not matter: both images are as near).

@@ -1,6 +1,8 @@
 #include "coupling/scene/SceneValidation.h"
 
 #include <algorithm>
+#include <cmath>
+#include <sstream>
 
 #include "coupling/scene/SceneBuilder.h"
 #include "coupling/scene/SceneError.h"
@@ -35,6 +37,25 @@ std::string allowance(const Scene& scene, int group) {
   return "more than " + report.origin + ".overlap_tolerance = " +
          format_number(report.overlap_tolerance) +
          " of the smaller radius; raise it to accept the overlaps of a settled packing";
+}
+
+// What to do about particle i overlapping wall w at start, when a [[generate]] box placed it:
+// the box-filling kinds place by their box alone and do not see the walls (a deposit in a
+// cylinder given the cylinder's bounding square put its corner spheres through the wall).
+std::string generated_overlap_hint(const Scene& scene, const std::string& origin, std::size_t w,
+                                   std::size_t i) {
+  if (!origin.starts_with("generate[")) return "";
+  const Wall& wall = scene.walls[w];
+  std::string hint = "; " + origin + " places its particles by its box alone, not by the walls: give it a box inside every wall";
+  if (wall.cylinder) {
+    // Across the axis, a square inscribed in the circle the centres may reach.
+    const double half_width_m = (wall.radius_m - scene.particles[i].radius_m) / std::sqrt(2.0);
+    std::ostringstream figures;  // six significant digits: 0.00806102 m, not 0.008061017305526642 m
+    figures << " (across the axis of the cylinder wall[" << w << "], the centres of spheres of radius "
+            << scene.particles[i].radius_m << " m fit in a square of half-width " << half_width_m << " m about it)";
+    hint += figures.str();
+  }
+  return hint;
 }
 
 }  // namespace
@@ -98,7 +119,8 @@ void check_overlaps(Scene& scene, const std::vector<std::string>& origins,
                          std::to_string(w) + "] overlap at start (gap " + format_number(gap) +
                          " m; the wall normal points into the domain" +
                          (group < 0 ? "" : "; " + allowance(scene, group)) + "): " +
-                         describe_particle(scene, origins, i));
+                         describe_particle(scene, origins, i) +
+                         generated_overlap_hint(scene, origins[i], w, i));
     }
   }
 }

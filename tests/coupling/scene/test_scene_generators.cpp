@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <sstream>
 #include <string>
 
 #include "coupling/scene/SceneGenerators.h"
@@ -294,6 +295,31 @@ TEST(SceneGenerators, DepositNeedsGravityAlongAnAxisAndRoom) {
   // Gravity along +x works as well: the floor is then the box's face x = max.
   const Scene sideways = load_scene_text(deposit_scene("[9.81, 0.0, 0.0]"), "t");
   for (const auto& p : sideways.particles) EXPECT_LE(p.position_m[0] + p.radius_m, 0.008 + 1e-15);
+}
+
+// A box-filling generator places by its box alone: a deposit given the bounding square of a
+// cylinder puts its corner spheres through the cylinder's wall. The error says so, and how wide
+// a square fits: (R - r) / sqrt(2) for the sphere it names.
+TEST(SceneGenerators, ABoxReachingThroughACylinderWallIsRefusedWithTheSquareThatFits) {
+  const std::string cylinder =
+      "\n[[wall]]\nshape = \"cylinder\"\npoint = [0.004, 0.0, 0.004]\naxis = [0.0, 1.0, 0.0]\n"
+      "radius = 0.004\nmaterial = \"steel\"\n";
+  const std::string error = scene_error(deposit_scene() + cylinder);
+  EXPECT_NE(error.find("and wall[0] overlap at start"), std::string::npos) << error;
+  EXPECT_NE(error.find("generate[0] places its particles by its box alone, not by the walls"), std::string::npos)
+      << error;
+  // The named particle's radius decides the square.
+  bool figure = false;
+  for (const double r : {0.0005, 0.001}) {
+    std::ostringstream expected;  // six significant digits
+    expected << "spheres of radius " << r << " m fit in a square of half-width " << (0.004 - r) / std::sqrt(2.0) << " m";
+    figure = figure || error.find(expected.str()) != std::string::npos;
+  }
+  EXPECT_TRUE(figure) << error;
+  // Inside that square (half-width 2.12 mm for the 1 mm spheres) the deposit loads.
+  const std::string inside = "{ min = [0.0019, 0.0, 0.0019], max = [0.0061, 0.03, 0.0061] }";
+  EXPECT_NO_THROW(load_scene_text(deposit_scene("[0.0, -9.81, 0.0]", inside) + cylinder, "t",
+                                  {"generate[0].box=" + inside}));
 }
 
 TEST(SceneGenerators, DepositFillsAPeriodicBoxAcrossItsSides) {

@@ -30,7 +30,6 @@
 // and total in visiting order; colour order as above. No allocation once warm.
 
 #include <Eigen/Core>
-#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -96,6 +95,17 @@ class GaussSeidelSweep {
   // visited the active contacts only).
   int full_sweeps() const { return active_.full_sweeps(); }
 
+  // Slab order with active sets: slab s's active contacts of the last full sweep, in increasing
+  // order, are slab_active()[slab_start[s], slab_active_end()[s]) (ContactSlabs::slab_start).
+  // Every contact a sweep since then visited is among them (partial sweeps visit no other), and
+  // so is every contact that carried a reaction in that sweep (Hooks::stays_active). Valid from
+  // the first full sweep of a solve that marks (active sets on) until forget_slab_lists() (the
+  // next problem) or a run without active sets.
+  bool slab_lists_valid() const { return slab_lists_valid_; }
+  const std::vector<std::int32_t>& slab_active() const { return slab_active_; }
+  const std::vector<std::int32_t>& slab_active_end() const { return slab_active_end_; }
+  void forget_slab_lists() { slab_lists_valid_ = false; }
+
  private:
   // One sweep in index order (Blocks: body_block order); returns its change and total.
   template <bool Blocks, class Hooks>
@@ -116,6 +126,7 @@ class GaussSeidelSweep {
   // slab order with active sets: slab s's active contacts, in increasing order, are
   // slab_active_[slab_start[s], slab_active_end_[s]) (each slab's thread collects its own).
   std::vector<std::int32_t> slab_active_, slab_active_end_;
+  bool slab_lists_valid_ = false;
   std::vector<int> visited_;            // body_block order: per block, the sweep that last visited it
 };
 
@@ -140,6 +151,8 @@ SolveReport GaussSeidelSweep::solve(const SolverSettings& settings, const Option
   SolveReport report;
   GaussSeidelStopTest stop(settings.tolerance, options.stall_sweeps);
   active_.start(count, options.full_sweep_every, settings.max_iterations);
+  // A run whose full sweeps do not mark may visit contacts the lists do not hold.
+  if (!active_.partial_sweeps()) slab_lists_valid_ = false;
   while (report.sweeps < settings.max_iterations) {
     ++report.sweeps;
     const bool forward = report.sweeps % 2 == 1;
@@ -156,6 +169,7 @@ SolveReport GaussSeidelSweep::solve(const SolverSettings& settings, const Option
       sums = sweep_index<order == Order::body_block>(options, settings.relaxation, report.sweeps,
                                                       forward, full, mark, state, hooks);
     }
+    if constexpr (order == Order::slab) slab_lists_valid_ = slab_lists_valid_ || mark;  // marked in the sweep
     if (stop.after_sweep(sums.change, sums.total, report, full)) break;
     if (mark) {
       if constexpr (order == Order::colour) {

@@ -30,6 +30,9 @@ double NncgSolver::over_support(Each&& each) {
   const std::vector<std::int32_t>& start = slabs_.slab_start();
   const std::vector<std::int32_t>& phase = slabs_.phase_start();
   slab_sums_.resize(slabs_.slab_count());
+  const bool lists = sweep_.slab_lists_valid();
+  const std::vector<std::int32_t>& active = sweep_.slab_active();
+  const std::vector<std::int32_t>& active_end = sweep_.slab_active_end();
   constexpr int passes = WritesBodies ? ContactSlabs::kPhases : 1;
 #pragma omp parallel
   for (int p = 0; p < passes; ++p) {
@@ -39,11 +42,20 @@ double NncgSolver::over_support(Each&& each) {
 #pragma omp for schedule(dynamic, 1)
     for (std::int32_t s = first; s < end; ++s) {
       double sum = 0.0;
-      for (std::int32_t c = start[s]; c < start[s + 1]; ++c) {
-        if (!in_support_[c]) continue;
+      const auto visit = [&](std::int32_t c) {
+        if (!in_support_[c]) return;
         double value = 0.0;  // each contact's sum apart, then added to its slab's
         each(static_cast<std::size_t>(c), value);
         sum += value;
+      };
+      // The support is within the slab's active list (GaussSeidelSweep::slab_active): the same
+      // contacts in the same order as a scan of the whole slab, so the same bits, without
+      // touching its open candidates (pour_3d: 92% of them; the scan took a fifth of the
+      // solve's time, perf, 2 threads).
+      if (lists) {
+        for (std::int32_t k = start[s]; k < active_end[static_cast<std::size_t>(s)]; ++k) visit(active[static_cast<std::size_t>(k)]);
+      } else {
+        for (std::int32_t c = start[s]; c < start[s + 1]; ++c) visit(c);
       }
       slab_sums_[static_cast<std::size_t>(s)] = sum;
     }
@@ -137,6 +149,7 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& given,
   in_support_.assign(count, 0);
   support_.clear();
   sliced_run_ = sliced;
+  sweep_.forget_slab_lists();  // another problem
   scan_support(problem, r, m);
   steps_ = damped_ = drifted_ = restarts_ = 0;
   subspace_.start_solve();

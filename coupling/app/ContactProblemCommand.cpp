@@ -256,7 +256,8 @@ int run_contact_problem_command(const Scene& scene, const ContactProblemOptions&
           << "; choose a later step";
       throw CommandError{msg.str(), kExitInvalid};
     }
-    const double h = outcome.h_s;
+    // The problem's own step: a step taken in halves (periodic scenes) wrote its last part's.
+    const double h = outcome.report.time_step_s;
     const auto& particles = nscd->particles();
     Eigen::Vector3d weight = Eigen::Vector3d::Zero();
     for (std::size_t i = 0; i < particles.size(); ++i)

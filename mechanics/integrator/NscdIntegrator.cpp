@@ -233,6 +233,7 @@ StepReport NscdIntegrator::step(double h) {
     }
   }
   StepReport report;
+  report.time_step_s = h;
   const std::size_t n = particles_.size();
   // Only the schedule reads it (and the cap, while the schedule says falling).
   const double start_speed_m_per_s = schedule_.enabled() ? max_speed() : 0.0;

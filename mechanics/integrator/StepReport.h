@@ -7,6 +7,9 @@
 namespace tmdem::mechanics {
 
 struct StepReport {
+  // s: the length of the step problem() was built for (NscdIntegrator::problem()): h, or the
+  // last part of a step taken in halves (`merged` keeps the second half's).
+  double time_step_s = 0.0;
   int sweeps = 0;                  // Gauss-Seidel sweeps used
   double residual = 0.0;           // sum |dr| / sum |r| of the last sweep (see NscdParameters)
   bool converged = true;           // residual <= tolerance within max_iterations

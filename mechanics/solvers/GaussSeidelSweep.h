@@ -119,6 +119,13 @@ class GaussSeidelSweep {
   ContactUpdate sweep_slabs(const Options& options, double relaxation, bool forward, bool full,
                             bool mark, const GaussSeidelSweepState& state, Hooks& hooks);
 
+  // A full sweep's mark: contact c is active when its visit left it carrying `total`, or when
+  // the solver keeps it active (Hooks::stays_active: nncg's support).
+  template <class Hooks>
+  void mark_visited(const GaussSeidelSweepState& state, Hooks& hooks, std::size_t c, double total) {
+    active_.mark_visited(c, hooks.stays_active(state, c) ? 1.0 : total);
+  }
+
   ActiveContactSet active_;             // the contacts partial sweeps visit
   std::vector<double> change_, total_;  // colour order: per visit slot, this sweep, N s
   std::vector<double> block_sums_;      // colour order: per block of slots: change, total
@@ -220,7 +227,7 @@ ContactUpdate GaussSeidelSweep::sweep_index(const Options& options, double relax
       }
     }
     const ContactUpdate u = single(c);
-    if (mark) active_.mark_visited(c, hooks.stays_active(state, c) ? 1.0 : u.total);
+    if (mark) mark_visited(state, hooks, c, u.total);
     hooks.after_visit(state, c);
   }
   return sums;
@@ -252,7 +259,7 @@ ContactUpdate GaussSeidelSweep::sweep_colours(const Options& options, double rel
         ContactUpdate u;
         if (problem.solvable(c)) {
           u = gauss_seidel_visit(problem, c, relaxation, r[c], m, velocity, angular_velocity);
-          if (mark) active_.mark_visited(c, hooks.stays_active(state, c) ? 1.0 : u.total);
+          if (mark) mark_visited(state, hooks, c, u.total);
           hooks.after_visit(state, c);
         } else if (mark) {
           active_.mark_unsolvable(c);
@@ -307,7 +314,7 @@ ContactUpdate GaussSeidelSweep::sweep_slabs(const Options& options, double relax
         change += u.change;
         total += u.total;
         hooks.after_visit(state, c);
-        if (mark) active_.mark_visited(c, hooks.stays_active(state, c) ? 1.0 : u.total);
+        if (mark) mark_visited(state, hooks, c, u.total);
       }
       if (mark) {  // this slab's active contacts for the partial sweeps, in increasing order
         std::int32_t n = first;

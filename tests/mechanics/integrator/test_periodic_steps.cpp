@@ -111,6 +111,7 @@ TEST(PeriodicSteps, AStepTooLongForThePeriodsIsTakenInHalves) {
   // Free flight: each sphere moved 1 mm.
   EXPECT_NEAR(whole.particles().position[1].x(), 7e-3, 1e-15);
   EXPECT_NEAR(report.max_travel_m, 1e-3, 1e-15);  // the halves' travels summed
+  EXPECT_EQ(report.time_step_s, 0.5e-3);           // problem() is the second half's
   // A slower pair is not halved (1 mm each, 2 mm together).
   NscdIntegrator slow = flying_apart(0.5);
   slow.step(1e-3);

@@ -29,8 +29,11 @@ std::vector<WarningCount> warning_counts(const RunSummary& summary) {
   const auto& m = summary.mechanics;
   std::vector<WarningCount> kinds{
       {"contact solve not converged", m.unconverged_steps - m.stalled_steps,
-       "raise mechanics.max_iterations or loosen mechanics.tolerance; the step goes on with the "
-       "last iterate"},
+       "the step goes on with the last iterate (Siconos' residual in each warning says how far "
+       "from the law). Where a load compacts the bed (a piston or plate on a bed at the edge of "
+       "jamming) the residual sits on a plateau that more sweeps (mechanics.max_iterations) do "
+       "not lower (docs/mechanics.md \"Why loaded steps stay above the tolerance\"); elsewhere "
+       "raise mechanics.max_iterations or loosen mechanics.tolerance"},
       {"contact solve stalled", m.stalled_steps,
        "no 10% gain over the stall window (500 sweeps; nncg 4,000, then restarted from the "
        "stalled reactions up to 3 times), typical of frictional piles creeping on a plateau "

@@ -30,6 +30,7 @@
 // and total in visiting order; colour order as above. No allocation once warm.
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -134,6 +135,7 @@ class GaussSeidelSweep {
   // slab_active_[slab_start[s], slab_active_end_[s]) (each slab's thread collects its own).
   std::vector<std::int32_t> slab_active_, slab_active_end_;
   bool slab_lists_valid_ = false;
+  std::vector<std::int32_t> slab_order_;  // per phase, its slabs from the most contacts to visit down
   std::vector<int> visited_;            // body_block order: per block, the sweep that last visited it
 };
 
@@ -290,14 +292,25 @@ ContactUpdate GaussSeidelSweep::sweep_slabs(const Options& options, double relax
   const ContactSlabs& slabs = *options.slabs;
   const std::vector<std::int32_t>& start = slabs.slab_start();
   const std::vector<std::int32_t>& phase = slabs.phase_start();
+  // Slabs differ in size, and in a partial sweep in their active contacts: threads take them one
+  // at a time, largest first (which thread sweeps a slab, and when, changes nothing in the
+  // result: the slabs of a phase touch disjoint particles and their sums are added in slab order).
+  slab_order_.resize(slabs.slab_count());
+  for (int p = 0; p < ContactSlabs::kPhases; ++p) {
+    for (std::int32_t s = phase[p]; s < phase[p + 1]; ++s) slab_order_[static_cast<std::size_t>(s)] = s;
+    const auto cost = [&](std::int32_t s) {
+      return (full ? start[s + 1] : slab_active_end_[static_cast<std::size_t>(s)]) - start[s];
+    };
+    std::stable_sort(slab_order_.begin() + phase[p], slab_order_.begin() + phase[p + 1],
+                     [&](std::int32_t a, std::int32_t b) { return cost(a) > cost(b); });
+  }
 #pragma omp parallel if (options.parallel)
   for (int visit = 0; visit < ContactSlabs::kPhases; ++visit) {
     const int p = forward ? visit : ContactSlabs::kPhases - 1 - visit;
     if (phase[p] == phase[p + 1]) continue;  // no piston: no barrier for its empty phase
-    // Slabs differ in size: threads take them one at a time (which thread sweeps a slab
-    // changes nothing in the result).
 #pragma omp for schedule(dynamic, 1)
-    for (std::int32_t s = phase[p]; s < phase[p + 1]; ++s) {
+    for (std::int32_t i = phase[p]; i < phase[p + 1]; ++i) {
+      const std::int32_t s = slab_order_[static_cast<std::size_t>(i)];
       double change = 0.0, total = 0.0;
       const std::int32_t first = start[s];
       // A partial sweep visits the slab's active list, a full one the whole slab.

@@ -155,15 +155,19 @@ bool ContactDetector::fits_periods(const ParticleSet& particles,
   if (!particles.box.any()) return true;
   LargestTwo ahead;
   for (const double a : periodic_lookahead_m) ahead.add(a);
+  return pair_fits_periods(particles, ahead.sum());
+}
+
+bool ContactDetector::pair_fits_periods(const ParticleSet& particles, double pair_lookahead_m) const {
   const double fitted_m = fitted_margin_m(particles);
-  return fitted_m > 0.0 && fitted_m >= ahead.sum();
+  return fitted_m > 0.0 && fitted_m >= pair_lookahead_m;
 }
 
 void ContactDetector::check_period(const ParticleSet& particles, double pair_lookahead_m) const {
   // The test across the periods is sound only while the two largest look-aheads across them
   // fit in the fitted margin together: a rebuild cannot help beyond that.
+  if (pair_fits_periods(particles, pair_lookahead_m)) return;
   const double fitted_m = fitted_margin_m(particles);
-  if (fitted_m > 0.0 && fitted_m >= pair_lookahead_m) return;
   const double period_m = particles.box.shortest_period();
   // Significant digits, not std::to_string's six decimals (a look-ahead of 2e-7 m printed as
   // 0.000000 m).

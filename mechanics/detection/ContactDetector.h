@@ -118,6 +118,9 @@ class ContactDetector {
   // Half the shortest period less 2 r_max: how far two particles may move apart along the
   // periodic axes between rebuilds (INFINITY without periodic axes).
   double fitted_margin_m(const ParticleSet& particles) const;
+  // Whether two particles moving apart across the periods by pair_lookahead_m (m) stay within
+  // the fitted margin (fits_periods and check_period decide by it).
+  bool pair_fits_periods(const ParticleSet& particles, double pair_lookahead_m) const;
   // Throws std::runtime_error when the fitted margin is below the two largest look-aheads
   // along the periodic axes together (pair_lookahead_m).
   void check_period(const ParticleSet& particles, double pair_lookahead_m) const;

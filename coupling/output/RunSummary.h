@@ -74,6 +74,7 @@ struct MechanicsSummary {
   // extra: steps taken as two halves (or more) because particles could move apart across the
   // periods by more than they allow (mechanics::NscdIntegrator::step); each half is in `steps`
   std::int64_t halved_steps = 0;
+  std::int64_t landing_halved_steps = 0;
   double max_step_travel_m = 0.0;    // extra: largest particle displacement in one step, m
   // extra: Siconos' residual of the steps' reactions relative to ||q|| (the measure
   // fc3d_compute_error reports), whatever the solver's own stop test: the largest, and the
@@ -91,6 +92,7 @@ inline constexpr std::tuple kMechanicsSummaryFields{
     SummaryField{"stalled_steps", &MechanicsSummary::stalled_steps},
     SummaryField{"correction_sweeps", &MechanicsSummary::correction_sweeps},
     SummaryField{"halved_steps", &MechanicsSummary::halved_steps},
+    SummaryField{"landing_halved_steps", &MechanicsSummary::landing_halved_steps},
     SummaryField{"max_step_travel_m", &MechanicsSummary::max_step_travel_m},
     SummaryField{"max_siconos_residual", &MechanicsSummary::max_siconos_residual},
     SummaryField{"siconos_unconverged_steps", &MechanicsSummary::siconos_unconverged_steps}};

@@ -77,6 +77,21 @@ class ContactDetector {
   // step that fails it is taken in parts (NscdIntegrator::step).
   bool fits_periods(const ParticleSet& particles, const std::vector<double>& periodic_lookahead_m) const;
 
+  // The largest look-ahead (m) of a moving wall that can touch a particle within the coming step
+  // (its gap to the particle within the two look-aheads): such a wall may hand its speed to the
+  // bed, and update() lists the particles' pairs within its reach too. 0 when none can.
+  double engaged_wall_lookahead(const ParticleSet& particles, const std::vector<Wall>& walls,
+                                const std::vector<double>& lookahead_m,
+                                const std::vector<double>& wall_lookahead_m) const;
+  // Whether `wall` (look-ahead wall_lookahead_m, m) can touch a particle within the coming
+  // step: a particle whose centre is on the wall's side, its gap within the two look-aheads.
+  bool wall_engaged(const ParticleSet& particles, const Wall& wall, double wall_lookahead_m,
+                    const std::vector<double>& lookahead_m) const;
+  // Whether a wall's reach (m) is beyond half the widest margin the particles' own look-aheads
+  // may ask (max_margin): listing the particles' pairs within it would take a wider table than
+  // any particle does.
+  bool wall_reach_exceeds_margin(double reach_m) const { return 2.0 * reach_m > max_margin_; }
+
   // Forces a rebuild at the next update (after particles were moved by hand).
   void invalidate() { valid_ = false; }
 

@@ -86,9 +86,16 @@ class NscdIntegrator {
   // One step of h seconds. On a periodic scene where two particles could move apart across the
   // periods by more than they allow within h (a landing piston kicking spheres sideways), the
   // step is taken as two halves, and so on down to 2^-kMaxHalvings of the time step; beyond,
-  // the detector stops the run with an error naming the lengths.
+  // the detector stops the run with an error naming the lengths. A step in which a moving wall
+  // that can touch a particle is fast enough to travel more than the largest radius (a piston
+  // landing at metres per second) is taken in 2^k equal parts, the fewest that fit, k at most
+  // kMaxHalvings (beyond, each part lists the pairs within the wall's reach).
   StepReport step(double h);
   static constexpr int kMaxHalvings = 4;  // a step is halved at most this many times
+  // Penetration correction passes at most in a part of a step taken in halves, and the overlap
+  // (in penetration slops) a pass must leave for another (step()).
+  static constexpr int kCorrectionPasses = 4;
+  static constexpr double kDeepOverlapSlops = 100.0;
 
   // Contacts with r_n > 0 after the last step (forces are the step means, impulse / h), in
   // strictly increasing (i, j) order, j signed (walls first for each i), as the candidates are.
@@ -161,6 +168,15 @@ class NscdIntegrator {
   // periodic_lookahead_ for a step of h (periodic scenes; step() fills it before
   // refresh_candidates reads it).
   void fill_periodic_lookahead(double h);
+  // lookahead_ for a step of h s (refresh_candidates).
+  void fill_lookahead(double h);
+  // step(h); landing_parts: a landing may be taken in parts (false inside its parts).
+  StepReport step(double h, bool landing_parts);
+  // Whether a moving wall that can touch a particle within a step of h s moves fast enough to
+  // carry it more than the largest radius in it (2 h |v| against
+  // ContactDetector::wall_reach_exceeds_margin): step() then takes the step in halves. Sets the
+  // walls' look-aheads and lookahead_ for h (the step sets them again).
+  bool wall_lands_too_fast(double h);
   void setup_contacts(double h);
   // The "hertz" normal law (NscdIntegratorHertz.cpp): each solvable candidate's compliance and
   // bias from its linearised Hertz law, after setup_contacts.
@@ -212,6 +228,7 @@ class NscdIntegrator {
   std::vector<double> held_overlap_;
   std::vector<double> old_held_overlap_;
   double slop_m_ = 0.0;  // penetration slop (NscdParameters), m
+  bool in_landing_parts_ = false;  // step() is taking the parts of a landing
   double stop_speed_m_per_s_ = 0.0;  // ContactProblem::stop_speed outside the fall
   ContactProblem problem_;
   std::unique_ptr<ContactSolver> solver_;

@@ -6,6 +6,7 @@ namespace tmdem::mechanics {
 
 void MechanicsStats::add(const StepReport& report) {
   ++steps;
+  last_step_s = report.time_step_s;
   total_sweeps += report.sweeps;
   max_sweeps = std::max(max_sweeps, report.sweeps);
   if (!report.converged) ++unconverged_steps;

@@ -69,6 +69,13 @@ struct MechanicsStats {
   // Steps taken as two halves because particles could move apart across the periods by more
   // than the periods allow (NscdIntegrator::step); each half counts in `steps`.
   std::int64_t halved_steps = 0;
+  // Steps taken in 2^k equal parts (k <= NscdIntegrator::kMaxHalvings) because a moving wall
+  // that can touch a particle was fast enough to travel more than the largest radius within the
+  // step (a landing piston; NscdIntegrator::step); each part counts in `steps`.
+  std::int64_t landing_halved_steps = 0;
+  // The length of the last step taken (a part's, after a step taken in parts), s; 0 before the
+  // first. The warm start of a longer step reads it (NscdIntegrator::setup_contacts).
+  double last_step_s = 0.0;
   double correction_potential_J = 0.0; // sum of the steps' correction_potential_J
   double max_travel_m = 0.0;           // largest of the steps' max_travel_m
   double energy_change_J = 0.0;          // sums of the steps' energy accounts (StepReport)

@@ -268,3 +268,47 @@ TEST(ContactDetector, ATableALandingPistonWidenedShrinksOnceThePistonHasStopped)
   EXPECT_FALSE(own.update(set, {walls[0]}, still));
   EXPECT_EQ(own.margin(), 4e-3);
 }
+
+// A wall that can touch the bed within the step may hand its speed to particles at rest, whose
+// own look-aheads are nil: while it is engaged, each particle is held to the displacement test
+// with at least the wall's look-ahead. A landing taken in parts (NscdIntegrator::step) kicks
+// spheres across a table listed a few parts before.
+TEST(ContactDetector, WhileAWallCanTouchTheBedEveryParticleIsHeldToItsReach) {
+  ParticleSet set = random_set(800, 3);
+  double top = 0.0;
+  std::size_t lowest = 0;
+  for (std::size_t i = 0; i < set.size(); ++i) {
+    top = std::max(top, set.position[i].y() + set.radius[i]);
+    if (set.position[i].y() < set.position[lowest].y()) lowest = i;
+  }
+  const std::vector<Wall> walls = [&] {
+    std::vector<Wall> w = {Wall::through({0, 0, 0}, {0, 1, 0}, 0),
+                           Wall::through({0, top + 1.2e-3, 0}, {0, -1, 0}, 0)};  // 1.2 mm above the bed
+    w[1].make_piston(0.01, 4.0);
+    return w;
+  }();
+  const std::vector<double> still(set.size(), 1e-6);  // m
+  // A table the particles' own look-aheads (2 mm) widened to a 4 mm margin.
+  auto table = [&] {
+    ContactDetector detector(4e-4, 4e-4);
+    EXPECT_TRUE(detector.update(set, walls, std::vector<double>(set.size(), 2e-3), {0.0, 1e-3}));
+    EXPECT_EQ(detector.margin(), 4e-3);
+    EXPECT_FALSE(detector.widened_by_wall());
+    return detector;
+  };
+  // The lowest sphere moved 1 mm: with its own 1 um within half the margin, with a piston's
+  // 1.5 mm not; and 2 x 1.5 mm is within the margin, so only the hold on each particle asks.
+  ParticleSet moved = set;
+  moved.position[lowest].y() -= 1e-3;
+  ContactDetector engaged = table();
+  ASSERT_TRUE(engaged.wall_engaged(moved, walls[1], 1.5e-3, still));
+  EXPECT_TRUE(engaged.update(moved, walls, still, {0.0, 1.5e-3}));
+  // A piston that cannot reach the bed within the step (look-ahead 1 mm, gap 1.2 mm) hands
+  // nothing on: the displacement is within the margin.
+  ContactDetector out_of_reach = table();
+  ASSERT_FALSE(out_of_reach.wall_engaged(moved, walls[1], 1e-3, still));
+  EXPECT_FALSE(out_of_reach.update(moved, walls, still, {0.0, 1e-3}));
+  // A reach beyond half the widest margin (max_margin 4e-4 here) is one a table cannot hold.
+  EXPECT_TRUE(out_of_reach.wall_reach_exceeds_margin(2.1e-4));
+  EXPECT_FALSE(out_of_reach.wall_reach_exceeds_margin(1.9e-4));
+}

@@ -78,8 +78,9 @@ bool ContactDetector::update(const ParticleSet& particles, const std::vector<Wal
   // the particles' pairs are listed within its reach (as all pairs were before walls had a
   // margin of their own). A wall that touches nothing this step hands nothing on. Why each
   // particle: a landing taken in parts (NscdIntegrator::step) kicks spheres at rest, whose own
-  // look-aheads are nil, across pairs a table listed a few parts before (periodic_pressed:
-  // overlaps of 7% of the smallest radius, 0.08% with this test).
+  // look-aheads are nil, across pairs a table listed a few parts before. (On periodic_pressed
+  // the runs with and without this hold were the same: its tables were rebuilt for other
+  // reasons. It is kept because the bound the table relies on needs it.)
   const double engaged_lookahead_max = engaged_wall_lookahead(particles, walls, lookahead_m, wall_lookahead_m);
   if (!box.any()) {
     for (std::size_t i = 0; i < n; ++i) {

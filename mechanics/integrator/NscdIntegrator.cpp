@@ -369,13 +369,13 @@ StepReport NscdIntegrator::step(double h, bool landing_parts) {
   if (compliant()) add_elastic_overlaps(h, gap_after_);  // a compliant law's overlaps are its own
   if (!held_overlap_.empty()) add_held_overlaps(gap_after_);  // and a held one the packing's
   // Each pass solves the position problem to PenetrationCorrection::kTolerance, which leaves a
-  // share of a deep overlap. The parts of a landing (step(h, true)) leave overlaps of a fifth of
-  // a radius (periodic_pressed: 0.26 mm before the correction, 58 um after one pass, 7% of the
-  // smallest radius), so there a rigid step's overlap still beyond kDeepOverlapSlops slops after
-  // a pass gets another, up to kCorrectionPasses. Only in a landing's parts: on whole steps one
-  // pass leaves 1% of the smallest radius at most on the beds measured (polydisperse: 1.1%),
-  // and another pass there only changes a trajectory (polydisperse then no longer came to rest
-  // within 300 s, against 55 s).
+  // share of a deep overlap. The parts of a landing leave overlaps of a fifth of a radius
+  // (periodic_pressed, parts in halves of halves: 0.26 mm before the correction, 58 um after
+  // one pass, 7% of the smallest radius), so there a rigid step's overlap still beyond
+  // kDeepOverlapSlops slops after a pass gets another, up to kCorrectionPasses. Only in a
+  // landing's parts: on whole steps one pass leaves about 1% of the smallest radius at most on
+  // the beds measured (polydisperse: 1.1%), and another pass there only changes a trajectory
+  // (polydisperse then no longer came to rest within 300 s, against 55 s).
   auto correct = [&] {
     const SolveReport corrected = correction_.correct(problem_, gap_after_, slop_m_,
                                                       parameters_.recovery_speed, h,

@@ -92,7 +92,7 @@ class NscdIntegrator {
   // kMaxHalvings (beyond, each part lists the pairs within the wall's reach).
   StepReport step(double h);
   static constexpr int kMaxHalvings = 4;  // a step is halved at most this many times
-  // Penetration correction passes at most in a part of a step taken in halves, and the overlap
+  // Penetration correction passes at most in a part of a landing taken in parts, and the overlap
   // (in penetration slops) a pass must leave for another (step()).
   static constexpr int kCorrectionPasses = 4;
   static constexpr double kDeepOverlapSlops = 100.0;
@@ -174,8 +174,8 @@ class NscdIntegrator {
   StepReport step(double h, bool landing_parts);
   // Whether a moving wall that can touch a particle within a step of h s moves fast enough to
   // carry it more than the largest radius in it (2 h |v| against
-  // ContactDetector::wall_reach_exceeds_margin): step() then takes the step in halves. Sets the
-  // walls' look-aheads and lookahead_ for h (the step sets them again).
+  // ContactDetector::wall_reach_exceeds_margin): step() then takes the step in equal parts. Sets
+  // the walls' look-aheads and lookahead_ for h (the step sets them again).
   bool wall_lands_too_fast(double h);
   void setup_contacts(double h);
   // The "hertz" normal law (NscdIntegratorHertz.cpp): each solvable candidate's compliance and

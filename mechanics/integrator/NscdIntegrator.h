@@ -174,8 +174,8 @@ class NscdIntegrator {
   StepReport step(double h, bool landing_parts);
   // Whether a moving wall that can touch a particle within a step of h s moves fast enough to
   // carry it more than the largest radius in it (2 h |v| against
-  // ContactDetector::wall_reach_exceeds_margin): step() then takes the step in equal parts. Sets
-  // the walls' look-aheads and lookahead_ for h (the step sets them again).
+  // ContactDetector::wall_reach_exceeds_margin): step() then takes the step in equal parts. For
+  // such a wall it sets the walls' look-aheads and lookahead_ for h (the step sets them again).
   bool wall_lands_too_fast(double h);
   void setup_contacts(double h);
   // The "hertz" normal law (NscdIntegratorHertz.cpp): each solvable candidate's compliance and

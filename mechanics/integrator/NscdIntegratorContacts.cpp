@@ -67,17 +67,22 @@ void NscdIntegrator::fill_lookahead(double h) {
 }
 
 bool NscdIntegrator::wall_lands_too_fast(double h) {
-  refresh_wall_bodies(h);
-  fill_lookahead(h);
+  // The look-aheads the engaged test reads are filled only for a wall fast enough: on the other
+  // steps the step itself fills them once (refresh_wall_bodies, refresh_candidates).
+  bool filled = false;
   for (std::size_t w = 0; w < walls_.size(); ++w) {
     if (!walls_[w].moves()) continue;
     // The reach of the wall's own speed, not its look-ahead: a piston resting on a bed under a
     // large load has a look-ahead of 2 h^2 F / m (what it would travel if nothing held it,
     // 1.3 mm for box_pressed's 12.5 N on 20 g), but brings no speed to hand on.
     const double speed_reach_m = 2.0 * h * std::abs(walls_[w].velocity_m_per_s);
-    if (detector_.wall_reach_exceeds_margin(speed_reach_m) &&
-        detector_.wall_engaged(particles_, walls_[w], wall_lookahead_[w], lookahead_))
-      return true;
+    if (!detector_.wall_reach_exceeds_margin(speed_reach_m)) continue;
+    if (!filled) {
+      refresh_wall_bodies(h);
+      fill_lookahead(h);
+      filled = true;
+    }
+    if (detector_.wall_engaged(particles_, walls_[w], wall_lookahead_[w], lookahead_)) return true;
   }
   return false;
 }

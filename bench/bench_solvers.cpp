@@ -17,6 +17,7 @@
 #include "BenchLattice.h"
 #include "mechanics/solvers/ContactSolverRegistry.h"
 #include "mechanics/contact/NaturalMapResidual.h"
+#include "mechanics/contact/SiconosResidual.h"
 #include "mechanics/integrator/NscdIntegrator.h"
 #include "mechanics/solvers/NncgSolver.h"
 #include "mechanics/solvers/SpatialContactOrder.h"
@@ -170,14 +171,18 @@ BENCHMARK(BM_SweepsOrder)
 // Issue 24: does a solve's work grow with the bed's height or load? Lattice piles (BenchLattice.h)
 // of 4 x 4 columns and 10, 40 or 160 layers (mu = 0.3), after one step from rest, solved cold
 // (reactions zero: the load has to travel the whole chain) to 1e-6 by "nlgs", "nncg",
-// "nlgs_subspace" and "nncg_subspace"; loaded: the top layer 100x heavier (a piston's load on a bed). Counters:
+// "nlgs_subspace", "nncg_subspace" and "ipm"; loaded: the top layer 100x heavier (a piston's load on a bed).
+// "nncg_ipm", the default, is solved as a run solves a step: the scene defaults' tolerance and
+// sweep budget (NscdParameters), Siconos' residual as the stop test (its fallback only acts on
+// a step nncg does not converge within the budget). Counters:
 // sweeps (Gauss-Seidel sweeps of the solve), subspace (subspace steps of "nlgs_subspace":
 // tried, kept, numeric factorisations), converged, residual (NaturalMapResidual.h) and
 // cpu_ms (CPU time of one solve).
-// Args: solver (0 nlgs, 1 nncg, 2 nlgs_subspace, 3 nncg_subspace), layers, loaded (0/1).
+// Args: solver (0 nlgs, 1 nncg, 2 nlgs_subspace, 3 nncg_subspace, 4 ipm, 5 nncg_ipm), layers,
+// loaded (0/1).
 //   OMP_NUM_THREADS=1 build/bench/bench_solvers --benchmark_filter=BM_PileHeight
 void BM_PileHeight(benchmark::State& state) {
-  static const char* const names[] = {"nlgs", "nncg", "nlgs_subspace", "nncg_subspace", "ipm"};
+  static const char* const names[] = {"nlgs", "nncg", "nlgs_subspace", "nncg_subspace", "ipm", "nncg_ipm"};
   const std::string name = names[state.range(0)];
   const int layers = static_cast<int>(state.range(1));
   const bool loaded = state.range(2) != 0;
@@ -191,8 +196,13 @@ void BM_PileHeight(benchmark::State& state) {
   SolverSettings settings;
   settings.tolerance = 1e-6;
   settings.max_iterations = 200000;
+  if (name == "nncg_ipm") {
+    settings.tolerance = parameters.tolerance;
+    settings.max_iterations = parameters.max_iterations;
+    settings.siconos_stop = true;
+  }
   std::vector<Eigen::Vector3d> r, v, w;
-  double seconds = 0.0, residual = 0.0;
+  double seconds = 0.0, residual = 0.0, siconos = 0.0;
   std::int64_t sweeps = 0, solves = 0, converged = 0, tried = 0, kept = 0, factorised = 0;
   for (auto _ : state) {
     auto solver = make_contact_solver(name, settings);
@@ -204,6 +214,8 @@ void BM_PileHeight(benchmark::State& state) {
     converged += report.converged ? 1 : 0;
     ++solves;
     residual = natural_map_residual(problem, r, v, w);
+    const std::vector<Eigen::Vector3d> no_rolling;
+    siconos = siconos_residual(problem, r, no_rolling, v, w, free_velocity_norm(problem));
     const ActiveSetSubspaceStep* subspace = nullptr;
     if (const auto* gs = dynamic_cast<const SubspaceGaussSeidelSolver*>(solver.get())) subspace = &gs->subspace();
     if (const auto* cg = dynamic_cast<const NncgSolver*>(solver.get())) subspace = &cg->subspace();
@@ -222,10 +234,11 @@ void BM_PileHeight(benchmark::State& state) {
   state.counters["factorisations"] = per_solve(static_cast<double>(factorised));
   state.counters["converged"] = per_solve(static_cast<double>(converged));
   state.counters["residual"] = residual;
+  state.counters["siconos_residual"] = siconos;
   state.counters["cpu_ms"] = per_solve(seconds * 1e3);
 }
 BENCHMARK(BM_PileHeight)
-    ->ArgsProduct({{0, 1, 2, 3, 4}, {10, 40, 160}, {0, 1}})
+    ->ArgsProduct({{0, 1, 2, 3, 4, 5}, {10, 40, 160}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
 

@@ -36,9 +36,11 @@ std::vector<Section> settings_sections() {
                "elastic overlaps kept (the position step removes only what lies beyond them); "
                "not with solver apgd or nlgs_block (docs/mechanics.md \"The normal law\")"),
         number("tolerance", "", kM.tolerance, Range::greater(0.0),
-               "relative contact-law residual of a Gauss-Seidel sweep that counts as converged "
-               "(scale-free: the change of the reactions over one sweep relative to the "
-               "reactions; docs/mechanics.md \"The defaults\")"),
+               "relative residual at which a step's solve counts as converged (scale-free): "
+               "with stop_test \"siconos\" (the default), Siconos' natural-map residual of the "
+               "contact law relative to |q|; with \"sweep\", and for the solvers other than nncg "
+               "and nncg_ipm, the change of the reactions over one sweep relative to the "
+               "reactions (docs/mechanics.md \"The defaults\", \"Honest convergence\")"),
         number("fall_tolerance", "", kM.fall_tolerance, Range::at_least(0.0),
                "tolerance schedule: the solves stop at this tolerance instead of `tolerance` "
                "from the first step at which fall_share of the particles move at or above "

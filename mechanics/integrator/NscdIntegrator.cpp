@@ -376,34 +376,62 @@ StepReport NscdIntegrator::step(double h, bool landing_parts) {
   // landing's parts: on whole steps one pass leaves about 1% of the smallest radius at most on
   // the beds measured (polydisperse: 1.1%), and another pass there only changes a trajectory
   // (polydisperse then no longer came to rest within 300 s, against 55 s).
-  auto correct = [&] {
+  auto correct = [&](bool move_pistons) {
     const SolveReport corrected = correction_.correct(problem_, gap_after_, slop_m_,
                                                       parameters_.recovery_speed, h,
-                                                      particles_.position);
+                                                      particles_.position, move_pistons);
     report.correction_sweeps += corrected.sweeps;
     if (!corrected.converged) {
       report.converged = false;
       report.stalled = report.stalled || corrected.stalled;
       report.residual = std::max(report.residual, corrected.residual);
     }
-    if (corrected.sweeps > 0 || compliant() || !held_overlap_.empty()) gaps_after_step(gap_after_);
     if (corrected.sweeps > 0) {
       const auto& pseudo = correction_.pseudo_velocity();
       for (std::size_t i = 0; i < n; ++i) {
         if (inverse_mass_[i] > 0.0)
           report.correction_potential_J -= particles_.mass[i] * gravity_.dot(h * pseudo[i]);
       }
+      // A piston's share, along its normal; its potential is that of the constant force on it
+      // (load plus weight), as in the energy account.
+      for (std::size_t w = 0; move_pistons && w < walls_.size(); ++w) {
+        Wall& wall = walls_[w];
+        if (!wall.moves()) continue;
+        const Eigen::Vector3d dx = h * pseudo[n + w].dot(wall.normal) * wall.normal;
+        wall.point += dx;
+        report.correction_potential_J -= (wall.load_N * wall.normal + wall.mass_kg * gravity_).dot(dx);
+      }
     }
+    if (corrected.sweeps > 0 || compliant() || !held_overlap_.empty()) gaps_after_step(gap_after_);
     return corrected.sweeps > 0;
   };
-  bool corrected = correct();
+  // Depth beyond the trigger, summed over the contacts (m): a correction that can move what it
+  // corrects removes nearly all of it (its tolerance leaves about 1%).
+  const auto depth_beyond_trigger_m = [&] {
+    double sum = 0.0;
+    for (std::size_t k = 0; k < problem_.size(); ++k)
+      if (problem_.solvable(k)) sum += std::max(0.0, -gap_after_[k] - PenetrationCorrection::kTrigger * slop_m_);
+    return sum;
+  };
+  const double depth_before_m = has_piston_ && !compliant() && held_overlap_.empty() ? depth_beyond_trigger_m() : 0.0;
+  bool corrected = correct(false);
   for (int pass = 1; corrected && in_landing_parts_ && pass < kCorrectionPasses && !compliant() && held_overlap_.empty();
        ++pass) {
     double deepest_m = 0.0;
     for (const double gap : gap_after_) deepest_m = std::max(deepest_m, -gap);
     if (!(deepest_m > kDeepOverlapSlops * slop_m_)) break;
-    corrected = correct();
+    corrected = correct(false);
   }
+  // A correction that left half the depth or more could not move what it corrects: particles
+  // pinned between a fixed wall and a piston the correction holds (a piston inside a column
+  // standing on the floor: the column's total overlap stays the piston's depth, only shared
+  // out). Then one more pass in which the pistons take their share (PenetrationCorrection.h).
+  // Rigid contacts only, as the extra passes: with a compliant law or held overlaps the gaps
+  // measured here carry the law's or the packing's overlaps, and there the pass only changed a
+  // trajectory (thermal_cycling's settle: 179 steps instead of 93, 20 unconverged instead of 16).
+  if (corrected && has_piston_ && !compliant() && held_overlap_.empty() &&
+      depth_beyond_trigger_m() > 0.5 * depth_before_m)
+    correct(true);
   report.correction_s = lap();
   // Back into the periodic box: pairs are (i, j) ids and their vectors minimum images, so a
   // wrapped particle keeps its candidates, warm starts and contacts.

@@ -21,7 +21,7 @@ PenetrationCorrection::PenetrationCorrection(const SolverSettings& settings)
 SolveReport PenetrationCorrection::correct(const ContactProblem& problem,
                                            const std::vector<double>& gap_m, double slop_m,
                                            double recovery_speed_m_per_s, double h_s,
-                                           std::vector<Eigen::Vector3d>& position) {
+                                           std::vector<Eigen::Vector3d>& position, bool move_pistons) {
   SolveReport report;
   report.converged = true;
   const double trigger_m = kTrigger * slop_m;
@@ -39,14 +39,16 @@ SolveReport PenetrationCorrection::correct(const ContactProblem& problem,
   problem_.rolling = false;  // frictionless, and no rolling resistance: normals only
   problem_.compliant = false;  // positions of rigid contacts (a compliant law keeps its overlaps)
   problem_.stop_speed = 0.0;  // displacements, not impulses: relative to the whole correction
-  // Walls, pistons included, do not move in the position step: the particle takes the whole
-  // correction (a piston's share would otherwise be solved for and never applied).
-  for (std::size_t c = 0; c < problem_.size(); ++c) {
-    if (is_wall(problem_.body_j[c]))
-      problem_.w_n[c] = problem.w_n[c] - problem.inverse_mass[problem.wall_body(problem_.body_j[c])];
+  // Walls stay where they are, pistons too unless move_pistons: then a piston takes its share
+  // by its inverse mass, as in the velocity problem.
+  if (!move_pistons) {
+    for (std::size_t c = 0; c < problem_.size(); ++c) {
+      if (is_wall(problem_.body_j[c]))
+        problem_.w_n[c] = problem.w_n[c] - problem.inverse_mass[problem.wall_body(problem_.body_j[c])];
+    }
+    std::fill(problem_.inverse_mass.begin() + std::ptrdiff_t(problem_.particle_count),
+              problem_.inverse_mass.end(), 0.0);
   }
-  std::fill(problem_.inverse_mass.begin() + std::ptrdiff_t(problem_.particle_count),
-            problem_.inverse_mass.end(), 0.0);
   for (std::size_t c = 0; c < problem_.size(); ++c) {
     const double allowed_m = gap_m[c] < -trigger_m ? slop_m : std::max(slop_m, -gap_m[c]);
     double b = (gap_m[c] + allowed_m) / h_s;

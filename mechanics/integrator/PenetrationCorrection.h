@@ -20,7 +20,17 @@
 // so only centres move. The problem starts from zero every step: nothing is carried over
 // (restarts need no extra state), and when nothing is deeper than 2 s nothing is solved.
 //
-// Walls, pistons included, stay where they are in this step.
+// Walls stay where they are, pistons (walls with a mass) included, unless the caller asks the
+// pistons to move (move_pistons): then each takes its share by its inverse mass, along its
+// normal, as in the velocity problem. NscdIntegrator asks only when a correction with the
+// pistons held left half the depth beyond the trigger or more, so could not move what it
+// corrects: a piston that ends a step inside a column standing on the floor can only be pushed
+// back itself (held, it stayed 5% of a radius into a column of 6 spheres for good, the
+// correction sharing that depth out as overlaps of up to 1.4% of a radius). Moved by every
+// correction (at its true mass, or weighed as the heaviest sphere), `periodic_pressed`'s
+// piston was lifted again and again and fell back under its load: not at rest within 300 s,
+// against 66 s held. correct() moves the particles, and the caller the pistons, by h times
+// pseudo_velocity().
 //
 // Solved by Gauss-Seidel ("nlgs" with mu = 0, a frictionless LCP, which always converges),
 // whatever mechanics.solver is, so that no solver's carried state is disturbed, to a relative
@@ -53,14 +63,16 @@ class PenetrationCorrection {
   explicit PenetrationCorrection(const SolverSettings& settings);
 
   // gap_m: per contact of `problem`, after the position update, m. Moves position (m) of the
-  // bodies with inverse_mass > 0 in place. Returns the solve's report (0 sweeps and converged
-  // when nothing was deeper than kTrigger slops).
+  // particles with inverse_mass > 0 in place (not the pistons, even with move_pistons: see
+  // pseudo_velocity()). Returns the solve's report (0 sweeps and converged when nothing was
+  // deeper than kTrigger slops).
   SolveReport correct(const ContactProblem& problem, const std::vector<double>& gap_m,
                       double slop_m, double recovery_speed_m_per_s, double h_s,
-                      std::vector<Eigen::Vector3d>& position);
+                      std::vector<Eigen::Vector3d>& position, bool move_pistons = false);
 
-  // Pseudo-velocities of the last correct() that solved something (m/s per body): body i
-  // moved by h_s * pseudo_velocity()[i] when its inverse mass is > 0.
+  // Pseudo-velocities of the last correct() that solved something (m/s per body, the problem's
+  // bodies: particles, then walls): particle i moved by h_s * pseudo_velocity()[i] when its
+  // inverse mass is > 0; a piston's entry is along its normal, for the caller to apply.
   const std::vector<Eigen::Vector3d>& pseudo_velocity() const { return velocity_; }
 
  private:

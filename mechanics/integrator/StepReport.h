@@ -23,8 +23,8 @@ struct StepReport {
                                    // needed. Its failure makes the step unconverged too.
   // Potential-energy change of the penetration correction's displacements dx_i (moving
   // particles), -sum m_i g . dx_i, and a piston's -F . dx (load plus weight), J: > 0 when it
-  // lifts particles. Outside the energy account
-  // below (that one covers the velocity step), so the correction's work is seen on its own.
+  // lifts particles. Outside the energy account below (that one covers the velocity step), so
+  // the correction's work is seen on its own.
   double correction_potential_J = 0.0;
   double max_penetration_m = 0.0;  // largest overlap after the step, >= 0
   double max_travel_m = 0.0;       // largest particle displacement of the position update

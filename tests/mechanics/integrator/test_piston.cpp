@@ -183,6 +183,11 @@ TEST(Piston, StartedIntoTheColumnIsPushedOutByTheCorrection) {
   EXPECT_NEAR(floor, load + mass * kG + count * c.weight_N, 1e-6 * floor);
   EXPECT_EQ(c.sim.stats().unconverged_steps, 0);
   EXPECT_GT(c.sim.stats().correction_sweeps, 0);
+  // The correction's account: lifting the piston against its load and weight, F dy, with the
+  // spheres back where they started (their share is m g times overlaps within the band).
+  const double lift_J = (load + mass * kG) * (c.sim.walls()[1].point.y() - (2 * count - 0.05) * kRadius);
+  // (Measured: 1.2e-5 apart; the spheres' share is at most 6 m g x 2 slops, 4e-6 of it.)
+  EXPECT_NEAR(c.sim.stats().correction_potential_J, lift_J, 1e-4 * lift_J);
 }
 
 TEST(Piston, PressedColumnWithoutGravityCarriesTheLoadOnly) {

@@ -99,6 +99,9 @@ void print_run_end(const RunSummary& summary, const Scene& scene, const std::str
     if (m.landing_halved_steps > 0)
       out << ", " << m.landing_halved_steps << " steps taken in parts: a moving wall landing faster than a radius per step "
           << "(docs/mechanics.md \"A falling piston's margin\")";
+    if (m.piston_corrections > 0)
+      out << ", " << m.piston_corrections << " corrections moved a piston: particles pinned under it "
+          << "(docs/mechanics.md \"Penetration without speed\")";
     out << "\n";
     // Nothing to say of a schedule whose fall never began (on by default: most small scenes).
     if (const auto& ts = m.tolerance_schedule; ts && ts->fall_steps > 0) {

@@ -75,6 +75,8 @@ struct MechanicsSummary {
   // periods by more than they allow (mechanics::NscdIntegrator::step); each half is in `steps`
   std::int64_t halved_steps = 0;
   std::int64_t landing_halved_steps = 0;
+  // extra: corrections in which pistons took their share (particles pinned under a piston)
+  std::int64_t piston_corrections = 0;
   double max_step_travel_m = 0.0;    // extra: largest particle displacement in one step, m
   // extra: Siconos' residual of the steps' reactions relative to ||q|| (the measure
   // fc3d_compute_error reports), whatever the solver's own stop test: the largest, and the
@@ -93,6 +95,7 @@ inline constexpr std::tuple kMechanicsSummaryFields{
     SummaryField{"correction_sweeps", &MechanicsSummary::correction_sweeps},
     SummaryField{"halved_steps", &MechanicsSummary::halved_steps},
     SummaryField{"landing_halved_steps", &MechanicsSummary::landing_halved_steps},
+    SummaryField{"piston_corrections", &MechanicsSummary::piston_corrections},
     SummaryField{"max_step_travel_m", &MechanicsSummary::max_step_travel_m},
     SummaryField{"max_siconos_residual", &MechanicsSummary::max_siconos_residual},
     SummaryField{"siconos_unconverged_steps", &MechanicsSummary::siconos_unconverged_steps}};

@@ -46,6 +46,7 @@ void CoupledRun::fill_summary() {
     summary_.mechanics.correction_sweeps = ms.correction_sweeps;
     summary_.mechanics.halved_steps = ms.halved_steps;
     summary_.mechanics.landing_halved_steps = ms.landing_halved_steps;
+    summary_.mechanics.piston_corrections = ms.piston_corrections;
     summary_.mechanics.max_step_travel_m = ms.max_travel_m;
     summary_.mechanics.max_siconos_residual = ms.max_siconos_residual;
     summary_.mechanics.siconos_unconverged_steps = ms.siconos_unconverged_steps;

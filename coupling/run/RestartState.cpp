@@ -83,6 +83,7 @@ void store_mechanics_stats(const mechanics::MechanicsStats& s, CheckpointState& 
   cs.extra["mechanics_correction_sweeps"] = double(s.correction_sweeps);
   cs.extra["mechanics_halved_steps"] = double(s.halved_steps);
   cs.extra["mechanics_landing_halved_steps"] = double(s.landing_halved_steps);
+  cs.extra["mechanics_piston_corrections"] = double(s.piston_corrections);
   cs.extra["mechanics_last_step_s"] = s.last_step_s;
   cs.extra["mechanics_correction_potential_J"] = s.correction_potential_J;
   cs.extra["mechanics_max_travel_m"] = s.max_travel_m;
@@ -106,6 +107,7 @@ mechanics::MechanicsStats mechanics_stats_of(const CheckpointState& cs) {
   s.correction_sweeps = std::int64_t(extra_or_zero(cs, "mechanics_correction_sweeps"));
   s.halved_steps = std::int64_t(extra_or_zero(cs, "mechanics_halved_steps"));
   s.landing_halved_steps = std::int64_t(extra_or_zero(cs, "mechanics_landing_halved_steps"));
+  s.piston_corrections = std::int64_t(extra_or_zero(cs, "mechanics_piston_corrections"));
   s.last_step_s = extra_or_zero(cs, "mechanics_last_step_s");
   s.correction_potential_J = extra_or_zero(cs, "mechanics_correction_potential_J");
   s.max_travel_m = extra_or_zero(cs, "mechanics_max_travel_m");

@@ -430,8 +430,10 @@ StepReport NscdIntegrator::step(double h, bool landing_parts) {
   // measured here carry the law's or the packing's overlaps, and there the pass only changed a
   // trajectory (thermal_cycling's settle: 179 steps instead of 93, 20 unconverged instead of 16).
   if (corrected && has_piston_ && !compliant() && held_overlap_.empty() &&
-      depth_beyond_trigger_m() > 0.5 * depth_before_m)
+      depth_beyond_trigger_m() > 0.5 * depth_before_m) {
     correct(true);
+    ++stats_.piston_corrections;
+  }
   report.correction_s = lap();
   // Back into the periodic box: pairs are (i, j) ids and their vectors minimum images, so a
   // wrapped particle keeps its candidates, warm starts and contacts.

@@ -74,6 +74,9 @@ struct MechanicsStats {
   // that can touch a particle was fast enough to travel more than the largest radius within the
   // step (a landing piston; NscdIntegrator::step); each part counts in `steps`.
   std::int64_t landing_halved_steps = 0;
+  // Corrections in which the pistons took their share: the penetration correction with them
+  // held could not move what it corrects (particles pinned under a piston; NscdIntegrator::step).
+  std::int64_t piston_corrections = 0;
   // The length of the last step taken (a part's, after a step taken in parts), s; 0 before the
   // first. The warm start of a longer step reads it (NscdIntegrator::setup_contacts).
   double last_step_s = 0.0;

@@ -62,9 +62,10 @@ TEST(RunSummary, JsonHasEveryContractKey) {
   EXPECT_FALSE(j.contains("settle"));  // only for settle runs
   EXPECT_EQ(j.size(), 7u);
   // The contract's 5 mechanics keys plus the extras stalled_steps, correction_sweeps,
-  // halved_steps, landing_halved_steps, max_step_travel_m, max_siconos_residual and
-  // siconos_unconverged_steps.
-  EXPECT_EQ(j["mechanics"].size(), 12u);
+  // halved_steps, landing_halved_steps, piston_corrections, max_step_travel_m,
+  // max_siconos_residual and siconos_unconverged_steps.
+  EXPECT_EQ(j["mechanics"].size(), 13u);
+  EXPECT_TRUE(j["mechanics"]["piston_corrections"].is_number_integer());
   EXPECT_TRUE(j["mechanics"]["halved_steps"].is_number_integer());
   EXPECT_TRUE(j["mechanics"]["landing_halved_steps"].is_number_integer());
   EXPECT_TRUE(j["mechanics"]["max_siconos_residual"].is_number());

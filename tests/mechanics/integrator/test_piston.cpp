@@ -133,6 +133,7 @@ TEST(Piston, PressedColumnCarriesLoadPlusWeights) {
   // inside the penetration slop (1e-4 R) that is held rather than pushed out.
   expect_column_at_rest(c, count, mass, load, 1e-7 * kRadius, 1e-7 * kRadius);
   EXPECT_EQ(c.sim.stats().landing_halved_steps, 0);  // 0.2 R at 0.3 m/s: one step
+  EXPECT_EQ(c.sim.stats().piston_corrections, 0);    // nothing pinned: the piston never moved by it
 }
 
 TEST(Piston, ALandingFasterThanARadiusPerStepIsTakenInPartsAndEndsInTheStatics) {
@@ -183,6 +184,7 @@ TEST(Piston, StartedIntoTheColumnIsPushedOutByTheCorrection) {
   EXPECT_NEAR(floor, load + mass * kG + count * c.weight_N, 1e-6 * floor);
   EXPECT_EQ(c.sim.stats().unconverged_steps, 0);
   EXPECT_GT(c.sim.stats().correction_sweeps, 0);
+  EXPECT_GT(c.sim.stats().piston_corrections, 0);
   // The correction's account: lifting the piston against its load and weight, F dy, with the
   // spheres back where they started (their share is m g times overlaps within the band).
   const double lift_J = (load + mass * kG) * (c.sim.walls()[1].point.y() - (2 * count - 0.05) * kRadius);

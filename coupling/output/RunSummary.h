@@ -74,6 +74,7 @@ struct MechanicsSummary {
   // extra: steps taken as two halves (or more) because particles could move apart across the
   // periods by more than they allow (mechanics::NscdIntegrator::step); each half is in `steps`
   std::int64_t halved_steps = 0;
+  // extra: steps taken in equal parts because a moving wall landed faster than a radius a step
   std::int64_t landing_halved_steps = 0;
   // extra: corrections in which pistons took their share (particles pinned under a piston)
   std::int64_t piston_corrections = 0;

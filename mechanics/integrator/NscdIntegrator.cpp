@@ -376,6 +376,9 @@ StepReport NscdIntegrator::step(double h, bool landing_parts) {
   // landing's parts: on whole steps one pass leaves about 1% of the smallest radius at most on
   // the beds measured (polydisperse: 1.1%), and another pass there only changes a trajectory
   // (polydisperse then no longer came to rest within 300 s, against 55 s).
+  // The gaps above are the rigid ones (no compliant law's or held overlaps added): the extra
+  // passes and the piston's pass below judge depths only on those.
+  const bool rigid_gaps = !compliant() && held_overlap_.empty();
   auto correct = [&](bool move_pistons) {
     const SolveReport corrected = correction_.correct(problem_, gap_after_, slop_m_,
                                                       parameters_.recovery_speed, h,
@@ -413,10 +416,9 @@ StepReport NscdIntegrator::step(double h, bool landing_parts) {
       if (problem_.solvable(k)) sum += std::max(0.0, -gap_after_[k] - PenetrationCorrection::kTrigger * slop_m_);
     return sum;
   };
-  const double depth_before_m = has_piston_ && !compliant() && held_overlap_.empty() ? depth_beyond_trigger_m() : 0.0;
+  const double depth_before_m = has_piston_ && rigid_gaps ? depth_beyond_trigger_m() : 0.0;
   bool corrected = correct(false);
-  for (int pass = 1; corrected && in_landing_parts_ && pass < kCorrectionPasses && !compliant() && held_overlap_.empty();
-       ++pass) {
+  for (int pass = 1; corrected && in_landing_parts_ && rigid_gaps && pass < kCorrectionPasses; ++pass) {
     double deepest_m = 0.0;
     for (const double gap : gap_after_) deepest_m = std::max(deepest_m, -gap);
     if (!(deepest_m > kDeepOverlapSlops * slop_m_)) break;
@@ -429,8 +431,7 @@ StepReport NscdIntegrator::step(double h, bool landing_parts) {
   // Rigid contacts only, as the extra passes: with a compliant law or held overlaps the gaps
   // measured here carry the law's or the packing's overlaps, and there the pass only changed a
   // trajectory (thermal_cycling's settle: 179 steps instead of 93, 20 unconverged instead of 16).
-  if (corrected && has_piston_ && !compliant() && held_overlap_.empty() &&
-      depth_beyond_trigger_m() > 0.5 * depth_before_m) {
+  if (corrected && has_piston_ && rigid_gaps && depth_beyond_trigger_m() > 0.5 * depth_before_m) {
     correct(true);
     ++stats_.piston_corrections;
   }

@@ -198,7 +198,8 @@ def examples_table(binary, work):
         steps = m["steps"]
         converged = 100.0 * (steps - m["unconverged_steps"]) / steps
         settle = s.get("settle")
-        at_rest = "-" if not settle else "yes" if settle["at_rest"] else "no"
+        # A run without a settle phase has the block with at_rest null (not judged).
+        at_rest = "-" if not settle or settle["at_rest"] is None else "yes" if settle["at_rest"] else "no"
         penetration = m["max_penetration_m"] / smallest_radius(binary, scene, work)
         rows.append(f"| {name} | {mode} | {solver} | {s['particles']:,} | {steps:,} | "
                     f"{converged:.1f} | {m['mean_iterations']:.1f} | {m['stalled_steps']} | "

@@ -12,6 +12,7 @@
 #include "coupling/app/ProbesCommand.h"
 #include "coupling/app/RenderCommand.h"
 #include "coupling/common/ExitCode.h"
+#include "coupling/common/TomlQuoted.h"
 #include "coupling/run/CoupledRun.h"
 #include "coupling/studies/CouplingStudy.h"
 #include "coupling/scene/DefaultScene.h"
@@ -207,7 +208,10 @@ int tmdem_main(int argc, char** argv) {
       }
       // Over MPI rank 0 speaks for all (the others only of a failure of their own, CoupledRun).
       const bool speaks = thermal::MpiWorld::rank() == 0;
-      const Scene scene = load(scene_path, sets);
+      // -o overrides output.file: the result file's resolved scene (its "scene" attribute) says so.
+      std::vector<std::string> resolved_sets = sets;
+      if (!output.empty()) resolved_sets.push_back("output.file=" + toml_quoted(output));
+      const Scene scene = load(scene_path, resolved_sets);
       if (!quiet && speaks)
         for (const auto& report : scene.imports) std::cerr << describe_import(report) << std::endl;
       // Even with --quiet (no progress): a warning is about the scene, not the run's progress.

@@ -91,7 +91,16 @@ nlohmann::json RunSummary::to_json() const {
     write_summary_fields(me, *energy.mechanical, kMechanicalEnergyFields);
     if (energy.mechanical->heat) write_summary_fields(me, *energy.mechanical, kMechanicalHeatFields);
   }
-  write_summary_block(j, "settle", settle, kSettleSummaryFields);
+  if (settle) {
+    write_summary_block(j, "settle", settle, kSettleSummaryFields);
+  } else {
+    nlohmann::json& block = j["settle"];
+    block["at_rest"] = packing_held ? nlohmann::json(true) : nlohmann::json();
+    block["time_s"] = 0.0;
+    block["steps"] = 0;
+    block["max_speed_m_s"] = packing_held ? nlohmann::json(0.0) : nlohmann::json();
+    block["ended_by"] = kNoSettlePhase;
+  }
   write_summary_block(j, "thermo_mechanics", thermo_mechanics, kThermoMechanicsSummaryFields);
   write_summary_block(j, "wall_time_parts", wall_time_parts, kWallTimePartsFields);
   write_summary_block(j, "openmp", openmp, kOpenMpSummaryFields);
@@ -123,7 +132,11 @@ RunSummary RunSummary::from_json(const nlohmann::json& j) {
     a->heat = e.at("mechanical").contains("heat_generated_J");
     read_summary_fields(e.at("mechanical"), *a, kMechanicalHeatFields);
   }
-  read_summary_block(j, "settle", s.settle, kSettleSummaryFields);
+  if (const nlohmann::json& block = section(j, "settle");
+      block.contains("ended_by") && block.at("ended_by") == kNoSettlePhase)
+    s.packing_held = block.at("at_rest").is_boolean() && block.at("at_rest").get<bool>();
+  else
+    read_summary_block(j, "settle", s.settle, kSettleSummaryFields);
   read_summary_block(j, "thermo_mechanics", s.thermo_mechanics, kThermoMechanicsSummaryFields);
   read_summary_block(j, "wall_time_parts", s.wall_time_parts, kWallTimePartsFields);
   read_summary_block(j, "openmp", s.openmp, kOpenMpSummaryFields);

@@ -101,7 +101,8 @@ inline constexpr std::tuple kMechanicsSummaryFields{
     SummaryField{"max_siconos_residual", &MechanicsSummary::max_siconos_residual},
     SummaryField{"siconos_unconverged_steps", &MechanicsSummary::siconos_unconverged_steps}};
 
-// The "settle" block (mechanics = "settle" only): how the packing was frozen.
+// The "settle" block of a run with a settle phase (mechanics "settle" and "coupled"): how the
+// packing was frozen (RunSummary::settle for the others).
 struct SettleSummary {
   bool at_rest = false;              // the rest test (mechanics.rest_test) was met
   double time_s = 0.0;               // settle time used
@@ -117,6 +118,8 @@ struct SettleSummary {
   std::optional<double> bed_height_m;
   std::optional<double> porosity;
 };
+// The "settle" block's ended_by for a run without a settle phase (RunSummary::settle).
+inline constexpr const char* kNoSettlePhase = "none";
 inline constexpr std::tuple kSettleSummaryFields{
     SummaryField{"at_rest", &SettleSummary::at_rest},
     SummaryField{"time_s", &SettleSummary::time_s},
@@ -294,7 +297,13 @@ struct RunSummary {
   double simulated_time_s = 0.0;
   std::int64_t particles = 0;
   MechanicsSummary mechanics;
-  std::optional<SettleSummary> settle;  // extra: present for settle runs only
+  // Settle and coupled runs: their settle phase. A run without one still gets the contract's
+  // "settle" block (to_json): at rest with no settle time, no steps and speed 0 when the packing
+  // is held as given (packing_held: mechanics "off"), else at_rest and max_speed_m_s null (a
+  // dynamic run moves its packing for the whole run; a run that stopped before settling never
+  // judged it); its ended_by is "none".
+  std::optional<SettleSummary> settle;
+  bool packing_held = false;
   std::optional<ThermoMechanicsSummary> thermo_mechanics;  // extra: "coupled" runs only
   ThermalSummary thermal;
   EnergySummary energy;

@@ -15,6 +15,7 @@ void CoupledRun::fill_summary() {
   summary_.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   summary_.particles = std::int64_t(scene_.particles.size());
+  summary_.packing_held = scene_.effects.mechanics == MechanicsMode::Off;
   WallTimeParts parts;
   parts.mechanics_s = mechanics_seconds_;
   parts.thermal_s = thermal_seconds_;

@@ -218,7 +218,7 @@ struct ThermalSettings {
   std::optional<thermal::LinearSolverKind> linear_solver;
   double relative_tolerance = 1.0e-6;
   double absolute_tolerance_K = 1.0e-6;
-  double explicit_step_s = 0.0;        // 0 = largest stable step
+  double explicit_step_s = 0.0;        // 0 = 0.9 x the stability bound
   thermal::ConductanceLawKind conductance = thermal::ConductanceLawKind::Hertz;
   double constant_conductance_W_per_K = 1.0e-4;
   // Hertz law: a loaded contact's spot radius is at least contact_flattening x R* (0: Hertz).

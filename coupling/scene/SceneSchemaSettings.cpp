@@ -123,7 +123,8 @@ std::vector<Section> settings_sections() {
         number("relative_tolerance", "", kT.relative_tolerance, Range::greater(0.0), "integrator tolerance"),
         number("absolute_tolerance", "K", kT.absolute_tolerance_K, Range::greater(0.0), "integrator tolerance"),
         number("explicit_step", "s", kT.explicit_step_s, Range::at_least(0.0),
-               "explicit step; 0 = largest stable step, above the bound is refused"),
+               "explicit step; 0 = 0.9 x the stability bound 2 / lambda_max (Gershgorin), a "
+               "step above the bound is refused with the bound in the message"),
         choice("conductance", std::string(thermal::name_of(kT.conductance)),
                names_of(thermal::kConductanceLawNames),
                "contact conductance: \"hertz\": H = 2 k a (Hertz radius a from the normal "

@@ -3,9 +3,11 @@
 #include <unistd.h>
 
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "PythonResult.h"
+#include "coupling/common/TomlQuoted.h"
 #include "coupling/run/CoupledRun.h"
 
 namespace py = pybind11;
@@ -13,7 +15,15 @@ namespace py = pybind11;
 namespace tmdem::python {
 
 py::tuple run(const PythonScene& scene, const RunArguments& arguments) {
-  const coupling::Scene& s = scene.scene();
+  // output= overrides output.file, as -o does: the result's resolved scene names the file.
+  std::optional<PythonScene> with_output;
+  if (arguments.output) {
+    auto overrides = scene.overrides();
+    overrides.push_back("output.file=" + coupling::toml_quoted(*arguments.output));
+    with_output = scene.path().empty() ? PythonScene::load_default(overrides)
+                                       : PythonScene::load(scene.path(), overrides);
+  }
+  const coupling::Scene& s = with_output ? with_output->scene() : scene.scene();
   coupling::RunOptions options;
   options.output_path = arguments.output ? *arguments.output
                         : scene.path().empty() && s.output.file.empty() ? "tmdem-default.h5"

@@ -24,6 +24,10 @@ TEST(EndToEndDynamic, DropOntoHeatedFloorKeepsBalanceBoundsAndHertzConductances)
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto s = read_summary(dir + "/s.json");
   EXPECT_EQ(s["mechanics"]["steps"], 400);
+  // The contract's settle block, for a run with no settle phase: nothing judged.
+  EXPECT_TRUE(s["settle"]["at_rest"].is_null());
+  EXPECT_EQ(s["settle"]["steps"], 0);
+  EXPECT_EQ(s["settle"]["ended_by"], "none");
   EXPECT_LT(s["energy"]["balance_error_rel"].get<double>(), 1e-8);
   EXPECT_GT(s["energy"]["boundary_heat_J"].get<double>(), 0.0);
   // Re-initialised when contacts close, not every step.

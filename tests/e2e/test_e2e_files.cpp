@@ -12,6 +12,8 @@
 #include <sstream>
 #include <thread>
 
+#include <toml++/toml.h>
+
 #include "E2eSupport.h"
 
 using namespace tmdem::e2e;
@@ -65,6 +67,20 @@ TEST(EndToEndFiles, ExistingResultIsNotOverwrittenWithoutOverwrite) {
   r = run_tmdem("run s.toml --quiet --overwrite --set thermal.constant_conductance=2e-3", dir);
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(bytes_of(dir + "/out.h5"), before);
+}
+
+// -o overrides output.file (contract): the result file's resolved scene says where it was
+// written, quotes and backslashes in the name included.
+TEST(EndToEndFiles, OutputOptionIsInTheResolvedScene) {
+  const auto dir = scratch_dir("files_o");
+  write_file(dir + "/s.toml", lattice_scene(3, 1e-3));
+  const std::string name = "a \"quoted\" \\ name.h5";
+  const auto r = run_tmdem("run s.toml --quiet -o 'a \"quoted\" \\ name.h5'", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  ASSERT_TRUE(fs::exists(dir + "/" + name));
+  H5::H5File f(dir + "/" + name, H5F_ACC_RDONLY);
+  const toml::table scene = toml::parse(read_string_attribute(f, "scene"));
+  EXPECT_EQ(scene["output"]["file"].value<std::string>(), name);
 }
 
 TEST(EndToEndFiles, SceneFileAndEmptyNameAreNeverOutputs) {

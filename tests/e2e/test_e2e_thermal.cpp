@@ -108,6 +108,10 @@ TEST(EndToEnd, LatticeMatchesMatrixExponentialAndContractLayout) {
   EXPECT_EQ(summary["thermal"]["integrator"], "cvode");
   EXPECT_GT(summary["thermal"]["steps"].get<long>(), 0);
   EXPECT_LT(summary["energy"]["balance_error_rel"].get<double>(), 1e-12);
+  // The contract's settle block: a packing held as given (mechanics "off") is at rest.
+  EXPECT_EQ(summary["settle"]["at_rest"], true);
+  EXPECT_EQ(summary["settle"]["steps"], 0);
+  EXPECT_EQ(summary["settle"]["max_speed_m_s"], 0.0);
   EXPECT_TRUE(std::filesystem::exists(dir + "/lattice.xdmf"));
 }
 

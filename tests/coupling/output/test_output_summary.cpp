@@ -38,7 +38,7 @@ RunSummary sample_summary() {
 TEST(RunSummary, JsonHasEveryContractKey) {
   const nlohmann::json j = sample_summary().to_json();
   for (const char* key : {"status", "wall_time_s", "simulated_time_s", "particles", "mechanics",
-                          "thermal", "energy"}) {
+                          "settle", "thermal", "energy"}) {
     EXPECT_TRUE(j.contains(key)) << key;
   }
   EXPECT_TRUE(j["status"].is_string());
@@ -59,8 +59,15 @@ TEST(RunSummary, JsonHasEveryContractKey) {
   EXPECT_FALSE(j.contains("message"));
   EXPECT_FALSE(j["thermal"].contains("linear_solver"));
   EXPECT_FALSE(j["thermal"].contains("linear_solver_reason"));
-  EXPECT_FALSE(j.contains("settle"));  // only for settle runs
-  EXPECT_EQ(j.size(), 7u);
+  // The contract's settle block, for a run without a settle phase: not judged (null), no settle
+  // time or steps.
+  for (const char* key : {"at_rest", "time_s", "steps", "max_speed_m_s"}) EXPECT_TRUE(j["settle"].contains(key)) << key;
+  EXPECT_TRUE(j["settle"]["at_rest"].is_null());
+  EXPECT_TRUE(j["settle"]["max_speed_m_s"].is_null());
+  EXPECT_EQ(j["settle"]["time_s"], 0.0);
+  EXPECT_EQ(j["settle"]["steps"], 0);
+  EXPECT_EQ(j["settle"]["ended_by"], "none");
+  EXPECT_EQ(j.size(), 8u);
   // The contract's 5 mechanics keys plus the extras stalled_steps, correction_sweeps,
   // halved_steps, landing_halved_steps, piston_corrections, max_step_travel_m,
   // max_siconos_residual and siconos_unconverged_steps.
@@ -142,6 +149,32 @@ TEST(RunSummary, SettleBlockAndStalledStepsRoundTrip) {
   EXPECT_EQ(r.settle->steps, 5000);
   EXPECT_EQ(r.mechanics.stalled_steps, 3);
   EXPECT_EQ(r.to_json(), s.to_json());
+}
+
+// The contract lists the "settle" block for every run. Without a settle phase: a packing held
+// as given (mechanics "off") is at rest with speed 0; otherwise at_rest and the speed are null
+// (not judged). Both read back as "no settle phase" and write the same block again.
+TEST(RunSummary, SettleBlockWithoutSettlePhaseRoundTrips) {
+  for (const bool held : {true, false}) {
+    RunSummary s = sample_summary();
+    s.packing_held = held;
+    const nlohmann::json j = nlohmann::json::parse(s.to_json().dump());
+    ASSERT_TRUE(j.contains("settle"));
+    EXPECT_EQ(j["settle"]["ended_by"], "none");
+    EXPECT_EQ(j["settle"]["steps"], 0);
+    EXPECT_EQ(j["settle"]["time_s"], 0.0);
+    if (held) {
+      EXPECT_EQ(j["settle"]["at_rest"], true);
+      EXPECT_EQ(j["settle"]["max_speed_m_s"], 0.0);
+    } else {
+      EXPECT_TRUE(j["settle"]["at_rest"].is_null());
+      EXPECT_TRUE(j["settle"]["max_speed_m_s"].is_null());
+    }
+    const RunSummary r = RunSummary::from_json(j);
+    EXPECT_FALSE(r.settle.has_value());
+    EXPECT_EQ(r.packing_held, held);
+    EXPECT_EQ(r.to_json(), s.to_json());
+  }
 }
 
 // The tolerance schedule's block (mechanics.tolerance_schedule): only for scenes with one,

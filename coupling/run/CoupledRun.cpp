@@ -30,6 +30,14 @@ std::string checkpoint_path_for(const std::string& output_path) {
   return output_path + ".checkpoint.h5";
 }
 
+std::string result_path_for_checkpoint(const std::string& checkpoint_path) {
+  const std::string ext = ".checkpoint.h5";
+  if (checkpoint_path.size() > ext.size() &&
+      checkpoint_path.compare(checkpoint_path.size() - ext.size(), ext.size(), ext) == 0)
+    return checkpoint_path.substr(0, checkpoint_path.size() - ext.size()) + ".h5";
+  return "";
+}
+
 namespace run_detail {
 
 RunOutcome CoupledRun::run() {

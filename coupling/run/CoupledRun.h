@@ -45,4 +45,8 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options, std::ostream
 // Where checkpoints of a run writing `output_path` go: RESULT.checkpoint.h5.
 std::string checkpoint_path_for(const std::string& output_path);
 
+// The result a checkpoint belongs to (RESULT.checkpoint.h5 -> RESULT.h5); empty when the name
+// is not of that form.
+std::string result_path_for_checkpoint(const std::string& checkpoint_path);
+
 }  // namespace tmdem::coupling

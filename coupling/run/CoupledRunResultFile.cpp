@@ -2,6 +2,8 @@
 // or reopened to resume from a checkpoint, and one frame written at each output time (rank 0
 // alone over MPI).
 #include <chrono>
+#include <filesystem>
+#include <system_error>
 
 #include "coupling/bridge/ContactHeatFlow.h"
 #include "coupling/bridge/ContactSeriesFactors.h"
@@ -51,6 +53,17 @@ void CoupledRun::write_frame(double t_s) {
 
 void CoupledRun::open_result_file() {
   if (restart_) {
+    // A restart into another file (output.* may differ from the checkpoint's: -o names a result
+    // that does not exist yet): the checkpoint's own result is copied there and continued; the
+    // original keeps its frames. Reopening checks the copy as it checks any result.
+    std::error_code error;
+    if (const std::string source = result_path_for_checkpoint(options_.restart_path);
+        !source.empty() && !std::filesystem::exists(options_.output_path, error) &&
+        std::filesystem::exists(source, error) && !std::filesystem::equivalent(source, options_.output_path, error)) {
+      if (!std::filesystem::copy_file(source, options_.output_path, error))
+        throw OutputError("cannot copy result file '" + source + "' to '" + options_.output_path +
+                          "' to continue it there: " + error.message());
+    }
     RestartMatch match;
     match.particles = scene_.particles.size();
     match.scene_toml = restart_->scene_toml;

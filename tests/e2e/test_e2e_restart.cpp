@@ -62,6 +62,29 @@ TEST(EndToEndRestart, RestartFromCheckpointMatchesUninterruptedRun) {
   EXPECT_EQ(restart_time_s, 10.0);
 }
 
+// output.* may differ on a restart: -o naming a result that does not exist yet continues a copy
+// of the checkpoint's result there (bit for bit the uninterrupted run) and leaves the original
+// as it was.
+TEST(EndToEndRestart, RestartIntoAnotherFileContinuesACopyAndKeepsTheOriginal) {
+  const auto full = scratch_dir("restart_other_full");
+  const auto part = scratch_dir("restart_other_part");
+  write_file(full + "/s.toml", kScene);
+  write_file(part + "/s.toml", kScene);
+  ASSERT_EQ(run_tmdem("run s.toml --quiet", full).exit_code, 0);
+  ASSERT_EQ(run_tmdem("run s.toml --quiet --set simulation.duration=10.0", part).exit_code, 0);
+  const auto r = run_tmdem("run s.toml --quiet -o other.h5 --restart out.checkpoint.h5", part);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  H5::H5File a(full + "/out.h5", H5F_ACC_RDONLY), b(part + "/other.h5", H5F_ACC_RDONLY),
+      original(part + "/out.h5", H5F_ACC_RDONLY);
+  EXPECT_EQ(read_doubles(a, "/frames/time"), read_doubles(b, "/frames/time"));
+  EXPECT_EQ(read_doubles(a, "/frames/temperature"), read_doubles(b, "/frames/temperature"));
+  EXPECT_EQ(read_string_attribute(b, "status"), "ok");
+  EXPECT_TRUE(b.attrExists("restart_times"));
+  // The original still ends at the checkpoint, never restarted.
+  EXPECT_EQ(read_doubles(original, "/frames/time").back(), 10.0);
+  EXPECT_FALSE(original.attrExists("restart_times"));
+}
+
 namespace {
 std::string file_bytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

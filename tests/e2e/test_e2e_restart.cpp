@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 #include <toml++/toml.h>
+#include <utility>
 
 #include "E2eSupport.h"
 
@@ -21,19 +22,28 @@ std::string restart_scene(double wall_temperature_K) {
       .set("output.checkpoint_interval", 10.0);
 }
 const std::string kScene = restart_scene(350.0);
+
+// Two folders with the scene: `full` run to its 20 s, `part` stopped at its checkpoint (10 s).
+// Returns {full, part}, or empty names after a failed run.
+std::pair<std::string, std::string> full_and_stopped_runs(const std::string& name) {
+  const auto full = scratch_dir(name + "_full");
+  const auto part = scratch_dir(name + "_part");
+  write_file(full + "/s.toml", kScene);
+  write_file(part + "/s.toml", kScene);
+  auto r = run_tmdem("run s.toml --quiet --summary s.json", full);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  r = run_tmdem("run s.toml --quiet --set simulation.duration=10.0", part);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  if (::testing::Test::HasFailure() || !std::filesystem::exists(part + "/out.checkpoint.h5")) return {};
+  return {full, part};
+}
 }  // namespace
 
 TEST(EndToEndRestart, RestartFromCheckpointMatchesUninterruptedRun) {
-  const auto full = scratch_dir("restart_full");
-  const auto part = scratch_dir("restart_part");
-  write_file(full + "/s.toml", kScene);
-  write_file(part + "/s.toml", kScene);
-  ASSERT_EQ(run_tmdem("run s.toml --quiet --summary s.json", full).exit_code, 0);
   // Stop at t = 10 s (the checkpoint), then continue to 20 s from it.
-  auto r = run_tmdem("run s.toml --quiet --set simulation.duration=10.0", part);
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  ASSERT_TRUE(std::filesystem::exists(part + "/out.checkpoint.h5"));
-  r = run_tmdem("run s.toml --quiet --restart out.checkpoint.h5 --summary s.json", part);
+  const auto [full, part] = full_and_stopped_runs("restart");
+  ASSERT_FALSE(part.empty());
+  const auto r = run_tmdem("run s.toml --quiet --restart out.checkpoint.h5 --summary s.json", part);
   ASSERT_EQ(r.exit_code, 0) << r.output;
 
   H5::H5File a(full + "/out.h5", H5F_ACC_RDONLY), b(part + "/out.h5", H5F_ACC_RDONLY);
@@ -66,12 +76,8 @@ TEST(EndToEndRestart, RestartFromCheckpointMatchesUninterruptedRun) {
 // of the checkpoint's result there (bit for bit the uninterrupted run) and leaves the original
 // as it was.
 TEST(EndToEndRestart, RestartIntoAnotherFileContinuesACopyAndKeepsTheOriginal) {
-  const auto full = scratch_dir("restart_other_full");
-  const auto part = scratch_dir("restart_other_part");
-  write_file(full + "/s.toml", kScene);
-  write_file(part + "/s.toml", kScene);
-  ASSERT_EQ(run_tmdem("run s.toml --quiet", full).exit_code, 0);
-  ASSERT_EQ(run_tmdem("run s.toml --quiet --set simulation.duration=10.0", part).exit_code, 0);
+  const auto [full, part] = full_and_stopped_runs("restart_other");
+  ASSERT_FALSE(part.empty());
   const auto r = run_tmdem("run s.toml --quiet -o other.h5 --restart out.checkpoint.h5", part);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   H5::H5File a(full + "/out.h5", H5F_ACC_RDONLY), b(part + "/other.h5", H5F_ACC_RDONLY),

@@ -59,7 +59,7 @@ void CoupledRun::open_result_file() {
     std::error_code error;
     if (const std::string source = result_path_for_checkpoint(options_.restart_path);
         !source.empty() && !std::filesystem::exists(options_.output_path, error) &&
-        std::filesystem::exists(source, error) && !std::filesystem::equivalent(source, options_.output_path, error)) {
+        std::filesystem::exists(source, error)) {
       if (!std::filesystem::copy_file(source, options_.output_path, error))
         throw OutputError("cannot copy result file '" + source + "' to '" + options_.output_path +
                           "' to continue it there: " + error.message());

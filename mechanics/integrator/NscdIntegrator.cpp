@@ -405,7 +405,7 @@ StepReport NscdIntegrator::step(double h, bool landing_parts) {
         report.correction_potential_J -= (wall.load_N * wall.normal + wall.mass_kg * gravity_).dot(dx);
       }
     }
-    if (corrected.sweeps > 0 || compliant() || !held_overlap_.empty()) gaps_after_step(gap_after_);
+    if (corrected.sweeps > 0 || !rigid_gaps) gaps_after_step(gap_after_);
     return corrected.sweeps > 0;
   };
   // Depth beyond the trigger, summed over the contacts (m): a correction that can move what it

@@ -31,6 +31,18 @@ void sync_file(const std::string& path) {
 // candidate_force_N 3 K, candidate_rolling_torque_Nm 3 K or none, candidate_held_overlap_m K or
 // none; and detector_reference_position_m 3 N values (n particles) or none. Checked on writing
 // and on reading alike.
+// A settle checkpoint's window: as many pairs (2 values each) and forces as its snapshots'
+// counts add up to, none of them negative.
+bool settle_window_agrees(const CheckpointState& s) {
+  std::int64_t contacts = 0;
+  for (const std::int64_t k : s.settle_window_contacts) {
+    if (k < 0) return false;
+    contacts += k;
+  }
+  return s.settle_window_pair.size() == 2 * std::size_t(contacts) &&
+         s.settle_window_normal_force_N.size() == std::size_t(contacts);
+}
+
 bool candidate_counts_agree(const CheckpointState& s, std::size_t n) {
   const std::size_t k = s.candidate_pair.size() / 2;
   return s.candidate_pair.size() % 2 == 0 && s.candidate_force_N.size() == 3 * k &&
@@ -76,6 +88,12 @@ void write_contents(hid_t file, const CheckpointState& s) {
       hdf5::write_array(mechanics.get(), "wall_velocity", s.wall_velocity_m_per_s, 0, "m/s");
       hdf5::write_array(mechanics.get(), "reference_wall_point", s.detector_reference_wall_point_m, 3, "m");
     }
+  }
+  if (s.settling) {
+    Hdf5Handle settle = hdf5::create_group(file, "settle");
+    hdf5::write_array(settle.get(), "window_contacts", s.settle_window_contacts, 0, "1");
+    hdf5::write_array(settle.get(), "window_pair", s.settle_window_pair, 2, "1");
+    hdf5::write_array(settle.get(), "window_normal_force", s.settle_window_normal_force_N, 0, "N");
   }
   if (!s.settled_wall_point_m.empty())
     hdf5::write_array(file, "settled_wall_point", s.settled_wall_point_m, 3, "m");
@@ -170,6 +188,13 @@ CheckpointState read_contents(hid_t file) {
       s.detector_reference_wall_point_m = hdf5::read_double_array(mechanics.get(), "reference_wall_point", 3);
     }
   }
+  if (hdf5::exists(file, "settle")) {
+    Hdf5Handle settle = hdf5::open_group(file, "settle");
+    s.settling = true;
+    s.settle_window_contacts = hdf5::read_int64_array(settle.get(), "window_contacts", 0);
+    s.settle_window_pair = hdf5::read_int64_array(settle.get(), "window_pair", 2);
+    s.settle_window_normal_force_N = hdf5::read_double_array(settle.get(), "window_normal_force", 0);
+  }
   if (hdf5::exists(file, "settled_wall_point"))
     s.settled_wall_point_m = hdf5::read_double_array(file, "settled_wall_point", 3);
   if (hdf5::exists(file, "radius")) s.radius_m = hdf5::read_double_array(file, "radius", 0);
@@ -231,6 +256,11 @@ void write_checkpoint(const std::string& path, const CheckpointState& s) {
         "candidate_rolling_torque_Nm 3 K or none, candidate_held_overlap_m K or none and "
         "detector_reference_position_m 3 N or none");
   }
+  if (!settle_window_agrees(s)) {
+    throw std::invalid_argument(
+        "CheckpointState: settle_window_pair needs 2 values and settle_window_normal_force_N one "
+        "for each of the settle_window_contacts");
+  }
   const std::string temporary = path + ".tmp";
   const std::filesystem::path folder = std::filesystem::path(path).parent_path();
   std::error_code error;
@@ -283,7 +313,7 @@ CheckpointState read_checkpoint(const std::string& path) {
       s.angular_velocity_rad_per_s.size() != 3 * n || s.contact_impulse_N_s.size() != 3 * c ||
       s.contact_tangential_force_N.size() != 3 * c ||
       (!s.contact_normal_force_N.empty() && s.contact_normal_force_N.size() != c) ||
-      !candidate_counts_agree(s, n)) {
+      !candidate_counts_agree(s, n) || !settle_window_agrees(s)) {
     throw OutputError("cannot read checkpoint '" + path +
                       "': particle or contact counts of its datasets disagree");
   }

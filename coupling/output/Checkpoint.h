@@ -13,7 +13,8 @@
 // (only while an imported overlap is held),
 // solver_state [S], wall_point [W,3] m, wall_velocity [W] m/s, reference_wall_point [W,3] m:
 // the mechanics' MechanicsState; the wall datasets may be absent: walls as built) when the packing moves, and /thermal/pattern_pair [P,2] (a dynamic
-// run's sticky edge set), /settled_wall_point [W,3] m (a settled run: the walls where settling
+// run's sticky edge set), /settle (a settle checkpoint: datasets window_contacts [S],
+// window_pair [P,2], window_normal_force [P] N), /settled_wall_point [W,3] m (a settled run: the walls where settling
 // left them; absent: where the scene puts them), /result_contact_tail (attributes start, rows;
 // datasets pair [T,2], normal_force, tangential_force [T,3], conductance, heat_flow, each
 // present when the result file stores it as a plain dataset: ContactTail.h). The integrators' and the mechanics' counters
@@ -69,6 +70,15 @@ struct CheckpointState {
   std::vector<double> settled_wall_point_m;
   // N, the particles' radii, m: a coupled run's (grown by thermal expansion), or empty: the scene's.
   std::vector<double> radius_m;
+  // A settle checkpoint (written when a settle is interrupted, before any frame; group /settle):
+  // the packing still settling, with the settle's rest-test window, one snapshot per step,
+  // oldest first: snapshot s has settle_window_contacts[s] contacts, whose pairs (2 each) and
+  // normal forces (N) follow those of the snapshots before it. The settle's counters are
+  // /extra scalars.
+  bool settling = false;
+  std::vector<std::int64_t> settle_window_contacts;  // S
+  std::vector<std::int64_t> settle_window_pair;      // sum * 2
+  std::vector<double> settle_window_normal_force_N;  // sum
   // The result file's contacts in their last chunk (ContactTail.h), or empty: a restart writes
   // them again, whatever a crash left of that chunk.
   ContactTail result_contact_tail;

@@ -6,10 +6,13 @@
 #include "coupling/run/CoupledRun.h"
 
 #include <csignal>
+#include <filesystem>
+#include <system_error>
 #include <optional>
 #include <string>
 
 #include "coupling/common/ExitCode.h"
+#include "coupling/output/Checkpoint.h"
 #include "coupling/output/OutputError.h"
 #include "coupling/output/ResultWriter.h"
 #include "coupling/run/CoupledRunLoop.h"
@@ -101,6 +104,16 @@ RunOutcome CoupledRun::run() {
   paths.checkpoints = true;  // an interruption writes one even without checkpoint_interval
   paths.overwrite = options_.overwrite;
   paths.restart = !options_.restart_path.empty();
+  // A settle checkpoint starts a new result file (no frame was written before it): the result
+  // is checked as a fresh run's. A checkpoint that cannot be read is reported by
+  // restore_checkpoint (exit 4).
+  if (paths.restart) {
+    try {
+      restart_ = read_checkpoint(options_.restart_path);
+      paths.restart = !restart_->settling;
+    } catch (const OutputError&) {
+    }
+  }
   if (thermal::MpiWorld::distributed()) {
     if (const auto why = distributed_heating_refusal(scene_, thermal::MpiWorld::size());
         !why.empty())
@@ -122,8 +135,10 @@ RunOutcome CoupledRun::run() {
     RunOutcome result = finish(code, "", "interrupted");
     if (result.exit_code == code)
       log_ << "interrupted by " << signal_name(stop.signal) << " while settling (after "
-           << stop.time_s << " s of settle time); no result file written, nothing to resume: "
-           << "run the scene again to start over" << std::endl;
+           << stop.time_s << " s of settle time); no result file yet; resume settling with: "
+           << (options_.resume_command.empty() ? "tmdem run SCENE -o " + options_.output_path
+                                               : options_.resume_command)
+           << " --restart " << checkpoint_path_for(options_.output_path) << std::endl;
     return result;
   } catch (const StartError& e) {
     return failed(kExitInvalid, e.what());
@@ -184,6 +199,10 @@ RunOutcome CoupledRun::run() {
   } catch (const std::exception& e) {
     local_failure_ = true;
     return failed(kExitSolverFailed, e.what());
+  }
+  if (settle_checkpoint_on_disk_) {  // the run is complete: its settle needs no resuming
+    std::error_code error;
+    std::filesystem::remove(checkpoint_path_for(options_.output_path), error);
   }
   return failed(kExitOk, "");
 }

@@ -2,6 +2,8 @@
 // files"): every checkpoint time is an integration boundary, in the run that writes the
 // checkpoint and in the run restarted from it.
 #include <cmath>
+#include <filesystem>
+#include <system_error>
 #include <string>
 
 #include "coupling/run/CoupledRunLoop.h"
@@ -13,7 +15,7 @@ namespace tmdem::coupling::run_detail {
 
 void CoupledRun::restore_checkpoint() {
   if (options_.restart_path.empty()) return;
-  restart_ = read_checkpoint(options_.restart_path);  // OutputError -> exit 4
+  if (!restart_) restart_ = read_checkpoint(options_.restart_path);  // OutputError -> exit 4
   const std::size_t n = scene_.particles.size();
   if (restart_->temperature_K.size() != n)
     throw StartError("checkpoint " + options_.restart_path + " holds " +
@@ -26,6 +28,20 @@ void CoupledRun::restore_checkpoint() {
                      " (checkpoint " + difference->before_value + ", now " +
                      difference->after_value +
                      "); a restart may change only simulation.duration and output.*");
+  // A settle checkpoint: the run starts afresh at t = 0 and resumes settling from it
+  // (prepare_mechanics); nothing of a thermal run is in it yet.
+  if (restart_->settling) {
+    if (!restart_->has_mechanics)
+      throw StartError("settle checkpoint " + options_.restart_path + " holds no mechanics state");
+    settle_resume_ = std::move(restart_);
+    restart_.reset();
+    // Resumed from the very file this run's checkpoints go to: removed as any settle checkpoint
+    // of the run once it completes (kept while a thermal checkpoint has not replaced it).
+    std::error_code error;
+    settle_checkpoint_on_disk_ =
+        std::filesystem::equivalent(options_.restart_path, checkpoint_path_for(options_.output_path), error);
+    return;
+  }
   t0_ = restart_->time_s;
   T0_ = restart_->temperature_K;
   boundary_heat0_J_ = restart_->boundary_heat_J;
@@ -148,9 +164,25 @@ void CoupledRun::checkpoint(double t_s) {
     const auto output_start = std::chrono::steady_clock::now();
     write_checkpoint(checkpoint_path_for(options_.output_path), cs);
     output_seconds_ += seconds_since(output_start);
+    settle_checkpoint_on_disk_ = false;
   }
   last_checkpoint_s_ = t_s;
   begin_thermal_segment(cs);
+}
+
+void CoupledRun::checkpoint_settle(const SettleProgress& where) {
+  CheckpointState cs;
+  cs.time_s = 0.0;  // before the thermal run: nothing of it has happened yet
+  store_mechanics_state(nscd_->save_state(), cs);
+  for (const auto& p : scene_.particles) cs.temperature_K.push_back(p.temperature_K);
+  cs.scene_toml = scene_.resolved_toml;
+  store_settle_progress(where, cs);
+  if (writes_files_) {
+    const auto output_start = std::chrono::steady_clock::now();
+    write_checkpoint(checkpoint_path_for(options_.output_path), cs);
+    output_seconds_ += seconds_since(output_start);
+    settle_checkpoint_on_disk_ = true;
+  }
 }
 
 void CoupledRun::stop_if_interrupted(double t_s, bool frame_written) {

@@ -24,6 +24,7 @@
 #include "coupling/run/CoupledRun.h"
 #include "coupling/run/DistributedHeating.h"
 #include "coupling/run/LinearSolverChoice.h"
+#include "coupling/run/SettleProgress.h"
 #include "coupling/run/ThermalExpansion.h"
 #include "mechanics/integrator/NscdIntegrator.h"
 #include "thermal/integrators/MpiWorld.h"
@@ -46,6 +47,7 @@ inline double seconds_since(std::chrono::steady_clock::time_point start) {
 struct Interrupted {
   int signal = 0;
   double time_s = 0.0;    // simulated time reached, or settle time when settling
+  bool settling = false;  // stopped while settling: a settle checkpoint was written (t = 0)
 };
 
 class CoupledRun {
@@ -76,6 +78,10 @@ class CoupledRun {
   void write_frame(double t_s);
   void maybe_checkpoint(double t_s);
   void checkpoint(double t_s);
+  // A settle checkpoint (Checkpoint.h), written when a settle is interrupted and every
+  // output.settle_checkpoint_interval of wall time while it lasts: the integrator's state and
+  // where the settle stands, so that a restart resumes settling.
+  void checkpoint_settle(const SettleProgress& where);
   void begin_thermal_segment(const CheckpointState& cs);
   void stop_if_interrupted(double t_s, bool frame_written);
   void fill_summary();
@@ -118,6 +124,14 @@ class CoupledRun {
   std::optional<ResultWriter> writer_;
 
   std::optional<CheckpointState> restart_;
+  // A restart from a settle checkpoint: the run starts afresh (no result file yet, t = 0), its
+  // settle resumed from this state instead of the scene's packing.
+  std::optional<CheckpointState> settle_resume_;
+  SettleProgress settle_progress_;  // where the run's settle stands (SettleProgress.h)
+  // RESULT.checkpoint.h5 is a settle checkpoint this run wrote or resumed from (no later
+  // checkpoint replaced it): removed when the run completes, as a restart from it would only
+  // run the scene again.
+  bool settle_checkpoint_on_disk_ = false;
   double t0_ = 0.0;
   std::vector<double> T0_;
   double boundary_heat0_J_ = 0.0;

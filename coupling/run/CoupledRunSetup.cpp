@@ -49,6 +49,17 @@ void CoupledRun::prepare_mechanics() {
     return;
   }
   nscd_ = make_nscd_integrator(scene_, particles_);
+  if (settle_resume_) {
+    // A settle resumed where its checkpoint stopped it: the integrator's whole state and the
+    // settle's own (its rest test's window and counters), then settle() as in any run.
+    try {
+      nscd_->restore_state(mechanics_state_of(*settle_resume_));
+      settle_progress_ = settle_progress_of(*settle_resume_);
+    } catch (const std::invalid_argument& e) {
+      throw StartError("settle checkpoint " + options_.restart_path + ": " + e.what());
+    }
+    move_scene_walls(scene_, nscd_->walls());
+  }
   if (restart_) {
     // A settled run restarts on the frozen graph it checkpointed; a dynamic one from the
     // mechanics' whole state (candidate table and warm-start forces) when the checkpoint has it.
@@ -94,13 +105,28 @@ void CoupledRun::prepare_mechanics() {
 }
 
 void CoupledRun::settle() {
-  // A signal ends settling after the current step; the run then stops before t = 0: there is
-  // no frame to write and nothing to resume (a restart starts from a settled packing).
+  // A signal ends settling after the current step; the run then stops before t = 0 with a settle
+  // checkpoint (no frame yet), from which a restart resumes settling. A settle that the same
+  // step finished goes on into the run, which stops at t = 0 with a frame and a checkpoint.
   const auto mechanics_start = std::chrono::steady_clock::now();
   // A mechanics error within the settle (a period too short for a particle kicked by a landing
   // piston) says when it came: it is not a scene refused at set-up.
+  // Settle checkpoints every output.settle_checkpoint_interval of wall time: a long settle
+  // survives a crash (they do not change the settle: it reads nothing back from them).
+  auto last_checkpoint = mechanics_start;
+  const SettleCheckpoints checkpoints{
+      [&] {
+        const double interval_s = scene_.output.settle_checkpoint_interval_s;
+        return interval_s > 0.0 && seconds_since(last_checkpoint) >= interval_s;
+      },
+      [&](const SettleProgress& where) {
+        checkpoint_settle(where);
+        last_checkpoint = std::chrono::steady_clock::now();
+      }};
   try {
-    summary_.settle = settle_packing(*nscd_, scene_, progress_, [] { return Interruption::pending() != 0; });
+    summary_.settle = settle_packing(*nscd_, scene_, progress_,
+                                     [] { return Interruption::pending() != 0; }, &settle_progress_,
+                                     &checkpoints);
   } catch (const StartError&) {
     throw;
   } catch (const OutputError&) {
@@ -113,8 +139,10 @@ void CoupledRun::settle() {
     throw std::runtime_error(message.str());
   }
   mechanics_seconds_ += seconds_since(mechanics_start);
-  if (const int signal = Interruption::pending(); signal != 0)
-    throw Interrupted{signal, summary_.settle->time_s};
+  if (const int signal = Interruption::pending(); signal != 0 && !settle_progress_.finished) {
+    checkpoint_settle(settle_progress_);
+    throw Interrupted{signal, summary_.settle->time_s, true};
+  }
   gather_contacts(nscd_->contacts(), contacts_);
   particles_ = nscd_->particles();
   move_scene_walls(scene_, nscd_->walls());

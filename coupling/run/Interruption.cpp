@@ -23,8 +23,8 @@ extern "C" void on_signal(int signal) {
   if (!g_quiet.load()) {
     static const char notice[] =
         "\ninterrupt received: finishing the current step, then writing a last frame and a "
-        "checkpoint (while settling: stopping, nothing to resume); a second signal aborts at "
-        "once\n";
+        "checkpoint (while settling: a settle checkpoint, from which --restart resumes the "
+        "settle); a second signal aborts at once\n";
     const ssize_t ignored = ::write(STDERR_FILENO, notice, sizeof notice - 1);
     (void)ignored;
   }

@@ -172,6 +172,41 @@ mechanics::MechanicsState mechanics_state_of(const CheckpointState& cs) {
   return m;
 }
 
+void store_settle_progress(const SettleProgress& p, CheckpointState& cs) {
+  cs.settling = true;
+  cs.extra["settle_progress_time_s"] = p.time_s;
+  cs.extra["settle_progress_steps"] = double(p.steps);
+  cs.extra["settle_progress_unconverged_steps"] = double(p.unconverged_steps);
+  cs.extra["settle_progress_max_penetration_m"] = p.max_penetration_m;
+  cs.settle_window_contacts.clear();
+  cs.settle_window_pair.clear();
+  cs.settle_window_normal_force_N.clear();
+  for (const auto& snapshot : p.rest_window) {
+    cs.settle_window_contacts.push_back(std::int64_t(snapshot.pair.size()));
+    for (const auto& [i, j] : snapshot.pair) cs.settle_window_pair.insert(cs.settle_window_pair.end(), {i, j});
+    cs.settle_window_normal_force_N.insert(cs.settle_window_normal_force_N.end(),
+                                           snapshot.normal_force_N.begin(), snapshot.normal_force_N.end());
+  }
+}
+
+SettleProgress settle_progress_of(const CheckpointState& cs) {
+  SettleProgress p;
+  p.time_s = extra_or_zero(cs, "settle_progress_time_s");
+  p.steps = std::llround(extra_or_zero(cs, "settle_progress_steps"));
+  p.unconverged_steps = std::llround(extra_or_zero(cs, "settle_progress_unconverged_steps"));
+  p.max_penetration_m = extra_or_zero(cs, "settle_progress_max_penetration_m");
+  std::size_t at = 0;  // the next contact of the flat lists
+  for (const std::int64_t count : cs.settle_window_contacts) {
+    SettleRestTest::Snapshot snapshot;
+    for (std::int64_t k = 0; k < count; ++k, ++at) {
+      snapshot.pair.emplace_back(cs.settle_window_pair[2 * at], cs.settle_window_pair[2 * at + 1]);
+      snapshot.normal_force_N.push_back(cs.settle_window_normal_force_N[at]);
+    }
+    p.rest_window.push_back(std::move(snapshot));
+  }
+  return p;
+}
+
 double next_checkpoint_time_s(double t_s, double interval_s) {
   // k interval with k the count of whole intervals reached (1e-9 absorbs t = k interval
   // computed with round-off), plus one.

@@ -6,6 +6,7 @@
 // of the output room, which knows neither mechanics nor thermal.
 #include "coupling/bridge/ContactList.h"
 #include "coupling/output/Checkpoint.h"
+#include "coupling/run/SettleProgress.h"
 #include "mechanics/integrator/MechanicsState.h"
 #include "mechanics/integrator/StepReport.h"
 #include "thermal/integrators/ThermalIntegrator.h"
@@ -27,6 +28,12 @@ mechanics::MechanicsStats mechanics_stats_of(const CheckpointState& cs);
 // position, velocity and angular_velocity. mechanics_state_of needs has_mechanics.
 void store_mechanics_state(const mechanics::MechanicsState& state, CheckpointState& cs);
 mechanics::MechanicsState mechanics_state_of(const CheckpointState& cs);
+
+// A settle checkpoint's own part (SettleProgress.h): settling = true, the rest test's window
+// and the settle's counters (/extra scalars "settle_progress_*"). settle_progress_of needs
+// settling; the window's pairs come back as written (strictly increasing, as saved).
+void store_settle_progress(const SettleProgress& progress, CheckpointState& cs);
+SettleProgress settle_progress_of(const CheckpointState& cs);
 
 // The next checkpoint time after t: the first multiple of the interval strictly above t, the
 // same in an uninterrupted run and in one restarted at t (so both have the same boundaries).

@@ -20,6 +20,7 @@ class SceneRestTest {
   // The network test's figures of the last step (kept up to date under either test: the
   // rattlers are reported in both cases).
   const SettleRestTest& network() const { return network_; }
+  SettleRestTest& network() { return network_; }  // a resumed settle restores its window
 
  private:
   const mechanics::NscdIntegrator& nscd_;

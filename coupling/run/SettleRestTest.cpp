@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 #include "mechanics/model/PairIndex.h"
 
@@ -16,6 +17,18 @@ SettleRestTest::SettleRestTest(SettleRestTestSettings settings)
   if (!(settings_.force_change > 0.0))
     throw std::invalid_argument("mechanics.rest_force_change must be > 0");
   if (!(settings_.speed_m_s > 0.0)) throw std::invalid_argument("mechanics.settle_velocity must be > 0");
+}
+
+void SettleRestTest::restore_history(std::deque<Snapshot> history) {
+  if (history.size() > std::size_t(settings_.window_steps) + 1)
+    throw std::invalid_argument("settle rest test: " + std::to_string(history.size()) +
+                                " saved steps, more than the window of " +
+                                std::to_string(settings_.window_steps) + " steps holds");
+  for (const auto& s : history)
+    if (s.pair.size() != s.normal_force_N.size())
+      throw std::invalid_argument("settle rest test: a saved step has " + std::to_string(s.pair.size()) +
+                                  " contacts but " + std::to_string(s.normal_force_N.size()) + " forces");
+  history_ = std::move(history);
 }
 
 double SettleRestTest::force_difference_N(const Snapshot& a, const Snapshot& b) {

@@ -18,7 +18,8 @@
 // no contact carries force (no gravity, no load) is at rest when every particle is slower than
 // `speed`.
 //
-// Not part of any checkpoint: a settle phase is never resumed (a restart starts settled).
+// Its only state from step to step is the window of snapshots: a settle checkpoint carries it
+// (SettleProgress.h), so that a resumed settle ends at the step the uninterrupted one would.
 #include <cstddef>
 #include <cstdint>
 #include <deque>
@@ -41,6 +42,13 @@ struct SettleRestTestSettings {
 
 class SettleRestTest {
  public:
+  using Pair = std::pair<std::int64_t, std::int64_t>;
+  // One step's contacts (strictly increasing pairs) and their normal forces, N.
+  struct Snapshot {
+    std::vector<Pair> pair;
+    std::vector<double> normal_force_N;
+  };
+
   explicit SettleRestTest(SettleRestTestSettings settings);
 
   // After each settle step, with the step's contacts (NscdIntegrator::contacts(): strictly
@@ -56,12 +64,14 @@ class SettleRestTest {
   std::int64_t load_carriers() const { return load_carriers_; }
   std::int64_t rattlers() const { return rattlers_; }
 
+  // The last window + 1 steps' snapshots (fewer at first), oldest first, and back: a test given
+  // the history of another judges the next steps as that one would. restore_history throws
+  // std::invalid_argument for more snapshots than the window holds or a snapshot whose lists
+  // differ in length.
+  const std::deque<Snapshot>& history() const { return history_; }
+  void restore_history(std::deque<Snapshot> history);
+
  private:
-  using Pair = std::pair<std::int64_t, std::int64_t>;
-  struct Snapshot {
-    std::vector<Pair> pair;
-    std::vector<double> normal_force_N;
-  };
   // sum |F_a - F_b| over the union of both contact lists (sorted by pair), N.
   static double force_difference_N(const Snapshot& a, const Snapshot& b);
 

@@ -25,20 +25,34 @@ std::string unconverged_step_warning(const std::string& what, double t_s,
 }
 
 SettleSummary settle_packing(mechanics::NscdIntegrator& nscd, const Scene& scene,
-                             ProgressReporter& progress, const std::function<bool()>& stop) {
+                             ProgressReporter& progress, const std::function<bool()>& stop,
+                             SettleProgress* state, const SettleCheckpoints* checkpoints) {
   const double h = scene.mechanics.time_step_s;
   const double t_max = scene.mechanics.settle_time_s;
+  SettleProgress start;  // afresh, unless `state` says where a settle stands
+  if (state) start = *state;
   // This settle's own counts: a study settles the same integrator once per load, and its
-  // stats() add up over all of them.
-  const std::int64_t steps_before = nscd.stats().steps;
-  const std::int64_t unconverged_before = nscd.stats().unconverged_steps;
-  std::int64_t unconverged = 0;
-  double max_penetration_m = 0.0;
+  // stats() add up over all of them (a resumed settle: they include its steps before).
+  const std::int64_t steps_before = nscd.stats().steps - start.steps;
+  const std::int64_t unconverged_before = nscd.stats().unconverged_steps - start.unconverged_steps;
+  std::int64_t unconverged = start.unconverged_steps;
+  double max_penetration_m = start.max_penetration_m;
   SceneRestTest rest_test(scene, nscd);
+  if (!start.rest_window.empty()) rest_test.network().restore_history(std::move(start.rest_window));
   const bool network_test = rest_test.network_test();
   const SettleRestTest& rest = rest_test.network();
   SettleSummary outcome;
-  double t = 0.0;
+  double t = start.time_s;
+  // Where the settle stands after the step just taken (finished: at rest or out of time).
+  const auto where = [&](SettleProgress& p, bool finished) {
+    p.time_s = t;
+    p.steps = nscd.stats().steps - steps_before;
+    p.unconverged_steps = unconverged;
+    p.max_penetration_m = max_penetration_m;
+    p.finished = finished;
+    p.rest_window = rest.history();
+  };
+  // Settle time counts steps: t is the same sum of h's whichever step a settle resumed at.
   while (t < t_max - 0.5 * h) {
     const auto report = nscd.step(h);
     t += h;
@@ -63,8 +77,14 @@ SettleSummary settle_packing(mechanics::NscdIntegrator& nscd, const Scene& scene
       break;
     }
     if (stop && stop()) break;
+    if (checkpoints && checkpoints->due()) {
+      SettleProgress now;
+      where(now, false);
+      checkpoints->write(now);
+    }
   }
   progress.done();
+  if (state) where(*state, outcome.at_rest || !(t < t_max - 0.5 * h));
   outcome.time_s = t;
   outcome.steps = nscd.stats().steps - steps_before;
   outcome.max_speed_m_s = nscd.max_speed();

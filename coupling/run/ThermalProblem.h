@@ -11,6 +11,7 @@
 #include "coupling/bridge/ContactList.h"
 #include "coupling/output/ProgressReporter.h"
 #include "coupling/output/RunSummary.h"
+#include "coupling/run/SettleProgress.h"
 #include "coupling/scene/Scene.h"
 #include "coupling/bridge/ThermalNetworkBuilder.h"
 #include "mechanics/contact/ContactForce.h"
@@ -27,10 +28,21 @@ namespace tmdem::coupling {
 // warning with the figures). Returns how it ended: at rest or not, by which test, the settle
 // time and steps used, the largest speed and the rattlers when frozen. `stop`, asked
 // after every step, ends settling early (an interrupted run): at_rest is then false and no
-// "not at rest" warning is printed.
+// "not at rest" warning is printed. `state`, when given, is where the settle stands: read at
+// the start (a settle resumed from a settle checkpoint, whose integrator state `nscd` already
+// holds; a default SettleProgress starts afresh) and written at the end, so that a settle
+// stopped early can be checkpointed and resumed bit for bit (SettleProgress.h).
+// `checkpoints`, when given, is asked after every step whether a settle checkpoint is due, and
+// then handed where the settle stands (a run's periodic settle checkpoints).
+struct SettleCheckpoints {
+  std::function<bool()> due;
+  std::function<void(const SettleProgress&)> write;
+};
 SettleSummary settle_packing(mechanics::NscdIntegrator& nscd, const Scene& scene,
                              ProgressReporter& progress,
-                             const std::function<bool()>& stop = nullptr);
+                             const std::function<bool()>& stop = nullptr,
+                             SettleProgress* state = nullptr,
+                             const SettleCheckpoints* checkpoints = nullptr);
 
 // "warning: <what> at t = ... s: contact solver <name> did not converge ..." for an unconverged
 // (or stalled) step; shared by settle and dynamic runs so both name the solver in use.

@@ -240,6 +240,8 @@ struct OutputSettings {
   double interval_s = 0.1;
   bool contacts = true;
   double checkpoint_interval_s = 0.0;
+  // Wall-clock seconds between settle checkpoints (a long settle survives a crash); 0: none.
+  double settle_checkpoint_interval_s = 600.0;
 
   friend bool operator==(const OutputSettings&, const OutputSettings&) = default;
 };

@@ -266,6 +266,7 @@ void SceneBuilder::read_settings() {
     o.interval_s = t.number("interval");
     o.contacts = t.boolean("contacts", o.contacts);
     o.checkpoint_interval_s = t.number("checkpoint_interval");
+    o.settle_checkpoint_interval_s = t.number("settle_checkpoint_interval");
   }
 }
 

@@ -161,7 +161,10 @@ std::vector<Section> settings_sections() {
         number("interval", "s", kO.interval_s, Range::greater(0.0), "simulated time between frames"),
         boolean("contacts", bool_text(kO.contacts), "store the contact list of every frame"),
         number("checkpoint_interval", "s", kO.checkpoint_interval_s, Range::at_least(0.0),
-               "simulated time between checkpoints; 0 = none")}});
+               "simulated time between checkpoints; 0 = none"),
+        number("settle_checkpoint_interval", "s", kO.settle_checkpoint_interval_s, Range::at_least(0.0),
+               "wall-clock time between settle checkpoints while a packing settles (RESULT.checkpoint.h5; "
+               "--restart resumes the settle); 0 = none")}});
   return sections;
 }
 

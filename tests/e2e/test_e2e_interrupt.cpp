@@ -45,6 +45,13 @@ std::size_t frames_in_xdmf(const std::string& path) {
   return n;
 }
 
+// " a b c": arguments for run_tmdem's command line.
+std::string joined(const std::vector<std::string>& args) {
+  std::string out;
+  for (const auto& a : args) out += " " + a;
+  return out;
+}
+
 TEST(EndToEndInterrupt, SigtermLeavesInterruptedResultSummaryCheckpointAndExit143) {
   const auto dir = scratch_dir("interrupt");
   fs::copy_file(fs::path(TMDEM_SOURCE_DIR) / "examples" / "poured_bed.toml", dir + "/bed.toml");
@@ -180,9 +187,10 @@ TEST(EndToEndInterrupt, SigtermThenResumeEndsBitwiseWhereTheUninterruptedRunEnds
 }
 
 // A signal while the packing settles (before t = 0) is acted on after the current settle step:
-// no result file and no checkpoint (there is no frame yet and nothing a restart could continue),
-// a summary that says "interrupted" with the settle steps done, one line saying so, exit 143.
-TEST(EndToEndInterrupt, SigtermWhileSettlingStopsPromptlyWithSummaryOnly) {
+// no result file yet (there is no frame), a settle checkpoint from which a restart resumes
+// settling, a summary that says "interrupted" with the settle steps done, one line saying how to
+// resume, exit 143.
+TEST(EndToEndInterrupt, SigtermWhileSettlingStopsPromptlyWithASettleCheckpoint) {
   const auto dir = scratch_dir("interrupt_settle");
   fs::copy_file(fs::path(TMDEM_SOURCE_DIR) / "examples" / "paper_bed.toml", dir + "/bed.toml");
   // 256 particles that never reach 1e-9 m/s: settling would go on for the full 100 s.
@@ -208,11 +216,12 @@ TEST(EndToEndInterrupt, SigtermWhileSettlingStopsPromptlyWithSummaryOnly) {
   // One settle step of this bed takes tens of ms; settling itself would take 100 s of steps.
   EXPECT_LT(exit_after_s, 5.0) << log;
   EXPECT_NE(log.find("interrupted by SIGTERM while settling"), std::string::npos) << log;
-  EXPECT_EQ(log.find("resume with"), std::string::npos) << log;
+  EXPECT_NE(log.find("resume settling with: tmdem run bed.toml"), std::string::npos) << log;
+  EXPECT_NE(log.find("--restart out.checkpoint.h5"), std::string::npos) << log;
   EXPECT_EQ(log.find("WITHOUT coming to rest"), std::string::npos) << log;
   EXPECT_FALSE(fs::exists(dir + "/out.h5"));
   EXPECT_FALSE(fs::exists(dir + "/out.xdmf"));
-  EXPECT_FALSE(fs::exists(dir + "/out.checkpoint.h5"));
+  EXPECT_TRUE(fs::exists(dir + "/out.checkpoint.h5"));
   const auto summary = read_summary(dir + "/s.json");
   EXPECT_EQ(summary["status"], "interrupted");
   EXPECT_EQ(summary["simulated_time_s"].get<double>(), 0.0);
@@ -221,6 +230,99 @@ TEST(EndToEndInterrupt, SigtermWhileSettlingStopsPromptlyWithSummaryOnly) {
   EXPECT_GT(steps, 0);
   EXPECT_LT(steps, 100000);  // far from settle_time / time_step
   EXPECT_EQ(summary["mechanics"]["steps"].get<long long>(), steps);
+  // The settle checkpoint belongs to this scene: another one is refused, naming the key.
+  const auto refused = run_tmdem("run bed.toml --quiet -o out.h5 --restart out.checkpoint.h5 "
+                                 "--set mechanics.settle_velocity=1e-9 --set mechanics.settle_time=50",
+                                 dir);
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_NE(refused.output.find("mechanics.settle_time"), std::string::npos) << refused.output;
+  EXPECT_FALSE(fs::exists(dir + "/out.h5"));
+}
+
+// The paper's bed settled for 2,000 steps (never at rest at 1e-9 m/s: frozen at settle_time;
+// about 2 s here), then heated for 1 s; `extra` settings after these. Copies the scene into
+// `dir` and `reference`, runs the uninterrupted run in `reference`, and returns the settings.
+std::vector<std::string> long_settle(const std::string& dir, const std::string& reference,
+                                     const std::vector<std::string>& extra = {}) {
+  for (const auto& d : {dir, reference})
+    fs::copy_file(fs::path(TMDEM_SOURCE_DIR) / "examples" / "paper_bed.toml", d + "/bed.toml");
+  std::vector<std::string> settings = {"--set", "simulation.duration=1", "--set", "output.interval=0.5",
+                                       "--set", "mechanics.settle_velocity=1e-9", "--set",
+                                       "mechanics.settle_time=2"};
+  settings.insert(settings.end(), extra.begin(), extra.end());
+  const auto r = run_tmdem("run bed.toml --quiet -o out.h5 --summary s.json" + joined(settings), reference);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  return settings;
+}
+
+// Resumes the settle checkpoint in `dir` to the end: the very result and summary of the
+// uninterrupted run in `reference`, and no settle checkpoint left.
+void expect_resumed_as_never_stopped(const std::string& dir, const std::string& reference,
+                                     const std::vector<std::string>& settings) {
+  ASSERT_TRUE(fs::exists(dir + "/out.checkpoint.h5"));
+  ASSERT_FALSE(fs::exists(dir + "/out.h5"));
+  const auto r = run_tmdem("run bed.toml --quiet -o out.h5 --summary s.json --restart out.checkpoint.h5" +
+                               joined(settings), dir);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const auto& line : result_differences(reference + "/out.h5", dir + "/out.h5")) ADD_FAILURE() << line;
+  EXPECT_EQ(summary_without_wall_times(reference + "/s.json"), summary_without_wall_times(dir + "/s.json"));
+  EXPECT_FALSE(fs::exists(dir + "/out.checkpoint.h5"));
+}
+
+std::vector<std::string> run_args(const std::vector<std::string>& settings) {
+  std::vector<std::string> args = {"run", "bed.toml", "-o", "out.h5", "--summary", "s.json"};
+  args.insert(args.end(), settings.begin(), settings.end());
+  return args;
+}
+
+// A settle interrupted at whatever step the signal finds, then resumed from its settle checkpoint
+// (and the run carried on to its end), writes the very result and summary of the run that never
+// stopped: the settle goes on from the integrator's whole state and the settle's own, and the
+// run then starts at t = 0 as any run.
+TEST(EndToEndInterrupt, SigtermWhileSettlingThenRestartEqualsUninterruptedRunBitwise) {
+  const auto dir = scratch_dir("settle_resume");
+  const auto reference = scratch_dir("settle_reference");
+  const auto settings = long_settle(dir, reference);
+  const pid_t child = spawn_tmdem(run_args(settings), dir);
+  ASSERT_GT(child, 0);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (text_of(dir + "/child.log").find("settle") == std::string::npos &&
+         std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  ASSERT_EQ(kill(child, SIGTERM), 0);
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  const std::string log = text_of(dir + "/child.log");
+  ASSERT_TRUE(WIFEXITED(status)) << log;
+  if (WEXITSTATUS(status) == 0) GTEST_SKIP() << "the run ended before the signal; nothing to test";
+  ASSERT_EQ(WEXITSTATUS(status), 143) << log;
+  if (log.find("while settling") == std::string::npos)
+    GTEST_SKIP() << "the signal came after settling; the run's own restart tests cover that";
+  expect_resumed_as_never_stopped(dir, reference, settings);
+}
+
+// SIGKILL while settling (a crash: nothing written at the end): the last periodic settle
+// checkpoint (output.settle_checkpoint_interval, wall-clock) resumes the settle, and the run
+// then writes the very result and summary of the run that never stopped. A completed run
+// removes its settle checkpoint: there is nothing left to resume.
+TEST(EndToEndInterrupt, SigkillWhileSettlingThenRestartFromSettleCheckpointEqualsUninterruptedRun) {
+  const auto dir = scratch_dir("settle_sigkill");
+  const auto reference = scratch_dir("settle_sigkill_reference");
+  const auto settings = long_settle(dir, reference, {"--set", "output.settle_checkpoint_interval=0.2"});
+  EXPECT_FALSE(fs::exists(reference + "/out.checkpoint.h5"));
+  const pid_t child = spawn_tmdem(run_args(settings), dir);
+  ASSERT_GT(child, 0);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!fs::exists(dir + "/out.checkpoint.h5") && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  ASSERT_EQ(kill(child, SIGKILL), 0);
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  if (!WIFSIGNALED(status)) GTEST_SKIP() << "the run ended before the kill; nothing to test";
+  if (fs::exists(dir + "/out.h5")) GTEST_SKIP() << "the kill came after settling; nothing to test";
+  expect_resumed_as_never_stopped(dir, reference, settings);
 }
 
 // SIGKILL (a crash: no handler, nothing written at the end) mid-run: the last periodic

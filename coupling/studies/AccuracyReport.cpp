@@ -57,16 +57,33 @@ const AccuracyRun* most_accurate(const std::vector<AccuracyRun>& runs, const std
 void write_accuracy_csv(std::ostream& out, const std::vector<AccuracyRun>& runs) {
   out << kAccuracyCsvHeader << "," << kAccuracyCsvExtension << "\n";
   for (const auto& r : runs) {
-    if (r.failed()) continue;
-    out << r.method << "," << r.linear_solver << "," << shortest_number(r.parameter) << ",";
-    if (r.ok)
-      out << shortest_number(r.max_error_K) << "," << shortest_number(r.wall_time_s) << ","
-          << r.steps << "," << r.rhs_evals << ",ok,";
-    else
-      out << ",,,,skipped,";
+    if (!r.ok) continue;
+    out << r.method << "," << r.linear_solver << "," << shortest_number(r.parameter) << ","
+        << shortest_number(r.max_error_K) << "," << shortest_number(r.wall_time_s) << ","
+        << r.steps << "," << r.rhs_evals << ",ok,";
     if (std::isfinite(r.predicted_wall_time_s)) out << shortest_number(r.predicted_wall_time_s);
     out << "\n";
   }
+}
+
+void write_skipped_runs_csv(std::ostream& out, const std::vector<AccuracyRun>& runs) {
+  out << kSkippedRunsCsvHeader << "\n";
+  for (const auto& r : runs) {
+    if (!r.skipped) continue;
+    out << r.method << "," << r.linear_solver << "," << shortest_number(r.parameter) << ",";
+    if (std::isfinite(r.predicted_wall_time_s)) out << shortest_number(r.predicted_wall_time_s);
+    // RFC 4180: the reason in double quotes, its own quotes doubled.
+    out << ",\"";
+    for (const char ch : r.message) out << (ch == '"' ? "\"\"" : std::string(1, ch));
+    out << "\"\n";
+  }
+}
+
+std::string skipped_runs_csv_path(const std::string& csv_path) {
+  const std::string ext = ".csv";
+  if (csv_path.size() > ext.size() && csv_path.compare(csv_path.size() - ext.size(), ext.size(), ext) == 0)
+    return csv_path.substr(0, csv_path.size() - ext.size()) + ".skipped.csv";
+  return csv_path + ".skipped.csv";
 }
 
 const AccuracyRun* cheapest_reaching(const std::vector<AccuracyRun>& runs, const std::string& label,

@@ -25,8 +25,20 @@ inline constexpr const char* kAccuracyCsvHeader =
     "method,linear_solver,parameter,max_error_K,wall_time_s,steps,rhs_evals";
 // The extension's columns, after the contract's.
 inline constexpr const char* kAccuracyCsvExtension = "status,predicted_wall_time_s";
+// The runs skipped as predicted too slow, in a CSV of their own beside the study's.
+inline constexpr const char* kSkippedRunsCsvHeader =
+    "method,linear_solver,parameter,predicted_wall_time_s,reason";
 
+// One row per run made (status "ok"; every cell of the contract's seven a number), in the
+// study's order: the contract's table, which a script can read as numbers row by row. Failed
+// and skipped runs are not runs made: they have no row here.
 void write_accuracy_csv(std::ostream& out, const std::vector<AccuracyRun>& runs);
+// One row per run skipped as predicted too slow: its prediction (s; empty where the study made
+// none) and the study's reason, quoted. Just the header when none was skipped.
+void write_skipped_runs_csv(std::ostream& out, const std::vector<AccuracyRun>& runs);
+// Where the skipped runs of a study writing `csv_path` go: OUT.csv -> OUT.skipped.csv
+// (any other name: NAME.skipped.csv).
+std::string skipped_runs_csv_path(const std::string& csv_path);
 
 // The successful run of `label` ("explicit", "cvode/klu", ...) with the least wall time among
 // those whose max error is at most target_K; null if none.

@@ -22,7 +22,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 HEADER = ["method", "linear_solver", "parameter", "max_error_K", "wall_time_s", "steps", "rhs_evals"]
-EXTENSION = ["status", "predicted_wall_time_s"]  # tmdem's: runs skipped as predicted too slow
+EXTENSION = ["status", "predicted_wall_time_s"]  # tmdem's two columns (the runs skipped: OUT.skipped.csv)
 STYLE = {
     "explicit": dict(color="black", marker="o"),
     "cvode/klu": dict(color="tab:blue", marker="s"),
@@ -42,7 +42,7 @@ def read_runs(path):
         series = OrderedDict()
         for row in reader:
             if not row or (len(row) > 7 and row[7] != "ok"):
-                continue  # a run the study skipped has no error nor time to draw
+                continue  # older CSVs listed skipped runs here, with no error nor time to draw
             method, solver, parameter, error, wall = row[0], row[1], float(row[2]), float(row[3]), float(row[4])
             label = method if method == "explicit" else f"{method}/{solver}"
             series.setdefault(label, []).append((wall, error, parameter))

@@ -45,9 +45,10 @@ std::vector<std::string> split(const std::string& line) {
 
 double number_or_nan(const std::string& cell) { return cell.empty() ? std::nan("") : std::stod(cell); }
 
-// The study's CSV: the contract's header and its extension, then one row of 9 cells per run,
-// made (status ok: every cell but perhaps the prediction) or skipped (the four measured cells
-// empty).
+// The study's CSV: the contract's header and its extension, then one row of 9 cells per run
+// made (status ok, every cell a number but perhaps the prediction); then the skipped runs' CSV
+// beside it (OUT.skipped.csv: method, solver, parameter, prediction, the quoted reason), as rows
+// with status skipped and no measurement.
 std::vector<Row> read_study_csv(const std::string& path) {
   std::vector<Row> rows;
   std::ifstream in(path);
@@ -64,12 +65,27 @@ std::vector<Row> read_study_csv(const std::string& path) {
       ADD_FAILURE() << "not 9 cells: " << line;
       continue;
     }
-    const bool made = c[7] == "ok";
-    EXPECT_TRUE(made || c[7] == "skipped") << line;
-    EXPECT_EQ(made, !c[3].empty() && !c[4].empty() && !c[5].empty() && !c[6].empty()) << line;
-    rows.push_back({c[0], c[1], std::stod(c[2]), number_or_nan(c[3]), number_or_nan(c[4]),
-                    made ? std::stol(c[5]) : 0L, made ? std::stol(c[6]) : 0L, c[7],
-                    number_or_nan(c[8])});
+    EXPECT_EQ(c[7], "ok") << line;
+    rows.push_back({c[0], c[1], std::stod(c[2]), std::stod(c[3]), std::stod(c[4]), std::stol(c[5]),
+                    std::stol(c[6]), c[7], number_or_nan(c[8])});
+  }
+  const std::string skipped_path = path.substr(0, path.size() - 4) + ".skipped.csv";
+  std::ifstream skipped(skipped_path);
+  if (!std::getline(skipped, line)) {
+    ADD_FAILURE() << "no header in " << skipped_path;
+    return rows;
+  }
+  EXPECT_EQ(line, "method,linear_solver,parameter,predicted_wall_time_s,reason");
+  while (std::getline(skipped, line)) {
+    // Four cells, then the reason in quotes (it may hold commas).
+    const auto quote = line.find(",\"");
+    const auto c = split(line.substr(0, quote + 1));
+    if (quote == std::string::npos || c.size() != 5u || line.back() != '"') {
+      ADD_FAILURE() << "not 4 cells and a quoted reason: " << line;
+      continue;
+    }
+    rows.push_back({c[0], c[1], std::stod(c[2]), std::nan(""), std::nan(""), 0L, 0L, "skipped",
+                    number_or_nan(c[3])});
   }
   return rows;
 }
@@ -144,8 +160,8 @@ TEST(EndToEndStudy, AccuracyStudyCsvAndConvergence) {
 // --implicit-budget: an implicit run predicted to take longer is skipped, with its prediction,
 // and so are a method's tighter runs once one of its runs took longer. With a budget of 0 s the
 // iterative methods' loosest runs, which have no prediction, are made and take longer; every
-// other implicit run is skipped and said so, in the output and as a CSV row with its predicted
-// cost (klu's from its sibling's counts and KLU's analysis).
+// other implicit run is skipped and said so, in the output and as a row of the skipped runs' CSV
+// with its predicted cost (klu's from its sibling's counts and KLU's analysis).
 TEST(EndToEndStudy, ImplicitTimeBudgetSkipsRunsPredictedOverIt) {
   const auto dir = scratch_dir("study_budget");
   write_file(dir + "/lattice.toml", kStudyLattice);
@@ -185,7 +201,7 @@ TEST(EndToEndStudy, StudyTimeBudgetSkipsRunsPredictedToEndPastIt) {
                            dir);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto rows = read_study_csv(dir + "/out.csv");
-  ASSERT_EQ(rows.size(), 22u);  // 2 explicit rungs + 4 methods x 5 tolerances, every one a row
+  ASSERT_EQ(rows.size(), 22u);  // 2 explicit rungs + 4 methods x 5 tolerances, made or skipped
   std::vector<std::string> made;
   for (const auto& row : made_rows(rows)) made.push_back(row.method + "/" + row.solver);
   EXPECT_EQ(made, (std::vector<std::string>{"cvode/pcg", "ida/pcg"}));

@@ -71,18 +71,38 @@ TEST(AccuracyReport, CsvHasContractHeaderExtendedAndNoFailedRun) {
   EXPECT_EQ(text.find("nan"), std::string::npos);
 }
 
-TEST(AccuracyReport, SkippedRunsAreRowsWithTheirPredictionAndNoMeasurement) {
-  const std::vector<AccuracyRun> runs{skipped_run("ida", "klu", 1e-4, 90.5),
-                                      skipped_run("explicit", "none", 1e-5, std::nan(""))};
-  std::ostringstream out;
-  write_accuracy_csv(out, runs);
-  const std::string text = out.str();
-  EXPECT_NE(text.find("\nida,klu,1e-04,,,,,skipped,90.5\n"), std::string::npos) << text;
-  EXPECT_NE(text.find("\nexplicit,none,1e-05,,,,,skipped,\n"), std::string::npos) << text;
+// Skipped runs are not runs made: the study's table has no row for them (every row of the
+// contract's seven columns is numbers), and the skipped runs' own CSV lists them with their
+// prediction and the reason, quoted.
+TEST(AccuracyReport, SkippedRunsGoToTheirOwnCsvWithTheirPrediction) {
+  auto runs = sample_runs();
+  runs.push_back(skipped_run("ida", "klu", 1e-4, 90.5));
+  runs.push_back(skipped_run("explicit", "none", 1e-5, std::nan("")));
+  runs.back().message = "over the \"work\" budget, 1e12 steps";
+  std::ostringstream table;
+  write_accuracy_csv(table, runs);
+  const std::string made = table.str();
+  EXPECT_EQ(std::count(made.begin(), made.end(), '\n'), 6);  // header + 5 made
+  EXPECT_EQ(made.find("skipped"), std::string::npos) << made;
+  EXPECT_EQ(made.find(",,"), std::string::npos) << made;
+  std::ostringstream skipped;
+  write_skipped_runs_csv(skipped, runs);
+  const std::string text = skipped.str();
+  EXPECT_EQ(text.substr(0, text.find('\n')), "method,linear_solver,parameter,predicted_wall_time_s,reason");
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 3) << text;  // header + 2 skipped
+  EXPECT_NE(text.find("\nida,klu,1e-04,90.5,\"predicted 90.5"), std::string::npos) << text;
+  EXPECT_NE(text.find("\nexplicit,none,1e-05,,\"over the \"\"work\"\" budget, 1e12 steps\"\n"),
+            std::string::npos) << text;
   EXPECT_EQ(text.find("nan"), std::string::npos);
   // Skipped runs never count as reaching a target, nor as failures.
   EXPECT_EQ(cheapest_reaching(runs, "ida/klu", 1e9), nullptr);
-  EXPECT_FALSE(runs[0].failed());
+  EXPECT_FALSE(runs[runs.size() - 2].failed());
+  // Nothing skipped: the header alone.
+  std::ostringstream none;
+  write_skipped_runs_csv(none, sample_runs());
+  EXPECT_EQ(none.str(), "method,linear_solver,parameter,predicted_wall_time_s,reason\n");
+  EXPECT_EQ(skipped_runs_csv_path("out/study.csv"), "out/study.skipped.csv");
+  EXPECT_EQ(skipped_runs_csv_path("study.txt"), "study.txt.skipped.csv");
 }
 
 TEST(AccuracyReport, CheapestRunReachingATarget) {

@@ -109,7 +109,8 @@ struct SettleSummary {
   std::int64_t steps = 0;            // settle steps
   double max_speed_m_s = 0.0;        // largest particle speed when frozen
   // extra: which test ended the settling ("network" or "velocity"; "settle_time" when none was
-  // met), and the moving particles with no contact carrying force when frozen.
+  // met; "interrupted" when a signal stopped it first), and the moving particles with no
+  // contact carrying force when frozen.
   std::string ended_by;
   std::int64_t rattlers = 0;
   // extra (3D beds under gravity in plane-walled containers, coupling/run/PackingMeasure.h):

@@ -93,9 +93,11 @@ SettleSummary settle_packing(mechanics::NscdIntegrator& nscd, const Scene& scene
     outcome.bed_height_m = packing->bed_height_m;
     outcome.porosity = packing->porosity;
   }
-  if (!outcome.at_rest) outcome.ended_by = "settle_time";
+  // Stopped early (an interrupted run): neither a rest test nor settle_time ended it.
+  const bool stopped = !outcome.at_rest && t < t_max - 0.5 * h && stop && stop();
+  if (!outcome.at_rest) outcome.ended_by = stopped ? "interrupted" : "settle_time";
   std::ostringstream msg;
-  if (!outcome.at_rest && stop && stop()) {
+  if (stopped) {
     msg << "settle: stopped after " << t << " s (" << outcome.steps << " steps), largest speed "
         << outcome.max_speed_m_s << " m/s";
   } else if (!outcome.at_rest) {

@@ -226,6 +226,7 @@ TEST(EndToEndInterrupt, SigtermWhileSettlingStopsPromptlyWithASettleCheckpoint) 
   EXPECT_EQ(summary["status"], "interrupted");
   EXPECT_EQ(summary["simulated_time_s"].get<double>(), 0.0);
   EXPECT_FALSE(summary["settle"]["at_rest"].get<bool>());
+  EXPECT_EQ(summary["settle"]["ended_by"], "interrupted");
   const auto steps = summary["settle"]["steps"].get<long long>();
   EXPECT_GT(steps, 0);
   EXPECT_LT(steps, 100000);  // far from settle_time / time_step

@@ -1,12 +1,15 @@
 #include "coupling/app/ConductivityCommand.h"
 
 
+#include <csignal>
+#include <optional>
 #include <tuple>
 
 #include "coupling/app/StudyCsvFile.h"
 #include "coupling/common/ExitCode.h"
 #include "coupling/common/ShortestNumber.h"
 #include "coupling/output/ProgressReporter.h"
+#include "coupling/run/Interruption.h"
 #include "coupling/studies/ConductivityReport.h"
 #include "thermal/integrators/ThermalSolverError.h"
 
@@ -17,16 +20,27 @@ int run_conductivity_command(const Scene& scene, const ConductivityCommandOption
   StudyCsvFile csv(options.csv_path);
   if (!csv.open(log)) return kExitIo;
 
+  // A study of one load has nothing to keep: a signal ends it at once, as by default.
+  std::optional<Interruption> interruption;
+  if (options.handle_signals && !options.pressures_Pa.empty())
+    interruption.emplace(options.quiet,
+                         "\ninterrupt received: finishing the current settle step, then reporting "
+                         "and writing the loads finished; a second signal aborts at once\n");
+  const auto interrupted = [] { return Interruption::pending() != 0; };
   std::vector<ConductivityResult> results;
   const int computed = csv.compute_or_discard<thermal::ThermalSolverError>([&] {
     ProgressReporter progress(log, options.quiet, options.terminal);
     if (options.pressures_Pa.empty())
       results.push_back(run_conductivity_study(scene, progress));
     else
-      results = run_conductivity_pressure_study(scene, options.pressures_Pa, progress);
+      results = run_conductivity_pressure_study(scene, options.pressures_Pa, progress, interrupted);
     return kExitOk;
   }, log);
   if (computed != kExitOk) return computed;
+  // Interrupted: the loads finished are reported and written as a complete study's would be.
+  const int signal = Interruption::pending();
+  const bool stopped_early = signal != 0 && !options.pressures_Pa.empty() &&
+                             results.size() < options.pressures_Pa.size();
   out << "conductivity study: " << scene.source << "\n";
   for (const auto& r : results) print_conductivity_report(out, r);
   out.flush();
@@ -53,7 +67,14 @@ int run_conductivity_command(const Scene& scene, const ConductivityCommandOption
 
   const bool written =
       csv.write([&](std::ostream& f) { write_conductivity_csv(f, results); }, log, options.quiet);
-  return written ? kExitOk : kExitIo;
+  if (!written) return kExitIo;
+  if (!stopped_early) return kExitOk;
+  log << "interrupted by " << signal_name(signal) << " after " << results.size() << " of "
+      << options.pressures_Pa.size() << " loads; "
+      << (options.csv_path.empty() ? std::string("the report above holds")
+                                   : "the report above and " + options.csv_path + " hold")
+      << " the loads finished" << std::endl;
+  return signal == SIGINT ? kExitSigint : kExitSigterm;
 }
 
 }  // namespace tmdem::coupling

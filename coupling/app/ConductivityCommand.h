@@ -15,6 +15,9 @@ struct ConductivityCommandOptions {
   std::vector<double> pressures_Pa;  // empty: the bed as the scene gives it
   bool quiet = false;
   bool terminal = false;
+  // SIGINT/SIGTERM end a --pressures study after the current settle step: the loads finished
+  // are reported and written, exit 130/143 (a study of one load just stops, exit 130/143).
+  bool handle_signals = false;
 };
 
 int run_conductivity_command(const Scene& scene, const ConductivityCommandOptions& options,

@@ -264,6 +264,7 @@ int tmdem_main(int argc, char** argv) {
     if (*conductivity) {
       const Scene scene = load_scene_file(conductivity_path, sets);
       conductivity_options.terminal = isatty(STDERR_FILENO);
+      conductivity_options.handle_signals = !thermal::MpiWorld::distributed();
       return run_conductivity_command(scene, conductivity_options, std::cout, std::cerr);
     }
     if (*accuracy) {

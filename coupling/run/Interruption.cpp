@@ -4,12 +4,19 @@
 
 #include <atomic>
 #include <csignal>
+#include <cstddef>
 
 namespace tmdem::coupling {
 namespace {
 
+constexpr const char kRunNotice[] =
+    "\ninterrupt received: finishing the current step, then writing a last frame and a "
+    "checkpoint (while settling: a settle checkpoint, from which --restart resumes the "
+    "settle); a second signal aborts at once\n";
+
 std::atomic<int> g_signal{0};
 std::atomic<bool> g_quiet{false};
+std::atomic<const char*> g_notice{kRunNotice};  // a string that outlives the handler
 struct sigaction g_previous_int {}, g_previous_term {};
 
 extern "C" void on_signal(int signal) {
@@ -21,20 +28,20 @@ extern "C" void on_signal(int signal) {
   }
   g_signal.store(signal);
   if (!g_quiet.load()) {
-    static const char notice[] =
-        "\ninterrupt received: finishing the current step, then writing a last frame and a "
-        "checkpoint (while settling: a settle checkpoint, from which --restart resumes the "
-        "settle); a second signal aborts at once\n";
-    const ssize_t ignored = ::write(STDERR_FILENO, notice, sizeof notice - 1);
+    const char* notice = g_notice.load();
+    std::size_t length = 0;  // strlen, which is not async-signal-safe
+    while (notice[length] != '\0') ++length;
+    const ssize_t ignored = ::write(STDERR_FILENO, notice, length);
     (void)ignored;
   }
 }
 
 }  // namespace
 
-Interruption::Interruption(bool quiet) {
+Interruption::Interruption(bool quiet, const char* notice) {
   g_signal.store(0);
   g_quiet.store(quiet);
+  g_notice.store(notice ? notice : kRunNotice);
   struct sigaction action {};
   action.sa_handler = on_signal;
   sigemptyset(&action.sa_mask);

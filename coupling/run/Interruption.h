@@ -8,8 +8,9 @@ namespace tmdem::coupling {
 class Interruption {
  public:
   // Installs the handlers for the lifetime of this object (one at a time); `quiet` keeps the
-  // handler from printing its one-line notice on stderr.
-  explicit Interruption(bool quiet);
+  // handler from printing its one-line notice on stderr. `notice`: that line (a string literal,
+  // which outlives the handler), or null for a run's.
+  explicit Interruption(bool quiet, const char* notice = nullptr);
   ~Interruption();
   Interruption(const Interruption&) = delete;
   Interruption& operator=(const Interruption&) = delete;

@@ -376,7 +376,8 @@ double piston_area_m2(const Scene& scene) {
 }
 
 std::vector<ConductivityResult> run_conductivity_pressure_study(
-    const Scene& input, const std::vector<double>& pressures_Pa, ProgressReporter& progress) {
+    const Scene& input, const std::vector<double>& pressures_Pa, ProgressReporter& progress,
+    const std::function<bool()>& stop) {
   const auto [hot, cold] = conductivity_walls(input);
   Scene scene = input;
   if (scene.effects.mechanics == MechanicsMode::Dynamic || scene.effects.mechanics == MechanicsMode::Coupled)
@@ -394,11 +395,13 @@ std::vector<ConductivityResult> run_conductivity_pressure_study(
     // the contacts their forces as the warm start).
     nscd->set_piston_load(piston, p * area);
     FrozenThermalProblem problem;
-    problem.settle = settle_packing(*nscd, scene, progress);
+    problem.settle = settle_packing(*nscd, scene, progress, stop);
+    if (problem.settle->ended_by == "interrupted") break;  // this load's packing is not settled
     freeze_packing(scene, *nscd, problem);
     auto r = measure_conductivity(with_walls_of(scene, problem), problem, hot, cold);
     r.pressure_Pa = p;
     results.push_back(std::move(r));
+    if (stop && stop()) break;
   }
   return results;
 }

@@ -27,6 +27,7 @@
 // network with the other wall's edges removed (modes exchange with walls only through wall
 // edges), so new modes (gas, radiation) need nothing here.
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -98,7 +99,11 @@ double piston_area_m2(const Scene& scene);
 // (mechanics.settle_time and settle_velocity per load), and the steady state is solved on that
 // packing, with the piston where it came to rest: one result per pressure, in the given order.
 // Throws SceneError without exactly one piston, for mechanics "off" or a negative pressure.
+// `stop`, asked after every settle step and after every load, ends the study early (an
+// interrupted study): the loads finished so far are returned, a load stopped while settling
+// left out.
 std::vector<ConductivityResult> run_conductivity_pressure_study(
-    const Scene& scene, const std::vector<double>& pressures_Pa, ProgressReporter& progress);
+    const Scene& scene, const std::vector<double>& pressures_Pa, ProgressReporter& progress,
+    const std::function<bool()>& stop = nullptr);
 
 }  // namespace tmdem::coupling

@@ -2,7 +2,9 @@
 // Runs the tmdem program and reads its HDF5 output back for end-to-end checks.
 #include <H5Cpp.h>
 #include <nlohmann/json.hpp>
+#include <fcntl.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -43,6 +45,22 @@ inline ProgramResult run_tmdem(const std::string& args, const std::string& workd
 }
 
 // A fresh empty folder per test, removed once the test passes (support/ScratchDir.h).
+// tmdem started with `args` in `dir`, not waited for (a test that signals a run): its stdout
+// and stderr go to dir/child.log. The child's pid, or -1.
+inline pid_t spawn_tmdem(const std::vector<std::string>& args, const std::string& dir) {
+  const pid_t pid = fork();
+  if (pid != 0) return pid;
+  if (chdir(dir.c_str()) != 0) _exit(127);
+  const int fd = open("child.log", O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  dup2(fd, 1);
+  dup2(fd, 2);
+  std::vector<char*> argv{const_cast<char*>(TMDEM_BINARY)};
+  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  execv(TMDEM_BINARY, argv.data());
+  _exit(127);
+}
+
 inline std::string scratch_dir(const std::string& name) {
   return tmdem::test::scratch_folder("tmdem_e2e_", name);
 }

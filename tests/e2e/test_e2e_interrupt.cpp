@@ -22,20 +22,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-pid_t spawn_tmdem(const std::vector<std::string>& args, const std::string& dir) {
-  const pid_t pid = fork();
-  if (pid != 0) return pid;
-  if (chdir(dir.c_str()) != 0) _exit(127);
-  const int fd = open("child.log", O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  dup2(fd, 1);
-  dup2(fd, 2);
-  std::vector<char*> argv{const_cast<char*>(TMDEM_BINARY)};
-  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  execv(TMDEM_BINARY, argv.data());
-  _exit(127);
-}
-
 std::size_t frames_in_xdmf(const std::string& path) {
   const std::string text = text_of(path);
   std::size_t n = 0;

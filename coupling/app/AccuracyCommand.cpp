@@ -1,10 +1,14 @@
 #include "coupling/app/AccuracyCommand.h"
 
+#include <csignal>
+#include <optional>
+
 
 #include "coupling/bridge/ThermalNetworkBuilder.h"
 #include "coupling/app/StudyCsvFile.h"
 #include "coupling/common/ExitCode.h"
 #include "coupling/output/ProgressReporter.h"
+#include "coupling/run/Interruption.h"
 #include "coupling/run/LinearSolverChoice.h"
 #include "coupling/run/ThermalProblem.h"
 #include "coupling/scene/HeatModes.h"
@@ -80,11 +84,19 @@ int run_accuracy_command(const Scene& scene, const AccuracyCommandOptions& optio
     return kExitIo;
   }
 
+  std::optional<Interruption> interruption;
+  AccuracyCommandOptions study_options = options;
+  if (options.handle_signals) {
+    interruption.emplace(options.quiet,
+                         "\ninterrupt received: finishing the current run, then reporting and "
+                         "writing the runs made; a second signal aborts at once\n");
+    study_options.study.stop = [] { return Interruption::pending() != 0; };
+  }
   AccuracyStudyResult result;
   // A failure removes both files (no half table).
   const int computed = csv.compute_or_discard<ReferenceError>([&] {
     return skipped_csv.compute_or_discard<ReferenceError>(
-        [&] { return compute_accuracy_study(scene, options, log, result); }, log);
+        [&] { return compute_accuracy_study(scene, study_options, log, result); }, log);
   }, log);
   if (computed != kExitOk) return computed;
   for (const auto& r : result.runs)
@@ -100,7 +112,21 @@ int run_accuracy_command(const Scene& scene, const AccuracyCommandOptions& optio
   const bool written =
       csv.write([&](std::ostream& f) { write_accuracy_csv(f, result.runs); }, log, options.quiet) &&
       skipped_csv.write([&](std::ostream& f) { write_skipped_runs_csv(f, result.runs); }, log, options.quiet);
-  return written ? kExitOk : kExitIo;
+  if (!written) return kExitIo;
+  // Interrupted: the study reported and wrote what it made, as a complete one would.
+  if (const int signal = Interruption::pending(); signal != 0 && options.handle_signals) {
+    std::size_t made = 0, not_made = 0;
+    for (const auto& r : result.runs) {
+      if (r.ok) ++made;
+      if (r.skipped && r.message == "not made: the study was interrupted") ++not_made;
+    }
+    log << "interrupted by " << signal_name(signal) << ": " << made << " runs made, " << not_made
+        << " not made" << (options.csv_path.empty() ? std::string()
+                                                    : " (listed in " + skipped_runs_csv_path(options.csv_path) + ")")
+        << std::endl;
+    return signal == SIGINT ? kExitSigint : kExitSigterm;
+  }
+  return kExitOk;
 }
 
 }  // namespace tmdem::coupling

@@ -18,6 +18,9 @@ struct AccuracyCommandOptions {
   std::string csv_path;
   bool quiet = false;
   bool terminal = false;
+  // SIGINT/SIGTERM end the study after the current run: the runs made are reported and written
+  // (the others listed as skipped: "the study was interrupted"), exit 130/143.
+  bool handle_signals = false;
   AccuracyStudyOptions study;
 };
 int run_accuracy_command(const Scene& scene, const AccuracyCommandOptions& options,

@@ -278,6 +278,7 @@ int tmdem_main(int argc, char** argv) {
       }
       const Scene scene = load_scene_file(study_path, sets);
       study_options.terminal = isatty(STDERR_FILENO);
+      study_options.handle_signals = !thermal::MpiWorld::distributed();
       return run_accuracy_command(scene, study_options, std::cout, std::cerr);
     }
   } catch (const SceneError& e) {

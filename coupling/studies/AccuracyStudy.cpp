@@ -268,6 +268,14 @@ AccuracyStudyResult run_accuracy_study(thermal::ThermalSystem& system,
   auto predicted_text = [](const RunForecast& f) {
     return "predicted " + fmt_seconds(f.wall_time_s) + " s (" + f.basis + ")";
   };
+  // An interrupted study: the runs left are not made (asked once a run is due, so that a signal
+  // during a run ends the study after it).
+  auto interrupted = [&](const std::string& method, const std::string& solver, double parameter,
+                         const RunForecast& forecast) {
+    if (!options.stop || !options.stop()) return false;
+    skip(method, solver, parameter, forecast, "not made: the study was interrupted");
+    return true;
+  };
   // The study's budget: would this run end past it?
   auto past_study_budget = [&](const RunForecast& f, std::string& why) {
     const double used = seconds_since(study_start);
@@ -305,6 +313,7 @@ AccuracyStudyResult run_accuracy_study(thermal::ThermalSystem& system,
     const auto forecast =
         forecaster.explicit_run(work, work_per_step, result.runs, probe_seconds_per_unit);
     std::string why;
+    if (interrupted(explicit_name, kNoLinearSolver, h, forecast)) continue;
     if (work > options.explicit_work_budget) {
       why = "projected work " + fmt_bound(work) + " over the work budget " +
             fmt_bound(options.explicit_work_budget) + " (--explicit-budget)" +
@@ -339,6 +348,7 @@ AccuracyStudyResult run_accuracy_study(thermal::ThermalSystem& system,
         const std::string method = kinds.integrator_name(), solver = kinds.solver_name();
         const auto forecast = forecaster.implicit_run(method, solver, rtol, result.runs);
         std::string why;
+        if (interrupted(method, solver, rtol, forecast)) continue;
         if (!closed[m].empty()) {
           skip(method, solver, rtol, forecast,
                closed[m] + (forecast.known() ? "; " + predicted_text(forecast) : std::string()));

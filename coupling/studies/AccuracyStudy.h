@@ -95,6 +95,9 @@ struct AccuracyStudyOptions {
   double stability_bound_s = 0.0;
   // Largest explicit step (a dynamic scene: the mechanical step); 0 = none.
   double max_explicit_step_s = 0.0;
+  // Asked before each run: true ends the study early (an interrupted study). The runs not made
+  // are listed as skipped, "the study was interrupted"; empty: never.
+  std::function<bool()> stop;
 };
 
 // How one run gets from t = 0 to the end time. Empty: initialize, then one advance on the

@@ -6,11 +6,15 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "support/SceneBuilder.h"
@@ -59,6 +63,23 @@ inline pid_t spawn_tmdem(const std::vector<std::string>& args, const std::string
   argv.push_back(nullptr);
   execv(TMDEM_BINARY, argv.data());
   _exit(127);
+}
+
+// Waits until dir/child.log (spawn_tmdem) holds `text`, then sends `signal` to the child (unless
+// it ended first, or after two minutes) and waits for it to end: its waitpid status.
+inline int signal_once_logged(pid_t child, const std::string& dir, const std::string& text, int signal) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  int status = 0;
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (waitpid(child, &status, WNOHANG) == child) return status;  // ended before the signal
+    std::ifstream log(dir + "/child.log");
+    const std::string logged((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+    if (logged.find(text) != std::string::npos) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  kill(child, signal);
+  waitpid(child, &status, 0);
+  return status;
 }
 
 inline std::string scratch_dir(const std::string& name) {

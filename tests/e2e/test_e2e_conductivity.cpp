@@ -159,18 +159,7 @@ TEST(E2eConductivity, SigtermEndsAPressureStudyWithTheLoadsFinished) {
                                          "--csv", "k.csv"};
   const pid_t child = spawn_tmdem(args, dir);
   ASSERT_GT(child, 0);
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-  int status = 0;
-  bool ended = false;  // before the signal (a refused scene, or a study too quick)
-  while (text_of(dir + "/child.log").find("settle: at rest") == std::string::npos &&
-         std::chrono::steady_clock::now() < deadline && !ended) {
-    ended = waitpid(child, &status, WNOHANG) == child;
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  }
-  if (!ended) {
-    ASSERT_EQ(kill(child, SIGTERM), 0);
-    ASSERT_EQ(waitpid(child, &status, 0), child);
-  }
+  const int status = signal_once_logged(child, dir, "settle: at rest", SIGTERM);
   const std::string log = text_of(dir + "/child.log");
   ASSERT_TRUE(WIFEXITED(status)) << log;
   ASSERT_EQ(WEXITSTATUS(status), 143) << log;

@@ -1,13 +1,17 @@
 // End to end: `tmdem study accuracy` (contract section 5) on a small mechanics-off lattice.
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "E2eSupport.h"
@@ -240,6 +244,36 @@ TEST(EndToEndStudy, MethodsChooseTheImplicitMethods) {
   r = run_tmdem("study accuracy lattice.toml --methods explicit/klu", dir);
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("--explicit-rungs"), std::string::npos) << r.output;
+}
+
+// A signal ends the study after the current run: the runs made are reported and written, the
+// runs left are listed in OUT.skipped.csv as not made ("the study was interrupted"), one line
+// counts both, exit 143. The signal is sent once the first run is reported: the 31 runs left
+// take seconds (the smallest explicit steps alone, 10^6 to 10^7 steps), the signal's way
+// milliseconds.
+TEST(EndToEndStudy, SigtermEndsTheStudyAfterTheCurrentRunWithTheRunsMade) {
+  const auto dir = scratch_dir("study_interrupt");
+  write_file(dir + "/lattice.toml", kStudyLattice);
+  const pid_t child = spawn_tmdem({"study", "accuracy", "lattice.toml", "--csv", "out.csv", "--explicit-rungs",
+                                   "12", "--set", "simulation.duration=20.0"},
+                                  dir);
+  ASSERT_GT(child, 0);
+  const int status = signal_once_logged(child, dir, ": max error", SIGTERM);
+  const std::string log = text_of(dir + "/child.log");
+  ASSERT_TRUE(WIFEXITED(status)) << log;
+  ASSERT_EQ(WEXITSTATUS(status), 143) << log;
+  const auto rows = read_study_csv(dir + "/out.csv");
+  const auto made = made_rows(rows);
+  EXPECT_GE(made.size(), 1u);
+  EXPECT_EQ(rows.size(), 32u);  // 12 rungs + 4 methods x 5 tolerances, made or not
+  std::size_t not_made = 0;
+  for (const auto& row : rows)
+    if (row.status == "skipped") ++not_made;
+  EXPECT_GE(not_made, 20u);  // at least the implicit runs
+  EXPECT_EQ(text_of(dir + "/out.skipped.csv").find("the study was interrupted") != std::string::npos, true);
+  EXPECT_NE(log.find("interrupted by SIGTERM: " + std::to_string(made.size()) + " runs made, "), std::string::npos)
+      << log;
+  for (const auto& row : made) EXPECT_TRUE(std::isfinite(row.error)) << row.method;
 }
 
 TEST(EndToEndStudy, ExitCodes) {

@@ -7,9 +7,9 @@
 
 #include <csignal>
 #include <filesystem>
-#include <system_error>
 #include <optional>
 #include <string>
+#include <system_error>
 
 #include "coupling/common/ExitCode.h"
 #include "coupling/output/Checkpoint.h"

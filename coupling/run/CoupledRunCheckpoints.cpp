@@ -3,8 +3,8 @@
 // checkpoint and in the run restarted from it.
 #include <cmath>
 #include <filesystem>
-#include <system_error>
 #include <string>
+#include <system_error>
 
 #include "coupling/run/CoupledRunLoop.h"
 #include "coupling/run/Interruption.h"

@@ -109,8 +109,7 @@ void CoupledRun::settle() {
   // checkpoint (no frame yet), from which a restart resumes settling. A settle that the same
   // step finished goes on into the run, which stops at t = 0 with a frame and a checkpoint.
   const auto mechanics_start = std::chrono::steady_clock::now();
-  // A mechanics error within the settle (a period too short for a particle kicked by a landing
-  // piston) says when it came: it is not a scene refused at set-up.
+  const double output_before_s = output_seconds_;  // settle checkpoints count as output
   // Settle checkpoints every output.settle_checkpoint_interval of wall time: a long settle
   // survives a crash (they do not change the settle: it reads nothing back from them).
   auto last_checkpoint = mechanics_start;
@@ -123,6 +122,8 @@ void CoupledRun::settle() {
         checkpoint_settle(where);
         last_checkpoint = std::chrono::steady_clock::now();
       }};
+  // A mechanics error within the settle (a period too short for a particle kicked by a landing
+  // piston) says when it came: it is not a scene refused at set-up.
   try {
     summary_.settle = settle_packing(*nscd_, scene_, progress_,
                                      [] { return Interruption::pending() != 0; }, &settle_progress_,
@@ -138,7 +139,7 @@ void CoupledRun::settle() {
             << double(steps) * scene_.mechanics.time_step_s << " s of settle): " << e.what();
     throw std::runtime_error(message.str());
   }
-  mechanics_seconds_ += seconds_since(mechanics_start);
+  mechanics_seconds_ += seconds_since(mechanics_start) - (output_seconds_ - output_before_s);
   if (const int signal = Interruption::pending(); signal != 0 && !settle_progress_.finished) {
     checkpoint_settle(settle_progress_);
     throw Interrupted{signal, summary_.settle->time_s, true};

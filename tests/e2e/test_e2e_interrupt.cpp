@@ -298,6 +298,12 @@ TEST(EndToEndInterrupt, SigkillWhileSettlingThenRestartFromSettleCheckpointEqual
   const auto reference = scratch_dir("settle_sigkill_reference");
   const auto settings = long_settle(dir, reference, {"--set", "output.settle_checkpoint_interval=0.2"});
   EXPECT_FALSE(fs::exists(reference + "/out.checkpoint.h5"));
+  // The settle checkpoints' time is output, not mechanics: the parts still add up to the wall time.
+  const auto parts = read_summary(reference + "/s.json")["wall_time_parts"];
+  EXPECT_GT(parts["output_s"].get<double>(), 0.0);
+  EXPECT_LE(parts["mechanics_s"].get<double>() + parts["thermal_s"].get<double>() +
+                parts["output_s"].get<double>(),
+            read_summary(reference + "/s.json")["wall_time_s"].get<double>());
   const pid_t child = spawn_tmdem(run_args(settings), dir);
   ASSERT_GT(child, 0);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);

@@ -121,6 +121,13 @@ void CoupledRun::settle() {
       [&](const SettleProgress& where) {
         checkpoint_settle(where);
         last_checkpoint = std::chrono::steady_clock::now();
+        if (writes_files_) {
+          std::ostringstream said;
+          said << "settle: checkpoint at t = " << where.time_s << " s of settle ("
+               << where.steps << " steps) written to " << checkpoint_path_for(options_.output_path)
+               << " (a crash resumes from it with --restart)";
+          progress_.message(said.str());
+        }
       }};
   // A mechanics error within the settle (a period too short for a particle kicked by a landing
   // piston) says when it came: it is not a scene refused at set-up.

@@ -118,7 +118,7 @@ int run_accuracy_command(const Scene& scene, const AccuracyCommandOptions& optio
     std::size_t made = 0, not_made = 0;
     for (const auto& r : result.runs) {
       if (r.ok) ++made;
-      if (r.skipped && r.message == "not made: the study was interrupted") ++not_made;
+      if (r.skipped && r.message == kInterruptedRunReason) ++not_made;
     }
     log << "interrupted by " << signal_name(signal) << ": " << made << " runs made, " << not_made
         << " not made" << (options.csv_path.empty() ? std::string()

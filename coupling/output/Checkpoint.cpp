@@ -31,6 +31,14 @@ void sync_file(const std::string& path) {
 // candidate_force_N 3 K, candidate_rolling_torque_Nm 3 K or none, candidate_held_overlap_m K or
 // none; and detector_reference_position_m 3 N values (n particles) or none. Checked on writing
 // and on reading alike.
+bool candidate_counts_agree(const CheckpointState& s, std::size_t n) {
+  const std::size_t k = s.candidate_pair.size() / 2;
+  return s.candidate_pair.size() % 2 == 0 && s.candidate_force_N.size() == 3 * k &&
+         (s.candidate_rolling_torque_Nm.empty() || s.candidate_rolling_torque_Nm.size() == 3 * k) &&
+         (s.candidate_held_overlap_m.empty() || s.candidate_held_overlap_m.size() == k) &&
+         (s.detector_reference_position_m.empty() || s.detector_reference_position_m.size() == 3 * n);
+}
+
 // A settle checkpoint's window: as many pairs (2 values each) and forces as its snapshots'
 // counts add up to, none of them negative.
 bool settle_window_agrees(const CheckpointState& s) {
@@ -41,14 +49,6 @@ bool settle_window_agrees(const CheckpointState& s) {
   }
   return s.settle_window_pair.size() == 2 * std::size_t(contacts) &&
          s.settle_window_normal_force_N.size() == std::size_t(contacts);
-}
-
-bool candidate_counts_agree(const CheckpointState& s, std::size_t n) {
-  const std::size_t k = s.candidate_pair.size() / 2;
-  return s.candidate_pair.size() % 2 == 0 && s.candidate_force_N.size() == 3 * k &&
-         (s.candidate_rolling_torque_Nm.empty() || s.candidate_rolling_torque_Nm.size() == 3 * k) &&
-         (s.candidate_held_overlap_m.empty() || s.candidate_held_overlap_m.size() == k) &&
-         (s.detector_reference_position_m.empty() || s.detector_reference_position_m.size() == 3 * n);
 }
 
 void write_contents(hid_t file, const CheckpointState& s) {

@@ -273,7 +273,7 @@ AccuracyStudyResult run_accuracy_study(thermal::ThermalSystem& system,
   auto interrupted = [&](const std::string& method, const std::string& solver, double parameter,
                          const RunForecast& forecast) {
     if (!options.stop || !options.stop()) return false;
-    skip(method, solver, parameter, forecast, "not made: the study was interrupted");
+    skip(method, solver, parameter, forecast, kInterruptedRunReason);
     return true;
   };
   // The study's budget: would this run end past it?

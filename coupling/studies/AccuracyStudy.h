@@ -108,6 +108,8 @@ using ThermalDriver = std::function<void(thermal::ThermalIntegrator&, std::span<
 
 // The CSV's linear_solver column for the explicit update.
 inline constexpr const char* kNoLinearSolver = "none";
+// Why a run was not made when the study was stopped (AccuracyStudyOptions::stop).
+inline constexpr const char* kInterruptedRunReason = "not made: the study was interrupted";
 
 struct AccuracyRun {
   std::string method;          // explicit | cvode | ida

@@ -4,24 +4,13 @@
 #include <fstream>
 #include <sstream>
 
+#include "coupling/common/CsvField.h"
 #include "coupling/common/ExitCode.h"
 #include "coupling/common/ShortestNumber.h"
 #include "coupling/output/OutputError.h"
 #include "coupling/output/ResultProbes.h"
 
 namespace tmdem::coupling {
-namespace {
-
-// A probe name as one CSV field: quoted when it holds a separator, a quote or a line break.
-std::string csv_field(const std::string& text) {
-  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
-  std::string out = "\"";
-  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
-}
-
-}  // namespace
-
 int run_probes_command(const ProbesOptions& options, std::ostream& out, std::ostream& log) {
   std::error_code ec;
   if (!options.csv_path.empty() && std::filesystem::exists(options.csv_path, ec) &&

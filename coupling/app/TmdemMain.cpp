@@ -12,7 +12,6 @@
 #include "coupling/app/ProbesCommand.h"
 #include "coupling/app/RenderCommand.h"
 #include "coupling/common/ExitCode.h"
-#include "coupling/common/TomlQuoted.h"
 #include "coupling/run/CoupledRun.h"
 #include "coupling/studies/CouplingStudy.h"
 #include "coupling/scene/DefaultScene.h"
@@ -23,6 +22,7 @@
 #include "coupling/scene/SceneError.h"
 #include "coupling/scene/SceneLoader.h"
 #include "coupling/scene/SceneReference.h"
+#include "coupling/scene/TomlWriter.h"
 #include "thermal/integrators/MpiWorld.h"
 
 namespace tmdem::coupling {
@@ -210,7 +210,7 @@ int tmdem_main(int argc, char** argv) {
       const bool speaks = thermal::MpiWorld::rank() == 0;
       // -o overrides output.file: the result file's resolved scene (its "scene" attribute) says so.
       std::vector<std::string> resolved_sets = sets;
-      if (!output.empty()) resolved_sets.push_back("output.file=" + toml_quoted(output));
+      if (!output.empty()) resolved_sets.push_back("output.file=" + toml_basic_string(output));
       const Scene scene = load(scene_path, resolved_sets);
       if (!quiet && speaks)
         for (const auto& report : scene.imports) std::cerr << describe_import(report) << std::endl;

@@ -19,7 +19,9 @@ bool is_bare_key(std::string_view key) {
   return true;
 }
 
-std::string basic_string(std::string_view text) {
+}  // namespace
+
+std::string toml_basic_string(std::string_view text) {
   std::string out = "\"";
   for (const char c : text) {
     switch (c) {
@@ -43,8 +45,10 @@ std::string basic_string(std::string_view text) {
   return out + "\"";
 }
 
+namespace {
+
 std::string key_text(std::string_view key) {
-  return is_bare_key(key) ? std::string(key) : basic_string(key);
+  return is_bare_key(key) ? std::string(key) : toml_basic_string(key);
 }
 
 std::string float_text(double value) {
@@ -74,7 +78,7 @@ void write_inline_table(std::ostream& out, const toml::table& table) {
 
 void write_inline(std::ostream& out, const toml::node& node) {
   if (const auto* s = node.as_string()) {
-    out << basic_string(s->get());
+    out << toml_basic_string(s->get());
   } else if (const auto* i = node.as_integer()) {
     out << i->get();
   } else if (const auto* f = node.as_floating_point()) {

@@ -1,5 +1,6 @@
 #include "coupling/studies/AccuracyReport.h"
 
+#include "coupling/common/CsvField.h"
 #include "coupling/common/FormattedNumber.h"
 
 #include <algorithm>
@@ -72,10 +73,7 @@ void write_skipped_runs_csv(std::ostream& out, const std::vector<AccuracyRun>& r
     if (!r.skipped) continue;
     out << r.method << "," << r.linear_solver << "," << shortest_number(r.parameter) << ",";
     if (std::isfinite(r.predicted_wall_time_s)) out << shortest_number(r.predicted_wall_time_s);
-    // RFC 4180: the reason in double quotes, its own quotes doubled.
-    out << ",\"";
-    for (const char ch : r.message) out << (ch == '"' ? "\"\"" : std::string(1, ch));
-    out << "\"\n";
+    out << "," << csv_quoted(r.message) << "\n";
   }
 }
 

@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "PythonResult.h"
-#include "coupling/common/TomlQuoted.h"
+#include "coupling/scene/TomlWriter.h"
 #include "coupling/run/CoupledRun.h"
 
 namespace py = pybind11;
@@ -19,7 +19,7 @@ py::tuple run(const PythonScene& scene, const RunArguments& arguments) {
   std::optional<PythonScene> with_output;
   if (arguments.output) {
     auto overrides = scene.overrides();
-    overrides.push_back("output.file=" + coupling::toml_quoted(*arguments.output));
+    overrides.push_back("output.file=" + coupling::toml_basic_string(*arguments.output));
     with_output = scene.path().empty() ? PythonScene::load_default(overrides)
                                        : PythonScene::load(scene.path(), overrides);
   }

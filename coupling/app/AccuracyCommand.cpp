@@ -90,7 +90,7 @@ int run_accuracy_command(const Scene& scene, const AccuracyCommandOptions& optio
     interruption.emplace(options.quiet,
                          "\ninterrupt received: finishing the current run, then reporting and "
                          "writing the runs made; a second signal aborts at once\n");
-    study_options.study.stop = [] { return Interruption::pending() != 0; };
+    study_options.study.stop = &Interruption::requested;
   }
   AccuracyStudyResult result;
   // A failure removes both files (no half table).

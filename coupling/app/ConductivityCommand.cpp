@@ -26,14 +26,13 @@ int run_conductivity_command(const Scene& scene, const ConductivityCommandOption
     interruption.emplace(options.quiet,
                          "\ninterrupt received: finishing the current settle step, then reporting "
                          "and writing the loads finished; a second signal aborts at once\n");
-  const auto interrupted = [] { return Interruption::pending() != 0; };
   std::vector<ConductivityResult> results;
   const int computed = csv.compute_or_discard<thermal::ThermalSolverError>([&] {
     ProgressReporter progress(log, options.quiet, options.terminal);
     if (options.pressures_Pa.empty())
       results.push_back(run_conductivity_study(scene, progress));
     else
-      results = run_conductivity_pressure_study(scene, options.pressures_Pa, progress, interrupted);
+      results = run_conductivity_pressure_study(scene, options.pressures_Pa, progress, &Interruption::requested);
     return kExitOk;
   }, log);
   if (computed != kExitOk) return computed;

@@ -133,7 +133,7 @@ void CoupledRun::settle() {
   // piston) says when it came: it is not a scene refused at set-up.
   try {
     summary_.settle = settle_packing(*nscd_, scene_, progress_,
-                                     [] { return Interruption::pending() != 0; }, &settle_progress_,
+                                     &Interruption::requested, &settle_progress_,
                                      &checkpoints);
   } catch (const StartError&) {
     throw;

@@ -78,7 +78,7 @@ void CoupledRun::recouple() {
     nscd_->invalidate_contacts();  // candidates and gaps follow the radii
   }
   const SettleSummary settled =
-      settle_packing(*nscd_, scene_, progress_, [] { return Interruption::pending() != 0; });
+      settle_packing(*nscd_, scene_, progress_, &Interruption::requested);
   mechanics_seconds_ += seconds_since(mechanics_start);
   ++thermo_.couplings;
   thermo_.steps += settled.steps;

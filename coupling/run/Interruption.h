@@ -17,6 +17,8 @@ class Interruption {
 
   // The signal received (SIGINT or SIGTERM), or 0.
   static int pending();
+  // Whether one was: the `stop` a long loop asks after each step (settle_packing, the studies).
+  static bool requested() { return pending() != 0; }
 };
 
 // "SIGINT" / "SIGTERM".

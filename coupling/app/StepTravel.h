@@ -27,8 +27,9 @@
 // upper bound of the largest speed of the run:
 //   particles: v = |g| t, t = mechanics.settle_time ("settle") or simulation.duration
 //   ("dynamic"), capped by free fall onto the floor, v = sqrt(2 |g| H), when the scene has one
-//   (a plane wall facing against gravity, n . g < 0): H is the largest height of a particle's
-//   surface above the nearest floor below it, measured along gravity;
+//   (a plane wall facing against gravity, n . g < 0, or a cylinder wall whose axis is not along
+//   gravity): H is the largest fall of a particle along gravity until it meets the nearest
+//   floor below it;
 //   pistons (and the particles they push): v = a t with a = force / mass + g . n, capped by
 //   sqrt(2 a D), D the distance along n to the nearest plane wall it moves towards.
 #include <cmath>

@@ -62,6 +62,36 @@ TEST(StepTravel, WithoutAFloorTheSpeedGrowsOverTheWholePhase) {
   EXPECT_FALSE(t.too_far());  // 0.1 mm per step against 0.5 mm
 }
 
+// A cylinder across gravity (a drum, a horizontal pipe) is the floor of what lies in it: a sphere
+// of 1 mm off the axis of a 15 mm drum falls straight down until its centre is 14 mm from the
+// axis, by hand. Along gravity (an upright cylinder) it stops nothing. Before, only plane walls
+// were floors, and the drum's spheres were estimated to fall for the whole settle (49 m/s).
+TEST(StepTravel, ACylinderAcrossGravityIsAFloor) {
+  Scene scene;
+  scene.effects.mechanics = MechanicsMode::Settle;
+  scene.gravity_m_per_s2 = {0.0, 0.0, -kG};
+  scene.mechanics.time_step_s = 1e-3;
+  scene.mechanics.settle_time_s = 5.0;
+  Particle p;
+  p.radius_m = 1e-3;
+  p.position_m = {0.002, 0.006, 0.004};
+  scene.particles.push_back(p);
+  Wall drum;
+  drum.cylinder = true;
+  drum.normal = {1.0, 0.0, 0.0};
+  drum.radius_m = 0.015;
+  scene.walls.push_back(drum);
+  // The centre stays within 14 mm of the axis: at y = 6 mm it reaches z = -sqrt(14^2 - 6^2) mm.
+  const double fall = 0.004 + std::sqrt(0.014 * 0.014 - 0.006 * 0.006);
+  EXPECT_NEAR(estimate_step_travel(scene).speed_m_per_s, std::sqrt(2 * kG * fall), 1e-12);
+  // Resting on the drum's bottom: no fall.
+  scene.particles[0].position_m = {0.002, 0.0, -0.014};
+  EXPECT_NEAR(estimate_step_travel(scene).speed_m_per_s, 0.0, 1e-12);
+  // Upright: the cylinder is no floor, the sphere falls for the whole settle.
+  scene.walls[0].normal = {0.0, 0.0, 1.0};
+  EXPECT_NEAR(estimate_step_travel(scene).speed_m_per_s, kG * 5.0, 1e-12);
+}
+
 // A sphere resting on the floor with an overlap of round-off (a deposited bed's; the loader
 // accepts up to 1e-9 of the radius, here 1e-10 of it) rests: no fall, no speed of its own.
 TEST(StepTravel, ARoundOffOverlapWithTheFloorIsResting) {

@@ -79,6 +79,9 @@ void check_scene(const Scene& scene, std::ostream& out) {
       << (scene.output.contacts ? ", contacts estimated at 3 per particle" : "")
       << "); memory about " << resources.memory_bytes / 1e6 << " MB\n";
   const StepTravel travel = estimate_step_travel(scene);
+  if (travel.resting_particles > 0)
+    out << "mechanics: " << travel.resting_particles
+        << " particles rest at the start on what is below them (a laid or imported bed): no fall estimated for them\n";
   if (travel.speed_m_per_s > 0.0) {
     out << "mechanics: largest speed estimated " << travel.speed_m_per_s
         << " m/s (gravity and pistons; coupling/app/StepTravel.h), " << travel.travel_m

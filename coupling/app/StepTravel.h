@@ -23,16 +23,20 @@
 //    v h > kSettleTravelFraction r_min = 2 r_min: the ghost gap can then exceed r_min, so a
 //    particle can be stopped by a neighbour it would not have reached within the step.
 //
-// The speed is estimated from gravity and pistons (scenes have no initial velocities), an
-// upper bound of the largest speed of the run:
+// The speed is estimated from gravity and pistons (scenes have no initial velocities): an
+// upper bound of the largest speed of the run where things fall freely, not of what a load
+// makes a bed do (a laid bed that collapses under a plate):
 //   particles: v = |g| t, t = mechanics.settle_time ("settle") or simulation.duration
 //   ("dynamic"), capped by free fall onto the floor, v = sqrt(2 |g| H), when the scene has one
 //   (a plane wall facing against gravity, n . g < 0, or a cylinder wall whose axis is not along
 //   gravity): H is the largest fall of a particle along gravity until it meets the nearest
-//   floor below it;
+//   floor below it. A particle resting at the start on something below it that rests too (a
+//   wall facing up, a fixed particle, a resting particle lower along gravity: a bed laid by
+//   deposition or imported) does not fall, so a laid bed without a piston gets no speed;
 //   pistons (and the particles they push): v = a t with a = force / mass + g . n, capped by
 //   sqrt(2 a D), D the distance along n to the nearest plane wall it moves towards.
 #include <cmath>
+#include <cstddef>
 
 #include "coupling/scene/Scene.h"
 
@@ -46,6 +50,7 @@ struct StepTravel {
   double travel_m = 0.0;           // speed x mechanics.time_step
   double smallest_radius_m = 0.0;  // of a moving particle
   double fraction = kSettleTravelFraction;  // of smallest_radius_m: the limit of this mode
+  std::size_t resting_particles = 0;  // moving particles resting at the start on what rests (no fall)
   double limit_m() const { return fraction * smallest_radius_m; }
   bool too_far() const { return travel_m > limit_m(); }
   // The largest ghost gap, m. Exact, not the small-travel (v h)^2 / (4 r_min): that grows past

@@ -98,9 +98,38 @@ TEST(StepTravel, ARoundOffOverlapWithTheFloorIsResting) {
   Scene scene = one_sphere(-1e-13, 0.0);
   ASSERT_LT(wall_signed_distance(scene.walls[0], scene.particles[0].position_m) - scene.particles[0].radius_m, 0.0);
   EXPECT_EQ(estimate_step_travel(scene).speed_m_per_s, 0.0);
-  // Deeper than the loader allows: not a resting sphere (it would not load), no floor under it.
+  // Deeper than the loader allows (it would not load): it touches the floor, so it rests too.
   scene = one_sphere(-1e-6, 0.0);
-  EXPECT_NEAR(estimate_step_travel(scene).speed_m_per_s, kG * 5.0, 1e-12);
+  EXPECT_EQ(estimate_step_travel(scene).speed_m_per_s, 0.0);
+}
+
+// A laid bed rests: a particle on something below it that rests does not fall. A column of five
+// touching spheres on the floor gets no speed (before, its top sphere was taken to fall 8 mm
+// onto the floor); lifted 1 mm off the floor, every sphere falls, the top one 9 mm; a sphere
+// beside the grounded column, touching it only at its equator, is held by nothing below it and
+// falls its own height.
+TEST(StepTravel, ALaidColumnRestsAndALiftedOneFalls) {
+  Scene scene = one_sphere(0.0, 0.0);  // radius 1 mm, on the floor y = 0, gravity -y
+  const double r = scene.particles[0].radius_m;
+  for (int k = 1; k < 5; ++k) {
+    Particle p = scene.particles[0];
+    p.position_m[1] = r + 2.0 * r * k;
+    scene.particles.push_back(p);
+  }
+  StepTravel t = estimate_step_travel(scene);
+  EXPECT_EQ(t.speed_m_per_s, 0.0);
+  EXPECT_EQ(t.resting_particles, 5u);
+  Scene lifted = scene;
+  for (auto& p : lifted.particles) p.position_m[1] += 1e-3;
+  t = estimate_step_travel(lifted);
+  EXPECT_EQ(t.resting_particles, 0u);
+  EXPECT_NEAR(t.speed_m_per_s, std::sqrt(2 * kG * (8 * r + 1e-3)), 1e-12);
+  Particle side = scene.particles[2];  // beside the third sphere, touching it at its equator
+  side.position_m[0] += 2.0 * r;
+  scene.particles.push_back(side);
+  t = estimate_step_travel(scene);
+  EXPECT_EQ(t.resting_particles, 5u);
+  EXPECT_NEAR(t.speed_m_per_s, std::sqrt(2 * kG * 4 * r), 1e-12);
 }
 
 TEST(StepTravel, RestingOrStillScenesDoNotWarn) {

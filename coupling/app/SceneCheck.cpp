@@ -78,7 +78,16 @@ void check_scene(const Scene& scene, std::ostream& out) {
       << resources.output_bytes / 1e6 << " MB (result file and XDMF"
       << (scene.output.contacts ? ", contacts estimated at 3 per particle" : "")
       << "); memory about " << resources.memory_bytes / 1e6 << " MB\n";
-  const StepTravel travel = estimate_step_travel(scene);
+  // The pairs touching now: the travel estimate's resting particles and the network's contacts
+  // below (one search for both; the network of an imported bed without mechanics takes the
+  // imported forces instead, and the travel estimate is not made without mechanics).
+  const auto particles = make_particle_set(scene);
+  const bool network_from_imports =
+      scene.effects.mechanics == MechanicsMode::Off && !scene.imported_forces.wall_gap.empty();
+  const std::vector<mechanics::TouchingPair> touching =
+      network_from_imports ? std::vector<mechanics::TouchingPair>{}
+                           : mechanics::find_touching_pairs(particles, make_mechanics_walls(scene), 1e-9);
+  const StepTravel travel = estimate_step_travel(scene, touching);
   if (travel.resting_particles > 0)
     out << "mechanics: " << travel.resting_particles
         << " particles rest at the start on what is below them (a laid or imported bed): no fall estimated for them\n";
@@ -128,16 +137,14 @@ void check_scene(const Scene& scene, std::ostream& out) {
       << thermal::name_of(scene.thermal.conductance) << "\n";
 
   // Estimated network on the contacts present now.
-  const auto particles = make_particle_set(scene);
   ContactList contacts;
   const double g = std::hypot(scene.gravity_m_per_s2[0], scene.gravity_m_per_s2[1],
                               scene.gravity_m_per_s2[2]);
   // Without mechanics, forces imported with the packing are the run's own: no estimate.
-  if (scene.effects.mechanics == MechanicsMode::Off && !scene.imported_forces.wall_gap.empty())
+  if (network_from_imports)
     contacts = resting_contacts(scene, particles);
   else
-    for (const auto& p : mechanics::find_touching_pairs(particles, make_mechanics_walls(scene), 1e-9))
-      contacts.add(p.i, p.j, particles.mass[std::size_t(p.i)] * g);
+    for (const auto& p : touching) contacts.add(p.i, p.j, particles.mass[std::size_t(p.i)] * g);
   const auto system = build_thermal_system(scene, contacts, &particles);
   out << "modes:";
   for (const auto& mode : system->modes()) out << " " << mode->name();

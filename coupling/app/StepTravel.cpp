@@ -54,39 +54,24 @@ double fall_onto_cylinder(const Wall& w, const Vec3& x, double r, const Vec3& d)
 }
 
 // Per particle, whether it rests at the start on something below it that rests too: a wall
-// facing up where it touches (a plane with n . g < 0, a cylinder below its axis), a fixed
+// whose surface faces up where it touches (Wall::normal_at, plane or cylinder), a fixed
 // particle, or a resting particle whose centre lies lower along gravity, touching within the
-// loader's 1e-9 of the radius. A bed laid by deposition or imported rests throughout; a
-// particle held only from the side (between walls) or on something that falls does not. Taken
-// lowest first, so that a particle's supports are settled before it.
-std::vector<std::uint8_t> resting_at_start(const Scene& scene, const Vec3& down) {
+// loader's 1e-9 of the radius (`touching`: find_touching_pairs of the scene's particles and
+// walls). A bed laid by deposition or imported rests throughout; a particle held only from the
+// side (between walls) or on something that falls does not. Taken lowest first, so that a
+// particle's supports are settled before it.
+std::vector<std::uint8_t> resting_at_start(const Scene& scene, const std::vector<mechanics::TouchingPair>& touching,
+                                           const Vec3& down) {
   const std::size_t n = scene.particles.size();
-  std::vector<std::uint8_t> resting(n, 0);
-  // Geometry only: the masses (and so the materials) play no part.
-  mechanics::ParticleSet set;
-  set.box = periodic_box(scene.periodic);
-  set.reserve(n);
-  for (const auto& p : scene.particles)
-    set.add(Eigen::Vector3d(p.position_m[0], p.position_m[1], p.position_m[2]), p.radius_m, 1.0, 0, p.fixed);
-  const auto touching = mechanics::find_touching_pairs(set, make_mechanics_walls(scene), kRestingOverlapFraction);
-  // Per particle, the touching partners that lie below it (particle ids, or -1 - wall for a wall
-  // that supports it).
+  const std::vector<mechanics::Wall> walls = make_mechanics_walls(scene);
+  const Eigen::Vector3d up(-down[0], -down[1], -down[2]);
+  // Per particle, the touching partners that lie below it (particle ids, or a wall's code).
   std::vector<std::vector<std::int64_t>> below(n);
   for (const auto& t : touching) {
     const auto& pi = scene.particles[std::size_t(t.i)];
     if (mechanics::is_wall(t.j)) {
-      const Wall& w = scene.walls[mechanics::wall_index(t.j)];
-      double support = 0.0;  // > 0: the wall's surface at the contact faces up
-      if (w.cylinder) {
-        const double along = dot(Vec3{pi.position_m[0] - w.point_m[0], pi.position_m[1] - w.point_m[1],
-                                      pi.position_m[2] - w.point_m[2]},
-                                 w.normal);
-        for (int k = 0; k < 3; ++k)
-          support += (pi.position_m[k] - w.point_m[k] - along * w.normal[k]) * down[k];
-      } else {
-        support = -dot(w.normal, down);
-      }
-      if (support > 0.0) below[std::size_t(t.i)].push_back(t.j);
+      const Eigen::Vector3d x(pi.position_m[0], pi.position_m[1], pi.position_m[2]);
+      if (walls[mechanics::wall_index(t.j)].normal_at(x).dot(up) > 0.0) below[std::size_t(t.i)].push_back(t.j);
       continue;
     }
     const auto& pj = scene.particles[std::size_t(t.j)];
@@ -107,13 +92,14 @@ std::vector<std::uint8_t> resting_at_start(const Scene& scene, const Vec3& down)
   std::vector<double> depth(n);  // along gravity: larger is lower
   for (std::size_t i = 0; i < n; ++i) depth[i] = dot(scene.particles[i].position_m, down);
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return depth[a] > depth[b]; });
+  std::vector<std::uint8_t> resting(n, 0);
   for (const std::size_t i : order) {
     if (scene.particles[i].fixed) {
       resting[i] = 1;
       continue;
     }
     for (const std::int64_t j : below[i])
-      if (j < 0 || resting[std::size_t(j)] != 0) {
+      if (mechanics::is_wall(j) || resting[std::size_t(j)] != 0) {
         resting[i] = 1;
         break;
       }
@@ -124,6 +110,18 @@ std::vector<std::uint8_t> resting_at_start(const Scene& scene, const Vec3& down)
 }  // namespace
 
 StepTravel estimate_step_travel(const Scene& scene) {
+  if (scene.effects.mechanics == MechanicsMode::Off) return StepTravel{};
+  // Geometry only: the masses (and so the materials) play no part.
+  mechanics::ParticleSet set;
+  set.box = periodic_box(scene.periodic);
+  set.reserve(scene.particles.size());
+  for (const auto& p : scene.particles)
+    set.add(Eigen::Vector3d(p.position_m[0], p.position_m[1], p.position_m[2]), p.radius_m, 1.0, 0, p.fixed);
+  return estimate_step_travel(
+      scene, mechanics::find_touching_pairs(set, make_mechanics_walls(scene), kRestingOverlapFraction));
+}
+
+StepTravel estimate_step_travel(const Scene& scene, const std::vector<mechanics::TouchingPair>& touching) {
   StepTravel out;
   if (scene.effects.mechanics == MechanicsMode::Off) return out;
   const Vec3& g = scene.gravity_m_per_s2;
@@ -136,7 +134,7 @@ StepTravel estimate_step_travel(const Scene& scene) {
   // 100-layer column_2d, at rest from its first step, was estimated at 3.96 r_min a step and
   // warned about.
   const std::vector<std::uint8_t> resting =
-      g_norm > 0.0 ? resting_at_start(scene, down) : std::vector<std::uint8_t>(scene.particles.size(), 0);
+      g_norm > 0.0 ? resting_at_start(scene, touching, down) : std::vector<std::uint8_t>(scene.particles.size(), 0);
   for (std::size_t i = 0; i < scene.particles.size(); ++i) {
     const auto& p = scene.particles[i];
     if (p.fixed) continue;
@@ -155,13 +153,11 @@ StepTravel estimate_step_travel(const Scene& scene) {
       // cos of the angle between the wall's normal and "up" (-g / |g|).
       const double up = -dot(w.normal, g) / g_norm;
       if (up <= 0.0) continue;
-      // A particle resting on the floor may overlap it by round-off (a deposited bed: -4e-19 m),
-      // as the loader allows (1e-9 of the radius, coupling/scene/SceneValidation.h): it rests,
-      // not falls for the whole phase (the deposited periodic_pressed bed was estimated at
-      // g x settle_time = 49 m/s, and check warned that the run would stop).
-      const double distance = wall_signed_distance(w, p.position_m) - p.radius_m;
-      if (distance >= -kRestingOverlapFraction * p.radius_m)
-        fall = std::min(fall, std::max(distance, 0.0) / up);
+      // A particle touching this floor, even overlapping it by round-off (a deposited bed:
+      // -4e-19 m, as the loader allows), is resting and never gets here: the distance is positive
+      // (before, the deposited periodic_pressed bed was estimated at g x settle_time = 49 m/s,
+      // and check warned that the run would stop).
+      fall = std::min(fall, (wall_signed_distance(w, p.position_m) - p.radius_m) / up);
     }
     height = std::max(height, fall);
   }

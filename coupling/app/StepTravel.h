@@ -37,8 +37,10 @@
 //   sqrt(2 a D), D the distance along n to the nearest plane wall it moves towards.
 #include <cmath>
 #include <cstddef>
+#include <vector>
 
 #include "coupling/scene/Scene.h"
+#include "mechanics/detection/TouchingPairs.h"
 
 namespace tmdem::coupling {
 
@@ -62,7 +64,10 @@ struct StepTravel {
   }
 };
 
-// Zero travel when mechanics is off or nothing moves.
+// Zero travel when mechanics is off or nothing moves. `touching`: the pairs touching at the
+// start (mechanics::find_touching_pairs of the scene's particles and walls, 1e-9 of the
+// radius), for a caller that has them; the first form finds them itself.
 StepTravel estimate_step_travel(const Scene& scene);
+StepTravel estimate_step_travel(const Scene& scene, const std::vector<mechanics::TouchingPair>& touching);
 
 }  // namespace tmdem::coupling

@@ -10,17 +10,17 @@ rolling resistance 0.02, laid by deposition in an 8 x 8 mm shaft to about LAYERS
 pressure > 0 a 1 g piston started resting on the bed's top, pressing with PRESSURE over the
 shaft's 64 mm2), settles it at the scene defaults
     OMP_NUM_THREADS=N build/tmdem run SCENE.toml --summary S.json --quiet --set simulation.duration=1e-3
-and prints a line each: layers, particles, pressure, steps, mean and largest sweeps per step,
-unconverged steps, at rest, mechanics wall seconds. The bench_solvers BM_PileHeight benchmark
+(bench/settle_beds.py's run) and prints a line each: layers, particles, pressure, steps, mean
+and largest sweeps per step, unconverged steps, at rest, mechanics wall seconds. The bench_solvers BM_PileHeight benchmark
 solves one step of a lattice pile cold instead (no warm start): both are reported in
 docs/benchmarks.md. Needs only the standard library.
 """
 import argparse
-import json
 import os
-import subprocess
 import sys
 import tempfile
+
+from settle_beds import run_bed  # the same run as every bed of bench/beds
 
 SPHERES_PER_MM = 73  # about 0.6 x 64 mm3 / (pi / 6 mm3): spheres per mm of the shaft's height
 
@@ -72,21 +72,11 @@ def main():
                 name = os.path.join(work, f"bed_{layers}_{pressure:g}")
                 with open(name + ".toml", "w") as out:
                     out.write(scene(layers, pressure))
-                command = [tmdem, "run", name + ".toml", "-o", name + ".h5", "--summary", name + ".json",
-                           "--quiet", "--set", "simulation.duration=1e-3"]
-                env = dict(os.environ, OMP_NUM_THREADS=str(args.threads))
-                try:
-                    result = subprocess.run(command, cwd=work, env=env, capture_output=True, text=True,
-                                            timeout=args.limit)
-                    code = result.returncode
-                except subprocess.TimeoutExpired:
-                    code = "time limit"
-                if code != 0 or not os.path.exists(name + ".json"):
+                code, summary, _, _, _ = run_bed(tmdem, name + ".toml", args.threads, args.limit, work)
+                if summary is None:
                     bad = 1
                     print(f"{layers:>6} {SPHERES_PER_MM * layers:>9} {pressure:>11g}  failed ({code})", flush=True)
                     continue
-                with open(name + ".json") as f:
-                    summary = json.load(f)
                 m = summary["mechanics"]
                 rest = summary.get("settle", {}).get("at_rest")
                 if m["unconverged_steps"] or rest is not True:

@@ -23,7 +23,10 @@ import tempfile
 import time
 
 
-def settle(tmdem, bed, threads, limit, work):
+def run_bed(tmdem, bed, threads, limit, work):
+    """Settles one bed at the defaults (the command above, in the bed's folder). Returns its exit
+    code ("time limit" past `limit` seconds), its summary (a dict; None when there is none), the
+    wall and CPU seconds of the process, and its stderr."""
     name = os.path.splitext(os.path.basename(bed))[0]
     summary = os.path.join(work, name + ".json")
     command = [tmdem, "run", os.path.abspath(bed), "-o", os.path.join(work, name + ".h5"), "--summary", summary,
@@ -42,11 +45,20 @@ def settle(tmdem, bed, threads, limit, work):
     wall = time.monotonic() - start
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-    if code != 0 or not os.path.exists(summary):
+    s = None
+    if code == 0 and os.path.exists(summary):
+        with open(summary) as f:
+            s = json.load(f)
+    return code, s, wall, cpu, stderr
+
+
+def settle(tmdem, bed, threads, limit, work):
+    name = os.path.splitext(os.path.basename(bed))[0]
+    code, s, wall, cpu, stderr = run_bed(tmdem, bed, threads, limit, work)
+    if s is None:
         last = stderr.strip().splitlines()[-1] if stderr.strip() else ""
         return False, f"{name:<20} {'':>9} {'':>6} {'':>7} {'':>6} {'':>9} {'':>10} {wall:>8.1f} {cpu:>8.1f}  " \
                       f"FALLS SHORT ({code}{': ' + last[:80] if code != 'time limit' else ''})"
-    s = json.load(open(summary))
     m = s["mechanics"]
     rest = s.get("settle", {})
     ok = rest.get("at_rest") is True and m["unconverged_steps"] == 0

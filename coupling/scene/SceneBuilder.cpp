@@ -47,6 +47,8 @@ Scene SceneBuilder::build() {
   check_scene_limits(scene_, origins_, source_);
   check_overlaps(scene_, origins_, import_of_, source_);
   scene_.warnings = unsupported_deposit_warnings(scene_, deposit_blocks_);
+  if (std::string output = large_output_warning(scene_); !output.empty())
+    scene_.warnings.push_back(std::move(output));
   // Growth under rigid contacts: a confined bed has no solution (docs/thermo-mechanics.md).
   if (scene_.effects.mechanics == MechanicsMode::Coupled &&
       scene_.mechanics.normal_law == mechanics::NormalLaw::rigid)

@@ -68,6 +68,28 @@ SceneResources estimate_resources(const Scene& scene) {
   return r;
 }
 
+std::string large_output_warning(const Scene& scene) {
+  const SceneResources r = estimate_resources(scene);
+  if (!(r.output_bytes > kWarnOutputBytes)) return {};
+  // Frames go as 1 / interval: scale it by the estimate over 1 GB, rounded up to 1, 2 or 5
+  // times a power of ten (so at most 1 GB, and more than 0.2 GB).
+  const double wanted_s = scene.output.interval_s * r.output_bytes / 1.0e9;
+  const double decade = std::pow(10.0, std::floor(std::log10(wanted_s)));
+  double suggested_s = 10.0 * decade;
+  for (const double step : {1.0, 2.0, 5.0})
+    if (step * decade >= wanted_s) {
+      suggested_s = step * decade;
+      break;
+    }
+  return "simulation.duration = " + number(scene.duration_s) + " s with output.interval = " +
+         number(scene.output.interval_s) + " s gives " + number(r.frames) + " frames of " +
+         std::to_string(scene.particles.size()) + " particles, an estimated output of about " +
+         number(std::round(r.output_bytes / 1.0e9)) +
+         " GB (result file and XDMF); output.interval = " + number(suggested_s) +
+         " s gives at most 1 GB" +
+         (scene.output.contacts ? ", and output.contacts = false leaves the contacts out" : "");
+}
+
 void check_scene_limits(const Scene& scene, const std::vector<std::string>& origins,
                         const std::string& source) {
   const std::string at = source + ": ";

@@ -25,6 +25,14 @@ inline constexpr double kMaxOutputBytes = 1.0e12;  // 1 TB
 
 SceneResources estimate_resources(const Scene& scene);
 
+// Past this estimated output (result file and XDMF) loading adds a warning to Scene::warnings,
+// which tmdem check and tmdem run print: legal, but likely unmeant (an hour of heating at the
+// default output.interval of 0.1 s writes 36,002 frames: 21 GB for 20,000 spheres).
+inline constexpr double kWarnOutputBytes = 1.0e10;  // 10 GB
+// That warning (one sentence, no "warning: " prefix), with the output.interval (1, 2 or 5
+// times a power of ten) that brings the estimate to at most 1 GB; empty below kWarnOutputBytes.
+std::string large_output_warning(const Scene& scene);
+
 // Throws SceneError ("SOURCE: KEY: ...") for the first limit the scene exceeds. `origins` names
 // each particle's entry ("particle[3]", "generate[0]") for the underflow message; may be empty.
 void check_scene_limits(const Scene& scene, const std::vector<std::string>& origins,

@@ -11,6 +11,19 @@ namespace {
 
 std::string number(double value) { return shortest_number(value); }
 
+// "21 GB", "1 GB", "350 MB", "12 kB": two significant figures at most, in the largest unit
+// that keeps the figure at least 1.
+std::string bytes_text(double bytes) {
+  const char* units[] = {"B", "kB", "MB", "GB", "TB"};
+  int u = 0;
+  while (u < 4 && bytes >= 1000.0) {
+    bytes /= 1000.0;
+    ++u;
+  }
+  const double scale = bytes >= 10.0 ? 1.0 : 10.0;
+  return number(std::round(bytes * scale) / scale) + " " + units[u];
+}
+
 // Measured on examples, datasets compressed (shuffle + deflate 1), rounded up. Dynamic
 // (poured_bed.toml, 80 particles, 21 frames: 0.41 MB + 0.07 MB XDMF): bytes per particle and
 // frame: position 17, velocity 17, temperature 6. Frozen (settle or off: paper_bed.toml, 256
@@ -68,26 +81,34 @@ SceneResources estimate_resources(const Scene& scene) {
   return r;
 }
 
-std::string large_output_warning(const Scene& scene) {
+std::string large_output_warning(const Scene& scene, double warn_bytes, double target_bytes) {
   const SceneResources r = estimate_resources(scene);
-  if (!(r.output_bytes > kWarnOutputBytes)) return {};
-  // Frames go as 1 / interval: scale it by the estimate over 1 GB, rounded up to 1, 2 or 5
-  // times a power of ten (so at most 1 GB, and more than 0.2 GB).
-  const double wanted_s = scene.output.interval_s * r.output_bytes / 1.0e9;
+  if (!(r.output_bytes > warn_bytes)) return {};
+  const std::string contacts =
+      scene.output.contacts ? "; output.contacts = false leaves the contacts out" : "";
+  const std::string said = "simulation.duration = " + number(scene.duration_s) +
+                           " s with output.interval = " + number(scene.output.interval_s) +
+                           " s gives " + number(r.frames) + " frames of " +
+                           std::to_string(scene.particles.size()) +
+                           " particles, an estimated output of about " +
+                           bytes_text(r.output_bytes) + " (result file and XDMF)";
+  // Frames go about as 1 / interval: start from the interval scaled by the estimate over the
+  // target, rounded up to 1, 2 or 5 times a power of ten, and go up that ladder until the
+  // estimate fits (the first and last frames do not shrink with the interval).
+  const double wanted_s = scene.output.interval_s * r.output_bytes / target_bytes;
   const double decade = std::pow(10.0, std::floor(std::log10(wanted_s)));
-  double suggested_s = 10.0 * decade;
-  for (const double step : {1.0, 2.0, 5.0})
-    if (step * decade >= wanted_s) {
-      suggested_s = step * decade;
-      break;
-    }
-  return "simulation.duration = " + number(scene.duration_s) + " s with output.interval = " +
-         number(scene.output.interval_s) + " s gives " + number(r.frames) + " frames of " +
-         std::to_string(scene.particles.size()) + " particles, an estimated output of about " +
-         number(std::round(r.output_bytes / 1.0e9)) +
-         " GB (result file and XDMF); output.interval = " + number(suggested_s) +
-         " s gives at most 1 GB" +
-         (scene.output.contacts ? ", and output.contacts = false leaves the contacts out" : "");
+  Scene fitted = scene;
+  for (int rung = 0; rung < 12; ++rung) {
+    const double step[] = {1.0, 2.0, 5.0};
+    const double suggested_s = step[rung % 3] * decade * std::pow(10.0, rung / 3);
+    if (suggested_s < wanted_s) continue;
+    if (suggested_s > scene.duration_s) break;  // only the first and last frames are left
+    fitted.output.interval_s = suggested_s;
+    if (estimate_resources(fitted).output_bytes <= target_bytes)
+      return said + "; output.interval = " + number(suggested_s) + " s gives at most " +
+             bytes_text(target_bytes) + contacts;
+  }
+  return said + "; even its first and last frames pass " + bytes_text(target_bytes) + contacts;
 }
 
 void check_scene_limits(const Scene& scene, const std::vector<std::string>& origins,

@@ -29,9 +29,12 @@ SceneResources estimate_resources(const Scene& scene);
 // which tmdem check and tmdem run print: legal, but likely unmeant (an hour of heating at the
 // default output.interval of 0.1 s writes 36,002 frames: 21 GB for 20,000 spheres).
 inline constexpr double kWarnOutputBytes = 1.0e10;  // 10 GB
+inline constexpr double kTargetOutputBytes = 1.0e9;  // 1 GB: what the warning's interval gives
 // That warning (one sentence, no "warning: " prefix), with the output.interval (1, 2 or 5
-// times a power of ten) that brings the estimate to at most 1 GB; empty below kWarnOutputBytes.
-std::string large_output_warning(const Scene& scene);
+// times a power of ten) that brings the estimate to at most target_bytes, or, where the first
+// and last frames alone pass it, saying so; empty up to warn_bytes (arguments: for tests).
+std::string large_output_warning(const Scene& scene, double warn_bytes = kWarnOutputBytes,
+                                 double target_bytes = kTargetOutputBytes);
 
 // Throws SceneError ("SOURCE: KEY: ...") for the first limit the scene exceeds. `origins` names
 // each particle's entry ("particle[3]", "generate[0]") for the underflow message; may be empty.

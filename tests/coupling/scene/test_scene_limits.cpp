@@ -40,4 +40,23 @@ TEST(SceneLimits, AHugeOutputIsWarnedOfWithAnIntervalThatFitsAGigabyte) {
   EXPECT_TRUE(load_scene_text(kBaseScene, "t").warnings.empty());
 }
 
+// No interval helps a run whose first and last frames alone pass the target: the warning says
+// so instead of suggesting one. (Shown with the thresholds scaled down to the base scene's
+// few-kB output: a real case needs millions of particles.)
+TEST(SceneLimits, NoIntervalIsSuggestedWhenTheFirstAndLastFramesPassTheTarget) {
+  const Scene scene = load_scene_text(kBaseScene, "t", {"simulation.duration=0.1", "output.interval=0.1"});
+  const double bytes = estimate_resources(scene).output_bytes;  // 3 frames
+  EXPECT_TRUE(large_output_warning(scene, bytes, bytes / 10.0).empty());  // not past the warning
+  const std::string warning = large_output_warning(scene, bytes / 2.0, bytes / 10.0);
+  EXPECT_NE(warning.find("gives 3 frames of 2 particles"), std::string::npos) << warning;
+  EXPECT_NE(warning.find("even its first and last frames pass"), std::string::npos) << warning;
+  EXPECT_EQ(warning.find("gives at most"), std::string::npos) << warning;
+  // A run of 1,002 frames, with the thresholds at the same fractions of its own estimate, gets
+  // an interval.
+  const Scene longer = load_scene_text(kBaseScene, "t", {"simulation.duration=100.0", "output.interval=0.1"});
+  const double longer_bytes = estimate_resources(longer).output_bytes;
+  EXPECT_NE(large_output_warning(longer, longer_bytes / 2.0, longer_bytes / 10.0).find("s gives at most"),
+            std::string::npos);
+}
+
 }  // namespace tmdem::coupling::test

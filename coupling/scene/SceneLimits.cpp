@@ -51,11 +51,15 @@ constexpr double kXdmfWallBytes = 700.0;
 
 }  // namespace
 
-SceneResources estimate_resources(const Scene& scene) {
+namespace {
+
+// The estimate of the scene written every interval_s seconds (its own output.interval, or
+// another the large-output warning tries: no copy of the scene for it).
+SceneResources estimate_resources(const Scene& scene, double interval_s) {
   SceneResources r;
   const double n = static_cast<double>(scene.particles.size());
   // Frames at 0, interval, 2 interval, ... below the end, plus the end (CoupledRun).
-  r.frames = std::floor(scene.duration_s / scene.output.interval_s) + 2.0;
+  r.frames = std::floor(scene.duration_s / interval_s) + 2.0;
   if (scene.effects.mechanics == MechanicsMode::Dynamic)
     r.mechanics_steps = std::ceil(scene.duration_s / scene.mechanics.time_step_s);
   const bool frozen = scene.effects.mechanics == MechanicsMode::Off ||
@@ -81,6 +85,12 @@ SceneResources estimate_resources(const Scene& scene) {
   return r;
 }
 
+}  // namespace
+
+SceneResources estimate_resources(const Scene& scene) {
+  return estimate_resources(scene, scene.output.interval_s);
+}
+
 std::string large_output_warning(const Scene& scene, double warn_bytes, double target_bytes) {
   const SceneResources r = estimate_resources(scene);
   if (!(r.output_bytes > warn_bytes)) return {};
@@ -97,14 +107,12 @@ std::string large_output_warning(const Scene& scene, double warn_bytes, double t
   // estimate fits (the first and last frames do not shrink with the interval).
   const double wanted_s = scene.output.interval_s * r.output_bytes / target_bytes;
   const double decade = std::pow(10.0, std::floor(std::log10(wanted_s)));
-  Scene fitted = scene;
   for (int rung = 0; rung < 12; ++rung) {
     const double step[] = {1.0, 2.0, 5.0};
     const double suggested_s = step[rung % 3] * decade * std::pow(10.0, rung / 3);
     if (suggested_s < wanted_s) continue;
     if (suggested_s > scene.duration_s) break;  // only the first and last frames are left
-    fitted.output.interval_s = suggested_s;
-    if (estimate_resources(fitted).output_bytes <= target_bytes)
+    if (estimate_resources(scene, suggested_s).output_bytes <= target_bytes)
       return said + "; output.interval = " + number(suggested_s) + " s gives at most " +
              bytes_text(target_bytes) + contacts;
   }

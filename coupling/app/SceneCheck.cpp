@@ -86,7 +86,8 @@ void check_scene(const Scene& scene, std::ostream& out) {
       scene.effects.mechanics == MechanicsMode::Off && !scene.imported_forces.wall_gap.empty();
   const std::vector<mechanics::TouchingPair> touching =
       network_from_imports ? std::vector<mechanics::TouchingPair>{}
-                           : mechanics::find_touching_pairs(particles, make_mechanics_walls(scene), 1e-9);
+                           : mechanics::find_touching_pairs(particles, make_mechanics_walls(scene),
+                                                                           kRestingOverlapFraction);
   const StepTravel travel = estimate_step_travel(scene, touching);
   if (travel.resting_particles > 0)
     out << "mechanics: " << travel.resting_particles

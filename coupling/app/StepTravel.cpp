@@ -13,8 +13,6 @@
 namespace tmdem::coupling {
 namespace {
 
-constexpr double kRestingOverlapFraction = 1e-9;  // of the radius: the loader's wall tolerance
-
 double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 // Largest speed a piston reaches within `t` seconds (0 when it is pushed out of the domain).

@@ -64,9 +64,12 @@ struct StepTravel {
   }
 };
 
+// Touching at the start: within this fraction of the radius (the loader's wall tolerance).
+inline constexpr double kRestingOverlapFraction = 1e-9;
+
 // Zero travel when mechanics is off or nothing moves. `touching`: the pairs touching at the
-// start (mechanics::find_touching_pairs of the scene's particles and walls, 1e-9 of the
-// radius), for a caller that has them; the first form finds them itself.
+// start (mechanics::find_touching_pairs of the scene's particles and walls, within
+// kRestingOverlapFraction), for a caller that has them; the first form finds them itself.
 StepTravel estimate_step_travel(const Scene& scene);
 StepTravel estimate_step_travel(const Scene& scene, const std::vector<mechanics::TouchingPair>& touching);
 

@@ -84,6 +84,7 @@ void SpatialContactOrder::gather(const ContactProblem& problem, const std::vecto
   q.particle_count = n;
   q.rolling = problem.rolling;
   q.compliant = problem.compliant;
+  q.stop_speed = problem.stop_speed;
   q.inverse_mass.resize(bodies);
   q.inverse_inertia.resize(bodies);
   q.free_velocity.resize(bodies);

@@ -58,7 +58,42 @@ SolvedBoth solve_both(const ContactProblem& problem, const std::vector<Vector3d>
   return s;
 }
 
+// A solver that records the problem it is handed and leaves the reactions as they are.
+class ProblemSpy final : public ContactSolver {
+ public:
+  std::string_view name() const override { return "spy"; }
+  SolveReport solve_with_rolling(const ContactProblem& problem, std::vector<Vector3d>& r, std::vector<Vector3d>& m,
+                                 std::vector<Vector3d>& velocity, std::vector<Vector3d>& angular_velocity) override {
+    seen = problem;
+    problem.velocities_from_reactions(r, m, velocity, angular_velocity);
+    return {};
+  }
+  ContactProblem seen;
+};
+
 }  // namespace
+
+// The copy handed to the solver keeps the problem-wide settings, among them the stop test's cap
+// on loaded contacts (ContactProblem::stop_speed; the copy once left it at 0, so beds from
+// NscdParameters::spatial_order_from particles on were judged without it).
+TEST(SpatialContactOrder, OrderedCopyKeepsTheProblemWideSettings) {
+  const NscdIntegrator& sim = rolling_pile();
+  ContactProblem problem = sim.problem();
+  ASSERT_TRUE(problem.rolling);
+  problem.stop_speed = 0.25;
+  SpatialContactOrder order;
+  order.update(problem, sim.particles().position, 2.0 * kRadius);
+  ProblemSpy spy;
+  std::vector<Vector3d> r(problem.size(), Vector3d::Zero()), m = r, v, w;
+  order.solve(spy, problem, r, m, v, w);
+  EXPECT_EQ(spy.seen.stop_speed, 0.25);
+  EXPECT_EQ(spy.seen.rolling, problem.rolling);
+  EXPECT_EQ(spy.seen.compliant, problem.compliant);
+  EXPECT_EQ(spy.seen.dimension, problem.dimension);
+  EXPECT_EQ(spy.seen.particle_count, problem.particle_count);
+  EXPECT_EQ(spy.seen.split_axis, problem.split_axis);
+  EXPECT_EQ(spy.seen.size(), problem.size());
+}
 
 TEST(SpatialContactOrder, PermutesBodiesAndSortsContactsByThem) {
   const NscdIntegrator& sim = rolling_pile();

@@ -84,6 +84,10 @@ struct MechanicsSummary {
   // steps where it was above the tolerance in force.
   double max_siconos_residual = 0.0;
   std::int64_t siconos_unconverged_steps = 0;
+  // extra: the largest natural-map residual of the steps' reactions in the bodies' metric
+  // (each reaction against its own exact local solution, relative to the reactions): what the
+  // figure above does not see on light bodies (docs/mechanics.md "Honest convergence").
+  double max_natural_map_residual = 0.0;
   std::optional<ToleranceScheduleSummary> tolerance_schedule{};  // extra: with a fall_tolerance
 };
 inline constexpr std::tuple kMechanicsSummaryFields{
@@ -99,7 +103,8 @@ inline constexpr std::tuple kMechanicsSummaryFields{
     SummaryField{"piston_corrections", &MechanicsSummary::piston_corrections},
     SummaryField{"max_step_travel_m", &MechanicsSummary::max_step_travel_m},
     SummaryField{"max_siconos_residual", &MechanicsSummary::max_siconos_residual},
-    SummaryField{"siconos_unconverged_steps", &MechanicsSummary::siconos_unconverged_steps}};
+    SummaryField{"siconos_unconverged_steps", &MechanicsSummary::siconos_unconverged_steps},
+    SummaryField{"max_natural_map_residual", &MechanicsSummary::max_natural_map_residual}};
 
 // The "settle" block of a run with a settle phase (mechanics "settle" and "coupled"): how the
 // packing was frozen (RunSummary::settle for the others).

@@ -51,6 +51,7 @@ void CoupledRun::fill_summary() {
     summary_.mechanics.max_step_travel_m = ms.max_travel_m;
     summary_.mechanics.max_siconos_residual = ms.max_siconos_residual;
     summary_.mechanics.siconos_unconverged_steps = ms.siconos_unconverged_steps;
+    summary_.mechanics.max_natural_map_residual = ms.max_natural_map_residual;
     if (nscd_->tolerance_schedule().enabled()) {
       ToleranceScheduleSummary ts;
       ts.tolerance = scene_.mechanics.tolerance;

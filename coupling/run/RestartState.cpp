@@ -89,6 +89,7 @@ void store_mechanics_stats(const mechanics::MechanicsStats& s, CheckpointState& 
   cs.extra["mechanics_max_travel_m"] = s.max_travel_m;
   cs.extra["mechanics_max_siconos_residual"] = s.max_siconos_residual;
   cs.extra["mechanics_siconos_unconverged_steps"] = double(s.siconos_unconverged_steps);
+  cs.extra["mechanics_max_natural_map_residual"] = s.max_natural_map_residual;
   cs.extra["mechanics_energy_change_J"] = s.energy_change_J;
   cs.extra["mechanics_contact_dissipation_J"] = s.contact_dissipation_J;
   cs.extra["mechanics_numerical_dissipation_J"] = s.numerical_dissipation_J;
@@ -113,6 +114,7 @@ mechanics::MechanicsStats mechanics_stats_of(const CheckpointState& cs) {
   s.max_travel_m = extra_or_zero(cs, "mechanics_max_travel_m");
   s.max_siconos_residual = extra_or_zero(cs, "mechanics_max_siconos_residual");
   s.siconos_unconverged_steps = std::int64_t(extra_or_zero(cs, "mechanics_siconos_unconverged_steps"));
+  s.max_natural_map_residual = extra_or_zero(cs, "mechanics_max_natural_map_residual");
   s.energy_change_J = extra_or_zero(cs, "mechanics_energy_change_J");
   s.contact_dissipation_J = extra_or_zero(cs, "mechanics_contact_dissipation_J");
   s.numerical_dissipation_J = extra_or_zero(cs, "mechanics_numerical_dissipation_J");

@@ -13,6 +13,7 @@
 #include "mechanics/solvers/ContactSolverRegistry.h"
 #include "mechanics/contact/ContactKinematics.h"
 #include "mechanics/contact/CoulombCone.h"
+#include "mechanics/contact/NaturalMapResidual.h"
 #include "mechanics/contact/SiconosResidual.h"
 #include "mechanics/model/PairIndex.h"
 
@@ -331,6 +332,10 @@ StepReport NscdIntegrator::step(double h, bool landing_parts) {
   // (SiconosResidual.h): one pass over the candidates, before keep_in_plane trims anything.
   report.siconos_residual = siconos_residual(problem_, reactions_, rolling_impulse_, body_velocity_,
                                              body_angular_velocity_, free_velocity_norm(problem_));
+  report.natural_map_residual =
+      problem_.rolling
+          ? natural_map_residual(problem_, reactions_, rolling_impulse_, body_velocity_, body_angular_velocity_)
+          : natural_map_residual(problem_, reactions_, body_velocity_, body_angular_velocity_);
   // With the "siconos" stop test a step counts as converged when this residual is within the
   // tolerance in force, whatever the sweep test said (docs/mechanics.md "Honest convergence"):
   // a solve that ran out of sweeps or stalled on its sweep change with e within the tolerance

@@ -18,6 +18,7 @@ void MechanicsStats::add(const StepReport& report) {
   max_penetration_m = std::max(max_penetration_m, report.max_penetration_m);
   max_siconos_residual = std::max(max_siconos_residual, report.siconos_residual);
   if (report.siconos_residual > report.tolerance) ++siconos_unconverged_steps;
+  max_natural_map_residual = std::max(max_natural_map_residual, report.natural_map_residual);
   correction_sweeps += report.correction_sweeps;
   correction_potential_J += report.correction_potential_J;
   max_travel_m = std::max(max_travel_m, report.max_travel_m);
@@ -35,6 +36,7 @@ StepReport merged(const StepReport& first, const StepReport& second) {
   m.residual = std::max(first.residual, second.residual);
   m.converged = first.converged && second.converged;
   m.siconos_residual = std::max(first.siconos_residual, second.siconos_residual);
+  m.natural_map_residual = std::max(first.natural_map_residual, second.natural_map_residual);
   m.fall = first.fall || second.fall;
   m.stalled = first.stalled || second.stalled;
   m.correction_sweeps = first.correction_sweeps + second.correction_sweeps;

@@ -17,6 +17,12 @@ struct StepReport {
   // Siconos' residual of the step's reactions relative to ||q|| (SiconosResidual.h), whatever
   // the solver's own stop test: the figure another code would report for the step.
   double siconos_residual = 0.0;
+  // The natural-map residual in the bodies' metric (NaturalMapResidual.h: each reaction against
+  // its own exact local solution, relative to the reactions). It sees what siconos_residual
+  // does not: with rho = 1 an impulse defect counts in N s beside velocities in m/s, so on
+  // light bodies a reaction outside its cone barely moves that figure (docs/mechanics.md
+  // "Honest convergence"); it misses what that one sees, a slowly contracting solve.
+  double natural_map_residual = 0.0;
   bool fall = false;               // solved at mechanics.fall_tolerance (the particles falling)
   bool stalled = false;            // the solver gave up early: no progress (not converged)
   int correction_sweeps = 0;       // penetration correction (PenetrationCorrection.h); 0: none
@@ -66,6 +72,7 @@ struct MechanicsStats {
   // above the tolerance in force (whether or not the solver's own test passed).
   double max_siconos_residual = 0.0;
   std::int64_t siconos_unconverged_steps = 0;
+  double max_natural_map_residual = 0.0;  // the largest StepReport::natural_map_residual
   std::int64_t correction_sweeps = 0;  // sum of the steps' correction_sweeps
   // Steps taken as two halves because particles could move apart across the periods by more
   // than the periods allow (NscdIntegrator::step); each half counts in `steps`.

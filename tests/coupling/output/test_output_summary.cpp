@@ -70,13 +70,14 @@ TEST(RunSummary, JsonHasEveryContractKey) {
   EXPECT_EQ(j.size(), 8u);
   // The contract's 5 mechanics keys plus the extras stalled_steps, correction_sweeps,
   // halved_steps, landing_halved_steps, piston_corrections, max_step_travel_m,
-  // max_siconos_residual and siconos_unconverged_steps.
-  EXPECT_EQ(j["mechanics"].size(), 13u);
+  // max_siconos_residual, siconos_unconverged_steps and max_natural_map_residual.
+  EXPECT_EQ(j["mechanics"].size(), 14u);
   EXPECT_TRUE(j["mechanics"]["piston_corrections"].is_number_integer());
   EXPECT_TRUE(j["mechanics"]["halved_steps"].is_number_integer());
   EXPECT_TRUE(j["mechanics"]["landing_halved_steps"].is_number_integer());
   EXPECT_TRUE(j["mechanics"]["max_siconos_residual"].is_number());
   EXPECT_TRUE(j["mechanics"]["siconos_unconverged_steps"].is_number_integer());
+  EXPECT_TRUE(j["mechanics"]["max_natural_map_residual"].is_number());
   EXPECT_TRUE(j["mechanics"]["stalled_steps"].is_number_integer());
   EXPECT_TRUE(j["mechanics"]["correction_sweeps"].is_number_integer());
   EXPECT_TRUE(j["mechanics"]["max_step_travel_m"].is_number());
@@ -223,6 +224,7 @@ TEST(RunSummary, CorrectionAndTravelRoundTrip) {
   s.mechanics.max_step_travel_m = 7.0e-4;
   s.mechanics.max_siconos_residual = 1.1e-4;
   s.mechanics.siconos_unconverged_steps = 12;
+  s.mechanics.max_natural_map_residual = 3.5e-5;
   tmdem::coupling::MechanicalEnergySummary m;
   m.energy_change_J = -2.0;
   m.contact_dissipation_J = 2.0;
@@ -238,6 +240,8 @@ TEST(RunSummary, CorrectionAndTravelRoundTrip) {
   EXPECT_EQ(r.mechanics.correction_sweeps, 50655);
   EXPECT_EQ(r.mechanics.max_siconos_residual, 1.1e-4);
   EXPECT_EQ(r.mechanics.siconos_unconverged_steps, 12);
+  EXPECT_EQ(j["mechanics"]["max_natural_map_residual"].get<double>(), 3.5e-5);
+  EXPECT_EQ(r.mechanics.max_natural_map_residual, 3.5e-5);
   ASSERT_TRUE(r.energy.mechanical.has_value());
   EXPECT_EQ(r.energy.mechanical->correction_potential_J, 3.25e-8);
   EXPECT_EQ(r.to_json(), s.to_json());

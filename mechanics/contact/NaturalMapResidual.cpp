@@ -8,8 +8,9 @@ namespace {
 
 // An open candidate that stays open (r_c = 0, u_n >= 0): its local solution is 0 (and so its
 // rolling one), so it adds nothing to either sum (up to the round-off of the spins' lever terms
-// in the full local velocity, which are perpendicular to n). Most candidates of a look-ahead detection are such;
-// the test reads the normal velocity alone (GaussSeidelUpdate.h skips them the same way).
+// in the full local velocity, which are perpendicular to n). Most candidates of a look-ahead
+// detection are such; the test reads the normal velocity alone (GaussSeidelUpdate.h skips them
+// the same way).
 bool open_and_opening(const ContactProblem& problem, std::size_t c, const Eigen::Vector3d& r_c,
                       const std::vector<Eigen::Vector3d>& velocity) {
   return r_c[0] == 0.0 && r_c[1] == 0.0 && r_c[2] == 0.0 && !(normal_velocity(problem, c, velocity) < 0.0);

@@ -135,11 +135,14 @@ TEST(SiconosResidual, IntegratorReportsItBesideTheSolversVerdict) {
   EXPECT_EQ(slow.stats().siconos_unconverged_steps, 1);
   EXPECT_GT(slow.stats().max_siconos_residual, 10.0 * slow.parameters().tolerance);
   // The bodies'-metric natural map is reported beside it, the figure of the step's own reactions.
+  // It is the Jacobi form of the sweep test and misses the slow contraction as that test does
+  // (measured 9.8e-6 where e is 1.4e-2): the two figures are read together.
   std::vector<Vector3d> v, w;
   slow.problem().velocities_from_reactions(slow.reactions(), v, w);
   EXPECT_NEAR(slow.stats().max_natural_map_residual, natural_map_residual(slow.problem(), slow.reactions(), v, w),
               1e-9 * slow.stats().max_natural_map_residual);
   EXPECT_GT(slow.stats().max_natural_map_residual, 0.0);
+  EXPECT_LT(slow.stats().max_natural_map_residual, 2.0 * slow.parameters().tolerance);
   // Solved to 1e-12 by the sweep test, the same step is at 1.4e-9 in Siconos' measure (measured):
   // the factor of ~1,000 between the two measures holds at any tolerance on this column. (An
   // equal-mass column of three at 1e-5 shows 3e-5: not only mass ratios make the gap.)

@@ -4,26 +4,14 @@
 
 namespace tmdem::mechanics {
 
-namespace {
-
-// An open candidate that stays open (r_c = 0, u_n >= 0): its local solution is 0 (and so its
-// rolling one), so it adds nothing to either sum (up to the round-off of the spins' lever terms
-// in the full local velocity, which are perpendicular to n). Most candidates of a look-ahead
-// detection are such; the test reads the normal velocity alone (GaussSeidelUpdate.h skips them
-// the same way).
-bool open_and_opening(const ContactProblem& problem, std::size_t c, const Eigen::Vector3d& r_c,
-                      const std::vector<Eigen::Vector3d>& velocity) {
-  return r_c[0] == 0.0 && r_c[1] == 0.0 && r_c[2] == 0.0 && !(normal_velocity(problem, c, velocity) < 0.0);
-}
-
-}  // namespace
-
 double natural_map_residual(const ContactProblem& problem, const std::vector<Eigen::Vector3d>& r,
                             const std::vector<Eigen::Vector3d>& velocity,
                             const std::vector<Eigen::Vector3d>& angular_velocity) {
   double defect = 0.0, total = 0.0;
   for (std::size_t c = 0; c < problem.size(); ++c) {
-    if (!problem.solvable(c) || open_and_opening(problem, c, r[c], velocity)) continue;
+    // An open candidate that stays open adds nothing (up to the round-off of the spins' lever
+    // terms in the full local velocity, which are perpendicular to n).
+    if (!problem.solvable(c) || stays_open(problem, c, r[c], velocity)) continue;
     const Eigen::Vector3d next =
         local_law_solution(problem, c, r[c], local_velocity<Eigen::Vector3d>(problem, c, velocity, angular_velocity));
     defect += (next - r[c]).norm();
@@ -39,7 +27,7 @@ double natural_map_residual(const ContactProblem& problem, const std::vector<Eig
   if (!problem.rolling) return natural_map_residual(problem, r, velocity, angular_velocity);
   double defect = 0.0, total = 0.0;
   for (std::size_t c = 0; c < problem.size(); ++c) {
-    if (!problem.solvable(c) || (m[c].isZero(0.0) && open_and_opening(problem, c, r[c], velocity))) continue;
+    if (!problem.solvable(c) || (m[c].isZero(0.0) && stays_open(problem, c, r[c], velocity))) continue;
     const Eigen::Vector3d next =
         local_law_solution(problem, c, r[c], local_velocity<Eigen::Vector3d>(problem, c, velocity, angular_velocity));
     const Eigen::Vector3d next_m = local_rolling_solution(

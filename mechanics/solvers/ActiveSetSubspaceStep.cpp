@@ -26,21 +26,6 @@ std::int32_t slot_of(const Eigen::SparseMatrix<double>& matrix, int row, int col
 
 ActiveSetSubspaceStep::ActiveSetSubspaceStep(const Options& options) : options_(options) {}
 
-double ActiveSetSubspaceStep::merit(const ContactProblem& problem, const std::vector<Eigen::Vector3d>& r,
-                                        const std::vector<Eigen::Vector3d>& velocity,
-                                        const std::vector<Eigen::Vector3d>& angular_velocity) {
-  double defect = 0.0, total = 0.0;
-  for (std::size_t c = 0; c < problem.size(); ++c) {
-    if (!problem.solvable(c)) continue;
-    if (r[c].isZero(0.0) && !(normal_velocity(problem, c, velocity) < 0.0)) continue;  // stays open
-    const Eigen::Vector3d u = local_velocity<Eigen::Vector3d>(problem, c, velocity, angular_velocity);
-    const Eigen::Vector3d next = local_law_solution(problem, c, r[c], u);
-    defect += (r[c] - next).norm();
-    total += next.norm();
-  }
-  return natural_map_ratio(defect, total);
-}
-
 bool ActiveSetSubspaceStep::classify(const ContactProblem& problem, const std::vector<Eigen::Vector3d>& r,
                                      const std::vector<Eigen::Vector3d>& velocity) {
   const std::int32_t stick_size = problem.dimension == 2 ? 2 : 3;
@@ -181,7 +166,7 @@ bool ActiveSetSubspaceStep::take(const ContactProblem& problem, std::vector<Eige
   saved_r_.assign(r.begin(), r.end());
   saved_v_.assign(velocity.begin(), velocity.end());
   saved_w_.assign(angular_velocity.begin(), angular_velocity.end());
-  const double before = merit(problem, r, velocity, angular_velocity);
+  const double before = natural_map_residual(problem, r, velocity, angular_velocity);
   double best = before;
   const bool planar = problem.dimension == 2;
   for (int pass = 0; pass < options_.active_passes; ++pass) {
@@ -244,7 +229,7 @@ bool ActiveSetSubspaceStep::take(const ContactProblem& problem, std::vector<Eige
         apply_impulse(problem, c, change, velocity, angular_velocity);
         r[c] = next;
       }
-      const double after = merit(problem, r, velocity, angular_velocity);
+      const double after = natural_map_residual(problem, r, velocity, angular_velocity);
       if (after < best) {
         best = after;
         improved = true;

@@ -87,10 +87,6 @@ class ActiveSetSubspaceStep {
   // Calls emit(row, col, value) for every lower-triangle contribution to W_AA, in a fixed order.
   template <class Emit>
   void for_each_contribution(const ContactProblem& problem, Emit&& emit) const;
-  // The natural-map residual without the rolling blocks (NaturalMapResidual.h).
-  static double merit(const ContactProblem& problem, const std::vector<Eigen::Vector3d>& r,
-                      const std::vector<Eigen::Vector3d>& velocity,
-                      const std::vector<Eigen::Vector3d>& angular_velocity);
 
   Options options_;
   // The active set: contacts, their first unknown and number of unknowns (3 or 2 in 2D:

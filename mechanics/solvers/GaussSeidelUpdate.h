@@ -95,9 +95,8 @@ inline ContactUpdate gauss_seidel_rolling_update(const ContactProblem& problem, 
                                         std::vector<Eigen::Vector3d>& m,
                                         std::vector<Eigen::Vector3d>& velocity,
                                         std::vector<Eigen::Vector3d>& angular_velocity) {
-  if (rc[0] == 0.0 && rc[1] == 0.0 && rc[2] == 0.0 &&
-      (!problem.rolling || (m[c][0] == 0.0 && m[c][1] == 0.0 && m[c][2] == 0.0)) &&
-      !(normal_velocity(problem, c, velocity) < 0.0)) {
+  if ((!problem.rolling || (m[c][0] == 0.0 && m[c][1] == 0.0 && m[c][2] == 0.0)) &&
+      stays_open(problem, c, rc, velocity)) {
     return {};
   }
   ContactUpdate u = gauss_seidel_update(problem, c, relaxation, rc, velocity, angular_velocity);

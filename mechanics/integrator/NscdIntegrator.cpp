@@ -332,10 +332,9 @@ StepReport NscdIntegrator::step(double h, bool landing_parts) {
   // (SiconosResidual.h): one pass over the candidates, before keep_in_plane trims anything.
   report.siconos_residual = siconos_residual(problem_, reactions_, rolling_impulse_, body_velocity_,
                                              body_angular_velocity_, free_velocity_norm(problem_));
+  // (The form with rolling impulses reads them only when the problem has rolling resistance.)
   report.natural_map_residual =
-      problem_.rolling
-          ? natural_map_residual(problem_, reactions_, rolling_impulse_, body_velocity_, body_angular_velocity_)
-          : natural_map_residual(problem_, reactions_, body_velocity_, body_angular_velocity_);
+      natural_map_residual(problem_, reactions_, rolling_impulse_, body_velocity_, body_angular_velocity_);
   // With the "siconos" stop test a step counts as converged when this residual is within the
   // tolerance in force, whatever the sweep test said (docs/mechanics.md "Honest convergence"):
   // a solve that ran out of sweeps or stalled on its sweep change with e within the tolerance

@@ -1,6 +1,7 @@
 #include "mechanics/solvers/InteriorPointSolver.h"
 
 #include "mechanics/solvers/InteriorPointFactor.h"
+#include "mechanics/solvers/SerialBlas.h"
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
@@ -240,6 +241,8 @@ SolveReport InteriorPointSolver::solve_with_rolling(const ContactProblem& proble
     report.converged = true;
     return report;
   }
+  // The factorisations' BLAS on one thread: the same bits for any OMP_NUM_THREADS (SerialBlas.h).
+  const SerialBlas serial_blas;
   set_up(problem);
   start(problem, r, velocity, angular_velocity);
   const int limit = std::min(options_.max_iterations, settings_.max_iterations);

@@ -5,28 +5,28 @@
 namespace tmdem::mechanics {
 namespace {
 
-using GetThreads = int (*)();
-using SetThreads = void (*)(int);
-
-// OpenBLAS's own calls, when the process's BLAS is OpenBLAS (looked up once).
-GetThreads openblas_get() {
-  static const auto get = reinterpret_cast<GetThreads>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
-  return get;
-}
-SetThreads openblas_set() {
-  static const auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
-  return set;
+// OpenBLAS's own calls, looked up once; both null when the process's BLAS is not OpenBLAS.
+struct OpenBlasThreads {
+  int (*get)() = nullptr;
+  void (*set)(int) = nullptr;
+};
+const OpenBlasThreads& openblas() {
+  static const OpenBlasThreads calls = [] {
+    OpenBlasThreads found;
+    found.get = reinterpret_cast<int (*)()>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+    found.set = reinterpret_cast<void (*)(int)>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+    if (found.get == nullptr || found.set == nullptr) found = {};
+    return found;
+  }();
+  return calls;
 }
 
 }  // namespace
 
-int SerialBlas::threads() {
-  const GetThreads get = openblas_get();
-  return get != nullptr && openblas_set() != nullptr ? get() : 0;
-}
+int SerialBlas::threads() { return openblas().get != nullptr ? openblas().get() : 0; }
 
 void SerialBlas::set_threads(int count) {
-  if (const SetThreads set = openblas_set(); set != nullptr && openblas_get() != nullptr) set(count);
+  if (openblas().set != nullptr) openblas().set(count);
 }
 
 SerialBlas::SerialBlas() : before_(threads()) {

@@ -201,7 +201,8 @@ std::vector<Section> build_sections() {
                number("overlap_tolerance", "", 1.0e-9, Range::closed(0.0, 0.5),
                       "overlap accepted between two particles of this import, and between one "
                       "of them and a wall, as a fraction of the smaller radius (settled packings "
-                      "overlap slightly); the largest found is reported"),
+                      "overlap slightly); the largest found is reported, and a file refused names its deepest "
+                      "overlap and a tolerance that accepts it"),
                choice("overlaps", "hold", {"hold", "push_out"},
                       "what the mechanics makes of the overlaps accepted: \"hold\": they are the "
                       "packing's (a bed made at a softened modulus, as LIGGGHTS makes them), so the "

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "coupling/scene/SceneBuilder.h"
@@ -37,6 +38,21 @@ std::string allowance(const Scene& scene, int group) {
   return "more than " + report.origin + ".overlap_tolerance = " +
          format_number(report.overlap_tolerance) +
          " of the smaller radius; raise it to accept the overlaps of a settled packing";
+}
+
+// What an import's tolerance must be to accept every overlap of its file (pairs and walls; the
+// largest noted over both), rounded up to two significant digits, so that a user handed a
+// packing made at a softened modulus need not guess: "" outside an import.
+std::string needed_tolerance(const Scene& scene, int group) {
+  if (group < 0) return "";
+  const ImportReport& report = scene.imports[std::size_t(group)];
+  if (!(report.largest_overlap > 0.0)) return "";
+  const double scale = std::pow(10.0, std::floor(std::log10(report.largest_overlap)) - 1.0);
+  double accepting = std::ceil(report.largest_overlap / scale) * scale;
+  if (accepting < report.largest_overlap) accepting += scale;  // the rounding of the product
+  return "; the deepest overlap of " + report.origin + " is " + format_number(report.largest_overlap) +
+         " of the smaller radius (" + report.largest_overlap_between + "): overlap_tolerance = " +
+         format_number(accepting) + " accepts every overlap of the file";
 }
 
 // What to do about particle i overlapping wall w at start, when a [[generate]] box placed it:
@@ -93,18 +109,13 @@ void check_overlaps(Scene& scene, const std::vector<std::string>& origins,
       ++refused_count;
     }
   }
-  if (refused != nullptr) {
-    const auto a = static_cast<std::size_t>(refused->i);
-    const auto b = static_cast<std::size_t>(refused->j);
-    std::string more;
-    if (refused_count > 1)
-      more = " (" + std::to_string(refused_count) + " overlapping pairs in all)";
-    throw SceneError(source + ": particles " + std::to_string(a) + " and " +
-                     std::to_string(b) + " overlap at start (gap " +
-                     format_number(refused->gap_m) + " m, " + allowance(scene, group_of(a, b)) +
-                     ")" + more + ": " + describe_particle(scene, origins, a) + "; " +
-                     describe_particle(scene, origins, b));
-  }
+  // The walls before any refusal, so that an import's deepest overlap (needed_tolerance) is
+  // known over its pairs and its walls alike; the first refused of each kind is reported.
+  struct WallOverlap {
+    std::size_t wall, particle;
+    double gap_m;
+  };
+  std::optional<WallOverlap> refused_wall;
   for (std::size_t w = 0; w < scene.walls.size(); ++w) {
     const Wall& wall = scene.walls[w];
     for (std::size_t i = 0; i < scene.particles.size(); ++i) {
@@ -114,14 +125,30 @@ void check_overlaps(Scene& scene, const std::vector<std::string>& origins,
       const int group = import_of[i];
       note_overlap(scene, group, -gap / p.radius_m, gap,
                    "particle " + std::to_string(i) + " and wall[" + std::to_string(w) + "]");
-      if (gap < -tolerance(group) * p.radius_m)
-        throw SceneError(source + ": particle " + std::to_string(i) + " and wall[" +
-                         std::to_string(w) + "] overlap at start (gap " + format_number(gap) +
-                         " m; the wall normal points into the domain" +
-                         (group < 0 ? "" : "; " + allowance(scene, group)) + "): " +
-                         describe_particle(scene, origins, i) +
-                         generated_overlap_hint(scene, origins[i], w, i));
+      if (gap < -tolerance(group) * p.radius_m && !refused_wall) refused_wall = WallOverlap{w, i, gap};
     }
+  }
+  if (refused != nullptr) {
+    const auto a = static_cast<std::size_t>(refused->i);
+    const auto b = static_cast<std::size_t>(refused->j);
+    std::string more;
+    if (refused_count > 1)
+      more = " (" + std::to_string(refused_count) + " overlapping pairs in all)";
+    throw SceneError(source + ": particles " + std::to_string(a) + " and " +
+                     std::to_string(b) + " overlap at start (gap " +
+                     format_number(refused->gap_m) + " m, " + allowance(scene, group_of(a, b)) +
+                     needed_tolerance(scene, group_of(a, b)) + ")" + more + ": " +
+                     describe_particle(scene, origins, a) + "; " + describe_particle(scene, origins, b));
+  }
+  if (refused_wall) {
+    const auto [w, i, gap] = *refused_wall;
+    const int group = import_of[i];
+    throw SceneError(source + ": particle " + std::to_string(i) + " and wall[" + std::to_string(w) +
+                     "] overlap at start (gap " + format_number(gap) +
+                     " m; the wall normal points into the domain" +
+                     (group < 0 ? "" : "; " + allowance(scene, group) + needed_tolerance(scene, group)) +
+                     "): " + describe_particle(scene, origins, i) +
+                     generated_overlap_hint(scene, origins[i], w, i));
   }
 }
 

@@ -220,6 +220,24 @@ TEST_F(SceneImport, OverlapToleranceAcceptsThePackingsOwnOverlapsAndReportsTheLa
   EXPECT_NEAR(s.imports[0].largest_overlap, 0.02, 1e-12);
   EXPECT_NEAR(s.imports[0].largest_overlap_m, 1e-5, 1e-17);
   EXPECT_EQ(s.imports[0].largest_overlap_between, "particles 3 and 4");
+  // The refusal names the deepest overlap of the file and a tolerance that accepts it, which
+  // does: a user handed a packing made at a softened modulus need not guess.
+  const std::string refused = scene_error(scene({{"file", csv}}));
+  EXPECT_NE(refused.find("the deepest overlap of import[0] is 0.02"), std::string::npos) << refused;
+  EXPECT_NE(refused.find("(particles 3 and 4)"), std::string::npos) << refused;
+  const std::string key = "overlap_tolerance = ";
+  const std::size_t at = refused.find(key, refused.find("the deepest overlap"));
+  ASSERT_NE(at, std::string::npos) << refused;
+  const double suggested = std::stod(refused.substr(at + key.size()));
+  EXPECT_GE(suggested, 0.02);
+  EXPECT_LE(suggested, 0.021);
+  EXPECT_NO_THROW(load_scene_text(scene({{"file", csv}, {"overlap_tolerance", suggested}}), "test.toml"));
+  // The same when the deepest overlap is a wall's: the base scene's floor at y = 0 cuts a
+  // sphere of radius 1 mm by 0.03 of its radius.
+  const auto floor = file("f.csv", "x,y,z,radius,material\n0.010,0.00097,0,0.001,steel\n");
+  const std::string wall_refused = scene_error(scene({{"file", floor}}));
+  EXPECT_NE(wall_refused.find("and wall["), std::string::npos) << wall_refused;
+  EXPECT_NE(wall_refused.find("overlap_tolerance = 0.03 accepts every overlap"), std::string::npos) << wall_refused;
   // The tolerance is the import's own: its particles may not overlap the scene's others.
   const auto onto = file("onto.csv", "x,y,z,radius,material\n0.00199,0.001,0,0.001,steel\n");
   expect_scene_error(scene({{"file", onto}, {"overlap_tolerance", 0.1}}),

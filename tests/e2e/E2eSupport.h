@@ -31,13 +31,14 @@ struct ProgramResult {
 
 // `environment`: "VAR=value ..." for env(1) (e.g. "-u DISPLAY"), empty for the test's own.
 // `launcher`: a command that starts the program (e.g. "mpirun -np 2"), empty for none.
-inline ProgramResult run_tmdem(const std::string& args, const std::string& workdir,
-                               const std::string& environment = "",
-                               const std::string& launcher = "") {
-  const std::string log = workdir + "/tmdem.log";
+// tmdem started in `cwd` (relative paths in a scene are relative to it: the contract), its
+// output logged in log_dir.
+inline ProgramResult run_tmdem_from(const std::string& args, const std::string& cwd, const std::string& log_dir,
+                                    const std::string& environment = "", const std::string& launcher = "") {
+  const std::string log = log_dir + "/tmdem.log";
   const std::string program = (environment.empty() ? "" : "env " + environment + " ") +
                               (launcher.empty() ? "" : launcher + " ") + "'" + TMDEM_BINARY + "'";
-  const std::string cmd = "cd '" + workdir + "' && " + program + " " + args + " > '" + log + "' 2>&1";
+  const std::string cmd = "cd '" + cwd + "' && " + program + " " + args + " > '" + log + "' 2>&1";
   const int status = std::system(cmd.c_str());
   ProgramResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -46,6 +47,11 @@ inline ProgramResult run_tmdem(const std::string& args, const std::string& workd
   ss << in.rdbuf();
   r.output = ss.str();
   return r;
+}
+
+inline ProgramResult run_tmdem(const std::string& args, const std::string& workdir,
+                               const std::string& environment = "", const std::string& launcher = "") {
+  return run_tmdem_from(args, workdir, workdir, environment, launcher);
 }
 
 // A fresh empty folder per test, removed once the test passes (support/ScratchDir.h).

@@ -3,29 +3,26 @@
 #include <cfloat>
 #include <cmath>
 
+#include "mechanics/contact/BlockedSum.h"
 #include "mechanics/contact/ContactKinematics.h"
 #include "mechanics/contact/CoulombCone.h"
 
 namespace tmdem::mechanics {
 
 double free_velocity_norm(const ContactProblem& problem) {
-  double sum = 0.0;
-  for (std::size_t c = 0; c < problem.size(); ++c) {
-    if (!problem.solvable(c)) continue;
-    sum += local_velocity<Eigen::Vector3d>(problem, c, problem.free_velocity,
-                                           problem.free_angular_velocity)
+  return std::sqrt(blocked_sum<double>(problem.size(), [&](std::size_t c, double& sum) {
+    if (!problem.solvable(c)) return;
+    sum += local_velocity<Eigen::Vector3d>(problem, c, problem.free_velocity, problem.free_angular_velocity)
                .squaredNorm();
-  }
-  return std::sqrt(sum);
+  }));
 }
 
 double siconos_residual(const ContactProblem& problem, const std::vector<Eigen::Vector3d>& r,
                         const std::vector<Eigen::Vector3d>& m,
                         const std::vector<Eigen::Vector3d>& velocity,
                         const std::vector<Eigen::Vector3d>& angular_velocity, double q_norm) {
-  double sum = 0.0;
-  for (std::size_t c = 0; c < problem.size(); ++c) {
-    if (!problem.solvable(c)) continue;
+  const double squared = blocked_sum<double>(problem.size(), [&](std::size_t c, double& sum) {
+    if (!problem.solvable(c)) return;
     Eigen::Vector3d u = local_velocity<Eigen::Vector3d>(problem, c, velocity, angular_velocity);
     if (problem.compliant) u[0] += problem.compliance[c] * r[c][0];  // (W r + q)_n of W + C
     const double slip = std::hypot(u[1], u[2]);
@@ -44,8 +41,8 @@ double siconos_residual(const ContactProblem& problem, const std::vector<Eigen::
       if (size > limit) y *= (size > 0.0 ? limit / size : 0.0);
       sum += (mc - y).squaredNorm();
     }
-  }
-  const double e = std::sqrt(sum);
+  });
+  const double e = std::sqrt(squared);
   return q_norm > DBL_EPSILON ? e / q_norm : e;
 }
 

@@ -44,13 +44,14 @@ inline std::vector<Wall> box_walls(double width, double depth, int dimension) {
   return walls;
 }
 
-// `count` spheres dropped at random in a box of walls (two radii), ready to settle.
+// `count` spheres dropped at random in a box of walls (two radii), ready to settle; `scale`
+// widens and heightens the box for more spheres.
 inline NscdIntegrator random_pile(std::size_t count, int dimension, double friction,
                                   std::uint64_t seed, NscdParameters parameters = nlgs_parameters(),
-                                  double rolling_friction = 0.0) {
+                                  double rolling_friction = 0.0, double scale = 1.0) {
   // Wide, shallow boxes: a few layers once settled (Gauss-Seidel cost grows with depth).
-  const double width = dimension == 3 ? 0.016 : 0.06;
-  const double height = dimension == 3 ? 0.012 : 0.02;
+  const double width = (dimension == 3 ? 0.016 : 0.06) * scale;
+  const double height = (dimension == 3 ? 0.012 : 0.02) * scale;
   const Eigen::Vector3d lo(0, 0, dimension == 3 ? 0.0 : 0.0);
   const Eigen::Vector3d hi(width, height, dimension == 3 ? width : 0.0);
   const auto placed = place_random(count, lo, hi, {kRadius, 0.7 * kRadius}, {0.5, 0.5}, seed,

@@ -60,11 +60,11 @@ class FallbackContactSolver final : public ContactSolver {
     if (kept.converged || !(kept_residual <= near_miss_residual_)) return kept;
     ++near_misses_;
     run_from_kept(*first_, problem, r, m, velocity, angular_velocity, q_norm, kept, kept_residual);
-    // Within the tolerance of Siconos' residual already (the sweep test alone unmet): the step
-    // counts as converged by that measure, and plain sweeps, which do not lower it
-    // monotonically, could only take it out again.
-    if (kept.converged || !polisher_ || !(kept_residual <= near_miss_residual_) || kept_residual <= tolerance_)
-      return kept;
+    // Still a near miss: run_from_kept never raises kept_residual. Within the tolerance of
+    // Siconos' residual already (the sweep test alone unmet), the step counts as converged by
+    // that measure, and plain sweeps, which do not lower it monotonically, could only take it
+    // out again.
+    if (kept.converged || !polisher_ || kept_residual <= tolerance_) return kept;
     polish(problem, r, m, velocity, angular_velocity, q_norm, kept, kept_residual);
     return kept;
   }

@@ -47,6 +47,7 @@ NscdParameters schedule(double tolerance, double fall_tolerance, double fall_spe
   p.tolerance = tolerance;
   p.fall_tolerance = fall_tolerance;
   p.fall_speed = fall_speed;
+  p.tighten_steps = 1;  // the switch at once; the ramp has tests of its own (tighten_steps > 1)
   return p;
 }
 

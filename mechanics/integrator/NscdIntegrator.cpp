@@ -186,6 +186,10 @@ void NscdIntegrator::set_piston_load(std::size_t wall, double load_N) {
   require(wall < walls_.size() && walls_[wall].moves(),
           "wall " + std::to_string(wall) + " is not a piston");
   require(std::isfinite(load_N), "wall " + std::to_string(wall) + ": piston load must be finite");
+  // A landed bed given a new load compacts as after a landing: the tolerance ramps again
+  // (ToleranceSchedule::ramp_again_from). Through piston_cylinder's study the 1e4 Pa load
+  // began with steps stalled just above 1e-5 (docs/mechanics.md "A tolerance schedule").
+  if (load_N != walls_[wall].load_N) schedule_.ramp_again_from(stats_.steps + 1);
   walls_[wall].load_N = load_N;
 }
 

@@ -24,7 +24,8 @@
 // With tighten_steps N > 1 the landed steps j = 1, 2, ... (j = 1: the first one) use
 // fall_tolerance (tolerance / fall_tolerance)^(j / N) until j = N reaches `tolerance`: the
 // first step at 1e-5 after 1e-4 took 577-2,000+ sweeps on the 2,000 pour (docs/mechanics.md "A tolerance
-// schedule"), and a geometric ramp spreads that work over N steps.
+// schedule"), and a geometric ramp spreads that work over N steps. A landed bed given a new
+// piston load ramps again from fall_tolerance (ramp_again_from): it compacts as after a landing.
 #include <cstdint>
 
 namespace tmdem::mechanics {
@@ -59,6 +60,13 @@ class ToleranceSchedule {
   // The first step after the fall (0: not landed yet); `tolerance` from landed_step() +
   // tighten_steps - 1 on.
   std::int64_t landed_step() const { return state_.landed_step; }
+
+  // A landed bed given a new load (a piston's: NscdIntegrator::set_piston_load) compacts again
+  // as after a landing: the ramp starts again from fall_tolerance at step `step` (1-based).
+  // Nothing before the landing, nor with tighten_steps 1.
+  void ramp_again_from(std::int64_t step) {
+    if (state_.phase == Phase::Landed && tighten_steps_ > 1) state_.landed_step = step;
+  }
 
   const State& state() const { return state_; }
   void restore(const State& state) { state_ = state; }

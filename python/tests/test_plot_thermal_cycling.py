@@ -1,7 +1,8 @@
 # examples/thermal_cycling.toml, shortened to 100 s (two couplings), and
 # examples/plot_thermal_cycling.py on its result file: the walls' forces the script sums from
 # the result file's contacts are the summary's at the last frame, the lid carries its load
-# (pressure x area + weight) at every frame, and the plot is a PNG.
+# (pressure x area + weight) at every frame, within what the rest test allows, and the plot is
+# a PNG.
 import importlib.util
 import json
 import subprocess
@@ -29,8 +30,12 @@ def test_wall_forces_of_a_short_cycling_run(tmp_path, source_dir, tmdem_binary):
     last = summary["thermo_mechanics"]["last_wall_force_N"]
     assert all(abs(a - b) <= 1e-9 * max(1.0, abs(b)) for a, b in zip(forces[-1], last))
     lid_load = 1.0e4 * 1.44e-4 + 0.05 * 9.81  # N: pressure x area + the lid's weight
+    # At rest the lid is slower than settle_velocity (1e-4 m/s) on either side of the step, so
+    # its contacts carry its load within the change of momentum that allows: 2 m v / h =
+    # 2 x 0.05 kg x 1e-4 m/s / 1e-3 s = 0.01 N (0.5% of the load; the runs give 0.02-0.12%).
+    lid_bound = 2.0 * 0.05 * 1.0e-4 / 1.0e-3
     for f in forces[:, 5]:
-        assert abs(f - lid_load) < 1e-3 * lid_load
+        assert abs(f - lid_load) < lid_bound
     assert abs(height[-1] - summary["thermo_mechanics"]["last_wall_point_m"][17]) < 1e-15
     out = subprocess.run([sys.executable, str(source_dir / "examples" / "plot_thermal_cycling.py"),
                           str(tmp_path / "c.h5"), "--lid", "5", "--period", "50",

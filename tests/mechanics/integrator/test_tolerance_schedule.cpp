@@ -117,6 +117,47 @@ TEST(ToleranceSchedule, TightensGeometricallyOverTightenSteps) {
   EXPECT_THROW(ToleranceSchedule(1e-6, 1e-3, 0.1, 0), std::invalid_argument);
 }
 
+// A new load on a landed bed (NscdIntegrator::set_piston_load) starts the ramp again, as a
+// landing does: a piston falls onto a sphere resting on the floor and lands; given four times
+// its load, the next steps are solved from fall_tolerance down to tolerance again (1e-3 to 1e-9
+// over 3 steps: 1e-5, 1e-7, 1e-9). The same load set again changes nothing.
+TEST(ToleranceSchedule, ANewPistonLoadStartsTheRampAgain) {
+  ParticleSet set;
+  set.add(Eigen::Vector3d(0.0, kRadius, 0.0), kRadius, sphere_mass(kRadius, kDensity), 0);
+  Wall piston = Wall::through({0.0, 2.5 * kRadius, 0.0}, {0.0, -1.0, 0.0}, 0);
+  piston.make_piston(0.01, 1.0);
+  NscdParameters parameters = schedule(1e-9, 1e-3, 0.05);
+  parameters.tighten_steps = 3;
+  NscdIntegrator sim(std::move(set), {steel(0.3)}, {Wall::through({0, 0, 0}, {0, 1, 0}, 0), piston},
+                     Eigen::Vector3d(0.0, -kG, 0.0), 3, parameters);
+  for (int k = 0; k < 200 && sim.tolerance_schedule().landed_step() == 0; ++k) sim.step();
+  const std::int64_t landed = sim.tolerance_schedule().landed_step();
+  ASSERT_GT(landed, 1);
+  for (int k = 0; k < 5; ++k) sim.step();
+  EXPECT_EQ(sim.step().tolerance, 1e-9);
+  sim.set_piston_load(1, 1.0);  // the load it has
+  EXPECT_EQ(sim.step().tolerance, 1e-9);
+  EXPECT_EQ(sim.tolerance_schedule().landed_step(), landed);
+  sim.set_piston_load(1, 4.0);
+  const std::int64_t again = sim.stats().steps + 1;
+  for (const double expected : {1e-5, 1e-7, 1e-9, 1e-9}) {
+    const StepReport report = sim.step();
+    EXPECT_NEAR(report.tolerance, expected, 1e-12 * expected) << "step " << sim.stats().steps;
+    EXPECT_FALSE(report.fall);
+  }
+  EXPECT_EQ(sim.tolerance_schedule().landed_step(), again);
+  // Before any fall, and with tighten_steps 1, a new load changes nothing.
+  ToleranceSchedule before(1e-9, 1e-3, 0.05, 3);
+  before.ramp_again_from(1);
+  EXPECT_EQ(before.tolerance_for_step(0.0, 0.0, 1), 1e-9);
+  ToleranceSchedule at_once(1e-9, 1e-3, 0.05, 1);
+  EXPECT_EQ(at_once.tolerance_for_step(1.0, 1.0, 1), 1e-3);
+  EXPECT_EQ(at_once.tolerance_for_step(0.0, 0.0, 2), 1e-9);
+  at_once.ramp_again_from(3);
+  EXPECT_EQ(at_once.tolerance_for_step(0.0, 0.0, 3), 1e-9);
+  EXPECT_EQ(at_once.landed_step(), 2);
+}
+
 // One-way: after landing, speeds above fall_speed again (the sphere kicked upwards) keep the
 // tight tolerance.
 TEST(ToleranceSchedule, LandedStaysLanded) {

@@ -29,11 +29,12 @@ def test_wall_forces_of_a_short_cycling_run(tmp_path, source_dir, tmdem_binary):
     assert list(time) == [0.0, 50.0, 100.0]
     last = summary["thermo_mechanics"]["last_wall_force_N"]
     assert all(abs(a - b) <= 1e-9 * max(1.0, abs(b)) for a, b in zip(forces[-1], last))
-    lid_load = 1.0e4 * 1.44e-4 + 0.05 * 9.81  # N: pressure x area + the lid's weight
+    lid_mass_kg = 0.05  # the lid's `mass` in examples/thermal_cycling.toml
+    lid_load = 1.0e4 * 1.44e-4 + lid_mass_kg * 9.81  # N: pressure x area + the lid's weight
     # At rest the lid is slower than settle_velocity (1e-4 m/s) on either side of the step, so
     # its contacts carry its load within the change of momentum that allows: 2 m v / h =
     # 2 x 0.05 kg x 1e-4 m/s / 1e-3 s = 0.01 N (0.5% of the load; the runs give 0.02-0.12%).
-    lid_bound = 2.0 * 0.05 * 1.0e-4 / 1.0e-3
+    lid_bound = 2.0 * lid_mass_kg * 1.0e-4 / 1.0e-3
     for f in forces[:, 5]:
         assert abs(f - lid_load) < lid_bound
     assert abs(height[-1] - summary["thermo_mechanics"]["last_wall_point_m"][17]) < 1e-15

@@ -105,7 +105,12 @@ void print_run_end(const RunSummary& summary, const Scene& scene, const std::str
     out << "\n";
     // Nothing to say of a schedule whose fall never began (on by default: most small scenes).
     if (const auto& ts = m.tolerance_schedule; ts && ts->fall_steps > 0) {
-      out << "mechanics: tolerance " << ts->fall_tolerance << " while falling (" << ts->fall_steps
+      // A piston's compaction keeps the schedule falling too (mechanics.compaction_speed).
+      const bool pistons =
+          ts->compaction_speed_m_s > 0.0 &&
+          std::any_of(scene.walls.begin(), scene.walls.end(), [](const auto& w) { return w.piston; });
+      out << "mechanics: tolerance " << ts->fall_tolerance
+          << (pistons ? " while falling or compacting (" : " while falling (") << ts->fall_steps
           << " steps, " << ts->fall_unconverged_steps << " unconverged), " << ts->tolerance;
       if (ts->tightened) {
         out << " from step " << ts->tightened_step + ts->tighten_steps - 1;
@@ -113,11 +118,15 @@ void print_run_end(const RunSummary& summary, const Scene& scene, const std::str
           out << " (tightening over " << ts->tighten_steps << " steps from step " << ts->tightened_step << ")";
         out << "; the fall ended at t = " << ts->tightened_time_s
             << " s of mechanics (largest speed below mechanics.fall_speed = " << ts->fall_speed_m_s
-            << " m/s)\n";
+            << " m/s";
+        if (pistons)
+          out << ", every piston below mechanics.compaction_speed = " << ts->compaction_speed_m_s << " m/s";
+        out << ")\n";
       }
       else
         out << " not reached: the largest speed never dropped back below mechanics.fall_speed = "
-            << ts->fall_speed_m_s << " m/s\n";
+            << ts->fall_speed_m_s << " m/s"
+            << (pistons ? " with every piston below mechanics.compaction_speed" : "") << "\n";
     }
   }
   // A run interrupted while settling froze nothing: it stopped before t = 0.

@@ -53,6 +53,7 @@ mechanics::NscdParameters make_nscd_parameters(const Scene& scene) {
   p.fall_tolerance = scene.mechanics.fall_tolerance;
   p.fall_speed = scene.mechanics.fall_speed_m_per_s;
   p.fall_share = scene.mechanics.fall_share;
+  p.compaction_speed = scene.mechanics.compaction_speed_m_per_s;
   p.tighten_steps = scene.mechanics.tighten_steps;
   p.stop_travel_fraction = scene.mechanics.stop_travel;
   p.skip_out_of_reach = scene.mechanics.skip_out_of_reach;

@@ -42,6 +42,8 @@ struct ToleranceScheduleSummary {
   double fall_tolerance = 0.0;        // mechanics.fall_tolerance
   double fall_speed_m_s = 0.0;        // mechanics.fall_speed
   double fall_share = 0.0;            // mechanics.fall_share: of the particles, to begin a fall
+  double compaction_speed_m_s = 0.0;  // mechanics.compaction_speed in force at the end, the
+                                      // smallest over the pistons (0: none, or off)
   std::int64_t fall_steps = 0;        // steps solved at fall_tolerance
   std::int64_t fall_unconverged_steps = 0;
   std::int64_t tighten_steps = 1;     // mechanics.tighten_steps: `tolerance` from
@@ -58,6 +60,7 @@ inline constexpr std::tuple kToleranceScheduleFields{
     SummaryField{"fall_tolerance", &ToleranceScheduleSummary::fall_tolerance},
     SummaryField{"fall_speed_m_s", &ToleranceScheduleSummary::fall_speed_m_s},
     SummaryField{"fall_share", &ToleranceScheduleSummary::fall_share},
+    SummaryField{"compaction_speed_m_s", &ToleranceScheduleSummary::compaction_speed_m_s},
     SummaryField{"fall_steps", &ToleranceScheduleSummary::fall_steps},
     SummaryField{"fall_unconverged_steps", &ToleranceScheduleSummary::fall_unconverged_steps},
     SummaryField{"tighten_steps", &ToleranceScheduleSummary::tighten_steps},

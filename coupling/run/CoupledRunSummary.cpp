@@ -59,6 +59,13 @@ void CoupledRun::fill_summary() {
       ts.fall_tolerance = nscd_->tolerance_schedule().fall_tolerance();
       ts.fall_speed_m_s = nscd_->tolerance_schedule().fall_speed_m_per_s();
       ts.fall_share = scene_.mechanics.fall_share;
+      // In force at the end (automatic: it follows the load): the smallest over the pistons.
+      ts.compaction_speed_m_s = 0.0;
+      for (std::size_t w = 0; w < nscd_->walls().size(); ++w) {
+        const double v = nscd_->compaction_speed_m_per_s(w, scene_.mechanics.time_step_s);
+        if (v > 0.0 && (ts.compaction_speed_m_s == 0.0 || v < ts.compaction_speed_m_s))
+          ts.compaction_speed_m_s = v;
+      }
       ts.fall_steps = ms.fall_steps;
       ts.fall_unconverged_steps = ms.fall_unconverged_steps;
       ts.tighten_steps = scene_.mechanics.tighten_steps;

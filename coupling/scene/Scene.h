@@ -187,6 +187,9 @@ struct MechanicsSettings {
   double fall_tolerance = mechanics::NscdParameters{}.fall_tolerance;
   double fall_speed_m_per_s = mechanics::NscdParameters{}.fall_speed;
   double fall_share = mechanics::NscdParameters{}.fall_share;  // of the moving particles
+  // A piston at or above this speed keeps the schedule falling (its load compacts the bed);
+  // absent: automatic (mechanics::NscdParameters::compaction_speed); 0 = off.
+  std::optional<double> compaction_speed_m_per_s = mechanics::NscdParameters{}.compaction_speed;
   double stop_travel = mechanics::NscdParameters{}.stop_travel_fraction;  // of r_min per step
   bool skip_out_of_reach = mechanics::NscdParameters{}.skip_out_of_reach;
   bool static_warm_start = mechanics::NscdParameters{}.static_warm_start;

@@ -188,6 +188,7 @@ void SceneBuilder::read_settings() {
     m.settle_time_s = t.number("settle_time");
     m.coupling_interval_s = t.number("coupling_interval");
     m.settle_velocity_m_per_s = t.number("settle_velocity");
+    m.compaction_speed_m_per_s = t.optional_number("compaction_speed");  // absent: automatic
     m.rest_test = t.choice("rest_test");
     m.rest_window = sweeps("rest_window", m.rest_window);
     m.rest_force_change = t.number("rest_force_change");

@@ -44,10 +44,11 @@ std::vector<Section> settings_sections() {
         number("fall_tolerance", "", kM.fall_tolerance, Range::at_least(0.0),
                "tolerance schedule: the solves stop at this tolerance instead of `tolerance` "
                "from the first step at which fall_share of the particles move at or above "
-               "fall_speed (never tighter than `tolerance`); once the fastest particle is below "
-               "fall_speed again, `tolerance` holds for the rest of the run (one-way; settle and "
-               "dynamic runs alike). 0: no schedule, `tolerance` for every step. A step counts "
-               "as converged when it met the tolerance in force"),
+               "fall_speed (never tighter than `tolerance`), or a piston moves at or above "
+               "compaction_speed; once the fastest particle is below fall_speed again and every "
+               "piston below compaction_speed, the tolerance ramps back to `tolerance` over "
+               "tighten_steps (settle and dynamic runs alike). 0: no schedule, `tolerance` for "
+               "every step. A step counts as converged when it met the tolerance in force"),
         number("fall_speed", "m/s", std::nullopt, Range::greater(0.0),
                "tolerance schedule: the particle speed at or above which a particle "
                "counts as falling (fall_tolerance applies); absent: a tenth of the smallest "
@@ -57,6 +58,17 @@ std::vector<Section> settings_sections() {
                "must move at or above fall_speed for a fall to begin; 0: the fastest alone. "
                "A few spheres rolling down a laid bed's surface do not put the whole bed at "
                "fall_tolerance (docs/mechanics.md \"A tolerance schedule\")"),
+        number("compaction_speed", "m/s", std::nullopt, Range::at_least(0.0),
+               "tolerance schedule: while a piston moves at or above this speed its load is "
+               "compacting the bed and the solves stop at fall_tolerance, as in a fall, from any "
+               "phase; once every piston is slower (and no particle falls) the tolerance ramps "
+               "back to `tolerance` over tighten_steps. A loaded bed that flows creeps at the "
+               "edge of jamming, where solves at `tolerance` stall just above it "
+               "(docs/mechanics.md \"A tolerance schedule\"); absent: a hundredth of the speed "
+               "the piston's load and weight give it in one time_step, time_step |F / m + g.n| "
+               "(a pressed bed solved at fall_tolerance creeps by itself at about a tenth of "
+               "that); 0: off. Only with the solvers that stop on Siconos' residual (nncg, "
+               "nncg_ipm): at the others' sweep test a bed creeps by itself faster"),
         number("stop_travel", "", kM.stop_travel, Range::at_least(0.0),
                "the stop test counts a contact's impulse at most as the one that would move "
                "its bodies by this fraction of the smallest radius per time_step, so that "

@@ -121,6 +121,11 @@ NscdIntegrator::NscdIntegrator(ParticleSet particles, std::vector<Material> mate
           "fall_speed must be >= 0 (m/s; 0: automatic)");
   require(parameters_.fall_share >= 0.0 && parameters_.fall_share <= 1.0,
           "fall_share must be in [0, 1] (0: the fastest particle alone)");
+  require(!parameters_.compaction_speed ||
+              (*parameters_.compaction_speed >= 0.0 && std::isfinite(*parameters_.compaction_speed)),
+          "compaction_speed must be >= 0 (m/s; 0: off; absent: automatic)");
+  require(parameters_.compaction_fraction >= 0.0 && std::isfinite(parameters_.compaction_fraction),
+          "compaction_fraction must be >= 0 (0: off)");
   require(parameters_.fall_travel_fraction > 0.0 && std::isfinite(parameters_.fall_travel_fraction),
           "fall_travel_fraction must be > 0");
   const double fall_speed_m_per_s =
@@ -270,7 +275,7 @@ StepReport NscdIntegrator::step(double h, bool landing_parts) {
                                schedule_.phase() == ToleranceSchedule::Phase::Before
                                    ? fall_judged_speed()
                                    : start_speed_m_per_s,
-                               start_speed_m_per_s, stats_.steps + 1)
+                               start_speed_m_per_s, stats_.steps + 1, piston_compacting(h))
                          : parameters_.tolerance;
   report.fall = schedule_.falling();
   use_tolerance(report.tolerance);

@@ -123,6 +123,15 @@ class NscdIntegrator {
   // moving particles' centre speeds (the k-th largest, k = max(1, ceil(fall_share n))), or a
   // moving wall's speed if larger.
   double fall_judged_speed() const;
+  // The fastest piston's speed along its normal, m/s (0 without one).
+  double piston_speed() const;
+  // The speed at or above which piston `wall` compacts the bed (NscdParameters::compaction_speed;
+  // automatic: compaction_fraction of the speed its load and weight give it over a step of h
+  // seconds, h |F / m + g.n|), m/s; 0 for a fixed wall, when off, or with a solver that does not
+  // stop on Siconos' residual (NscdParameters::compaction_speed).
+  double compaction_speed_m_per_s(std::size_t wall, double h) const;
+  // Whether a piston moves at or above its compaction speed: the tolerance schedule's fall.
+  bool piston_compacting(double h) const;
 
   const ParticleSet& particles() const { return particles_; }
   // Mutable access (e.g. restoring a checkpoint). Call invalidate_contacts() after moving

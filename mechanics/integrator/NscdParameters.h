@@ -3,6 +3,7 @@
 
 #include "mechanics/model/ParallelFrom.h"
 #include <cstddef>
+#include <optional>
 #include <string>
 
 #include "mechanics/contact/NormalLaw.h"
@@ -57,6 +58,22 @@ struct NscdParameters {
   // (bed_2d laid with seeds 21 and 22: past 600 s, and 2 unconverged steps; at 20: at rest in
   // 213 and 226 steps, none unconverged; docs/mechanics.md "A tolerance schedule").
   int tighten_steps = 20;
+  // While a piston moves at or above its compaction speed its load is compacting the bed, and
+  // the solves stop at fall_tolerance as in a fall; once no piston does the tolerance ramps
+  // back over tighten_steps (ToleranceSchedule.h). A loaded bed that flows creeps at the edge
+  // of jamming, where the sweeps stall just above `tolerance` (docs/mechanics.md "A tolerance
+  // schedule"). m/s; 0: off; absent: automatic, compaction_fraction of the speed the piston's
+  // load and weight give it in one step, h |F / m + g.n|. Why relative to that speed: solved at
+  // fall_tolerance a pressed bed creeps by itself, at a speed that grows with the load
+  // (piston_cylinder at 1e4 Pa: 2-3e-4 m/s, 0.1% of h F / m); with a fixed 1e-4 m/s the creep
+  // kept the schedule falling for 4 s of mechanics. Only with a solver whose steps stop on
+  // Siconos' residual (nncg, nncg_ipm; siconos_stop): the sweep test of the others leaves a
+  // larger residual at fall_tolerance, and the bed's own creep then stays above the compaction
+  // speed (examples/thermal_cycling.toml's lid with nncg_subspace, for the whole 5 s settle).
+  std::optional<double> compaction_speed;
+  // Of h |F / m + g.n| (0: off). A hundredth: ten times the creep of piston_cylinder at 1e4 Pa
+  // above; through its study over four seeds it left 18 unconverged steps, a fixed 1e-3 m/s 47.
+  double compaction_fraction = 0.01;
   int max_iterations = 10000; // Gauss-Seidel sweeps per step
   // "nncg" only (the other solvers stop on their own test whatever this says): a step converges
   // when Siconos' residual is within the tolerance too, not only the change per sweep

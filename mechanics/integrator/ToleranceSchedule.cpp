@@ -22,14 +22,16 @@ ToleranceSchedule::ToleranceSchedule(double tolerance, double fall_tolerance,
 }
 
 double ToleranceSchedule::tolerance_for_step(double share_speed_m_per_s, double max_speed_m_per_s,
-                                             std::int64_t step) {
+                                             std::int64_t step, bool compacting) {
   if (!enabled()) return tolerance_;
+  // A load compacting the bed, from any phase (a landed bed too: the load makes it flow again).
+  if (compacting) state_.phase = Phase::Falling;
   switch (state_.phase) {
     case Phase::Before:
       if (share_speed_m_per_s >= fall_speed_m_per_s_) state_.phase = Phase::Falling;
       break;
     case Phase::Falling:
-      if (max_speed_m_per_s < fall_speed_m_per_s_) {
+      if (max_speed_m_per_s < fall_speed_m_per_s_ && !compacting) {
         state_.phase = Phase::Landed;
         state_.landed_step = step;
       }

@@ -26,6 +26,11 @@
 // first step at 1e-5 after 1e-4 took 577-2,000+ sweeps on the 2,000 pour (docs/mechanics.md "A tolerance
 // schedule"), and a geometric ramp spreads that work over N steps. A landed bed given a new
 // piston load ramps again from fall_tolerance (ramp_again_from): it compacts as after a landing.
+// A piston compacting the bed (NscdIntegrator::piston_compacting: moving at or above its
+// compaction speed) makes the phase falling from any phase, and the fall then ends only once no
+// piston compacts either: a loaded bed that flows creeps at the edge of jamming, and solved at
+// `tolerance` those steps stall just above it, thousands of sweeps each (a plate started on
+// deep_steel's top, a piston pressing a poured bed; docs/mechanics.md "A tolerance schedule").
 #include <cstdint>
 
 namespace tmdem::mechanics {
@@ -52,9 +57,10 @@ class ToleranceSchedule {
   // The tolerance while falling: fall_tolerance, or `tolerance` if that is looser.
   double fall_tolerance() const { return fall_tolerance_; }
   // The tolerance for step number `step` (1-based over the run), which starts from a state
-  // whose share speed is `share_speed_m_per_s` and largest speed `max_speed_m_per_s` (above);
-  // advances the phase.
-  double tolerance_for_step(double share_speed_m_per_s, double max_speed_m_per_s, std::int64_t step);
+  // whose share speed is `share_speed_m_per_s` and largest speed `max_speed_m_per_s`, with a
+  // piston compacting the bed or not (above); advances the phase.
+  double tolerance_for_step(double share_speed_m_per_s, double max_speed_m_per_s, std::int64_t step,
+                            bool compacting = false);
   Phase phase() const { return state_.phase; }
   bool falling() const { return state_.phase == Phase::Falling; }
   // The first step after the fall (0: not landed yet); `tolerance` from landed_step() +

@@ -188,12 +188,14 @@ TEST(RunSummary, ToleranceScheduleBlockRoundTrips) {
   ts.fall_tolerance = 1e-4;
   ts.fall_speed_m_s = 0.05;
   ts.fall_share = 0.01;
+  ts.compaction_speed_m_s = 2.4e-3;
   ts.fall_steps = 200;
   ts.fall_unconverged_steps = 1;
   s.mechanics.tolerance_schedule = ts;
   nlohmann::json j = nlohmann::json::parse(s.to_json().dump());
   const auto& block = j["mechanics"]["tolerance_schedule"];
-  EXPECT_EQ(block.size(), 10u);
+  EXPECT_EQ(block.size(), 11u);
+  EXPECT_EQ(block["compaction_speed_m_s"].get<double>(), 2.4e-3);
   EXPECT_FALSE(block["tightened"].get<bool>());
   EXPECT_TRUE(block["tightened_step"].is_null());
   EXPECT_TRUE(block["tightened_time_s"].is_null());

@@ -51,7 +51,8 @@ TEST(SceneDefaults, EveryDefaultTheReferenceStatesLoadsToTheStructDefault) {
     }
   }
   // Keys without a default are the required ones and those whose absence means "automatic".
-  EXPECT_EQ(without_default, (std::set<std::string>{"simulation.duration", "mechanics.fall_speed"}));
+  EXPECT_EQ(without_default, (std::set<std::string>{"simulation.duration", "mechanics.fall_speed",
+                                                    "mechanics.compaction_speed"}));
   EXPECT_GE(checked, 35);
 }
 

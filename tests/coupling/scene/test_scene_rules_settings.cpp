@@ -78,6 +78,15 @@ TEST(SceneRules, ToleranceSchedule) {
   EXPECT_EQ(make_nscd_parameters(defaults).fall_tolerance, mechanics::NscdParameters{}.fall_tolerance);
   EXPECT_GT(make_nscd_parameters(defaults).fall_tolerance, make_nscd_parameters(defaults).tolerance);
   EXPECT_EQ(make_nscd_parameters(defaults).fall_speed, 0.0);  // automatic
+  // compaction_speed: absent automatic (no value), 0 off, a speed as given, negative refused.
+  EXPECT_FALSE(make_nscd_parameters(defaults).compaction_speed.has_value());
+  EXPECT_EQ(make_nscd_parameters(load_scene_text(kBaseScene, "t", {"mechanics.compaction_speed=0"}))
+                .compaction_speed, 0.0);
+  EXPECT_EQ(make_nscd_parameters(load_scene_text(kBaseScene, "t", {"mechanics.compaction_speed=2e-3"}))
+                .compaction_speed, 2e-3);
+  expect_scene_error(kBaseScene, {"mechanics.compaction_speed=-1e-4"},
+                     {"mechanics.compaction_speed", ">= 0"});
+  expect_scene_error(kBaseScene, {"mechanics.compaction_speed=nan"}, {"mechanics.compaction_speed"});
   const Scene off = load_scene_text(kBaseScene, "t", {"mechanics.fall_tolerance=0"});
   EXPECT_EQ(make_nscd_parameters(off).fall_tolerance, 0.0);
   const Scene on = load_scene_text(kBaseScene, "t", {"mechanics.fall_tolerance=1e-3", "mechanics.fall_speed=0.1"});

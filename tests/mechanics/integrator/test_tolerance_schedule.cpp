@@ -6,9 +6,11 @@
 
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <tuple>
+#include <utility>
 
 #include "mechanics/SameBits.h"
 #include "mechanics/MechanicsTestScenes.h"
@@ -49,6 +51,17 @@ NscdParameters schedule(double tolerance, double fall_tolerance, double fall_spe
   p.fall_speed = fall_speed;
   p.tighten_steps = 1;  // the switch at once; the ramp has tests of its own (tighten_steps > 1)
   return p;
+}
+
+// A sphere resting on a floor (wall 0) and a 10 g piston (wall 1) of load `load_N` released
+// half a radius above it.
+NscdIntegrator piston_over_sphere(double load_N, const NscdParameters& parameters) {
+  ParticleSet set;
+  set.add(Eigen::Vector3d(0.0, kRadius, 0.0), kRadius, sphere_mass(kRadius, kDensity), 0);
+  Wall piston = Wall::through({0.0, 2.5 * kRadius, 0.0}, {0.0, -1.0, 0.0}, 0);
+  piston.make_piston(0.01, load_N);
+  return NscdIntegrator(std::move(set), {steel(0.3)}, {Wall::through({0, 0, 0}, {0, 1, 0}, 0), piston},
+                        Eigen::Vector3d(0.0, -kG, 0.0), 3, parameters);
 }
 
 // The speed at the start of step k (1-based) of dropped_sphere(n), closed form (see above).
@@ -122,14 +135,9 @@ TEST(ToleranceSchedule, TightensGeometricallyOverTightenSteps) {
 // its load, the next steps are solved from fall_tolerance down to tolerance again (1e-3 to 1e-9
 // over 3 steps: 1e-5, 1e-7, 1e-9). The same load set again changes nothing.
 TEST(ToleranceSchedule, ANewPistonLoadStartsTheRampAgain) {
-  ParticleSet set;
-  set.add(Eigen::Vector3d(0.0, kRadius, 0.0), kRadius, sphere_mass(kRadius, kDensity), 0);
-  Wall piston = Wall::through({0.0, 2.5 * kRadius, 0.0}, {0.0, -1.0, 0.0}, 0);
-  piston.make_piston(0.01, 1.0);
   NscdParameters parameters = schedule(1e-9, 1e-3, 0.05);
   parameters.tighten_steps = 3;
-  NscdIntegrator sim(std::move(set), {steel(0.3)}, {Wall::through({0, 0, 0}, {0, 1, 0}, 0), piston},
-                     Eigen::Vector3d(0.0, -kG, 0.0), 3, parameters);
+  NscdIntegrator sim = piston_over_sphere(1.0, parameters);
   for (int k = 0; k < 200 && sim.tolerance_schedule().landed_step() == 0; ++k) sim.step();
   const std::int64_t landed = sim.tolerance_schedule().landed_step();
   ASSERT_GT(landed, 1);
@@ -156,6 +164,90 @@ TEST(ToleranceSchedule, ANewPistonLoadStartsTheRampAgain) {
   at_once.ramp_again_from(3);
   EXPECT_EQ(at_once.tolerance_for_step(0.0, 0.0, 3), 1e-9);
   EXPECT_EQ(at_once.landed_step(), 2);
+}
+
+// A piston compacting the bed keeps the schedule falling from any phase, and the fall ends
+// only once no piston compacts either. The schedule alone, speeds given: fall_speed 0.05 m/s,
+// 1e-3 to 1e-9 over 3 steps.
+TEST(ToleranceSchedule, ACompactingPistonKeepsTheFallTolerance) {
+  ToleranceSchedule s(1e-9, 1e-3, 0.05, 3);
+  EXPECT_EQ(s.tolerance_for_step(0.0, 0.0, 1, false), 1e-9);  // at rest: before, tight
+  EXPECT_EQ(s.tolerance_for_step(0.0, 0.0, 2, true), 1e-3);   // compacting: falling
+  EXPECT_TRUE(s.falling());
+  // Every particle below fall_speed, the piston still compacting: still falling.
+  EXPECT_EQ(s.tolerance_for_step(0.0, 0.01, 3, true), 1e-3);
+  // A particle still falling, the piston no longer compacting: still falling (the fall's rule).
+  EXPECT_EQ(s.tolerance_for_step(0.0, 0.06, 4, false), 1e-3);
+  // Neither: landed at step 5, the ramp 1e-5, 1e-7, 1e-9.
+  for (const auto& [step, expected] : {std::pair{5, 1e-5}, std::pair{6, 1e-7}, std::pair{7, 1e-9}})
+    EXPECT_NEAR(s.tolerance_for_step(0.0, 0.01, step, false), expected, 1e-12 * expected) << step;
+  EXPECT_EQ(s.landed_step(), 5);
+  // The load makes the landed bed flow again: falling, and a new ramp when it stops.
+  EXPECT_EQ(s.tolerance_for_step(0.0, 0.01, 8, true), 1e-3);
+  EXPECT_EQ(s.phase(), ToleranceSchedule::Phase::Falling);
+  EXPECT_NEAR(s.tolerance_for_step(0.0, 0.01, 9, false), 1e-5, 1e-17);
+  EXPECT_EQ(s.landed_step(), 9);
+  // With the schedule off a compacting piston changes nothing.
+  ToleranceSchedule off(1e-9, 0.0, 0.05, 3);
+  EXPECT_EQ(off.tolerance_for_step(0.0, 0.0, 1, true), 1e-9);
+}
+
+// Through the integrator (NscdIntegrator::piston_compacting): a 10 g piston released half a
+// radius above a sphere resting on the floor, fall_speed too high for anything to fall (10 m/s).
+// With compaction_speed 1e-4 m/s the steps while the piston moves are falling steps, solved at
+// fall_tolerance; once it rests on the sphere the tolerance ramps back (3 steps) and stays
+// tight. With compaction_speed 0 every step is tight. The automatic compaction speed is
+// compaction_fraction h |F / m + g.n|, and follows a new load. nncg, which stops on Siconos'
+// residual; with nlgs (the change per sweep) there is no compaction speed. Tolerances 1e-7 and
+// 1e-10: at a fall tolerance of 1e-3 the 10 g piston on the 33 mg sphere (nlgs) rocked at up to
+// 6 mm/s for 50 steps after landing, above its compaction speed all along.
+TEST(ToleranceSchedule, AFallingPistonIsSolvedAtTheFallTolerance) {
+  const auto make = [](std::optional<double> compaction_speed, const char* solver = "nncg") {
+    NscdParameters parameters = schedule(1e-10, 1e-7, 10.0);
+    parameters.tighten_steps = 3;
+    parameters.compaction_speed = compaction_speed;
+    parameters.solver = solver;  // nncg stops on Siconos' residual
+    return piston_over_sphere(0.0, parameters);
+  };
+  NscdIntegrator sim = make(1e-4);
+  int falling_steps = 0;
+  for (int k = 1; k <= 60; ++k) {
+    const bool moving = sim.piston_speed() >= 1e-4;
+    const StepReport report = sim.step();
+    EXPECT_EQ(report.fall, moving) << "step " << k;
+    if (moving) {
+      EXPECT_EQ(report.tolerance, 1e-7) << "step " << k;
+      ++falling_steps;
+    }
+  }
+  EXPECT_GT(falling_steps, 3);                       // it fell half a radius
+  EXPECT_LT(sim.piston_speed(), 1e-4);               // and rests on the sphere
+  EXPECT_GT(sim.tolerance_schedule().landed_step(), falling_steps);
+  EXPECT_EQ(sim.step().tolerance, 1e-10);            // the ramp is over
+  EXPECT_EQ(sim.stats().fall_steps, falling_steps);
+  NscdIntegrator off = make(0.0);
+  for (int k = 1; k <= 60; ++k) {
+    const StepReport report = off.step();
+    EXPECT_FALSE(report.fall);
+    EXPECT_EQ(report.tolerance, 1e-10);
+  }
+  NscdParameters bad = schedule(1e-9, 1e-3, 0.1);
+  bad.compaction_speed = -1.0;
+  EXPECT_THROW(dropped_sphere(3, bad), std::invalid_argument);
+  bad.compaction_speed = std::nullopt;
+  bad.compaction_fraction = -0.01;
+  EXPECT_THROW(dropped_sphere(3, bad), std::invalid_argument);
+  // Automatic: a hundredth of h |F / m + g.n| = 1e-3 s x (0 + 9.81) m/s^2, then with 1 N on 10 g
+  // 1e-3 x (100 + 9.81); the floor, a fixed wall, has none.
+  NscdIntegrator automatic = make(std::nullopt);
+  EXPECT_DOUBLE_EQ(automatic.compaction_speed_m_per_s(1, kStep), 0.01 * kStep * kG);
+  automatic.set_piston_load(1, 1.0);
+  EXPECT_DOUBLE_EQ(automatic.compaction_speed_m_per_s(1, kStep), 0.01 * kStep * (100.0 + kG));
+  EXPECT_EQ(automatic.compaction_speed_m_per_s(0, kStep), 0.0);
+  // A solver that stops on the change per sweep has none: its bed creeps by itself.
+  EXPECT_EQ(make(1e-4, "nlgs").compaction_speed_m_per_s(1, kStep), 0.0);
+  NscdIntegrator sweeps = make(1e-4, "nlgs");
+  for (int k = 1; k <= 20; ++k) EXPECT_FALSE(sweeps.step().fall) << "step " << k;
 }
 
 // One-way: after landing, speeds above fall_speed again (the sphere kicked upwards) keep the

@@ -8,14 +8,15 @@
 // not hold it (nncg at 1e-4: the bed creeps for the whole 5 s settle). docs/mechanics.md "A tolerance
 // schedule".
 //
-// The rule, one-way so that it cannot chatter, judged on two speeds of the state a step starts
-// from: v_share, the speed that NscdParameters::fall_share of the moving particles reach (at
-// least one; NscdIntegrator::fall_judged_speed()), and v_max, the largest
+// The rule, one-way for the particles so that it cannot chatter, judged on two speeds of the
+// state a step starts from: v_share, the speed that NscdParameters::fall_share of the moving
+// particles reach (at least one; NscdIntegrator::fall_judged_speed()), and v_max, the largest
 // (NscdIntegrator::max_speed()), each a moving wall's speed if larger:
 //   before:  v_share has not reached fall_speed yet   -> tolerance (tight)
 //   falling: from v_share >= fall_speed until v_max < fall_speed
 //                                                    -> fall_tolerance (or tolerance if looser)
 //   landed:  v_max < fall_speed after falling          -> tolerance, for the rest of the run
+//            (unless a piston compacts the bed again: below)
 // A fall begins when a share of the particles falls, so that the few spheres that always roll
 // down a laid bed's surface do not put the whole bed at fall_tolerance; it ends when the last
 // one has landed, so that a pour is not switched to the tight tolerance while its tail still

@@ -250,8 +250,8 @@ TEST(ToleranceSchedule, AFallingPistonIsSolvedAtTheFallTolerance) {
   for (int k = 1; k <= 20; ++k) EXPECT_FALSE(sweeps.step().fall) << "step " << k;
 }
 
-// One-way: after landing, speeds above fall_speed again (the sphere kicked upwards) keep the
-// tight tolerance.
+// One-way for the particles: after landing, speeds above fall_speed again (the sphere kicked
+// upwards) keep the tight tolerance (only a compacting piston makes a landed bed fall again).
 TEST(ToleranceSchedule, LandedStaysLanded) {
   constexpr int n = 10;
   NscdIntegrator sim = dropped_sphere(n, schedule(1e-9, 1e-3, 2.5 * kStep * kG));

@@ -105,10 +105,9 @@ void print_run_end(const RunSummary& summary, const Scene& scene, const std::str
     out << "\n";
     // Nothing to say of a schedule whose fall never began (on by default: most small scenes).
     if (const auto& ts = m.tolerance_schedule; ts && ts->fall_steps > 0) {
-      // A piston's compaction keeps the schedule falling too (mechanics.compaction_speed).
-      const bool pistons =
-          ts->compaction_speed_m_s > 0.0 &&
-          std::any_of(scene.walls.begin(), scene.walls.end(), [](const auto& w) { return w.piston; });
+      // A piston's compaction keeps the schedule falling too (mechanics.compaction_speed; the
+      // summary's is 0 without a piston, or off).
+      const bool pistons = ts->compaction_speed_m_s > 0.0;
       out << "mechanics: tolerance " << ts->fall_tolerance
           << (pistons ? " while falling or compacting (" : " while falling (") << ts->fall_steps
           << " steps, " << ts->fall_unconverged_steps << " unconverged), " << ts->tolerance;

@@ -205,7 +205,7 @@ void NscdIntegrator::refresh_wall_bodies(double h) {
   for (std::size_t w = 0; w < walls_.size(); ++w) {
     const Wall& wall = walls_[w];
     if (!wall.moves()) continue;
-    const double acceleration = wall.load_N / wall.mass_kg + gravity_.dot(wall.normal);
+    const double acceleration = piston_acceleration_m_per_s2(wall);
     old_velocity_[n + w] = wall.velocity_m_per_s * wall.normal;
     problem_.free_velocity[n + w] = (wall.velocity_m_per_s + h * acceleration) * wall.normal;
     wall_lookahead_[w] = 2.0 * h * (std::abs(wall.velocity_m_per_s) + h * std::abs(acceleration));

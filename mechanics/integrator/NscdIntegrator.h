@@ -123,8 +123,6 @@ class NscdIntegrator {
   // moving particles' centre speeds (the k-th largest, k = max(1, ceil(fall_share n))), or a
   // moving wall's speed if larger.
   double fall_judged_speed() const;
-  // The fastest piston's speed along its normal, m/s (0 without one).
-  double piston_speed() const;
   // The speed at or above which piston `wall` compacts the bed (NscdParameters::compaction_speed;
   // automatic: compaction_fraction of the speed its load and weight give it over a step of h
   // seconds, h |F / m + g.n|), m/s; 0 for a fixed wall, when off, or with a solver that does not
@@ -173,6 +171,10 @@ class NscdIntegrator {
   double tolerance_in_force() const { return solver_settings_.tolerance; }
 
  private:
+  // A piston's free acceleration along its normal, m/s^2: its load and weight over its mass.
+  double piston_acceleration_m_per_s2(const Wall& piston) const {
+    return piston.load_N / piston.mass_kg + gravity_.dot(piston.normal);
+  }
   void refresh_candidates(double h);
   // periodic_lookahead_ for a step of h (periodic scenes; step() fills it before
   // refresh_candidates reads it).

@@ -71,13 +71,6 @@ double NscdIntegrator::max_speed() const {
   return speed;
 }
 
-double NscdIntegrator::piston_speed() const {
-  double speed = 0.0;
-  for (const auto& wall : walls_)
-    if (wall.moves()) speed = std::max(speed, std::abs(wall.velocity_m_per_s));
-  return speed;
-}
-
 double NscdIntegrator::compaction_speed_m_per_s(std::size_t wall, double h) const {
   const Wall& w = walls_.at(wall);
   // Only where steps stop on Siconos' residual (nncg, nncg_ipm): the other solvers stop on the
@@ -86,8 +79,7 @@ double NscdIntegrator::compaction_speed_m_per_s(std::size_t wall, double h) cons
   // compaction speed (3.9e-4 m/s) for the whole 5 s of a re-settle.
   if (!w.moves() || !solver_settings_.siconos_stop) return 0.0;
   if (parameters_.compaction_speed) return *parameters_.compaction_speed;
-  const double acceleration = w.load_N / w.mass_kg + gravity_.dot(w.normal);
-  return parameters_.compaction_fraction * h * std::abs(acceleration);
+  return parameters_.compaction_fraction * h * std::abs(piston_acceleration_m_per_s2(w));
 }
 
 bool NscdIntegrator::piston_compacting(double h) const {

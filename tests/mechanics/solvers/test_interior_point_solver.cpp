@@ -111,6 +111,51 @@ TEST(InteriorPoint, RollingPileLikeGaussSeidel) {
   expect_rolling_pile_solved(sim, solver, 1e-7);
 }
 
+// Open candidates far from closing (the look-ahead's, at gap / h = 1.5 m/s here, ten for each
+// contact of the lattice pile) inflate ||q|| 400-fold, and Siconos' residual relative to it no
+// longer sees reactions left on them: an interior iterate has every reaction strictly inside
+// its cone, and "ipm" without the sweeps that end it (Options::polish_sweeps = 0) stops after 4
+// iterations with spheres driven at 10.8 m/s. With them (the crossover) the candidates carry
+// exactly nothing, the pile is at rest (7.7e-6 m/s at most, against h g = 9.8e-3) and carries
+// its weights.
+TEST(InteriorPoint, OpenCandidatesCarryNothingWhateverTheirGaps) {
+  const ContactProblem& pile = lattice_pile().problem();
+  const std::size_t contacts = pile.size(), copies = 10;
+  ContactProblem problem = pile;
+  problem.resize_contacts(contacts * (1 + copies));
+  for (std::size_t k = 0; k < copies; ++k) {
+    for (std::size_t c = 0; c < contacts; ++c) {
+      const std::size_t slot = contacts * (1 + k) + c;
+      problem.copy_contact(slot, pile, c);
+      problem.bias[slot] = 1.5;
+    }
+  }
+  ASSERT_GT(free_velocity_norm(problem), 300.0 * free_velocity_norm(pile));
+  auto largest_speed = [](const Solved& s) {
+    double v = 0.0;
+    for (std::size_t i = 0; i < kPileSide * kPileSide * kPileLayers; ++i) v = std::max(v, s.v[i].norm());
+    return v;
+  };
+  const double weight = pile_weight_impulse();
+  const double weight_speed = kG * lattice_pile().parameters().time_step;  // m/s, h g
+  {
+    InteriorPointSolver::Options bare;
+    bare.polish_sweeps = 0;
+    InteriorPointSolver solver(tight(1e-4), bare);
+    const Solved s = solve_cold(problem, solver);
+    ASSERT_TRUE(s.report.converged);
+    EXPECT_GT(largest_speed(s), weight_speed) << "the interior point alone no longer leaves the open candidates loaded";
+  }
+  InteriorPointSolver solver(tight(1e-4));
+  const Solved s = solve_cold(problem, solver);
+  ASSERT_TRUE(s.report.converged) << s.report.residual << " after " << s.report.sweeps;
+  EXPECT_LE(ipm_test::siconos_of(problem, s), 1e-4);
+  for (std::size_t c = contacts; c < problem.size(); ++c) EXPECT_EQ(s.r[c], Eigen::Vector3d::Zero()) << "candidate " << c;
+  EXPECT_LE(largest_speed(s), 1e-2 * weight_speed);
+  std::vector<Eigen::Vector3d> loaded(s.r.begin(), s.r.begin() + std::ptrdiff_t(contacts));
+  expect_pile_statics(loaded, 1e-3 * kPileLayers * weight);
+}
+
 // "nncg_ipm" (FallbackContactSolver.h): where nncg converges, nncg's reactions to the bit; where
 // it does not (here: 20 sweeps on the heavy-on-light column), the interior point's, which carry
 // the weights above each contact.

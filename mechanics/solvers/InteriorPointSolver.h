@@ -28,10 +28,12 @@
 // Degrees of freedom: 6 per mobile sphere (3 in 2D), 1 per piston along its normal.
 // The stop test is Siconos' residual (SiconosResidual.h) of the reactions the multipliers give,
 // with the velocities those give exactly. When it stalls above the tolerance, "nncg" sweeps
-// polish the best iterate (Options::polish_sweeps). When it converges, the same sweeps end the
-// solve (the crossover): an interior iterate leaves every open candidate a little reaction,
-// which Siconos' residual, relative to ||q|| that the candidates' gaps inflate, does not see,
-// and which sent spheres off at 8 m/s on a piston's landing (InteriorPointSolver.cpp). The report's sweeps are the iterations plus
+// polish the best iterate (Options::polish_sweeps). When it converges, a crossover ends the
+// solve: the reactions the law sets to 0 contact by contact are set to 0, then the same sweeps
+// polish if Siconos' residual went above the tolerance. An interior iterate leaves every open
+// candidate a little reaction, which Siconos' residual, relative to ||q|| that the candidates'
+// gaps inflate, does not see, and which sent spheres off at 8 m/s on a piston's landing
+// (InteriorPointSolver.cpp). The report's sweeps are the iterations plus
 // the polishing sweeps. A factorisation that loses positive definiteness to round-off (W^2 of a
 // stuck contact reaches 1e16 of M near the solution) is retried with 1e-12, then 1e-10, ... of
 // each diagonal entry added.

@@ -116,8 +116,8 @@ TEST(InteriorPoint, RollingPileLikeGaussSeidel) {
 // longer sees reactions left on them: an interior iterate has every reaction strictly inside
 // its cone, and "ipm" without the sweeps that end it (Options::polish_sweeps = 0) stops after 4
 // iterations with spheres driven at 10.8 m/s. With them (the crossover) the candidates carry
-// exactly nothing, the pile is at rest (7.7e-6 m/s at most, against h g = 9.8e-3) and carries
-// its weights.
+// exactly nothing, the pile is at rest (within a hundredth of h g = 9.8e-3 m/s) and carries its
+// weights.
 TEST(InteriorPoint, OpenCandidatesCarryNothingWhateverTheirGaps) {
   const ContactProblem& pile = lattice_pile().problem();
   const std::size_t contacts = pile.size(), copies = 10;

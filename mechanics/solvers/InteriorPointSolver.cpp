@@ -373,7 +373,8 @@ SolveReport InteriorPointSolver::solve_with_rolling(const ContactProblem& proble
   }
   iterations_total_ += iteration;
   int polished = 0;
-  if (report.converged && polisher_) {
+  const bool crossed = report.converged && options_.crossover;
+  if (crossed) {
     // An interior iterate keeps every reaction strictly inside its cone, open candidates' too,
     // and Siconos' residual, relative to ||q|| (which their gaps / h inflate) and in N s for
     // light bodies, does not see what those leftovers do: on piston_cylinder's landing (3,471
@@ -395,14 +396,14 @@ SolveReport InteriorPointSolver::solve_with_rolling(const ContactProblem& proble
     }
     if (zeroed) problem.velocities_from_reactions(r, m, velocity, angular_velocity);
     report.residual = siconos_residual(problem, r, m, velocity, angular_velocity, q_norm);
-    if (report.residual > settings_.tolerance) {
+    if (report.residual > settings_.tolerance && polisher_) {
       polished += polisher_->solve_with_rolling(problem, r, m, velocity, angular_velocity).sweeps;
       report.residual = siconos_residual(problem, r, m, velocity, angular_velocity, q_norm);
     }
     polish_total_ += polished;
     report.converged = report.residual <= settings_.tolerance;
   }
-  if (!report.converged && polished == 0) {
+  if (!report.converged && !crossed) {
     // The best iterate, polished by Gauss-Seidel sweeps.
     reactions(problem, r, m);
     problem.velocities_from_reactions(r, m, velocity, angular_velocity);

@@ -71,6 +71,10 @@ class InteriorPointSolver final : public ContactSolver {
     // Then "nncg" sweeps (at most this many) polish the best iterate: the interior point has
     // carried the load through the depth, the sweeps fix the local rest (0: no polish).
     int polish_sweeps = 2000;
+    // A converged answer ends with the crossover (InteriorPointSolver.cpp): the reactions the
+    // law sets to 0 contact by contact set to 0, then the polishing sweeps if Siconos' residual
+    // went above the tolerance. Off only to show what it mends (its test).
+    bool crossover = true;
   };
   explicit InteriorPointSolver(const SolverSettings& settings);
   InteriorPointSolver(const SolverSettings& settings, const Options& options);

@@ -114,7 +114,7 @@ TEST(InteriorPoint, RollingPileLikeGaussSeidel) {
 // Open candidates far from closing (the look-ahead's, at gap / h = 1.5 m/s here, ten for each
 // contact of the lattice pile) inflate ||q|| 400-fold, and Siconos' residual relative to it no
 // longer sees reactions left on them: an interior iterate has every reaction strictly inside
-// its cone, and "ipm" without the sweeps that end it (Options::polish_sweeps = 0) stops after 4
+// its cone, and "ipm" without the crossover that ends it (Options::crossover) stops after 4
 // iterations with spheres driven at 10.8 m/s. With them (the crossover) the candidates carry
 // exactly nothing, the pile is at rest (within a hundredth of h g = 9.8e-3 m/s) and carries its
 // weights.
@@ -140,7 +140,7 @@ TEST(InteriorPoint, OpenCandidatesCarryNothingWhateverTheirGaps) {
   const double weight_speed = kG * lattice_pile().parameters().time_step;  // m/s, h g
   {
     InteriorPointSolver::Options bare;
-    bare.polish_sweeps = 0;
+    bare.crossover = false;
     InteriorPointSolver solver(tight(1e-4), bare);
     const Solved s = solve_cold(problem, solver);
     ASSERT_TRUE(s.report.converged);

@@ -99,6 +99,9 @@ void print_run_end(const RunSummary& summary, const Scene& scene, const std::str
     if (m.landing_halved_steps > 0)
       out << ", " << m.landing_halved_steps << " steps taken in parts: a moving wall landing faster than a radius per step "
           << "(docs/mechanics.md \"A falling piston's margin\")";
+    if (m.retried_steps > 0)
+      out << ", " << m.retried_steps << " unconverged steps retaken in parts (" << m.discarded_sweeps
+          << " sweeps thrown away; mechanics.retry_parts, docs/mechanics.md \"Retaking an unconverged step\")";
     if (m.piston_corrections > 0)
       out << ", " << m.piston_corrections << " corrections moved a piston: particles pinned under it "
           << "(docs/mechanics.md \"Penetration without speed\")";

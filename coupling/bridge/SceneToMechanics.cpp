@@ -59,6 +59,7 @@ mechanics::NscdParameters make_nscd_parameters(const Scene& scene) {
   p.skip_out_of_reach = scene.mechanics.skip_out_of_reach;
   p.static_warm_start = scene.mechanics.static_warm_start;
   p.max_iterations = scene.mechanics.max_iterations;
+  p.retry_parts = scene.mechanics.retry_parts;
   p.full_sweep_every = scene.mechanics.full_sweep_every;
   p.siconos_stop = scene.mechanics.stop_test == "siconos";
   p.normal_law = scene.mechanics.normal_law;

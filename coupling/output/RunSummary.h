@@ -79,6 +79,10 @@ struct MechanicsSummary {
   std::int64_t halved_steps = 0;
   // extra: steps taken in equal parts because a moving wall landed faster than a radius a step
   std::int64_t landing_halved_steps = 0;
+  // extra: steps retaken in parts after ending unconverged (mechanics.retry_parts), and the
+  // sweeps of the tries thrown away (not in mean_iterations)
+  std::int64_t retried_steps = 0;
+  std::int64_t discarded_sweeps = 0;
   // extra: corrections in which pistons took their share (particles pinned under a piston)
   std::int64_t piston_corrections = 0;
   double max_step_travel_m = 0.0;    // extra: largest particle displacement in one step, m
@@ -103,6 +107,8 @@ inline constexpr std::tuple kMechanicsSummaryFields{
     SummaryField{"correction_sweeps", &MechanicsSummary::correction_sweeps},
     SummaryField{"halved_steps", &MechanicsSummary::halved_steps},
     SummaryField{"landing_halved_steps", &MechanicsSummary::landing_halved_steps},
+    SummaryField{"retried_steps", &MechanicsSummary::retried_steps},
+    SummaryField{"discarded_sweeps", &MechanicsSummary::discarded_sweeps},
     SummaryField{"piston_corrections", &MechanicsSummary::piston_corrections},
     SummaryField{"max_step_travel_m", &MechanicsSummary::max_step_travel_m},
     SummaryField{"max_siconos_residual", &MechanicsSummary::max_siconos_residual},

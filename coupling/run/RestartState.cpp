@@ -83,6 +83,8 @@ void store_mechanics_stats(const mechanics::MechanicsStats& s, CheckpointState& 
   cs.extra["mechanics_correction_sweeps"] = double(s.correction_sweeps);
   cs.extra["mechanics_halved_steps"] = double(s.halved_steps);
   cs.extra["mechanics_landing_halved_steps"] = double(s.landing_halved_steps);
+  cs.extra["mechanics_retried_steps"] = double(s.retried_steps);
+  cs.extra["mechanics_discarded_sweeps"] = double(s.discarded_sweeps);
   cs.extra["mechanics_piston_corrections"] = double(s.piston_corrections);
   cs.extra["mechanics_last_step_s"] = s.last_step_s;
   cs.extra["mechanics_correction_potential_J"] = s.correction_potential_J;
@@ -108,6 +110,8 @@ mechanics::MechanicsStats mechanics_stats_of(const CheckpointState& cs) {
   s.correction_sweeps = std::int64_t(extra_or_zero(cs, "mechanics_correction_sweeps"));
   s.halved_steps = std::int64_t(extra_or_zero(cs, "mechanics_halved_steps"));
   s.landing_halved_steps = std::int64_t(extra_or_zero(cs, "mechanics_landing_halved_steps"));
+  s.retried_steps = std::int64_t(extra_or_zero(cs, "mechanics_retried_steps"));
+  s.discarded_sweeps = std::int64_t(extra_or_zero(cs, "mechanics_discarded_sweeps"));
   s.piston_corrections = std::int64_t(extra_or_zero(cs, "mechanics_piston_corrections"));
   s.last_step_s = extra_or_zero(cs, "mechanics_last_step_s");
   s.correction_potential_J = extra_or_zero(cs, "mechanics_correction_potential_J");

@@ -195,6 +195,8 @@ struct MechanicsSettings {
   bool static_warm_start = mechanics::NscdParameters{}.static_warm_start;
   int tighten_steps = mechanics::NscdParameters{}.tighten_steps;  // fall_tolerance -> tolerance over this many steps
   int max_iterations = mechanics::NscdParameters{}.max_iterations;
+  // An unconverged step is retaken in 2, 4, ... parts up to this (NscdParameters::retry_parts).
+  int retry_parts = mechanics::NscdParameters{}.retry_parts;
   int full_sweep_every = mechanics::NscdParameters{}.full_sweep_every;  // Gauss-Seidel active-set sweeps
   // "sweep" or "siconos" (mechanics::NscdParameters::siconos_stop)
   std::string stop_test = mechanics::NscdParameters{}.siconos_stop ? "siconos" : "sweep";

@@ -183,6 +183,8 @@ void SceneBuilder::read_settings() {
                                         std::numeric_limits<int>::max()));
     };
     m.max_iterations = sweeps("max_iterations", m.max_iterations);
+    m.retry_parts = static_cast<int>(t.integer("retry_parts", m.retry_parts, 1,
+                                               mechanics::NscdParameters::kMaxRetryParts));
     m.full_sweep_every = sweeps("full_sweep_every", m.full_sweep_every);
     m.tighten_steps = sweeps("tighten_steps", m.tighten_steps);
     m.settle_time_s = t.number("settle_time");

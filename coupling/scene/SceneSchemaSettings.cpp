@@ -89,6 +89,15 @@ std::vector<Section> settings_sections() {
               "tolerance schedule: once the fall has ended, the tolerance goes from "
               "fall_tolerance to tolerance geometrically over this many steps (1: at once)"),
         value("max_iterations", "", std::to_string(kM.max_iterations), "integer >= 1", "Gauss-Seidel sweeps per step, at most"),
+        value("retry_parts", "", std::to_string(kM.retry_parts),
+              "integer in [1, " + std::to_string(mechanics::NscdParameters::kMaxRetryParts) + "]",
+              "a step that ends unconverged is taken again from its start in 2 equal parts, "
+              "then 4, and so on up to this many, until every part converges; the last try "
+              "stands, converged or not (1: never retaken). The steps that stall are rare and "
+              "tied to one configuration of the bed (a piston at the onset of a compaction), "
+              "and a shorter step starts nearer its answer (docs/mechanics.md \"Retaking an "
+              "unconverged step\"; summary: mechanics.retried_steps, "
+              "mechanics.discarded_sweeps)"),
         value("full_sweep_every", "", std::to_string(kM.full_sweep_every), "integer >= 1",
               "\"nlgs\", \"nlgs_coloured\": a sweep over every candidate at least every this "
               "many sweeps, the others visit the contacts the last full sweep left closed; "

@@ -126,6 +126,8 @@ NscdIntegrator::NscdIntegrator(ParticleSet particles, std::vector<Material> mate
           "compaction_speed must be >= 0 (m/s; 0: off; absent: automatic)");
   require(parameters_.compaction_fraction >= 0.0 && std::isfinite(parameters_.compaction_fraction),
           "compaction_fraction must be >= 0 (0: off)");
+  require(parameters_.retry_parts >= 1 && parameters_.retry_parts <= NscdParameters::kMaxRetryParts,
+          "retry_parts must be in [1, " + std::to_string(NscdParameters::kMaxRetryParts) + "] (1: never retaken)");
   require(parameters_.fall_travel_fraction > 0.0 && std::isfinite(parameters_.fall_travel_fraction),
           "fall_travel_fraction must be > 0");
   const double fall_speed_m_per_s =
@@ -225,7 +227,47 @@ void NscdIntegrator::keep_in_plane() {
 
 StepReport NscdIntegrator::step() { return step(parameters_.time_step); }
 
-StepReport NscdIntegrator::step(double h) { return step(h, true); }
+StepReport NscdIntegrator::step(double h) {
+  if (parameters_.retry_parts < 2) return step(h, true);
+  // The start of the step, to take it again in parts if it ends unconverged. restore_state
+  // takes the state as a checkpoint's, whose warm start is its own: the first step's pending
+  // static warm start and held overlaps are put back by hand.
+  save_state(retry_start_);
+  const bool static_start_pending = static_start_pending_;
+  retry_holds_overlap_ = holds_overlap_;
+  StepReport report = step(h, true);
+  std::int64_t discarded_sweeps = 0;
+  double discarded_detection_s = 0.0, discarded_solve_s = 0.0, discarded_correction_s = 0.0;
+  int parts = 1;
+  while (!report.converged && 2 * parts <= parameters_.retry_parts) {
+    parts *= 2;
+    discarded_sweeps += report.sweeps;
+    discarded_detection_s += report.detection_s;
+    discarded_solve_s += report.solve_s;
+    discarded_correction_s += report.correction_s;
+    restore_state(retry_start_);
+    static_start_pending_ = static_start_pending;
+    holds_overlap_ = retry_holds_overlap_;
+    const double part_s = h / double(parts);
+    report = step(part_s, true);
+    for (int part = 1; part < parts; ++part) report = merged(report, step(part_s, true));
+  }
+  if (parts > 1) {
+    // restore_state put back the counters of the start: the retry's own go on top of the
+    // parts' (each part counted as a step), and the discarded tries' time with the rest.
+    report.retry_parts = parts;
+    report.discarded_sweeps = discarded_sweeps;
+    report.detection_s += discarded_detection_s;
+    report.solve_s += discarded_solve_s;
+    report.correction_s += discarded_correction_s;
+    ++stats_.retried_steps;
+    stats_.discarded_sweeps += discarded_sweeps;
+    stats_.detection_s += discarded_detection_s;
+    stats_.solve_s += discarded_solve_s;
+    stats_.correction_s += discarded_correction_s;
+  }
+  return report;
+}
 
 StepReport NscdIntegrator::step(double h, bool landing_parts) {
   if (!(h > 0.0) || !std::isfinite(h)) throw std::invalid_argument("mechanics: step must be > 0");

@@ -89,7 +89,9 @@ class NscdIntegrator {
   // the detector stops the run with an error naming the lengths. A step in which a moving wall
   // that can touch a particle is fast enough to travel more than the largest radius (a piston
   // landing at metres per second) is taken in 2^k equal parts, the fewest that fit, k at most
-  // kMaxHalvings (beyond, each part lists the pairs within the wall's reach).
+  // kMaxHalvings (beyond, each part lists the pairs within the wall's reach). A step that ends
+  // unconverged is taken again from its start in 2, 4, ... equal parts, up to
+  // NscdParameters::retry_parts, until all its parts converge; the last try stands.
   StepReport step(double h);
   static constexpr int kMaxHalvings = 4;  // a step is halved at most this many times
   // Penetration correction passes at most in a part of a landing taken in parts, and the overlap
@@ -109,6 +111,9 @@ class NscdIntegrator {
   // saved integrator. Both in NscdIntegratorState.cpp. restore_state throws
   // std::invalid_argument when the particle or candidate counts do not fit.
   MechanicsState save_state() const;
+  // The same into `state`, reusing its storage (the retry of an unconverged step saves every
+  // step's start: no allocation once the vectors have grown).
+  void save_state(MechanicsState& state) const;
   void restore_state(const MechanicsState& state);
 
   double kinetic_energy() const;    // J, translation + rotation of moving particles
@@ -240,6 +245,10 @@ class NscdIntegrator {
   std::vector<double> old_held_overlap_;
   double slop_m_ = 0.0;  // penetration slop (NscdParameters), m
   bool in_landing_parts_ = false;  // step() is taking the parts of a landing
+  // The start of the step being taken, for its retry (NscdParameters::retry_parts), and the
+  // first step's pending work that restore_state() would drop (held overlaps to take).
+  MechanicsState retry_start_;
+  std::vector<std::uint8_t> retry_holds_overlap_;
   double stop_speed_m_per_s_ = 0.0;  // ContactProblem::stop_speed outside the fall
   ContactProblem problem_;
   std::unique_ptr<ContactSolver> solver_;

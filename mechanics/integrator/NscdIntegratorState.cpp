@@ -9,6 +9,11 @@ namespace tmdem::mechanics {
 
 MechanicsState NscdIntegrator::save_state() const {
   MechanicsState s;
+  save_state(s);
+  return s;
+}
+
+void NscdIntegrator::save_state(MechanicsState& s) const {
   s.position_m = particles_.position;
   s.velocity_m_per_s = particles_.velocity;
   s.angular_velocity_rad_per_s = particles_.angular_velocity;
@@ -22,6 +27,7 @@ MechanicsState NscdIntegrator::save_state() const {
   s.candidate_force_N.assign(s.candidates.size(), Eigen::Vector3d::Zero());
   for (std::size_t k = 0; k < s.candidates.size() && k < force_.size(); ++k)
     s.candidate_force_N[k] = force_[k];
+  s.candidate_rolling_torque_Nm.clear();
   if (rolling_) {
     s.candidate_rolling_torque_Nm.assign(s.candidates.size(), Eigen::Vector3d::Zero());
     for (std::size_t k = 0; k < s.candidates.size() && k < torque_.size(); ++k)
@@ -31,12 +37,13 @@ MechanicsState NscdIntegrator::save_state() const {
   s.solver_state = solver_->carried_state();
   s.stats = stats_;
   s.tolerance_schedule = schedule_.state();
+  s.wall_point_m.clear();
+  s.wall_velocity_m_per_s.clear();
   for (const auto& w : walls_) {
     s.wall_point_m.push_back(w.point);
     s.wall_velocity_m_per_s.push_back(w.velocity_m_per_s);
   }
   s.reference_wall_point_m = detector_.reference_wall_points();
-  return s;
 }
 
 void NscdIntegrator::restore_state(const MechanicsState& s) {

@@ -49,6 +49,12 @@ struct StepReport {
   double detection_s = 0.0;   // candidate table refresh + gaps, normals, warm start
   double solve_s = 0.0;       // the velocity-level contact solve
   double correction_s = 0.0;  // gaps after the step + penetration correction
+  // A step retaken in parts after it ended unconverged (NscdParameters::retry_parts; only
+  // NscdIntegrator::step(double) sets these): the parts of the try that stands (0: the step
+  // stood as first taken), and the sweeps of the tries thrown away (their time is in the three
+  // times above).
+  int retry_parts = 0;
+  std::int64_t discarded_sweeps = 0;
 };
 
 // One report for a step taken as two halves (NscdIntegrator::step: a step too long for the
@@ -81,6 +87,11 @@ struct MechanicsStats {
   // that can touch a particle was fast enough to travel more than the largest radius within the
   // step (a landing piston; NscdIntegrator::step); each part counts in `steps`.
   std::int64_t landing_halved_steps = 0;
+  // Steps that ended unconverged and were taken again from their start in parts
+  // (NscdParameters::retry_parts; each part of the try that stands counts in `steps`), and the
+  // sweeps of the tries thrown away (not in total_sweeps; their time is in the times below).
+  std::int64_t retried_steps = 0;
+  std::int64_t discarded_sweeps = 0;
   // Corrections in which the pistons took their share: the penetration correction with them
   // held could not move what it corrects (particles pinned under a piston; NscdIntegrator::step).
   std::int64_t piston_corrections = 0;

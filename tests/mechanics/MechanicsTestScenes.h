@@ -23,6 +23,7 @@ inline NscdParameters nlgs_parameters() {
   parameters.tolerance = 1e-6;
   parameters.fall_tolerance = 0.0;
   parameters.stop_travel_fraction = 0.0;
+  parameters.retry_parts = 1;  // measured before unconverged steps were retaken in parts
   return parameters;
 }
 

@@ -69,9 +69,12 @@ TEST(RunSummary, JsonHasEveryContractKey) {
   EXPECT_EQ(j["settle"]["ended_by"], "none");
   EXPECT_EQ(j.size(), 8u);
   // The contract's 5 mechanics keys plus the extras stalled_steps, correction_sweeps,
-  // halved_steps, landing_halved_steps, piston_corrections, max_step_travel_m,
-  // max_siconos_residual, siconos_unconverged_steps and max_natural_map_residual.
-  EXPECT_EQ(j["mechanics"].size(), 14u);
+  // halved_steps, landing_halved_steps, retried_steps, discarded_sweeps, piston_corrections,
+  // max_step_travel_m, max_siconos_residual, siconos_unconverged_steps and
+  // max_natural_map_residual.
+  EXPECT_EQ(j["mechanics"].size(), 16u);
+  EXPECT_TRUE(j["mechanics"]["retried_steps"].is_number_integer());
+  EXPECT_TRUE(j["mechanics"]["discarded_sweeps"].is_number_integer());
   EXPECT_TRUE(j["mechanics"]["piston_corrections"].is_number_integer());
   EXPECT_TRUE(j["mechanics"]["halved_steps"].is_number_integer());
   EXPECT_TRUE(j["mechanics"]["landing_halved_steps"].is_number_integer());

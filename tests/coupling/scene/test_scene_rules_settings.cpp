@@ -87,6 +87,12 @@ TEST(SceneRules, ToleranceSchedule) {
   expect_scene_error(kBaseScene, {"mechanics.compaction_speed=-1e-4"},
                      {"mechanics.compaction_speed", ">= 0"});
   expect_scene_error(kBaseScene, {"mechanics.compaction_speed=nan"}, {"mechanics.compaction_speed"});
+  // retry_parts: 8 by default, an integer in [1, 64], the key named when out of it.
+  EXPECT_EQ(make_nscd_parameters(defaults).retry_parts, 8);
+  EXPECT_EQ(make_nscd_parameters(load_scene_text(kBaseScene, "t", {"mechanics.retry_parts=1"})).retry_parts, 1);
+  expect_scene_error(kBaseScene, {"mechanics.retry_parts=0"}, {"mechanics.retry_parts"});
+  expect_scene_error(kBaseScene, {"mechanics.retry_parts=65"}, {"mechanics.retry_parts"});
+  expect_scene_error(kBaseScene, {"mechanics.retry_parts=2.5"}, {"mechanics.retry_parts"});
   const Scene off = load_scene_text(kBaseScene, "t", {"mechanics.fall_tolerance=0"});
   EXPECT_EQ(make_nscd_parameters(off).fall_tolerance, 0.0);
   const Scene on = load_scene_text(kBaseScene, "t", {"mechanics.fall_tolerance=1e-3", "mechanics.fall_speed=0.1"});

@@ -1,0 +1,123 @@
+// Retaking an unconverged step in parts (NscdParameters::retry_parts): the try that stands is
+// bit for bit the parts an integrator without retries takes from the same start, so the tries
+// thrown away leave nothing behind (positions, velocities, warm starts, candidate table, the
+// first step's static warm start); their sweeps are counted apart; a converged step is never
+// retaken; the parameter is checked.
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+#include "mechanics/MechanicsTestScenes.h"
+
+using namespace tmdem::mechanics;
+using namespace tmdem::mechanics::test;
+
+namespace retry_test {
+
+constexpr double kWidth = 0.008;  // m, settled_disk_pile's box
+
+// A new integrator on the settled pile's disks (the same box and materials as
+// settled_disk_pile): its first step has contacts and a static warm start pending.
+NscdIntegrator pile_from(const NscdIntegrator& settled, int retry_parts, int max_iterations,
+                         double tolerance) {
+  ParticleSet set = settled.particles();
+  // A sideways push on the upper half, so the steps have something to solve.
+  for (std::size_t i = 0; i < set.size(); ++i)
+    if (set.position[i].y() > 4e-3) set.velocity[i] = Eigen::Vector3d(0.02, 0.0, 0.0);
+  auto walls = box_walls(kWidth, kWidth, 2);
+  for (std::size_t w = 1; w < walls.size(); ++w) walls[w].material = 1;
+  NscdParameters parameters = nlgs_parameters();
+  parameters.tolerance = tolerance;
+  parameters.max_iterations = max_iterations;
+  parameters.retry_parts = retry_parts;
+  return NscdIntegrator(std::move(set), {steel(0.5), steel(0.0)}, walls, Eigen::Vector3d(0, -kG, 0), 2,
+                        parameters);
+}
+
+void expect_same_state(const NscdIntegrator& a, const NscdIntegrator& b, const char* where) {
+  ASSERT_EQ(a.particles().size(), b.particles().size());
+  for (std::size_t i = 0; i < a.particles().size(); ++i) {
+    EXPECT_EQ(a.particles().position[i], b.particles().position[i]) << where << ", particle " << i;
+    EXPECT_EQ(a.particles().velocity[i], b.particles().velocity[i]) << where << ", particle " << i;
+    EXPECT_EQ(a.particles().angular_velocity[i], b.particles().angular_velocity[i])
+        << where << ", particle " << i;
+  }
+  ASSERT_EQ(a.contacts().size(), b.contacts().size()) << where;
+  for (std::size_t k = 0; k < a.contacts().size(); ++k) {
+    EXPECT_EQ(a.contacts()[k].normal_impulse_Ns, b.contacts()[k].normal_impulse_Ns) << where;
+    EXPECT_EQ(a.contacts()[k].tangential_force_N, b.contacts()[k].tangential_force_N) << where;
+  }
+}
+
+}  // namespace retry_test
+
+using namespace retry_test;
+
+TEST(StepRetry, AnUnconvergedStepStandsAsItsPartsWithNothingLeftOfTheTriesThrownAway) {
+  const NscdIntegrator settled = settled_disk_pile();
+  // Two sweeps a solve at 1e-8: no try converges, so each step is retaken in 2, then 4 parts.
+  constexpr int kSweeps = 2;
+  const double h = settled.parameters().time_step;
+  NscdIntegrator retried = pile_from(settled, 4, kSweeps, 1e-8);
+  NscdIntegrator quarters = pile_from(settled, 1, kSweeps, 1e-8);
+  // The tries thrown away, as an integrator without retries takes them from the same start.
+  NscdIntegrator whole = pile_from(settled, 1, kSweeps, 1e-8);
+  NscdIntegrator halves = pile_from(settled, 1, kSweeps, 1e-8);
+
+  const StepReport report = retried.step(h);
+  const StepReport whole_report = whole.step(h);
+  const StepReport half_report = merged(halves.step(0.5 * h), halves.step(0.5 * h));
+  StepReport quarter_report = quarters.step(0.25 * h);
+  for (int part = 1; part < 4; ++part) quarter_report = merged(quarter_report, quarters.step(0.25 * h));
+  ASSERT_FALSE(whole_report.converged);
+  ASSERT_FALSE(half_report.converged);
+  ASSERT_FALSE(quarter_report.converged);
+  EXPECT_FALSE(report.converged);  // the last try stands, converged or not
+  EXPECT_EQ(report.retry_parts, 4);
+  EXPECT_EQ(report.sweeps, quarter_report.sweeps);
+  EXPECT_EQ(report.discarded_sweeps, whole_report.sweeps + half_report.sweeps);
+  EXPECT_GT(report.discarded_sweeps, 0);
+  expect_same_state(retried, quarters, "first step");
+  // Each part counts as a step; the retry once; the thrown-away sweeps apart from total_sweeps.
+  EXPECT_EQ(retried.stats().steps, 4);
+  EXPECT_EQ(retried.stats().retried_steps, 1);
+  EXPECT_EQ(retried.stats().discarded_sweeps, report.discarded_sweeps);
+  EXPECT_EQ(retried.stats().total_sweeps, quarters.stats().total_sweeps);
+  EXPECT_EQ(retried.stats().unconverged_steps, quarters.stats().unconverged_steps);
+
+  // A step from the middle of a run (warm starts and candidate table of the step before).
+  const StepReport second = retried.step(h);
+  for (int part = 0; part < 4; ++part) quarters.step(0.25 * h);
+  EXPECT_EQ(second.retry_parts, 4);
+  expect_same_state(retried, quarters, "second step");
+  EXPECT_EQ(retried.stats().steps, 8);
+  EXPECT_EQ(retried.stats().retried_steps, 2);
+  EXPECT_EQ(retried.stats().energy_change_J, quarters.stats().energy_change_J);
+}
+
+TEST(StepRetry, AConvergedStepIsNeverRetaken) {
+  const NscdIntegrator settled = settled_disk_pile();
+  NscdIntegrator retried = pile_from(settled, 8, 10000, 1e-4);
+  NscdIntegrator plain = pile_from(settled, 1, 10000, 1e-4);
+  for (int step = 0; step < 20; ++step) {
+    const StepReport report = retried.step();
+    ASSERT_TRUE(plain.step().converged) << "step " << step << ": the test needs converged steps";
+    EXPECT_EQ(report.retry_parts, 0);
+    EXPECT_EQ(report.discarded_sweeps, 0);
+  }
+  expect_same_state(retried, plain, "20 converged steps");
+  EXPECT_EQ(retried.stats().retried_steps, 0);
+  EXPECT_EQ(retried.stats().steps, 20);
+}
+
+TEST(StepRetry, PartsOutsideTheirRangeAreRefused) {
+  const NscdIntegrator settled = settled_disk_pile();
+  for (const int parts : {0, NscdParameters::kMaxRetryParts + 1}) {
+    try {
+      pile_from(settled, parts, 100, 1e-6);
+      ADD_FAILURE() << "retry_parts = " << parts << " was accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("retry_parts"), std::string::npos) << e.what();
+    }
+  }
+}

@@ -149,6 +149,8 @@ void store_mechanics_state(const mechanics::MechanicsState& m, CheckpointState& 
   // The tolerance schedule's phase (0 before the fall, also in checkpoints older than it).
   cs.extra["mechanics_tolerance_phase"] = double(int(m.tolerance_schedule.phase));
   cs.extra["mechanics_tolerance_landed_step"] = double(m.tolerance_schedule.landed_step);
+  cs.extra["mechanics_retry_limit"] = double(m.retry_limit);
+  cs.extra["mechanics_retry_converged_steps"] = double(m.retry_converged_in_a_row);
 }
 
 mechanics::MechanicsState mechanics_state_of(const CheckpointState& cs) {
@@ -175,6 +177,8 @@ mechanics::MechanicsState mechanics_state_of(const CheckpointState& cs) {
       mechanics::ToleranceSchedule::Phase(int(extra_or_zero(cs, "mechanics_tolerance_phase")));
   m.tolerance_schedule.landed_step =
       std::int64_t(extra_or_zero(cs, "mechanics_tolerance_landed_step"));
+  m.retry_limit = int(extra_or_zero(cs, "mechanics_retry_limit"));
+  m.retry_converged_in_a_row = int(extra_or_zero(cs, "mechanics_retry_converged_steps"));
   return m;
 }
 

@@ -92,12 +92,14 @@ std::vector<Section> settings_sections() {
         value("retry_parts", "", std::to_string(kM.retry_parts),
               "integer in [1, " + std::to_string(mechanics::NscdParameters::kMaxRetryParts) + "]",
               "a step that ends unconverged is taken again from its start in 2 equal parts, "
-              "then 4, and so on up to this many, until every part converges; the last try "
-              "stands, converged or not (1: never retaken). The steps that stall are rare and "
-              "tied to one configuration of the bed (a piston at the onset of a compaction), "
-              "and a shorter step starts nearer its answer (docs/mechanics.md \"Retaking an "
-              "unconverged step\"; summary: mechanics.retried_steps, "
-              "mechanics.discarded_sweeps)"),
+              "then 4, and so on up to this many, until every part converges (parts of the "
+              "first try's own: a piston's landing first taken in 8 parts is retaken in 16, "
+              "32, 64); the last try stands, converged or not (1: never retaken). A step still unconverged after its "
+              "retries halves the parts the next retries may go up to, and ten converged steps "
+              "in a row double them back. The steps that stall are rare and tied to one "
+              "configuration of the bed (a piston at the onset of a compaction), and a shorter "
+              "step starts nearer its answer (docs/mechanics.md \"Retaking an unconverged "
+              "step\"; summary: mechanics.retried_steps, mechanics.discarded_sweeps)"),
         value("full_sweep_every", "", std::to_string(kM.full_sweep_every), "integer >= 1",
               "\"nlgs\", \"nlgs_coloured\": a sweep over every candidate at least every this "
               "many sweeps, the others visit the contacts the last full sweep left closed; "

@@ -48,6 +48,12 @@ struct MechanicsState {
   // The tolerance schedule's phase (ToleranceSchedule.h; Before when the scene has none).
   ToleranceSchedule::State tolerance_schedule;
 
+  // The retry's budget (NscdIntegrator::step(double)): the parts a retry may go up to now (0:
+  // NscdParameters::retry_parts, also in checkpoints older than it), and the steps converged in
+  // a row since it was last changed.
+  int retry_limit = 0;
+  int retry_converged_in_a_row = 0;
+
   MechanicsStats stats;
 };
 

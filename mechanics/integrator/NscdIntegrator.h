@@ -94,6 +94,9 @@ class NscdIntegrator {
   // NscdParameters::retry_parts, until all its parts converge; the last try stands.
   StepReport step(double h);
   static constexpr int kMaxHalvings = 4;  // a step is halved at most this many times
+  // Converged steps in a row that double back the parts a retry may go up to, after a step that
+  // stayed unconverged through its retries halved them (step(double); NscdParameters::retry_parts).
+  static constexpr int kRetryRecoverSteps = 10;
   // Penetration correction passes at most in a part of a landing taken in parts, and the overlap
   // (in penetration slops) a pass must leave for another (step()).
   static constexpr int kCorrectionPasses = 4;
@@ -249,6 +252,11 @@ class NscdIntegrator {
   // first step's pending work that restore_state() would drop (held overlaps to take).
   MechanicsState retry_start_;
   std::vector<std::uint8_t> retry_holds_overlap_;
+  // The retry's budget: a step still unconverged after its retries halves the parts the next
+  // retries may go up to (down to 1: none), and kRetryRecoverSteps converged steps in a row
+  // double them back (up to retry_parts). 0: retry_parts. Both in MechanicsState.
+  int retry_limit_ = 0;
+  int retry_converged_in_a_row_ = 0;
   double stop_speed_m_per_s_ = 0.0;  // ContactProblem::stop_speed outside the fall
   ContactProblem problem_;
   std::unique_ptr<ContactSolver> solver_;

@@ -37,6 +37,8 @@ void NscdIntegrator::save_state(MechanicsState& s) const {
   s.solver_state = solver_->carried_state();
   s.stats = stats_;
   s.tolerance_schedule = schedule_.state();
+  s.retry_limit = retry_limit_;
+  s.retry_converged_in_a_row = retry_converged_in_a_row_;
   s.wall_point_m.clear();
   s.wall_velocity_m_per_s.clear();
   for (const auto& w : walls_) {
@@ -94,6 +96,8 @@ void NscdIntegrator::restore_state(const MechanicsState& s) {
   holds_overlap_.clear();  // the state carries what is held
   contacts_.clear();
   schedule_.restore(s.tolerance_schedule);
+  retry_limit_ = s.retry_limit;
+  retry_converged_in_a_row_ = s.retry_converged_in_a_row;
   solver_->restore_carried_state(s.solver_state);
   stats_ = s.stats;
 }

@@ -75,8 +75,10 @@ struct NscdParameters {
   // above; through its study over four seeds it left 18 unconverged steps, a fixed 1e-3 m/s 47.
   double compaction_fraction = 0.01;
   // A step that ends unconverged is taken again from its start in 2 equal parts, then 4, and so
-  // on up to this many, until every part converges (NscdIntegrator::step(double)); the last
-  // try stands, converged or not. 1: never retaken. Why: the steps that stall are rare and
+  // on up to this many, until every part converges (NscdIntegrator::step(double); parts of its
+  // first try's own: a landing first taken in 8 parts is retaken in 16, 32, 64); the last
+  // try stands, converged or not. 1: never retaken. A step still unconverged after its retries
+  // halves the parts the next retries may go up to, ten converged steps double them back. Why: the steps that stall are rare and
   // tied to one configuration (a piston creeping at the onset of a compaction, a loaded bed
   // flowing under it), and a shorter step starts nearer its answer and ends elsewhere.
   // piston_cylinder's study (1e3, 1e4, 1e5 Pa), four seeds: 18 unconverged steps with whole

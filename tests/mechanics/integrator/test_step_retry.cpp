@@ -2,7 +2,8 @@
 // bit for bit the parts an integrator without retries takes from the same start, so the tries
 // thrown away leave nothing behind (positions, velocities, warm starts, candidate table, the
 // first step's static warm start); their sweeps are counted apart; a converged step is never
-// retaken; the parameter is checked.
+// retaken; retries that fail are cut and come back after converged steps; the parameter is
+// checked.
 #include <gtest/gtest.h>
 
 #include <stdexcept>
@@ -41,6 +42,10 @@ void expect_same_state(const NscdIntegrator& a, const NscdIntegrator& b, const c
     EXPECT_EQ(a.particles().velocity[i], b.particles().velocity[i]) << where << ", particle " << i;
     EXPECT_EQ(a.particles().angular_velocity[i], b.particles().angular_velocity[i])
         << where << ", particle " << i;
+  }
+  for (std::size_t w = 0; w < a.walls().size(); ++w) {
+    EXPECT_EQ(a.walls()[w].point, b.walls()[w].point) << where << ", wall " << w;
+    EXPECT_EQ(a.walls()[w].velocity_m_per_s, b.walls()[w].velocity_m_per_s) << where << ", wall " << w;
   }
   ASSERT_EQ(a.contacts().size(), b.contacts().size()) << where;
   for (std::size_t k = 0; k < a.contacts().size(); ++k) {
@@ -85,12 +90,14 @@ TEST(StepRetry, AnUnconvergedStepStandsAsItsPartsWithNothingLeftOfTheTriesThrown
   EXPECT_EQ(retried.stats().total_sweeps, quarters.stats().total_sweeps);
   EXPECT_EQ(retried.stats().unconverged_steps, quarters.stats().unconverged_steps);
 
-  // A step from the middle of a run (warm starts and candidate table of the step before).
+  // A step from the middle of a run (warm starts and candidate table of the step before). The
+  // first step failed through its retries, so this one is retaken in at most 2 parts (the
+  // budget: RetriesThatFailAreCutAndComeBackAfterConvergedSteps).
   const StepReport second = retried.step(h);
-  for (int part = 0; part < 4; ++part) quarters.step(0.25 * h);
-  EXPECT_EQ(second.retry_parts, 4);
+  for (int part = 0; part < 2; ++part) quarters.step(0.5 * h);
+  EXPECT_EQ(second.retry_parts, 2);
   expect_same_state(retried, quarters, "second step");
-  EXPECT_EQ(retried.stats().steps, 8);
+  EXPECT_EQ(retried.stats().steps, 6);
   EXPECT_EQ(retried.stats().retried_steps, 2);
   EXPECT_EQ(retried.stats().energy_change_J, quarters.stats().energy_change_J);
 }
@@ -108,6 +115,83 @@ TEST(StepRetry, AConvergedStepIsNeverRetaken) {
   expect_same_state(retried, plain, "20 converged steps");
   EXPECT_EQ(retried.stats().retried_steps, 0);
   EXPECT_EQ(retried.stats().steps, 20);
+}
+
+TEST(StepRetry, RetriesThatFailAreCutAndComeBackAfterConvergedSteps) {
+  const NscdIntegrator settled = settled_disk_pile();
+  const double h = settled.parameters().time_step;
+  // Every try fails (two sweeps a solve): the first step is retaken up to 8 parts, the next up
+  // to 4, then 2, then not at all.
+  NscdIntegrator failing = pile_from(settled, 8, 2, 1e-8);
+  for (const int expected_parts : {8, 4, 2, 0, 0}) {
+    const StepReport report = failing.step(h);
+    ASSERT_FALSE(report.converged);
+    EXPECT_EQ(report.retry_parts, expected_parts);
+    EXPECT_EQ(report.discarded_sweeps > 0, expected_parts > 0);
+  }
+  EXPECT_EQ(failing.stats().retried_steps, 3);
+  EXPECT_EQ(failing.stats().steps, 8 + 4 + 2 + 1 + 1);
+  const MechanicsState cut = failing.save_state();
+  EXPECT_EQ(cut.retry_limit, 1);
+
+  // The same bed solved to convergence from there (its state carries the budget): every ten
+  // converged steps in a row double it back, up to retry_parts.
+  NscdIntegrator converging = pile_from(settled, 8, 10000, 1e-3);
+  converging.restore_state(cut);
+  for (const int expected_limit : {2, 4, 8, 8}) {
+    for (int step = 0; step < NscdIntegrator::kRetryRecoverSteps; ++step)
+      ASSERT_TRUE(converging.step(h).converged) << "the test needs converged steps";
+    EXPECT_EQ(converging.save_state().retry_limit, expected_limit);
+  }
+}
+
+// 6 steel spheres stacked on the floor and a 5 g piston under 2 N falling 10 R onto them,
+// landing at about 2.5 m/s: the landing step is taken in equal parts (test_piston.cpp).
+NscdIntegrator landing_column(int retry_parts, int max_iterations) {
+  ParticleSet set;
+  for (int k = 0; k < 6; ++k)
+    set.add(Eigen::Vector3d(0, kRadius * (2 * k + 1), 0), kRadius, sphere_mass(kRadius, kDensity), 0);
+  Wall piston = Wall::through({0, 12 * kRadius + 10 * kRadius, 0}, {0, -1, 0}, 0);
+  piston.make_piston(0.005, 2.0);
+  NscdParameters parameters = nlgs_parameters();
+  parameters.solver = "nncg_ipm";
+  parameters.tolerance = 1e-10;
+  parameters.max_iterations = max_iterations;
+  parameters.retry_parts = retry_parts;
+  return NscdIntegrator(std::move(set), {steel(0.0)},
+                        {Wall::through({0, 0, 0}, {0, 1, 0}, 0), piston,
+                         Wall::through({-kRadius, 0, 0}, {1, 0, 0}, 0),
+                         Wall::through({kRadius, 0, 0}, {-1, 0, 0}, 0)},
+                        Eigen::Vector3d(0, -kG, 0), 3, parameters);
+}
+
+TEST(StepRetry, ALandingTakenInPartsIsRetakenInShorterParts) {
+  // A landing taken in P parts and retaken in 2 parts of h / 2 would repeat its first try part
+  // for part; it is retaken in 2 P parts of h / (2 P).
+  constexpr int kSweeps = 3;
+  NscdIntegrator retried = landing_column(2, kSweeps);
+  NscdIntegrator plain = landing_column(1, kSweeps);
+  const double h = retried.parameters().time_step;
+  for (int step = 0; step < 100; ++step) {
+    const MechanicsState start = plain.save_state();
+    const std::int64_t steps_before = plain.stats().steps;
+    const StepReport report = retried.step(h);
+    const StepReport first_try = plain.step(h);
+    if (report.retry_parts == 0) {
+      ASSERT_TRUE(first_try.converged) << "step " << step;
+      continue;
+    }
+    ASSERT_FALSE(first_try.converged);
+    const int first_parts = int(plain.stats().steps - steps_before);
+    ASSERT_GT(first_parts, 1) << "step " << step << ": the first retaken step should be the landing";
+    EXPECT_EQ(report.retry_parts, 2 * first_parts);
+    NscdIntegrator parts = landing_column(1, kSweeps);
+    parts.restore_state(start);
+    for (int part = 0; part < 2 * first_parts; ++part) parts.step(h / (2 * first_parts));
+    expect_same_state(retried, parts, "the landing retaken");
+    return;
+  }
+  FAIL() << "no step was retaken in 100";
 }
 
 TEST(StepRetry, PartsOutsideTheirRangeAreRefused) {

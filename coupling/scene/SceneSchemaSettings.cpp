@@ -94,9 +94,9 @@ std::vector<Section> settings_sections() {
               "a step that ends unconverged is taken again from its start in 2 equal parts, "
               "then 4, and so on up to this many, until every part converges (parts of the "
               "first try's own: a piston's landing first taken in 8 parts is retaken in 16, "
-              "32, 64); the last try stands, converged or not (1: never retaken). A step still unconverged after its "
-              "retries halves the parts the next retries may go up to, and ten converged steps "
-              "in a row double them back. The steps that stall are rare and tied to one "
+              "32, 64); the last try stands, converged or not (1: never retaken). A step still "
+              "unconverged after its retries halves the parts the next retries may go up to, "
+              "and ten converged steps in a row double them back. The steps that stall are rare and tied to one "
               "configuration of the bed (a piston at the onset of a compaction), and a shorter "
               "step starts nearer its answer (docs/mechanics.md \"Retaking an unconverged "
               "step\"; summary: mechanics.retried_steps, mechanics.discarded_sweeps)"),

@@ -191,6 +191,8 @@ class NscdIntegrator {
   void fill_lookahead(double h);
   // step(h); landing_parts: a landing may be taken in parts (false inside its parts).
   StepReport step(double h, bool landing_parts);
+  // `parts` steps of part_s each, one merged report (a landing's parts, a retry's).
+  StepReport step_in_parts(double part_s, int parts, bool landing_parts);
   // Whether a moving wall that can touch a particle within a step of h s moves fast enough to
   // carry it more than the largest radius in it (2 h |v| against
   // ContactDetector::wall_reach_exceeds_margin): step() then takes the step in equal parts. For

@@ -78,9 +78,10 @@ struct NscdParameters {
   // on up to this many, until every part converges (NscdIntegrator::step(double); parts of its
   // first try's own: a landing first taken in 8 parts is retaken in 16, 32, 64); the last
   // try stands, converged or not. 1: never retaken. A step still unconverged after its retries
-  // halves the parts the next retries may go up to, ten converged steps double them back. Why: the steps that stall are rare and
-  // tied to one configuration (a piston creeping at the onset of a compaction, a loaded bed
-  // flowing under it), and a shorter step starts nearer its answer and ends elsewhere.
+  // halves the parts the next retries may go up to, ten converged steps double them back.
+  // Why: the steps that stall are rare and tied to one configuration (a piston creeping at the
+  // onset of a compaction, a loaded bed flowing under it), and a shorter step starts nearer its
+  // answer and ends elsewhere.
   // piston_cylinder's study (1e3, 1e4, 1e5 Pa), four seeds: 18 unconverged steps with whole
   // steps, 0 with retries up to 8 parts (docs/mechanics.md "Retaking an unconverged step").
   int retry_parts = 8;

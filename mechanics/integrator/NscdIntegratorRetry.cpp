@@ -1,0 +1,68 @@
+// NscdIntegrator::step(double): a step that ends unconverged taken again from its start in
+// shorter equal parts (NscdParameters::retry_parts; docs/mechanics.md "Retaking an unconverged
+// step"), apart from the step itself (NscdIntegrator.cpp), as the state's save and restore are.
+#include <algorithm>
+#include <cmath>
+
+#include "mechanics/integrator/NscdIntegrator.h"
+
+namespace tmdem::mechanics {
+
+StepReport NscdIntegrator::step(double h) {
+  if (parameters_.retry_parts < 2) return step(h, true);
+  // The start of the step, to take it again in parts if it ends unconverged. restore_state
+  // takes the state as a checkpoint's, whose warm start is its own: the first step's pending
+  // static warm start and held overlaps are put back by hand.
+  save_state(retry_start_);
+  const bool static_start_pending = static_start_pending_;
+  retry_holds_overlap_ = holds_overlap_;
+  StepReport report = step(h, true);
+  const int limit = retry_limit_ > 0 ? retry_limit_ : parameters_.retry_parts;
+  std::int64_t discarded_sweeps = 0;
+  double discarded_detection_s = 0.0, discarded_solve_s = 0.0, discarded_correction_s = 0.0;
+  // Parts relative to the first try's own: a landing already taken in parts of h / 8
+  // (periodic_2d's piston) retaken in 2 parts of h / 2 repeats, part for part, the very same
+  // steps; so the retries go to parts of h / 16, h / 32 and h / 64 there.
+  const int first_parts = int(std::max(1L, std::lround(h / report.time_step_s)));
+  int finer = 1, parts = 1;
+  while (!report.converged && 2 * finer <= limit) {
+    finer *= 2;
+    parts = first_parts * finer;
+    discarded_sweeps += report.sweeps;
+    discarded_detection_s += report.detection_s;
+    discarded_solve_s += report.solve_s;
+    discarded_correction_s += report.correction_s;
+    restore_state(retry_start_);
+    static_start_pending_ = static_start_pending;
+    holds_overlap_ = retry_holds_overlap_;
+    report = step_in_parts(h / double(parts), parts, true);
+  }
+  if (finer > 1) {
+    // restore_state put back the counters of the start: the retry's own go on top of the
+    // parts' (each part counted as a step), and the discarded tries' time with the rest.
+    report.retry_parts = parts;
+    report.discarded_sweeps = discarded_sweeps;
+    report.detection_s += discarded_detection_s;
+    report.solve_s += discarded_solve_s;
+    report.correction_s += discarded_correction_s;
+    ++stats_.retried_steps;
+    stats_.discarded_sweeps += discarded_sweeps;
+    stats_.detection_s += discarded_detection_s;
+    stats_.solve_s += discarded_solve_s;
+    stats_.correction_s += discarded_correction_s;
+  }
+  // The budget (after the restores above, which put back the start's). Why: where a bed's steps
+  // stall one after another (bench/beds/deposit_2d_sizes: 30 of 56 steps, laid and loaded),
+  // retaking each in up to 8 parts costs 15 of its tries and changes nothing; a retry that
+  // failed says so, and the next ones are cut.
+  if (!report.converged) {
+    retry_limit_ = std::max(1, limit / 2);
+    retry_converged_in_a_row_ = 0;
+  } else if (++retry_converged_in_a_row_ >= kRetryRecoverSteps) {
+    retry_limit_ = std::min(parameters_.retry_parts, 2 * limit);
+    retry_converged_in_a_row_ = 0;
+  }
+  return report;
+}
+
+}  // namespace tmdem::mechanics

@@ -59,10 +59,18 @@ void print_timing(const RunSummary& summary, std::ostream& out) {
 void print_warnings(const RunSummary& summary, std::ostream& out) {
   const auto kinds = warning_counts(summary);
   if (kinds.empty()) return;
+  // One warning was printed per unconverged step of h (unconverged_time_steps), the first
+  // kWarningsShown of them; unconverged_steps counts each unconverged part of a step taken in
+  // parts (a landing, a retry), so it may be larger.
   const std::int64_t total = summary.mechanics.unconverged_steps;
-  out << "warnings: " << total << " mechanics steps unconverged, "
-      << (total > kWarningsShown ? "the first " + std::to_string(kWarningsShown) : std::string("all"))
-      << " printed above:\n";
+  const std::int64_t warned = summary.mechanics.unconverged_time_steps;
+  out << "warnings: " << total << " mechanics steps unconverged, ";
+  if (warned == total)
+    out << (total > kWarningsShown ? "the first " + std::to_string(kWarningsShown) : std::string("all"));
+  else
+    out << "counting each part of a step taken in parts; of " << warned << " steps of the time step, "
+        << (warned > kWarningsShown ? "the first " + std::to_string(kWarningsShown) : std::string("all"));
+  out << " printed above:\n";
   for (const auto& w : kinds) out << "  " << w.count << " x " << w.kind << ": " << w.advice << "\n";
 }
 

@@ -95,6 +95,9 @@ struct MechanicsSummary {
   // (each reaction against its own exact local solution, relative to the reactions): what the
   // figure above does not see on light bodies (docs/mechanics.md "Honest convergence").
   double max_natural_map_residual = 0.0;
+  // extra: steps of mechanics.time_step that ended unconverged, a step taken in parts counted
+  // once (unconverged_steps counts each unconverged part); one warning each, the first 10 shown
+  std::int64_t unconverged_time_steps = 0;
   std::optional<ToleranceScheduleSummary> tolerance_schedule{};  // extra: with a fall_tolerance
 };
 inline constexpr std::tuple kMechanicsSummaryFields{
@@ -113,7 +116,8 @@ inline constexpr std::tuple kMechanicsSummaryFields{
     SummaryField{"max_step_travel_m", &MechanicsSummary::max_step_travel_m},
     SummaryField{"max_siconos_residual", &MechanicsSummary::max_siconos_residual},
     SummaryField{"siconos_unconverged_steps", &MechanicsSummary::siconos_unconverged_steps},
-    SummaryField{"max_natural_map_residual", &MechanicsSummary::max_natural_map_residual}};
+    SummaryField{"max_natural_map_residual", &MechanicsSummary::max_natural_map_residual},
+    SummaryField{"unconverged_time_steps", &MechanicsSummary::unconverged_time_steps}};
 
 // The "settle" block of a run with a settle phase (mechanics "settle" and "coupled"): how the
 // packing was frozen (RunSummary::settle for the others).

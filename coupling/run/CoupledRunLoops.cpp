@@ -57,10 +57,11 @@ void CoupledRun::run_dynamic() {
     const auto mechanics_start = std::chrono::steady_clock::now();
     const auto report = nscd_->step(t_next - t);
     mechanics_seconds_ += seconds_since(mechanics_start);
-    if (!report.converged && !options_.quiet && nscd_->stats().unconverged_steps <= 10) {
+    // One warning per unconverged step of h, however many of its parts failed.
+    if (!report.converged && !options_.quiet && nscd_->stats().unconverged_time_steps <= 10) {
       std::string msg = unconverged_step_warning("mechanics step", t_next, *nscd_, report,
                                                  report.tolerance);
-      if (nscd_->stats().unconverged_steps == 10) msg += "; further such warnings are not shown";
+      if (nscd_->stats().unconverged_time_steps == 10) msg += "; further such warnings are not shown";
       progress_.message(msg);
     }
     gather_contacts(nscd_->contacts(), contacts_);

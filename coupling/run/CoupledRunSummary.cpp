@@ -54,6 +54,7 @@ void CoupledRun::fill_summary() {
     summary_.mechanics.max_siconos_residual = ms.max_siconos_residual;
     summary_.mechanics.siconos_unconverged_steps = ms.siconos_unconverged_steps;
     summary_.mechanics.max_natural_map_residual = ms.max_natural_map_residual;
+    summary_.mechanics.unconverged_time_steps = ms.unconverged_time_steps;
     if (nscd_->tolerance_schedule().enabled()) {
       ToleranceScheduleSummary ts;
       ts.tolerance = scene_.mechanics.tolerance;

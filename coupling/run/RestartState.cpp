@@ -85,6 +85,7 @@ void store_mechanics_stats(const mechanics::MechanicsStats& s, CheckpointState& 
   cs.extra["mechanics_landing_halved_steps"] = double(s.landing_halved_steps);
   cs.extra["mechanics_retried_steps"] = double(s.retried_steps);
   cs.extra["mechanics_discarded_sweeps"] = double(s.discarded_sweeps);
+  cs.extra["mechanics_unconverged_time_steps"] = double(s.unconverged_time_steps);
   cs.extra["mechanics_piston_corrections"] = double(s.piston_corrections);
   cs.extra["mechanics_last_step_s"] = s.last_step_s;
   cs.extra["mechanics_correction_potential_J"] = s.correction_potential_J;
@@ -112,6 +113,7 @@ mechanics::MechanicsStats mechanics_stats_of(const CheckpointState& cs) {
   s.landing_halved_steps = std::int64_t(extra_or_zero(cs, "mechanics_landing_halved_steps"));
   s.retried_steps = std::int64_t(extra_or_zero(cs, "mechanics_retried_steps"));
   s.discarded_sweeps = std::int64_t(extra_or_zero(cs, "mechanics_discarded_sweeps"));
+  s.unconverged_time_steps = std::int64_t(extra_or_zero(cs, "mechanics_unconverged_time_steps"));
   s.piston_corrections = std::int64_t(extra_or_zero(cs, "mechanics_piston_corrections"));
   s.last_step_s = extra_or_zero(cs, "mechanics_last_step_s");
   s.correction_potential_J = extra_or_zero(cs, "mechanics_correction_potential_J");

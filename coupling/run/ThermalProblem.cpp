@@ -39,6 +39,9 @@ SettleSummary settle_packing(mechanics::NscdIntegrator& nscd, const Scene& scene
   const std::int64_t steps_before = nscd.stats().steps - start.steps;
   const std::int64_t unconverged_before = nscd.stats().unconverged_steps - start.unconverged_steps;
   std::int64_t unconverged = start.unconverged_steps;
+  // Warnings: one per unconverged step of h, however many of its parts failed (a resumed
+  // settle shows its own first 10).
+  const std::int64_t warned_before = nscd.stats().unconverged_time_steps;
   double max_penetration_m = start.max_penetration_m;
   SceneRestTest rest_test(scene, nscd);
   if (!start.rest_window.empty()) rest_test.network().restore_history(std::move(start.rest_window));
@@ -61,9 +64,10 @@ SettleSummary settle_packing(mechanics::NscdIntegrator& nscd, const Scene& scene
     t += h;
     unconverged = nscd.stats().unconverged_steps - unconverged_before;
     max_penetration_m = std::max(max_penetration_m, report.max_penetration_m);
-    if (!report.converged && unconverged <= 10) {
+    const std::int64_t warned = nscd.stats().unconverged_time_steps - warned_before;
+    if (!report.converged && warned <= 10) {
       std::string msg = unconverged_step_warning("settle step", t, nscd, report, report.tolerance);
-      if (unconverged == 10) msg += "; further such warnings are not shown";
+      if (warned == 10) msg += "; further such warnings are not shown";
       progress.message(msg);
     }
     const double speed = nscd.max_speed();

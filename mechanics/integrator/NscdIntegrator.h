@@ -191,6 +191,8 @@ class NscdIntegrator {
   void fill_lookahead(double h);
   // step(h); landing_parts: a landing may be taken in parts (false inside its parts).
   StepReport step(double h, bool landing_parts);
+  // step(h) before its count of unconverged time steps: the first try, and its retries in parts.
+  StepReport step_with_retries(double h);
   // `parts` steps of part_s each, one merged report (a landing's parts, a retry's).
   StepReport step_in_parts(double part_s, int parts, bool landing_parts);
   // Whether a moving wall that can touch a particle within a step of h s moves fast enough to

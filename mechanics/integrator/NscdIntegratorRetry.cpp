@@ -9,6 +9,12 @@
 namespace tmdem::mechanics {
 
 StepReport NscdIntegrator::step(double h) {
+  StepReport report = step_with_retries(h);
+  if (!report.converged) ++stats_.unconverged_time_steps;
+  return report;
+}
+
+StepReport NscdIntegrator::step_with_retries(double h) {
   if (parameters_.retry_parts < 2) return step(h, true);
   // The start of the step, to take it again in parts if it ends unconverged. restore_state
   // takes the state as a checkpoint's, whose warm start is its own: the first step's pending

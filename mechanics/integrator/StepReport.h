@@ -92,6 +92,10 @@ struct MechanicsStats {
   // sweeps of the tries thrown away (not in total_sweeps; their time is in the times below).
   std::int64_t retried_steps = 0;
   std::int64_t discarded_sweeps = 0;
+  // Steps asked of NscdIntegrator::step(h) (the caller's steps) that ended unconverged: a step
+  // taken in parts (landing, periods, retry) counts once here, where unconverged_steps counts
+  // each unconverged part. The run's warnings are one per such step.
+  std::int64_t unconverged_time_steps = 0;
   // Corrections in which the pistons took their share: the penetration correction with them
   // held could not move what it corrects (particles pinned under a piston; NscdIntegrator::step).
   std::int64_t piston_corrections = 0;

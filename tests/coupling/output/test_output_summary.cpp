@@ -70,9 +70,9 @@ TEST(RunSummary, JsonHasEveryContractKey) {
   EXPECT_EQ(j.size(), 8u);
   // The contract's 5 mechanics keys plus the extras stalled_steps, correction_sweeps,
   // halved_steps, landing_halved_steps, retried_steps, discarded_sweeps, piston_corrections,
-  // max_step_travel_m, max_siconos_residual, siconos_unconverged_steps and
-  // max_natural_map_residual.
-  EXPECT_EQ(j["mechanics"].size(), 16u);
+  // max_step_travel_m, max_siconos_residual, siconos_unconverged_steps,
+  // max_natural_map_residual and unconverged_time_steps.
+  EXPECT_EQ(j["mechanics"].size(), 17u);
   EXPECT_TRUE(j["mechanics"]["retried_steps"].is_number_integer());
   EXPECT_TRUE(j["mechanics"]["discarded_sweeps"].is_number_integer());
   EXPECT_TRUE(j["mechanics"]["piston_corrections"].is_number_integer());
@@ -230,6 +230,7 @@ TEST(RunSummary, CorrectionAndTravelRoundTrip) {
   s.mechanics.max_siconos_residual = 1.1e-4;
   s.mechanics.siconos_unconverged_steps = 12;
   s.mechanics.max_natural_map_residual = 3.5e-5;
+  s.mechanics.unconverged_time_steps = 7;
   tmdem::coupling::MechanicalEnergySummary m;
   m.energy_change_J = -2.0;
   m.contact_dissipation_J = 2.0;
@@ -247,6 +248,8 @@ TEST(RunSummary, CorrectionAndTravelRoundTrip) {
   EXPECT_EQ(r.mechanics.siconos_unconverged_steps, 12);
   EXPECT_EQ(j["mechanics"]["max_natural_map_residual"].get<double>(), 3.5e-5);
   EXPECT_EQ(r.mechanics.max_natural_map_residual, 3.5e-5);
+  EXPECT_EQ(j["mechanics"]["unconverged_time_steps"].get<std::int64_t>(), 7);
+  EXPECT_EQ(r.mechanics.unconverged_time_steps, 7);
   ASSERT_TRUE(r.energy.mechanical.has_value());
   EXPECT_EQ(r.energy.mechanical->correction_potential_J, 3.25e-8);
   EXPECT_EQ(r.to_json(), s.to_json());

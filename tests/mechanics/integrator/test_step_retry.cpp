@@ -115,6 +115,7 @@ TEST(StepRetry, AConvergedStepIsNeverRetaken) {
   expect_same_state(retried, plain, "20 converged steps");
   EXPECT_EQ(retried.stats().retried_steps, 0);
   EXPECT_EQ(retried.stats().steps, 20);
+  EXPECT_EQ(retried.stats().unconverged_time_steps, 0);
 }
 
 TEST(StepRetry, RetriesThatFailAreCutAndComeBackAfterConvergedSteps) {
@@ -131,8 +132,13 @@ TEST(StepRetry, RetriesThatFailAreCutAndComeBackAfterConvergedSteps) {
   }
   EXPECT_EQ(failing.stats().retried_steps, 3);
   EXPECT_EQ(failing.stats().steps, 8 + 4 + 2 + 1 + 1);
+  // Every part failed: unconverged_steps counts each, unconverged_time_steps (one warning
+  // each in a run) the five steps of h.
+  EXPECT_EQ(failing.stats().unconverged_steps, 8 + 4 + 2 + 1 + 1);
+  EXPECT_EQ(failing.stats().unconverged_time_steps, 5);
   const MechanicsState cut = failing.save_state();
   EXPECT_EQ(cut.retry_limit, 1);
+  EXPECT_EQ(cut.stats.unconverged_time_steps, 5);  // carried by the state, as the others
 
   // The same bed solved to convergence from there (its state carries the budget): every ten
   // converged steps in a row double it back, up to retry_parts.

@@ -8,10 +8,18 @@
 // least that wide put two such contacts in the same or in neighbouring slabs. So the even
 // slabs touch disjoint particles, and so do the odd ones: a sweep visits phase 0 (the even
 // slabs, several at once, each in index order by one thread), then phase 1 (the odd slabs),
-// then phase 2 (a piston's contacts, which all share its body: one slab, one thread). Two
-// barriers per sweep where the greedy colouring of "nlgs_coloured" needs one per colour
-// (about 30 in a 3D bed), and inside each slab the sweep keeps the problem's own order, so a
-// load still crosses the whole height of a slab in one sweep.
+// then phase 2 (a piston's contacts, which all share its body, and the long candidates: one
+// slab, one thread). Two barriers per sweep where the greedy colouring of "nlgs_coloured"
+// needs one per colour (about 30 in a 3D bed), and inside each slab the sweep keeps the
+// problem's own order, so a load still crosses the whole height of a slab in one sweep.
+//
+// The long candidates: look-ahead pairs further apart along the axis than any two touching
+// particles (the sum of their radii), which only fast particles have. They go to the last
+// phase, so that the span, and the slabs' width, is that of touching pairs: pour_3d's falling
+// spheres had widened its 19 mm into 3 slabs, whose odd phase of one slab left a second thread
+// idle. The slabs are cut to about equal work (closed contacts weigh 4: the partial sweeps
+// visit them too), each at least `span` wide, and their count is a multiple of 4 from 4 on,
+// so that each phase holds an even number for two threads to share.
 //
 // A periodic split axis (problem.split_period): a contact sits at the midpoint of its nearest
 // image, wrapped into the period, the slabs fill the period and go round it, their count even
@@ -56,6 +64,15 @@ class ContactSlabs {
   const std::vector<std::int32_t>& phase_start() const { return phase_start_; }
 
  private:
+  static constexpr std::size_t kBins = 64;  // histogram bins a slab (cut_boundaries)
+  static std::int64_t visit_weight(const ContactProblem& problem, std::size_t c);
+  // boundary_: cut + 1 edges from low to high, slabs of about equal work, each >= min_width.
+  void cut_boundaries(const ContactProblem& problem, double low, double high, double min_width,
+                      std::int32_t cut);
+  std::int32_t slab_at(double x) const;  // the slab (left to right) holding x
+
+  std::vector<std::int64_t> work_;
+  std::vector<double> boundary_;
   std::vector<std::int32_t> slab_of_;  // per contact: its slab in visiting order
   std::vector<std::int32_t> order_, slab_start_, phase_start_, cursor_;
 };

@@ -1,6 +1,6 @@
 // Slabs (ContactSlabs.h) and "nncg" sweeping them: no particle touched by two slabs of one
-// phase (the promise that lets threads share a phase), a piston's contacts alone in the last
-// phase, no cut without positions or room for three slabs; "nncg" and "nlgs" sweeping slabs
+// phase (the promise that lets threads share a phase), a piston's contacts and the long
+// look-ahead candidates in the last phase, no cut without positions or room for three slabs; "nncg" and "nlgs" sweeping slabs
 // reach the lattice pile's statics (and "nncg" the reactions of "nlgs" in index order), and
 // give the same bits at 1 and 2 threads.
 #include <gtest/gtest.h>
@@ -34,6 +34,23 @@ const NscdIntegrator& falling_pile() {
     return s;
   }();
   return sim;
+}
+
+// x_i - x_j along the split axis (no period), 0 for a wall contact.
+double axial_branch(const ContactProblem& problem, std::int32_t c) {
+  const std::int32_t j = problem.body_j[c];
+  if (is_wall(j)) return 0.0;
+  const int a = problem.split_axis;
+  return problem.particle_position[std::size_t(problem.body_i[c])][a] - problem.particle_position[std::size_t(j)][a];
+}
+
+// The largest sum of two particles' radii over the problem's pairs: no touching pair is
+// further apart along any axis.
+double largest_touching_reach(const ContactProblem& problem) {
+  double reach = 0.0;
+  for (std::size_t c = 0; c < problem.size(); ++c)
+    if (!is_wall(problem.body_j[c])) reach = std::max(reach, problem.lever_i[c] + problem.lever_j[c]);
+  return reach * (1.0 + 1e-9);
 }
 
 // Checks that slabs hold every contact of problem once, in increasing index inside a slab,
@@ -126,10 +143,15 @@ TEST(ContactSlabs, PeriodicAxisSlabsGoRoundThePeriod) {
     }
   }
   EXPECT_GT(across, 10u);
-  // Read without the period, a contact round the boundary spans the whole box: no cut.
+  // Read without the period, a contact round the boundary spans the whole box: longer than
+  // any touching pair, it goes to the last phase (one thread), and the cut still keeps the
+  // phases apart.
   problem.split_period = {0.0, 0.0};
   ContactSlabs open;
-  EXPECT_FALSE(open.update(problem, 16));
+  ASSERT_TRUE(open.update(problem, 16));
+  expect_phases_touch_disjoint_bodies(problem, open);
+  const std::int32_t serial = open.phase_start()[2];
+  EXPECT_GE(static_cast<std::size_t>(open.slab_start()[serial + 1] - open.slab_start()[serial]), across);
 }
 
 TEST(ContactSlabs, APistonsContactsAreAloneInTheLastPhase) {
@@ -143,9 +165,39 @@ TEST(ContactSlabs, APistonsContactsAreAloneInTheLastPhase) {
   int on_floor = 0;
   for (std::size_t c = 0; c < problem.size(); ++c) on_floor += problem.body_j[c] == -1 ? 1 : 0;
   ASSERT_GT(on_floor, 0);
-  EXPECT_EQ(slabs.slab_start()[last + 1] - slabs.slab_start()[last], on_floor);
-  for (std::int32_t k = slabs.slab_start()[last]; k < slabs.slab_start()[last + 1]; ++k)
-    EXPECT_EQ(problem.body_j[slabs.order()[k]], -1);
+  // Every floor contact is there; the others there are long look-ahead candidates.
+  int floor_in_last = 0;
+  for (std::int32_t k = slabs.slab_start()[last]; k < slabs.slab_start()[last + 1]; ++k) {
+    const std::int32_t c = slabs.order()[k];
+    if (problem.body_j[c] == -1) {
+      ++floor_in_last;
+      continue;
+    }
+    ASSERT_FALSE(is_wall(problem.body_j[c]));
+    EXPECT_GT(std::abs(axial_branch(problem, c)), largest_touching_reach(problem)) << "contact " << c;
+  }
+  EXPECT_EQ(floor_in_last, on_floor);
+}
+
+TEST(ContactSlabs, LongCandidatesGoToTheLastPhaseAndTheSlabsAreAsWideAsTouchingPairs) {
+  // Mid-fall, look-ahead pairs reach further than any two touching spheres: they are swept on
+  // one thread after the slabs, whose width is then set by the touching pairs' reach, and
+  // whose count is a multiple of 4 (two threads share each phase evenly).
+  const ContactProblem& problem = falling_pile().problem();
+  const double reach = largest_touching_reach(problem);
+  std::size_t long_ones = 0;
+  for (std::size_t c = 0; c < problem.size(); ++c)
+    long_ones += !is_wall(problem.body_j[c]) && std::abs(axial_branch(problem, c)) > reach ? 1 : 0;
+  ASSERT_GT(long_ones, 0u) << "the test needs long candidates";
+  ContactSlabs slabs;
+  ASSERT_TRUE(slabs.update(problem, 16));
+  expect_phases_touch_disjoint_bodies(problem, slabs);
+  const auto cut = slabs.slab_count() - 1;
+  EXPECT_TRUE(cut == 3 || cut % 4 == 0) << cut;
+  const std::int32_t last = slabs.phase_start()[2];
+  EXPECT_EQ(static_cast<std::size_t>(slabs.slab_start()[last + 1] - slabs.slab_start()[last]), long_ones);
+  for (std::int32_t k = 0; k < slabs.slab_start()[last]; ++k)
+    EXPECT_LE(std::abs(axial_branch(problem, slabs.order()[k])), reach);
 }
 
 TEST(ContactSlabs, NoCutWithoutPositionsOrRoomForThreeSlabs) {

@@ -38,14 +38,17 @@ namespace tmdem::mechanics {
 
 class ContactSlabs {
  public:
-  static constexpr int kPhases = 3;  // even slabs, odd slabs, a piston's contacts
-  // How many slabs "nlgs" and "nncg" ask for: a few per thread on the machines measured, and
-  // each still several particles deep.
-  static constexpr int kDefaultSlabs = 16;
+  static constexpr int kPhases = 3;  // even slabs, odd slabs, a piston's and the long contacts
+  // How many slabs "nlgs" and "nncg" ask for: 4 a phase, enough for 2 to 4 threads, and as
+  // wide as the bed allows, so that a force chain has few slab boundaries to cross (a sweep
+  // carries it into the next slab once a phase). The 2D pours of bench/beds were at rest on
+  // three seeds with 8 (192-575 steps); with 16, seed 21 was not within 300 s (2 threads).
+  static constexpr int kDefaultSlabs = 8;
 
-  // Cuts problem's contacts into about `slabs` slabs (fewer where the span allows fewer).
-  // Returns false, and holds no cut, when problem gives no positions or fewer than 3 slabs
-  // fit (no two slabs of one phase to share out).
+  // Cuts problem's contacts into at most `slabs` slabs (fewer where the span allows fewer; a
+  // multiple of 4 from 4 on). Returns false, and holds no cut, when problem gives no
+  // positions, fewer than 3 slabs fit (no two slabs of one phase to share out), or more than
+  // half its contacts would go to the last phase.
   bool update(const ContactProblem& problem, int slabs);
   // The slab decision of "nlgs" and "nncg": cut (update) only a problem of at least
   // parallel_from contacts, into about `slabs` (0: never). Whether it was cut; when not, the

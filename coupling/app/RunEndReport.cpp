@@ -64,13 +64,12 @@ void print_warnings(const RunSummary& summary, std::ostream& out) {
   // parts (a landing, a retry), so it may be larger.
   const std::int64_t total = summary.mechanics.unconverged_steps;
   const std::int64_t warned = summary.mechanics.unconverged_time_steps;
+  const std::string shown =
+      warned > kWarningsShown ? "the first " + std::to_string(kWarningsShown) : std::string("all");
   out << "warnings: " << total << " mechanics steps unconverged, ";
-  if (warned == total)
-    out << (total > kWarningsShown ? "the first " + std::to_string(kWarningsShown) : std::string("all"));
-  else
-    out << "counting each part of a step taken in parts; of " << warned << " steps of the time step, "
-        << (warned > kWarningsShown ? "the first " + std::to_string(kWarningsShown) : std::string("all"));
-  out << " printed above:\n";
+  if (warned != total)
+    out << "counting each part of a step taken in parts; of " << warned << " steps of the time step, ";
+  out << shown << " printed above:\n";
   for (const auto& w : kinds) out << "  " << w.count << " x " << w.kind << ": " << w.advice << "\n";
 }
 

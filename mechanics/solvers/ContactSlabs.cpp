@@ -60,7 +60,7 @@ void ContactSlabs::cut_boundaries(const ContactProblem& problem, double low, dou
   std::int64_t total = 0;
   for (std::size_t c = 0; c < problem.size(); ++c) {
     if (slab_of_[c] >= 0) continue;  // the last phase's
-    const double at = std::floor((midpoint(problem, c) - low) / bin_width);
+    const double at = std::floor((midpoint_[c] - low) / bin_width);
     const auto bin = static_cast<std::size_t>(std::clamp<double>(at, 0.0, double(bins - 1)));
     const std::int64_t w = visit_weight(problem, c);
     work_[bin] += w;
@@ -103,17 +103,19 @@ bool ContactSlabs::update(const ContactProblem& problem, int slabs) {
   // slab_of_: -1 for the slabs' contacts (placed below), the last phase for a piston's and the
   // long candidates (one thread, after the others).
   slab_of_.assign(count, -1);
+  midpoint_.resize(count);  // of the slabs' contacts, for the histogram and the placing
   std::size_t last_phase = 0;
   double span = 0.0, low = INFINITY, high = -INFINITY;
   for (std::size_t c = 0; c < count; ++c) {
     const std::int32_t j = problem.body_j[c];
-    if (on_piston(problem, c) || (!is_wall(j) && std::abs(branch(problem, c)) > reach)) {
+    const double length = is_wall(j) ? 0.0 : std::abs(branch(problem, c));
+    if (on_piston(problem, c) || length > reach) {
       slab_of_[c] = std::numeric_limits<std::int32_t>::max();
       ++last_phase;
       continue;
     }
-    if (!is_wall(j)) span = std::max(span, std::abs(branch(problem, c)));
-    const double x = midpoint(problem, c);
+    span = std::max(span, length);
+    const double x = midpoint_[c] = midpoint(problem, c);
     low = std::min(low, x);
     high = std::max(high, x);
   }
@@ -144,7 +146,7 @@ bool ContactSlabs::update(const ContactProblem& problem, int slabs) {
   const std::int32_t even = (cut + 1) / 2;
   auto visit_position = [&](std::int32_t slab) { return slab % 2 == 0 ? slab / 2 : even + slab / 2; };
   for (std::size_t c = 0; c < count; ++c)
-    slab_of_[c] = slab_of_[c] >= 0 ? cut : visit_position(slab_at(midpoint(problem, c)));
+    slab_of_[c] = slab_of_[c] >= 0 ? cut : visit_position(slab_at(midpoint_[c]));
   // Counting sort; contacts keep increasing index order inside a slab.
   slab_start_.assign(static_cast<std::size_t>(cut) + 2, 0);
   for (std::size_t c = 0; c < count; ++c) ++slab_start_[static_cast<std::size_t>(slab_of_[c]) + 1];

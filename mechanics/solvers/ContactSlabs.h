@@ -76,6 +76,7 @@ class ContactSlabs {
 
   std::vector<std::int64_t> work_;
   std::vector<double> boundary_;
+  std::vector<double> midpoint_;  // per contact of a slab: midpoint() along the axis, m
   std::vector<std::int32_t> slab_of_;  // per contact: its slab in visiting order
   std::vector<std::int32_t> order_, slab_start_, phase_start_, cursor_;
 };

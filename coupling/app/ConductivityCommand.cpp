@@ -24,8 +24,9 @@ int run_conductivity_command(const Scene& scene, const ConductivityCommandOption
   std::optional<Interruption> interruption;
   if (options.handle_signals && !options.pressures_Pa.empty())
     interruption.emplace(options.quiet,
-                         "\ninterrupt received: finishing the current settle step, then reporting "
-                         "and writing the loads finished; a second signal aborts at once\n");
+                         "\ninterrupt received: giving up the current settle step, then reporting "
+                         "and writing the loads finished; a second signal aborts at once\n",
+                         true);
   std::vector<ConductivityResult> results;
   const int computed = csv.compute_or_discard<thermal::ThermalSolverError>([&] {
     ProgressReporter progress(log, options.quiet, options.terminal);

@@ -125,7 +125,7 @@ RunOutcome CoupledRun::run() {
     return failed(code, problem.message);
 
   std::optional<Interruption> interruption;
-  if (options_.handle_signals) interruption.emplace(options_.quiet);
+  if (options_.handle_signals) interruption.emplace(options_.quiet, nullptr, true);
   try {
     restore_checkpoint();
     prepare_mechanics();

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 
 #include "coupling/bridge/SceneToMechanics.h"
@@ -50,6 +51,9 @@ void CoupledRun::run_dynamic() {
   while (next_frame < times.size() && times[next_frame] < t0_ + 0.5 * h) ++next_frame;
   if (!restart_) write_frame(0.0);
   double t = t0_;
+  // Whether the result holds a frame at t (a restart's file: when t0 is a frame time).
+  bool frame_at_t = !restart_;
+  for (const double frame_s : times) frame_at_t = frame_at_t || std::abs(frame_s - t0_) < 0.5 * h;
   long k = std::lround(t0_ / h);
   while (t < scene_.duration_s - 1e-9 * h) {
     ++k;
@@ -57,6 +61,11 @@ void CoupledRun::run_dynamic() {
     const auto mechanics_start = std::chrono::steady_clock::now();
     const auto report = nscd_->step(t_next - t);
     mechanics_seconds_ += seconds_since(mechanics_start);
+    if (report.interrupted) {
+      // Given up at a signal (Interruption.h): the state is t's, the last frame and checkpoint too.
+      stop_if_interrupted(t, frame_at_t);
+      throw std::logic_error("mechanics step at t = " + std::to_string(t_next) + " s given up without a signal");
+    }
     // One warning per unconverged step of h, however many of its parts failed.
     if (!report.converged && !options_.quiet && nscd_->stats().unconverged_time_steps <= 10) {
       std::string msg = unconverged_step_warning("mechanics step", t_next, *nscd_, report,
@@ -85,6 +94,7 @@ void CoupledRun::run_dynamic() {
     }
     maybe_checkpoint(t);
     stop_if_interrupted(t, frame_written);
+    frame_at_t = frame_written;
     progress_.update("run", t, scene_.duration_s,
                      std::to_string(contacts_.size()) + " contacts");
   }

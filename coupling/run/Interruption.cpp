@@ -6,11 +6,14 @@
 #include <csignal>
 #include <cstddef>
 
+#include "mechanics/model/StepInterrupt.h"
+
 namespace tmdem::coupling {
 namespace {
 
 constexpr const char kRunNotice[] =
-    "\ninterrupt received: finishing the current step, then writing a last frame and a "
+    "\ninterrupt received: stopping after the last whole step (a mechanics step still being "
+    "solved is given up, to be taken again on restart), then writing a last frame and a "
     "checkpoint (while settling: a settle checkpoint, from which --restart resumes the "
     "settle); a second signal aborts at once\n";
 
@@ -27,6 +30,7 @@ extern "C" void on_signal(int signal) {
     return;
   }
   g_signal.store(signal);
+  mechanics::request_step_interrupt();  // lock-free atomics: async-signal-safe (does nothing unarmed)
   if (!g_quiet.load()) {
     const char* notice = g_notice.load();
     std::size_t length = 0;  // strlen, which is not async-signal-safe
@@ -38,8 +42,10 @@ extern "C" void on_signal(int signal) {
 
 }  // namespace
 
-Interruption::Interruption(bool quiet, const char* notice) {
+Interruption::Interruption(bool quiet, const char* notice, bool give_up_mechanics_step) {
   g_signal.store(0);
+  mechanics::clear_step_interrupt();
+  mechanics::arm_step_interrupt(give_up_mechanics_step);
   g_quiet.store(quiet);
   g_notice.store(notice ? notice : kRunNotice);
   struct sigaction action {};
@@ -51,6 +57,8 @@ Interruption::Interruption(bool quiet, const char* notice) {
 }
 
 Interruption::~Interruption() {
+  mechanics::arm_step_interrupt(false);
+  mechanics::clear_step_interrupt();
   sigaction(SIGINT, &g_previous_int, nullptr);
   sigaction(SIGTERM, &g_previous_term, nullptr);
 }

@@ -61,6 +61,8 @@ SettleSummary settle_packing(mechanics::NscdIntegrator& nscd, const Scene& scene
   // Settle time counts steps: t is the same sum of h's whichever step a settle resumed at.
   while (t < t_max - 0.5 * h) {
     const auto report = nscd.step(h);
+    // Given up at a signal (Interruption.h): the state is t's; `stop` ends the settle there.
+    if (report.interrupted) break;
     t += h;
     unconverged = nscd.stats().unconverged_steps - unconverged_before;
     max_penetration_m = std::max(max_penetration_m, report.max_penetration_m);

@@ -5,27 +5,46 @@
 #include <cmath>
 
 #include "mechanics/integrator/NscdIntegrator.h"
+#include "mechanics/model/StepInterrupt.h"
 
 namespace tmdem::mechanics {
 
 StepReport NscdIntegrator::step(double h) {
   StepReport report = step_with_retries(h);
-  if (!report.converged) ++stats_.unconverged_time_steps;
+  if (!report.converged && !report.interrupted) ++stats_.unconverged_time_steps;
   return report;
 }
 
 StepReport NscdIntegrator::step_with_retries(double h) {
-  if (parameters_.retry_parts < 2) return step(h, true);
-  // The start of the step, to take it again in parts if it ends unconverged. restore_state
-  // takes the state as a checkpoint's, whose warm start is its own: the first step's pending
-  // static warm start and held overlaps are put back by hand.
+  // The start of the step, to take it again in parts if it ends unconverged, or to put it back
+  // if it is given up (StepInterrupt.h). restore_state takes the state as a checkpoint's,
+  // whose warm start is its own: the first step's pending static warm start and held overlaps
+  // are put back by hand.
   save_state(retry_start_);
   const bool static_start_pending = static_start_pending_;
   retry_holds_overlap_ = holds_overlap_;
-  StepReport report = step(h, true);
-  const int limit = retry_limit_ > 0 ? retry_limit_ : parameters_.retry_parts;
+  const auto back_to_start = [&] {
+    restore_state(retry_start_);
+    static_start_pending_ = static_start_pending;
+    holds_overlap_ = retry_holds_overlap_;
+  };
   std::int64_t discarded_sweeps = 0;
   double discarded_detection_s = 0.0, discarded_solve_s = 0.0, discarded_correction_s = 0.0;
+  // Given up: the state and counters of the start, but the time spent stays in the timing.
+  const auto given_up = [&](const StepReport& last_try) {
+    back_to_start();
+    stats_.detection_s += discarded_detection_s + last_try.detection_s;
+    stats_.solve_s += discarded_solve_s + last_try.solve_s;
+    stats_.correction_s += discarded_correction_s + last_try.correction_s;
+    StepReport none;
+    none.converged = false;
+    none.interrupted = true;
+    return none;
+  };
+  StepReport report = step(h, true);
+  if (step_interrupt_requested()) return given_up(report);
+  if (parameters_.retry_parts < 2) return report;
+  const int limit = retry_limit_ > 0 ? retry_limit_ : parameters_.retry_parts;
   // Parts relative to the first try's own: a landing already taken in parts of h / 8
   // (periodic_2d's piston) retaken in 2 parts of h / 2 repeats, part for part, the very same
   // steps; so the retries go to parts of h / 16, h / 32 and h / 64 there.
@@ -38,10 +57,9 @@ StepReport NscdIntegrator::step_with_retries(double h) {
     discarded_detection_s += report.detection_s;
     discarded_solve_s += report.solve_s;
     discarded_correction_s += report.correction_s;
-    restore_state(retry_start_);
-    static_start_pending_ = static_start_pending;
-    holds_overlap_ = retry_holds_overlap_;
+    back_to_start();
     report = step_in_parts(h / double(parts), parts, true);
+    if (step_interrupt_requested()) return given_up(report);
   }
   if (finer > 1) {
     // restore_state put back the counters of the start: the retry's own go on top of the

@@ -55,6 +55,10 @@ struct StepReport {
   // times above).
   int retry_parts = 0;
   std::int64_t discarded_sweeps = 0;
+  // Given up at a request (StepInterrupt.h; only NscdIntegrator::step(double) sets it): the
+  // state, the counters and the time are back at the step's start, as if it had not been
+  // taken, and the other fields mean nothing.
+  bool interrupted = false;
 };
 
 // One report for a step taken as two halves (NscdIntegrator::step: a step too long for the

@@ -1,3 +1,4 @@
+#include "mechanics/model/StepInterrupt.h"
 #include "mechanics/solvers/ApgdSolver.h"
 
 #include <algorithm>
@@ -210,6 +211,7 @@ SolveReport ApgdSolver::solve_with_rolling(const ContactProblem& problem,
   double progress = best_residual;
   int progress_sweep = 0;
   while (best_residual > settings_.tolerance && report.sweeps < settings_.max_iterations) {
+    if (step_interrupt_requested()) break;  // the step is given up (StepInterrupt.h)
     if (report.sweeps - progress_sweep >= settings_.stall_sweeps) {
       report.stalled = true;
       break;

@@ -57,8 +57,8 @@ std::unique_ptr<ContactSolver> make_nncg_ipm(const SolverSettings& settings) {
   return solver;
 }
 
-const std::vector<Entry>& entries() {
-  static const std::vector<Entry> table = {
+std::vector<Entry>& entries() {
+  static std::vector<Entry> table = {
       {"nlgs", &make<GaussSeidelSolver>, true},
       {"apgd", &make<ApgdSolver>},
       {"nlgs_coloured", &make<ColouredGaussSeidelSolver>, true},
@@ -83,23 +83,32 @@ const std::string& default_contact_solver() {
   return name;
 }
 
-const std::vector<std::string>& contact_solver_names() {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> out;
-    for (const auto& e : entries()) out.push_back(e.name);
-    return out;
-  }();
-  return names;
+namespace {
+// The names, kept in step with the table (register_contact_solver).
+std::vector<std::string>& names_of(bool compliant_only) {
+  static std::vector<std::string> all, compliant;
+  std::vector<std::string>& out = compliant_only ? compliant : all;
+  if (out.empty() || (!compliant_only && out.size() != entries().size())) {
+    out.clear();
+    for (const auto& e : entries())
+      if (!compliant_only || e.compliant) out.push_back(e.name);
+  }
+  return out;
 }
+}  // namespace
+
+const std::vector<std::string>& contact_solver_names() { return names_of(false); }
 
 const std::vector<std::string>& compliant_contact_solver_names() {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> out;
-    for (const auto& e : entries())
-      if (e.compliant) out.push_back(e.name);
-    return out;
-  }();
-  return names;
+  // Registered solvers (tests) are never compliant: the table's own list.
+  return names_of(true);
+}
+
+void register_contact_solver(std::string name,
+                             std::unique_ptr<ContactSolver> (*make)(const SolverSettings&)) {
+  for (const auto& e : entries())
+    if (e.name == name) throw std::invalid_argument("mechanics: solver \"" + name + "\" is already registered");
+  entries().push_back({std::move(name), make, false});
 }
 
 std::unique_ptr<ContactSolver> make_contact_solver(std::string_view name,

@@ -15,6 +15,7 @@
 #include <memory>
 #include <string>
 
+#include "mechanics/model/StepInterrupt.h"
 #include "mechanics/contact/SiconosResidual.h"
 #include "mechanics/solvers/ContactSolver.h"
 
@@ -53,6 +54,7 @@ class FallbackContactSolver final : public ContactSolver {
     SolveReport kept = first_->solve_with_rolling(problem, r, m, velocity, angular_velocity);
     const std::size_t unknowns = problem.particle_count * (problem.dimension == 2 ? 3 : 6);
     if (kept.converged || problem.compliant || unknowns > max_unknowns_) return kept;
+    if (step_interrupt_requested()) return kept;  // the step is given up (StepInterrupt.h)
     ++fallbacks_;
     const double q_norm = free_velocity_norm(problem);
     double kept_residual = siconos_residual(problem, r, m, velocity, angular_velocity, q_norm);

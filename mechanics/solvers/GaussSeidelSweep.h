@@ -35,6 +35,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "mechanics/model/StepInterrupt.h"
 #include "mechanics/contact/ContactProblem.h"
 #include "mechanics/solvers/ActiveContactSet.h"
 #include "mechanics/solvers/ContactSlabs.h"
@@ -180,6 +181,7 @@ SolveReport GaussSeidelSweep::solve(const SolverSettings& settings, const Option
     }
     if constexpr (order == Order::slab) slab_lists_valid_ = slab_lists_valid_ || mark;  // marked in the sweep
     if (stop.after_sweep(sums.change, sums.total, report, full)) break;
+    if (step_interrupt_requested()) break;  // the step is given up (StepInterrupt.h)
     if (mark) {
       if constexpr (order == Order::colour) {
         active_.collect(*options.colour_start);

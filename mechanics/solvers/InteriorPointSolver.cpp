@@ -1,3 +1,4 @@
+#include "mechanics/model/StepInterrupt.h"
 #include "mechanics/solvers/InteriorPointSolver.h"
 
 #include "mechanics/solvers/InteriorPointFactor.h"
@@ -242,6 +243,7 @@ SolveReport InteriorPointSolver::solve_with_rolling(const ContactProblem& proble
     report.converged = true;
     return report;
   }
+  if (step_interrupt_requested()) return report;  // the step is given up (StepInterrupt.h)
   // The factorisations' BLAS on one thread: the same bits for any OMP_NUM_THREADS (SerialBlas.h).
   const SerialBlas serial_blas;
   set_up(problem);
@@ -253,6 +255,8 @@ SolveReport InteriorPointSolver::solve_with_rolling(const ContactProblem& proble
   double best = report.residual, frozen_mark = std::numeric_limits<double>::infinity();
   double best_at_law = best;
   for (; iteration < limit; ++iteration, ++inner) {
+    // An iteration factorises the whole problem: a solve can last minutes (StepInterrupt.h).
+    if (step_interrupt_requested()) break;
     residuals();
     if (inner > 0) {
       reactions(problem, r, m);

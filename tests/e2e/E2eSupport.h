@@ -57,17 +57,19 @@ inline ProgramResult run_tmdem(const std::string& args, const std::string& workd
 // A fresh empty folder per test, removed once the test passes (support/ScratchDir.h).
 // tmdem started with `args` in `dir`, not waited for (a test that signals a run): its stdout
 // and stderr go to dir/child.log. The child's pid, or -1.
-inline pid_t spawn_tmdem(const std::vector<std::string>& args, const std::string& dir) {
+// `binary`: tmdem, or TMDEM_TESTING_BINARY for the testing aids (tests/program/).
+inline pid_t spawn_tmdem(const std::vector<std::string>& args, const std::string& dir,
+                         const char* binary = TMDEM_BINARY) {
   const pid_t pid = fork();
   if (pid != 0) return pid;
   if (chdir(dir.c_str()) != 0) _exit(127);
   const int fd = open("child.log", O_WRONLY | O_CREAT | O_TRUNC, 0644);
   dup2(fd, 1);
   dup2(fd, 2);
-  std::vector<char*> argv{const_cast<char*>(TMDEM_BINARY)};
+  std::vector<char*> argv{const_cast<char*>(binary)};
   for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
-  execv(TMDEM_BINARY, argv.data());
+  execv(binary, argv.data());
   _exit(127);
 }
 

@@ -351,4 +351,80 @@ TEST(EndToEndInterrupt, SigkillThenRestartFromLastCheckpointEqualsUninterruptedR
   EXPECT_EQ(summary_without_wall_times(reference + "/s.json"), summary_without_wall_times(dir + "/s.json"));
 }
 
+// Runs tmdem_testing with `args` in `dir` and its "wait_for_signal" solver
+// (tests/program/SignalWaitSolver.cpp), which solves until the step is given up (two minutes at
+// most) and says so on its first solve; sends SIGTERM 0.1 s after that line, and waits at most
+// 60 s for the run to end (then kills it). The waitpid status, or -1 if it had to be killed.
+int sigterm_during_a_solve(const std::string& dir, std::vector<std::string> args) {
+  args.insert(args.end(), {"--set", "mechanics.solver=\"wait_for_signal\""});
+  const pid_t child = spawn_tmdem(args, dir, TMDEM_TESTING_BINARY);
+  if (child <= 0) return -1;
+  const auto solving = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (text_of(dir + "/child.log").find("wait_for_signal: solving") == std::string::npos &&
+         std::chrono::steady_clock::now() < solving)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  kill(child, SIGTERM);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  int status = 0;
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (waitpid(child, &status, WNOHANG) == child) return status;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  kill(child, SIGKILL);
+  waitpid(child, &status, 0);
+  return -1;
+}
+
+// A signal while a step's contact solve is running gives that step up at once: the state goes
+// back to the step's start, the last frame and the checkpoint are those of the last whole step
+// (t = 0 here), and the run exits 143 without finishing the solve (before, it waited for it).
+TEST(EndToEndInterrupt, SigtermDuringAContactSolveGivesTheStepUpAndStopsAtOnce) {
+  const auto dir = scratch_dir("interrupt_in_solve");
+  fs::copy_file(fs::path(TMDEM_SOURCE_DIR) / "examples" / "poured_bed.toml", dir + "/bed.toml");
+  const int status =
+      sigterm_during_a_solve(dir, {"run", "bed.toml", "--quiet", "-o", "out.h5", "--summary", "s.json"});
+  const std::string log = text_of(dir + "/child.log");
+  EXPECT_NE(log.find("wait_for_signal: solving"), std::string::npos) << log;
+  ASSERT_NE(status, -1) << "the run did not stop within 60 s of SIGTERM:\n" << log;
+  ASSERT_TRUE(WIFEXITED(status)) << log;
+  EXPECT_EQ(WEXITSTATUS(status), 143) << log;
+  EXPECT_NE(log.find("interrupted by SIGTERM at t = 0 s"), std::string::npos) << log;
+  // Only the frame at t = 0, written before the first step.
+  EXPECT_EQ(frames_in_xdmf(dir + "/out.xdmf"), 1u);
+  H5::H5File file(dir + "/out.h5", H5F_ACC_RDONLY);
+  EXPECT_EQ(read_string_attribute(file, "status"), "interrupted");
+  EXPECT_EQ(read_doubles(file, "/frames/time"), std::vector<double>{0.0});
+  H5::H5File checkpoint(dir + "/out.checkpoint.h5", H5F_ACC_RDONLY);
+  double checkpoint_time_s = -1.0;
+  checkpoint.openAttribute("time_s").read(H5::PredType::NATIVE_DOUBLE, &checkpoint_time_s);
+  EXPECT_EQ(checkpoint_time_s, 0.0);
+  const auto summary = read_summary(dir + "/s.json");
+  EXPECT_EQ(summary["status"], "interrupted");
+  EXPECT_EQ(summary["simulated_time_s"].get<double>(), 0.0);
+  // The step given up is not counted: not taken, not unconverged.
+  EXPECT_EQ(summary["mechanics"]["steps"].get<long>(), 0);
+  EXPECT_EQ(summary["mechanics"]["unconverged_steps"].get<long>(), 0);
+}
+
+// The same while settling: the settle step being solved is given up, and the settle checkpoint
+// holds the settle as it stood before it (no step taken here).
+TEST(EndToEndInterrupt, SigtermDuringASettleSolveGivesTheStepUpWithASettleCheckpoint) {
+  const auto dir = scratch_dir("interrupt_in_settle_solve");
+  fs::copy_file(fs::path(TMDEM_SOURCE_DIR) / "examples" / "paper_bed.toml", dir + "/bed.toml");
+  const int status = sigterm_during_a_solve(dir, {"run", "bed.toml", "-o", "out.h5", "--summary", "s.json"});
+  const std::string log = text_of(dir + "/child.log");
+  EXPECT_NE(log.find("wait_for_signal: solving"), std::string::npos) << log;
+  ASSERT_NE(status, -1) << "the settle did not stop within 60 s of SIGTERM:\n" << log;
+  ASSERT_TRUE(WIFEXITED(status)) << log;
+  EXPECT_EQ(WEXITSTATUS(status), 143) << log;
+  EXPECT_NE(log.find("interrupted by SIGTERM while settling"), std::string::npos) << log;
+  EXPECT_TRUE(fs::exists(dir + "/out.checkpoint.h5"));
+  EXPECT_FALSE(fs::exists(dir + "/out.h5"));
+  const auto summary = read_summary(dir + "/s.json");
+  EXPECT_EQ(summary["status"], "interrupted");
+  EXPECT_EQ(summary["settle"]["steps"].get<long>(), 0) << summary.dump();
+  EXPECT_EQ(summary["settle"]["ended_by"], "interrupted");
+}
+
 }  // namespace

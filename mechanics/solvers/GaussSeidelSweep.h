@@ -68,6 +68,12 @@ struct GaussSeidelSweepHooks {
   template <class Single>
   void visit_block(const GaussSeidelSweepState& /*state*/, std::size_t /*b*/, bool /*forward*/,
                    ContactUpdate& /*sums*/, Single&& /*single*/) {}
+  // After a sweep the stop test let pass: whether the solver's own measure ends the solve
+  // here, converged (nncg: Siconos' residual within the tolerance, NncgSolver::Options::
+  // siconos_check_every).
+  bool converged_after_sweep(const GaussSeidelSweepState& /*state*/, const SolveReport& /*report*/) {
+    return false;
+  }
   // After a sweep the stop test let pass (report.sweeps: its number).
   void after_sweep(const GaussSeidelSweepState& /*state*/, const SolveReport& /*report*/,
                    bool /*forward*/) {}
@@ -182,6 +188,10 @@ SolveReport GaussSeidelSweep::solve(const SolverSettings& settings, const Option
     if constexpr (order == Order::slab) slab_lists_valid_ = slab_lists_valid_ || mark;  // marked in the sweep
     if (stop.after_sweep(sums.change, sums.total, report, full)) break;
     if (step_interrupt_requested()) break;  // the step is given up (StepInterrupt.h)
+    if (hooks.converged_after_sweep(state, report)) {
+      report.converged = true;
+      break;
+    }
     if (mark) {
       if constexpr (order == Order::colour) {
         active_.collect(*options.colour_start);

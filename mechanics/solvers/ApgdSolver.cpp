@@ -1,4 +1,3 @@
-#include "mechanics/model/StepInterrupt.h"
 #include "mechanics/solvers/ApgdSolver.h"
 
 #include <algorithm>
@@ -12,6 +11,7 @@
 #include "mechanics/solvers/FixedBlockSums.h"
 #include "mechanics/contact/NaturalMapResidual.h"
 #include "mechanics/contact/RollingCone.h"
+#include "mechanics/model/StepInterrupt.h"
 
 namespace tmdem::mechanics {
 namespace {

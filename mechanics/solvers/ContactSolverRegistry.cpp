@@ -84,31 +84,34 @@ const std::string& default_contact_solver() {
 }
 
 namespace {
-// The names, kept in step with the table (register_contact_solver).
-std::vector<std::string>& names_of(bool compliant_only) {
-  static std::vector<std::string> all, compliant;
-  std::vector<std::string>& out = compliant_only ? compliant : all;
-  if (out.empty() || (!compliant_only && out.size() != entries().size())) {
-    out.clear();
-    for (const auto& e : entries())
-      if (!compliant_only || e.compliant) out.push_back(e.name);
+// The table's names, all and the compliant ones: collected again when a solver is registered.
+struct Names {
+  std::vector<std::string> all, compliant;
+};
+Names collect_names() {
+  Names out;
+  for (const auto& e : entries()) {
+    out.all.push_back(e.name);
+    if (e.compliant) out.compliant.push_back(e.name);
   }
   return out;
 }
+Names& names() {
+  static Names table_names = collect_names();
+  return table_names;
+}
 }  // namespace
 
-const std::vector<std::string>& contact_solver_names() { return names_of(false); }
+const std::vector<std::string>& contact_solver_names() { return names().all; }
 
-const std::vector<std::string>& compliant_contact_solver_names() {
-  // Registered solvers (tests) are never compliant: the table's own list.
-  return names_of(true);
-}
+const std::vector<std::string>& compliant_contact_solver_names() { return names().compliant; }
 
 void register_contact_solver(std::string name,
                              std::unique_ptr<ContactSolver> (*make)(const SolverSettings&)) {
   for (const auto& e : entries())
     if (e.name == name) throw std::invalid_argument("mechanics: solver \"" + name + "\" is already registered");
   entries().push_back({std::move(name), make, false});
+  names() = collect_names();
 }
 
 std::unique_ptr<ContactSolver> make_contact_solver(std::string_view name,

@@ -1,4 +1,3 @@
-#include "mechanics/model/StepInterrupt.h"
 #include "mechanics/solvers/InteriorPointSolver.h"
 
 #include "mechanics/solvers/InteriorPointFactor.h"
@@ -14,6 +13,7 @@
 #include "mechanics/contact/SiconosResidual.h"
 #include "mechanics/solvers/NncgSolver.h"
 #include "mechanics/solvers/SecondOrderCone.h"
+#include "mechanics/model/StepInterrupt.h"
 
 namespace tmdem::mechanics {
 

@@ -165,15 +165,16 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& given,
     bool scan = false;
     double previous = 0.0;  // |d|^2 of the last sweep pair; 0: no direction yet
     int max_sweeps = 0;     // of the current run of sweeps: its last is never followed by a step
-    // Honest convergence's later runs (below): Siconos' residual every this many sweeps, the
-    // run ending as soon as it is within `tolerance`; 0: not checked.
-    int siconos_every = 0;
-    double tolerance = 0.0, q_norm = 0.0;
+    // Honest convergence's later runs (below): Siconos' residual (q_norm: ||q||) every
+    // Options::siconos_check_every sweeps, the run ending as soon as it is within the tolerance.
+    bool check_siconos = false;
+    double q_norm = 0.0;
 
     bool converged_after_sweep(const GaussSeidelSweepState& state, const SolveReport& report) const {
-      if (siconos_every <= 0 || report.sweeps % siconos_every != 0) return false;
+      const int every = solver.options_.siconos_check_every;
+      if (!check_siconos || every <= 0 || report.sweeps % every != 0) return false;
       return siconos_residual(state.problem, state.r, state.m, state.velocity, state.angular_velocity, q_norm) <=
-             tolerance;
+             solver.settings_.tolerance;
     }
 
     void after_visit(const GaussSeidelSweepState& state, std::size_t c) {
@@ -254,8 +255,7 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& given,
   if (settings_.siconos_stop && report.converged) {
     const double q_norm = free_velocity_norm(problem);
     double sweep_tolerance = settings_.tolerance;
-    hooks.siconos_every = options_.siconos_check_every;
-    hooks.tolerance = settings_.tolerance;
+    hooks.check_siconos = true;
     hooks.q_norm = q_norm;
     constexpr int kRounds = 40;  // runs of sweeps at most; each tightens by at least 2x
     for (int round = 0; round < kRounds && report.converged; ++round) {

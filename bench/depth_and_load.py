@@ -4,7 +4,7 @@ step at most 2x from 10 to 160 layers and from 1e3 to 1e5 Pa with the default so
 
 Usage, from the project's root after a build:
     python3 bench/depth_and_load.py [--threads N] [--limit SECONDS] [--layers 10,40,160]
-                                    [--pressures 0,1e3,1e4,1e5]
+                                    [--pressures 0,1e3,1e4,1e5] [--set KEY=VALUE ...]
 For every depth and load it writes a scene (steel spheres of 1 mm diameter, friction 0.5,
 rolling resistance 0.02, laid by deposition in an 8 x 8 mm shaft to about LAYERS diameters; for a
 pressure > 0 a 1 g piston started resting on the bed's top, pressing with PRESSURE over the
@@ -59,6 +59,8 @@ def main():
     parser.add_argument("--layers", default="10,40,160")
     parser.add_argument("--pressures", default="0,1e3,1e4,1e5")
     parser.add_argument("--tmdem", default=os.path.join("build", "tmdem"))
+    parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                        help="a scene setting for every run (tmdem run --set), e.g. mechanics.static_balance_rounds=4")
     args = parser.parse_args()
     tmdem = os.path.abspath(args.tmdem)
     if not os.access(tmdem, os.X_OK):
@@ -72,7 +74,7 @@ def main():
                 name = os.path.join(work, f"bed_{layers}_{pressure:g}")
                 with open(name + ".toml", "w") as out:
                     out.write(scene(layers, pressure))
-                code, summary, _, _, _ = run_bed(tmdem, name + ".toml", args.threads, args.limit, work)
+                code, summary, _, _, _ = run_bed(tmdem, name + ".toml", args.threads, args.limit, work, args.set)
                 if summary is None:
                     bad = 1
                     print(f"{layers:>6} {SPHERES_PER_MM * layers:>9} {pressure:>11g}  failed ({code})", flush=True)

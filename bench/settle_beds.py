@@ -23,7 +23,7 @@ import tempfile
 import time
 
 
-def run_bed(tmdem, bed, threads, limit, work):
+def run_bed(tmdem, bed, threads, limit, work, settings=()):
     """Settles one bed at the defaults (the command above, in the bed's folder). Returns its exit
     code ("time limit" past `limit` seconds), its summary (a dict; None when there is none), the
     wall and CPU seconds of the process, and its stderr."""
@@ -31,6 +31,8 @@ def run_bed(tmdem, bed, threads, limit, work):
     summary = os.path.join(work, name + ".json")
     command = [tmdem, "run", os.path.abspath(bed), "-o", os.path.join(work, name + ".h5"), "--summary", summary,
                "--quiet", "--set", "simulation.duration=1e-3"]
+    for setting in settings:  # extra KEY=VALUE settings (bench/depth_and_load.py --set)
+        command += ["--set", setting]
     env = dict(os.environ, OMP_NUM_THREADS=str(threads))
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.monotonic()

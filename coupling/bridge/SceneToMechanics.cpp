@@ -58,6 +58,7 @@ mechanics::NscdParameters make_nscd_parameters(const Scene& scene) {
   p.stop_travel_fraction = scene.mechanics.stop_travel;
   p.skip_out_of_reach = scene.mechanics.skip_out_of_reach;
   p.static_warm_start = scene.mechanics.static_warm_start;
+  p.static_balance_rounds = scene.mechanics.static_balance_rounds;
   p.max_iterations = scene.mechanics.max_iterations;
   p.retry_parts = scene.mechanics.retry_parts;
   p.full_sweep_every = scene.mechanics.full_sweep_every;

@@ -193,6 +193,7 @@ struct MechanicsSettings {
   double stop_travel = mechanics::NscdParameters{}.stop_travel_fraction;  // of r_min per step
   bool skip_out_of_reach = mechanics::NscdParameters{}.skip_out_of_reach;
   bool static_warm_start = mechanics::NscdParameters{}.static_warm_start;
+  int static_balance_rounds = mechanics::NscdParameters{}.static_balance_rounds;
   int tighten_steps = mechanics::NscdParameters{}.tighten_steps;  // fall_tolerance -> tolerance over this many steps
   int max_iterations = mechanics::NscdParameters{}.max_iterations;
   // An unconverged step is retaken in 2, 4, ... parts up to this (NscdParameters::retry_parts).

@@ -85,6 +85,12 @@ std::vector<Section> settings_sections() {
                 "particle's weight and what rests on it passed down to its supports) instead of "
                 "from no forces: a deposited or imported bed's first steps take fewer sweeps "
                 "(docs/mechanics.md \"The first step\")"),
+        value("static_balance_rounds", "", std::to_string(kM.static_balance_rounds), "integer in [0, 100]",
+              "with static_warm_start, rounds that also balance each particle horizontally and in "
+              "rotation (one sparse factorisation with 6 unknowns per particle each): a deep "
+              "shaft's first step finds the side walls' friction (Janssen) in far fewer sweeps, "
+              "but a bed that still has to move may take more in its later steps; 0: the "
+              "vertical start alone (docs/mechanics.md \"The first step\")"),
         value("tighten_steps", "", std::to_string(kM.tighten_steps), "integer >= 1",
               "tolerance schedule: once the fall has ended, the tolerance goes from "
               "fall_tolerance to tolerance geometrically over this many steps (1: at once)"),

@@ -330,7 +330,8 @@ StepReport NscdIntegrator::step(double h, bool landing_parts) {
     bool periodic_gravity = false;
     for (int a = 0; a < 3; ++a) periodic_gravity |= particles_.box.along(a) && gravity_[a] != 0.0;
     if (parameters_.static_warm_start && !periodic_gravity)
-      static_warm_start(problem_, gap_, particles_.position, gravity_, h, reactions_);
+      static_warm_start(problem_, gap_, particles_.position, gravity_, h, reactions_,
+                        parameters_.static_balance_rounds);
   }
   report.detection_s += lap();
   report.candidates = problem_.size();

@@ -153,6 +153,10 @@ struct NscdParameters {
   // the contact geometry (StaticWarmStart.h) instead of from zero impulses. A restored state
   // keeps its own warm start.
   bool static_warm_start = true;
+  // With the static warm start, this many rounds that balance each particle horizontally and in
+  // rotation as well (StaticWarmStart.h; 0: the vertical start alone). Off by default until
+  // measured on every bed (docs/mechanics.md "The first step").
+  int static_balance_rounds = 0;
 };
 
 }  // namespace tmdem::mechanics

@@ -33,9 +33,18 @@ namespace tmdem::mechanics {
 // a step of h seconds; the others zero. gap_m: one per contact (m, < 0 overlap); positions: one
 // per particle (m). A particle's mass is 1 / problem.inverse_mass (a fixed particle, inverse mass
 // 0, carries like a wall). Gravity zero: all zero. Allocates (called once per run).
+//
+// balance_rounds > 0 (NscdParameters::static_balance_rounds) then balances every held particle,
+// horizontally and in rotation too: the least change of the touching contacts' reactions (normal
+// and, 100 times costlier, tangential) that leaves each particle at rest after the step, one
+// sparse Cholesky (CHOLMOD) of H D^-1 H^T (6 rows per particle) per round, projected onto the cones;
+// each further round over the contacts the last left closed. Why: in a deep shaft the vertical
+// start puts the whole weight on the floor, where the side walls' friction carries most of it
+// (Janssen), and the first solve spent thousands of sweeps finding that (docs/mechanics.md
+// "The first step": the 160-layer shaft of bench/depth_and_load.py).
 void static_warm_start(const ContactProblem& problem, const std::vector<double>& gap_m,
                        const std::vector<Eigen::Vector3d>& positions_m,
                        const Eigen::Vector3d& gravity_m_per_s2, double h_s,
-                       std::vector<Eigen::Vector3d>& reactions);
+                       std::vector<Eigen::Vector3d>& reactions, int balance_rounds = 0);
 
 }  // namespace tmdem::mechanics

@@ -176,7 +176,8 @@ void SceneBuilder::read_settings() {
     m.stop_travel = t.number("stop_travel");
     m.skip_out_of_reach = t.boolean("skip_out_of_reach", m.skip_out_of_reach);
     m.static_warm_start = t.boolean("static_warm_start", m.static_warm_start);
-    m.static_balance_rounds = static_cast<int>(t.integer("static_balance_rounds", m.static_balance_rounds, 0, 100));
+    m.static_balance_rounds = static_cast<int>(t.integer("static_balance_rounds", m.static_balance_rounds, 0,
+                                                               mechanics::NscdParameters::kMaxBalanceRounds));
     // Sweep counts: integers >= 1 (checked only when mechanics is on).
     auto sweeps = [&](std::string_view key, int fallback) {
       return static_cast<int>(t.integer(key, fallback,

@@ -85,7 +85,8 @@ std::vector<Section> settings_sections() {
                 "particle's weight and what rests on it passed down to its supports) instead of "
                 "from no forces: a deposited or imported bed's first steps take fewer sweeps "
                 "(docs/mechanics.md \"The first step\")"),
-        value("static_balance_rounds", "", std::to_string(kM.static_balance_rounds), "integer in [0, 100]",
+        value("static_balance_rounds", "", std::to_string(kM.static_balance_rounds),
+              "integer in [0, " + std::to_string(mechanics::NscdParameters::kMaxBalanceRounds) + "]",
               "with static_warm_start, rounds that also balance each particle horizontally and in "
               "rotation (one sparse factorisation with 6 unknowns per particle each): a deep "
               "shaft's first step finds the side walls' friction (Janssen) in far fewer sweeps, "

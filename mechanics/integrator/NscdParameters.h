@@ -157,6 +157,7 @@ struct NscdParameters {
   // rotation as well (StaticWarmStart.h; 0: the vertical start alone). Off by default until
   // measured on every bed (docs/mechanics.md "The first step").
   int static_balance_rounds = 0;
+  static constexpr int kMaxBalanceRounds = 100;  // the scene key's upper bound
 };
 
 }  // namespace tmdem::mechanics

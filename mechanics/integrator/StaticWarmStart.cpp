@@ -18,9 +18,6 @@ namespace {
 // deposited 10,000 bed took 27,115 contacts into its first step instead of 26,554, and the
 // step took longer than from zero impulses.
 constexpr double kTouchingGapFraction = 1e-6;
-}  // namespace
-
-namespace {
 
 // The balance of static_warm_start (StaticWarmStart.h): rounds of the least change dr of the
 // reactions, in the norm |dr_n|^2 + kTangentialWeight |dr_t|^2, after which every held mobile
@@ -28,8 +25,8 @@ namespace {
 // each round projected onto the cones and the next one taken over the contacts still closed.
 // The weight: measured on the 160-layer shaft of bench/depth_and_load.py (one round, mean
 // sweeps per step): weight 1: 706, 4: 483, 16: 450, 100: 241, 1,000: 237, 10^5: 1,071 (against
-// 1,070 without the balance); on the gauntlet's tall_column no weight was safe (1,000: one seed
-// did not come to rest; docs/mechanics.md "The first step").
+// 1,070 without the balance); on the gauntlet's tall_column no weight was safe (at 1,000 one seed
+// took 59 steps of 5,478 mean sweeps; docs/mechanics.md "The first step").
 constexpr double kTangentialWeight = 100.0;
 // Each particle's six rows regularised by this fraction of their diagonal: a rattler held by one
 // or two contacts cannot be balanced in every direction, and its impulses stay bounded.
@@ -122,8 +119,7 @@ void balance(const ContactProblem& problem, Touching&& touching, const std::vect
         if (row[a] >= 0) change += h[a].transpose() * lambda.segment<6>(row[a]);
       Eigen::Vector3d next = reactions[c] + inverse_weight.cwiseProduct(change);
       if (problem.dimension == 2) next[2] = 0.0;
-      reactions[c] = project_onto_coulomb_cone(next, problem.mu[c]);
-      if (problem.dimension == 2) reactions[c][2] = 0.0;
+      reactions[c] = project_onto_coulomb_cone(next, problem.mu[c]);  // scales r_t: a 2D one stays in plane
     }
   }
 }

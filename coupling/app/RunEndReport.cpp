@@ -119,8 +119,14 @@ void print_run_end(const RunSummary& summary, const Scene& scene, const std::str
       // summary's is 0 without a piston, or off).
       const bool pistons = ts->compaction_speed_m_s > 0.0;
       out << "mechanics: tolerance " << ts->fall_tolerance
-          << (pistons ? " while falling or compacting (" : " while falling (") << ts->fall_steps
-          << " steps, " << ts->fall_unconverged_steps << " unconverged), " << ts->tolerance;
+          << (pistons ? " while falling, compacting or collapsing (" : " while falling or collapsing (")
+          << ts->fall_steps
+          << " steps, " << ts->fall_unconverged_steps << " unconverged";
+      if (ts->collapse_steps > 0)
+        out << "; " << ts->collapse_steps << " steps that stalled at " << ts->tolerance
+            << " while the bed crept retaken at " << ts->fall_tolerance
+            << ", collapsing until its largest speed is below a tenth of mechanics.fall_speed";
+      out << "), " << ts->tolerance;
       if (ts->tightened) {
         out << " from step " << ts->tightened_step + ts->tighten_steps - 1;
         if (ts->tighten_steps > 1)

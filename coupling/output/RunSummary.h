@@ -46,6 +46,9 @@ struct ToleranceScheduleSummary {
                                       // smallest over the pistons (0: none, or off)
   std::int64_t fall_steps = 0;        // steps solved at fall_tolerance
   std::int64_t fall_unconverged_steps = 0;
+  // Steps that stalled at the tight tolerance while the bed crept at a tenth of fall_speed or
+  // faster, and were taken again at fall_tolerance (a collapse; ToleranceSchedule.h).
+  std::int64_t collapse_steps = 0;
   std::int64_t tighten_steps = 1;     // mechanics.tighten_steps: `tolerance` from
                                       // tightened_step + tighten_steps - 1 on
   bool tightened = false;             // the fall ended at tightened_step
@@ -63,6 +66,7 @@ inline constexpr std::tuple kToleranceScheduleFields{
     SummaryField{"compaction_speed_m_s", &ToleranceScheduleSummary::compaction_speed_m_s},
     SummaryField{"fall_steps", &ToleranceScheduleSummary::fall_steps},
     SummaryField{"fall_unconverged_steps", &ToleranceScheduleSummary::fall_unconverged_steps},
+    SummaryField{"collapse_steps", &ToleranceScheduleSummary::collapse_steps},
     SummaryField{"tighten_steps", &ToleranceScheduleSummary::tighten_steps},
     SummaryField{"tightened", &ToleranceScheduleSummary::tightened}};
 

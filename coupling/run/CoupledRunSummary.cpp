@@ -71,6 +71,7 @@ void CoupledRun::fill_summary() {
       }
       ts.fall_steps = ms.fall_steps;
       ts.fall_unconverged_steps = ms.fall_unconverged_steps;
+      ts.collapse_steps = ms.collapse_steps;
       ts.tighten_steps = scene_.mechanics.tighten_steps;
       const std::int64_t landed = nscd_->tolerance_schedule().landed_step();
       ts.tightened = landed > 0;

@@ -79,6 +79,7 @@ void store_mechanics_stats(const mechanics::MechanicsStats& s, CheckpointState& 
   cs.extra["mechanics_stalled_steps"] = double(s.stalled_steps);
   cs.extra["mechanics_fall_steps"] = double(s.fall_steps);
   cs.extra["mechanics_fall_unconverged_steps"] = double(s.fall_unconverged_steps);
+  cs.extra["mechanics_collapse_steps"] = double(s.collapse_steps);
   cs.extra["mechanics_max_penetration_m"] = s.max_penetration_m;
   cs.extra["mechanics_correction_sweeps"] = double(s.correction_sweeps);
   cs.extra["mechanics_halved_steps"] = double(s.halved_steps);
@@ -107,6 +108,7 @@ mechanics::MechanicsStats mechanics_stats_of(const CheckpointState& cs) {
   s.stalled_steps = std::int64_t(extra_or_zero(cs, "mechanics_stalled_steps"));
   s.fall_steps = std::int64_t(extra_or_zero(cs, "mechanics_fall_steps"));
   s.fall_unconverged_steps = std::int64_t(extra_or_zero(cs, "mechanics_fall_unconverged_steps"));
+  s.collapse_steps = std::int64_t(extra_or_zero(cs, "mechanics_collapse_steps"));
   s.max_penetration_m = extra_or_zero(cs, "mechanics_max_penetration_m");
   s.correction_sweeps = std::int64_t(extra_or_zero(cs, "mechanics_correction_sweeps"));
   s.halved_steps = std::int64_t(extra_or_zero(cs, "mechanics_halved_steps"));

@@ -21,9 +21,12 @@ std::string unconverged_step_warning(const std::string& what, double t_s,
       << (report.stalled ? " stalled (no progress) after " : " did not converge in ")
       << report.sweeps << " iterations (residual " << report.residual << ", tolerance "
       << tolerance << "; Siconos' residual " << report.siconos_residual << ")";
-  if (report.retry_parts > 0)
-    msg << ", still after it was retaken in " << report.retry_parts << " parts ("
-        << report.discarded_sweeps << " sweeps thrown away)";
+  if (report.retry_parts > 0) {
+    msg << ", still after it was retaken";
+    if (report.collapse) msg << " at mechanics.fall_tolerance (the bed collapsing)";
+    if (report.retry_parts > 1) msg << " in " << report.retry_parts << " parts";
+    msg << " (" << report.discarded_sweeps << " sweeps thrown away)";
+  }
   return msg.str();
 }
 

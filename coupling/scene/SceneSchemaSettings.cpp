@@ -47,7 +47,11 @@ std::vector<Section> settings_sections() {
                "fall_speed (never tighter than `tolerance`), or a piston moves at or above "
                "compaction_speed; once the fastest particle is below fall_speed again and every "
                "piston below compaction_speed, the tolerance ramps back to `tolerance` over "
-               "tighten_steps (settle and dynamic runs alike). 0: no schedule, `tolerance` for "
+               "tighten_steps (settle and dynamic runs alike). A step that ends unconverged at "
+               "`tolerance` while fall_share of the particles move at a tenth of fall_speed or "
+               "faster (a laid bed giving way, a pile creeping) is taken again at this "
+               "tolerance, the bed then collapsing until its fastest particle is below that "
+               "tenth (needs retry_parts >= 2). 0: no schedule, `tolerance` for "
                "every step. A step counts as converged when it met the tolerance in force"),
         number("fall_speed", "m/s", std::nullopt, Range::greater(0.0),
                "tolerance schedule: the particle speed at or above which a particle "

@@ -41,9 +41,38 @@ StepReport NscdIntegrator::step_with_retries(double h) {
     none.interrupted = true;
     return none;
   };
+  // The speed a collapse is judged on (ToleranceSchedule::begin_collapse): fall_share's speed at
+  // the start, or at the end of the failed try (a laid bed that gives way in its first step
+  // starts at rest); only outside a fall (O(n), no allocation).
+  const bool may_collapse = schedule_.enabled() && !schedule_.falling() && parameters_.retry_parts >= 2;
+  double share_speed_m_per_s = may_collapse ? fall_judged_speed() : 0.0;
+  bool collapsing = false;
+  const auto take_again_from_start = [&] {
+    back_to_start();
+    // restore_state put the schedule back too: a collapse begun by this step stands for its
+    // retries.
+    if (collapsing) schedule_.begin_collapse(share_speed_m_per_s);
+  };
   StepReport report = step(h, true);
   if (step_interrupt_requested()) return given_up(report);
   if (parameters_.retry_parts < 2) return report;
+  bool retaken = false;
+  if (!report.converged && may_collapse) share_speed_m_per_s = std::max(share_speed_m_per_s, fall_judged_speed());
+  // A bed that creeps outside a fall and stalls at `tolerance`: the step taken again whole, at
+  // fall_tolerance, the bed now collapsing (ToleranceSchedule.h).
+  // (Not a step the schedule solved as a fall, at fall_tolerance already: one that began a fall.)
+  if (!report.converged && may_collapse && !report.fall &&
+      share_speed_m_per_s >= schedule_.collapse_speed_m_per_s()) {
+    collapsing = true;
+    retaken = true;
+    discarded_sweeps += report.sweeps;
+    discarded_detection_s += report.detection_s;
+    discarded_solve_s += report.solve_s;
+    discarded_correction_s += report.correction_s;
+    take_again_from_start();
+    report = step(h, true);
+    if (step_interrupt_requested()) return given_up(report);
+  }
   const int limit = retry_limit_ > 0 ? retry_limit_ : parameters_.retry_parts;
   // Parts relative to the first try's own: a landing already taken in parts of h / 8
   // (periodic_2d's piston) retaken in 2 parts of h / 2 repeats, part for part, the very same
@@ -57,19 +86,21 @@ StepReport NscdIntegrator::step_with_retries(double h) {
     discarded_detection_s += report.detection_s;
     discarded_solve_s += report.solve_s;
     discarded_correction_s += report.correction_s;
-    back_to_start();
+    take_again_from_start();
     report = step_in_parts(h / double(parts), parts, true);
     if (step_interrupt_requested()) return given_up(report);
   }
-  if (finer > 1) {
+  if (finer > 1 || retaken) {
     // restore_state put back the counters of the start: the retry's own go on top of the
     // parts' (each part counted as a step), and the discarded tries' time with the rest.
     report.retry_parts = parts;
+    report.collapse = collapsing;
     report.discarded_sweeps = discarded_sweeps;
     report.detection_s += discarded_detection_s;
     report.solve_s += discarded_solve_s;
     report.correction_s += discarded_correction_s;
     ++stats_.retried_steps;
+    if (collapsing) ++stats_.collapse_steps;
     stats_.discarded_sweeps += discarded_sweeps;
     stats_.detection_s += discarded_detection_s;
     stats_.solve_s += discarded_solve_s;

@@ -55,6 +55,9 @@ struct StepReport {
   // times above).
   int retry_parts = 0;
   std::int64_t discarded_sweeps = 0;
+  // Retaken at fall_tolerance as a collapse (ToleranceSchedule::begin_collapse; retry_parts is
+  // then 1 unless parts followed).
+  bool collapse = false;
   // Given up at a request (StepInterrupt.h; only NscdIntegrator::step(double) sets it): the
   // state, the counters and the time are back at the step's start, as if it had not been
   // taken, and the other fields mean nothing.
@@ -77,6 +80,8 @@ struct MechanicsStats {
   // met the tolerance in force at that step).
   std::int64_t fall_steps = 0;
   std::int64_t fall_unconverged_steps = 0;
+  // Steps retaken at fall_tolerance as a collapse (ToleranceSchedule::begin_collapse).
+  std::int64_t collapse_steps = 0;
   double max_penetration_m = 0.0;
   // Siconos' residual (StepReport::siconos_residual): the largest, and the steps where it was
   // above the tolerance in force (whether or not the solver's own test passed).

@@ -36,13 +36,26 @@ double ToleranceSchedule::tolerance_for_step(double share_speed_m_per_s, double 
         state_.landed_step = step;
       }
       break;
+    case Phase::Collapsing:
+      if (max_speed_m_per_s < collapse_speed_m_per_s() && !compacting) {
+        state_.phase = Phase::Landed;
+        state_.landed_step = step;
+      }
+      break;
     case Phase::Landed:
       break;
   }
-  if (state_.phase == Phase::Falling) return fall_tolerance_;
+  if (falling()) return fall_tolerance_;
   const std::int64_t j = state_.phase == Phase::Landed ? step - state_.landed_step + 1 : tighten_steps_;
   if (j >= tighten_steps_) return tolerance_;
   return fall_tolerance_ * std::pow(tolerance_ / fall_tolerance_, double(j) / double(tighten_steps_));
+}
+
+bool ToleranceSchedule::begin_collapse(double share_speed_m_per_s) {
+  if (!enabled() || falling() || fall_tolerance_ <= tolerance_) return false;
+  if (!(share_speed_m_per_s >= collapse_speed_m_per_s())) return false;
+  state_.phase = Phase::Collapsing;
+  return true;
 }
 
 }  // namespace tmdem::mechanics

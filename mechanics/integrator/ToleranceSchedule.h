@@ -32,13 +32,27 @@
 // piston compacts either: a loaded bed that flows creeps at the edge of jamming, and solved at
 // `tolerance` those steps stall just above it, thousands of sweeps each (a plate started on
 // deep_steel's top, a piston pressing a poured bed; docs/mechanics.md "A tolerance schedule").
+// A collapse (begin_collapse): a step that ends unconverged outside a fall while fall_share of
+// the moving particles move at kCollapseSpeedFraction x fall_speed or faster (at the step's
+// start, or at the end of its failed try: a laid bed gives way from rest) is taken again at
+// fall_tolerance (NscdIntegratorRetry.cpp), and the phase is Collapsing until the
+// fastest particle is below that slower speed; then Landed, and the ramp. Why: a bed laid by
+// deposition that gives way under its own weight (bench/beds/deposit_2d_sizes: 2D disks of radii
+// 0.3 to 1.2 mm) creeps at 3-30% of fall_speed through hundreds of steps, never a fall by the
+// rule above, and at `tolerance` its steps stall one after another at 1.2-1.4e-4 (14 and 21
+// unconverged steps on two seeds, the third not at rest in 600 s); with the collapse it comes
+// to rest on the three seeds with no step unconverged (docs/mechanics.md "A tolerance
+// schedule", "A bed that gives way is a collapse"). Only a failed step starts it: a bed whose
+// every step converges keeps its bits.
 #include <cstdint>
 
 namespace tmdem::mechanics {
 
 class ToleranceSchedule {
  public:
-  enum class Phase : int { Before = 0, Falling = 1, Landed = 2 };
+  enum class Phase : int { Before = 0, Falling = 1, Landed = 2, Collapsing = 3 };
+  // The speed of a collapse, as a fraction of fall_speed (above).
+  static constexpr double kCollapseSpeedFraction = 0.1;
 
   // What a restart needs (MechanicsState.h): the phase and the step that first used the tight
   // tolerance after the fall (0: none yet).
@@ -63,7 +77,13 @@ class ToleranceSchedule {
   double tolerance_for_step(double share_speed_m_per_s, double max_speed_m_per_s, std::int64_t step,
                             bool compacting = false);
   Phase phase() const { return state_.phase; }
-  bool falling() const { return state_.phase == Phase::Falling; }
+  // Falling or collapsing: the steps solved at fall_tolerance.
+  bool falling() const { return state_.phase == Phase::Falling || state_.phase == Phase::Collapsing; }
+  double collapse_speed_m_per_s() const { return kCollapseSpeedFraction * fall_speed_m_per_s_; }
+  // A step that ended unconverged from a state whose share speed (as tolerance_for_step's) is
+  // `share_speed_m_per_s`: outside a fall, at or above collapse_speed_m_per_s(), the phase
+  // becomes Collapsing and true is returned (the step is to be taken again); otherwise false.
+  bool begin_collapse(double share_speed_m_per_s);
   // The first step after the fall (0: not landed yet); `tolerance` from landed_step() +
   // tighten_steps - 1 on.
   std::int64_t landed_step() const { return state_.landed_step; }

@@ -194,10 +194,12 @@ TEST(RunSummary, ToleranceScheduleBlockRoundTrips) {
   ts.compaction_speed_m_s = 2.4e-3;
   ts.fall_steps = 200;
   ts.fall_unconverged_steps = 1;
+  ts.collapse_steps = 3;
   s.mechanics.tolerance_schedule = ts;
   nlohmann::json j = nlohmann::json::parse(s.to_json().dump());
   const auto& block = j["mechanics"]["tolerance_schedule"];
-  EXPECT_EQ(block.size(), 11u);
+  EXPECT_EQ(block.size(), 12u);
+  EXPECT_EQ(block["collapse_steps"].get<std::int64_t>(), 3);
   EXPECT_EQ(block["compaction_speed_m_s"].get<double>(), 2.4e-3);
   EXPECT_FALSE(block["tightened"].get<bool>());
   EXPECT_TRUE(block["tightened_step"].is_null());

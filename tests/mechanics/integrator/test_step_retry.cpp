@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "mechanics/MechanicsTestScenes.h"
+#include "mechanics/integrator/ToleranceSchedule.h"
 
 using namespace tmdem::mechanics;
 using namespace tmdem::mechanics::test;
@@ -52,6 +53,27 @@ void expect_same_state(const NscdIntegrator& a, const NscdIntegrator& b, const c
     EXPECT_EQ(a.contacts()[k].normal_impulse_Ns, b.contacts()[k].normal_impulse_Ns) << where;
     EXPECT_EQ(a.contacts()[k].tangential_force_N, b.contacts()[k].tangential_force_N) << where;
   }
+}
+
+// The settled pile's upper half pushed sideways at `push_m_per_s`, the tolerance schedule on
+// (tight 1e-12, fall_tolerance 1e-3, at once: tighten_steps 1) with `fall_speed_m_per_s`: a
+// collapse is judged at a tenth of it (ToleranceSchedule::kCollapseSpeedFraction).
+NscdIntegrator pushed_pile(const NscdIntegrator& settled, double push_m_per_s, double fall_speed_m_per_s,
+                           int retry_parts) {
+  ParticleSet set = settled.particles();
+  for (std::size_t i = 0; i < set.size(); ++i)
+    if (set.position[i].y() > 4e-3) set.velocity[i] = Eigen::Vector3d(push_m_per_s, 0.0, 0.0);
+  auto walls = box_walls(kWidth, kWidth, 2);
+  for (std::size_t w = 1; w < walls.size(); ++w) walls[w].material = 1;
+  NscdParameters parameters = nlgs_parameters();
+  parameters.tolerance = 1e-12;
+  parameters.fall_tolerance = 1e-3;
+  parameters.fall_speed = fall_speed_m_per_s;
+  parameters.tighten_steps = 1;
+  parameters.max_iterations = 3000;
+  parameters.retry_parts = retry_parts;
+  return NscdIntegrator(std::move(set), {steel(0.5), steel(0.0)}, walls, Eigen::Vector3d(0, -kG, 0), 2,
+                        parameters);
 }
 
 }  // namespace retry_test
@@ -210,4 +232,65 @@ TEST(StepRetry, PartsOutsideTheirRangeAreRefused) {
       EXPECT_NE(std::string(e.what()).find("retry_parts"), std::string::npos) << e.what();
     }
   }
+}
+
+// A step that stalls at the tight tolerance while the bed moves at a tenth of fall_speed or more
+// (a collapse; ToleranceSchedule::begin_collapse) is taken again whole at fall_tolerance: the step
+// that stands is bit for bit the step of an integrator whose fall_speed is that tenth (falling
+// from its first step, so solved at fall_tolerance), the first try's sweeps are thrown away, and
+// the phase is Collapsing until the fastest particle is slower than the tenth; then tight again.
+TEST(StepRetry, AStalledStepOfACollapsingBedIsRetakenAtTheFallTolerance) {
+  const NscdIntegrator settled = settled_disk_pile();
+  const double h = settled.parameters().time_step;
+  constexpr double kPush = 0.02, kFallSpeed = 0.1;  // m/s: the push is above a tenth, below fall_speed
+  NscdIntegrator collapsing = pushed_pile(settled, kPush, kFallSpeed, 2);
+  NscdIntegrator tight = pushed_pile(settled, kPush, kFallSpeed, 1);  // the first try alone
+  NscdIntegrator falling = pushed_pile(settled, kPush, 0.1 * kFallSpeed, 1);
+  const StepReport first_try = tight.step(h);
+  ASSERT_FALSE(first_try.converged) << "the test needs a step that fails at 1e-12";
+  ASSERT_FALSE(first_try.fall);
+  const StepReport fallen = falling.step(h);
+  ASSERT_TRUE(fallen.fall);
+  ASSERT_TRUE(fallen.converged) << "the test needs a step that converges at 1e-3: " << fallen.sweeps << " sweeps, " << fallen.residual << ", " << fallen.siconos_residual;
+
+  const StepReport report = collapsing.step(h);
+  EXPECT_TRUE(report.converged);
+  EXPECT_TRUE(report.fall);
+  EXPECT_TRUE(report.collapse);
+  EXPECT_EQ(report.tolerance, 1e-3);
+  EXPECT_EQ(report.retry_parts, 1);
+  EXPECT_EQ(report.sweeps, fallen.sweeps);
+  EXPECT_EQ(report.discarded_sweeps, first_try.sweeps);
+  expect_same_state(collapsing, falling, "the collapsing step");
+  EXPECT_EQ(collapsing.tolerance_schedule().phase(), ToleranceSchedule::Phase::Collapsing);
+  EXPECT_EQ(collapsing.stats().retried_steps, 1);
+  EXPECT_EQ(collapsing.stats().steps, 1);
+  EXPECT_EQ(collapsing.stats().unconverged_steps, 0);
+  // The phase is in the state a checkpoint carries.
+  EXPECT_EQ(collapsing.save_state().tolerance_schedule.phase, ToleranceSchedule::Phase::Collapsing);
+
+  // Still collapsing while the fastest moves at the tenth or faster; landed, and tight, once
+  // every particle is slower.
+  collapsing.particles().velocity[0] = Eigen::Vector3d(0.0, 0.5 * kFallSpeed, 0.0);
+  EXPECT_EQ(collapsing.step(h).tolerance, 1e-3);
+  for (auto& v : collapsing.particles().velocity) v.setZero();
+  const StepReport landed = collapsing.step(h);
+  EXPECT_FALSE(landed.fall);
+  EXPECT_EQ(landed.tolerance, 1e-12);
+  EXPECT_EQ(collapsing.tolerance_schedule().phase(), ToleranceSchedule::Phase::Landed);
+}
+
+// Slower than a tenth of fall_speed, at the start and at the end of its first try, the bed is not
+// collapsing: the stalled step is retaken in parts, at the tight tolerance, as without the
+// schedule.
+TEST(StepRetry, AStalledStepOfASlowBedIsRetakenInParts) {
+  const NscdIntegrator settled = settled_disk_pile();
+  const double h = settled.parameters().time_step;
+  NscdIntegrator slow = pushed_pile(settled, 0.005, 0.1, 2);  // 0.005 m/s: below 0.01
+  const StepReport report = slow.step(h);
+  EXPECT_FALSE(report.collapse);
+  EXPECT_FALSE(report.fall);
+  EXPECT_EQ(report.tolerance, 1e-12);
+  EXPECT_EQ(report.retry_parts, 2);
+  EXPECT_EQ(slow.tolerance_schedule().phase(), ToleranceSchedule::Phase::Before);
 }

@@ -443,3 +443,32 @@ TEST(ToleranceSchedule, AutomaticFallSpeedAndNeverTighterThanTolerance) {
   EXPECT_EQ(ToleranceSchedule(1e-4, 1e-6, 0.1).fall_tolerance(), 1e-4);
   EXPECT_EQ(ToleranceSchedule(1e-4, 1e-6, 0.1).tolerance_for_step(1.0, 1.0, 1), 1e-4);  // falling
 }
+
+// A collapse (ToleranceSchedule::begin_collapse) begins only outside a fall, with the schedule
+// on and looser than `tolerance`, at a tenth of fall_speed or faster; it is solved at
+// fall_tolerance while the fastest particle moves at that tenth or faster (below fall_speed, where
+// a fall would have ended), then landed and tight.
+TEST(ToleranceSchedule, ACollapseBeginsOnlyOutsideAFallAtATenthOfFallSpeed) {
+  ToleranceSchedule s(1e-9, 1e-3, 0.1, 1);
+  EXPECT_DOUBLE_EQ(s.collapse_speed_m_per_s(), 0.01);
+  EXPECT_FALSE(s.begin_collapse(0.009));
+  EXPECT_EQ(s.phase(), ToleranceSchedule::Phase::Before);
+  EXPECT_TRUE(s.begin_collapse(0.011));
+  EXPECT_EQ(s.phase(), ToleranceSchedule::Phase::Collapsing);
+  EXPECT_TRUE(s.falling());
+  EXPECT_EQ(s.tolerance_for_step(0.0, 0.05, 1), 1e-3);
+  EXPECT_EQ(s.phase(), ToleranceSchedule::Phase::Collapsing);
+  EXPECT_EQ(s.tolerance_for_step(0.0, 0.005, 2), 1e-9);
+  EXPECT_EQ(s.phase(), ToleranceSchedule::Phase::Landed);
+  EXPECT_EQ(s.landed_step(), 2);
+  // Landed, a bed may collapse again.
+  EXPECT_TRUE(s.begin_collapse(0.02));
+  EXPECT_EQ(s.tolerance_for_step(0.0, 0.02, 3), 1e-3);
+
+  ToleranceSchedule falling(1e-9, 1e-3, 0.1, 1);
+  ASSERT_EQ(falling.tolerance_for_step(0.2, 0.2, 1), 1e-3);
+  EXPECT_FALSE(falling.begin_collapse(1.0));
+  EXPECT_EQ(falling.phase(), ToleranceSchedule::Phase::Falling);
+  EXPECT_FALSE(ToleranceSchedule(1e-9, 0.0, 0.1).begin_collapse(1.0));  // no schedule
+  EXPECT_FALSE(ToleranceSchedule(1e-3, 1e-3, 0.1).begin_collapse(1.0));  // nothing looser to go to
+}

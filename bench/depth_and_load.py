@@ -23,7 +23,7 @@ import os
 import sys
 import tempfile
 
-from settle_beds import run_bed  # the same run as every bed of bench/beds
+from settle_beds import parse_seeds, run_bed  # the same run as every bed of bench/beds
 
 SPHERES_PER_MM = 73  # about 0.6 x 64 mm3 / (pi / 6 mm3): spheres per mm of the shaft's height
 
@@ -69,10 +69,7 @@ def main():
                              "a bed takes to rest are chaotic in its seed), and a line per shaft gives the mean "
                              "over seeds of the mean sweeps per step")
     args = parser.parse_args()
-    try:
-        seeds = [int(x) for x in args.seeds.split(",") if x.strip()]
-    except ValueError:
-        sys.exit(f"--seeds: integers separated by commas, not '{args.seeds}'")
+    seeds = parse_seeds(args.seeds)
     tmdem = os.path.abspath(args.tmdem)
     if not os.access(tmdem, os.X_OK):
         sys.exit(f"no {args.tmdem}: run from the project's root after a build, or give --tmdem")

@@ -60,6 +60,14 @@ def run_bed(tmdem, bed, threads, limit, work, settings=()):
     return code, s, wall, cpu, stderr
 
 
+def parse_seeds(text):
+    """The seeds of --seeds ("5,21,22"; "" for none), or exit naming the bad value."""
+    try:
+        return [int(x) for x in text.split(",") if x.strip()]
+    except ValueError:
+        sys.exit(f"--seeds: integers separated by commas, not '{text}'")
+
+
 def settle(tmdem, bed, threads, limit, work, settings=(), label=None):
     """Settles one bed; returns (ok, its line, its summary or None)."""
     name = label or os.path.splitext(os.path.basename(bed))[0]
@@ -100,10 +108,7 @@ def main():
                         help="a scene setting for every run (tmdem run --set)")
     parser.add_argument("beds", nargs="*")
     args = parser.parse_args()
-    try:
-        seeds = [int(x) for x in args.seeds.split(",") if x.strip()]
-    except ValueError:
-        sys.exit(f"--seeds: integers separated by commas, not '{args.seeds}'")
+    seeds = parse_seeds(args.seeds)
     beds = args.beds or sorted(glob.glob(os.path.join(os.path.dirname(os.path.abspath(__file__)), "beds", "*.toml")))
     if not os.access(args.tmdem, os.X_OK):
         sys.exit(f"no {args.tmdem}: run from the project's root after a build, or give --tmdem")

@@ -53,10 +53,16 @@ StepReport NscdIntegrator::step_with_retries(double h) {
     // retries.
     if (collapsing) schedule_.begin_collapse(share_speed_m_per_s);
   };
+  // A try thrown away: its sweeps and times kept apart.
+  const auto discard = [&](const StepReport& thrown) {
+    discarded_sweeps += thrown.sweeps;
+    discarded_detection_s += thrown.detection_s;
+    discarded_solve_s += thrown.solve_s;
+    discarded_correction_s += thrown.correction_s;
+  };
   StepReport report = step(h, true);
   if (step_interrupt_requested()) return given_up(report);
   if (parameters_.retry_parts < 2) return report;
-  bool retaken = false;
   if (!report.converged && may_collapse) share_speed_m_per_s = std::max(share_speed_m_per_s, fall_judged_speed());
   // A bed that creeps outside a fall and stalls at `tolerance`: the step taken again whole, at
   // fall_tolerance, the bed now collapsing (ToleranceSchedule.h).
@@ -64,11 +70,7 @@ StepReport NscdIntegrator::step_with_retries(double h) {
   if (!report.converged && may_collapse && !report.fall &&
       share_speed_m_per_s >= schedule_.collapse_speed_m_per_s()) {
     collapsing = true;
-    retaken = true;
-    discarded_sweeps += report.sweeps;
-    discarded_detection_s += report.detection_s;
-    discarded_solve_s += report.solve_s;
-    discarded_correction_s += report.correction_s;
+    discard(report);
     take_again_from_start();
     report = step(h, true);
     if (step_interrupt_requested()) return given_up(report);
@@ -82,15 +84,12 @@ StepReport NscdIntegrator::step_with_retries(double h) {
   while (!report.converged && 2 * finer <= limit) {
     finer *= 2;
     parts = first_parts * finer;
-    discarded_sweeps += report.sweeps;
-    discarded_detection_s += report.detection_s;
-    discarded_solve_s += report.solve_s;
-    discarded_correction_s += report.correction_s;
+    discard(report);
     take_again_from_start();
     report = step_in_parts(h / double(parts), parts, true);
     if (step_interrupt_requested()) return given_up(report);
   }
-  if (finer > 1 || retaken) {
+  if (finer > 1 || collapsing) {
     // restore_state put back the counters of the start: the retry's own go on top of the
     // parts' (each part counted as a step), and the discarded tries' time with the rest.
     report.retry_parts = parts;

@@ -19,21 +19,25 @@ namespace retry_test {
 constexpr double kWidth = 0.008;  // m, settled_disk_pile's box
 
 // A new integrator on the settled pile's disks (the same box and materials as
-// settled_disk_pile): its first step has contacts and a static warm start pending.
-NscdIntegrator pile_from(const NscdIntegrator& settled, int retry_parts, int max_iterations,
-                         double tolerance) {
+// settled_disk_pile), its upper half pushed sideways at `push_m_per_s` so the steps have
+// something to solve: its first step has contacts and a static warm start pending.
+NscdIntegrator pushed_from(const NscdIntegrator& settled, double push_m_per_s, const NscdParameters& parameters) {
   ParticleSet set = settled.particles();
-  // A sideways push on the upper half, so the steps have something to solve.
   for (std::size_t i = 0; i < set.size(); ++i)
-    if (set.position[i].y() > 4e-3) set.velocity[i] = Eigen::Vector3d(0.02, 0.0, 0.0);
+    if (set.position[i].y() > 4e-3) set.velocity[i] = Eigen::Vector3d(push_m_per_s, 0.0, 0.0);
   auto walls = box_walls(kWidth, kWidth, 2);
   for (std::size_t w = 1; w < walls.size(); ++w) walls[w].material = 1;
+  return NscdIntegrator(std::move(set), {steel(0.5), steel(0.0)}, walls, Eigen::Vector3d(0, -kG, 0), 2,
+                        parameters);
+}
+
+NscdIntegrator pile_from(const NscdIntegrator& settled, int retry_parts, int max_iterations,
+                         double tolerance) {
   NscdParameters parameters = nlgs_parameters();
   parameters.tolerance = tolerance;
   parameters.max_iterations = max_iterations;
   parameters.retry_parts = retry_parts;
-  return NscdIntegrator(std::move(set), {steel(0.5), steel(0.0)}, walls, Eigen::Vector3d(0, -kG, 0), 2,
-                        parameters);
+  return pushed_from(settled, 0.02, parameters);
 }
 
 void expect_same_state(const NscdIntegrator& a, const NscdIntegrator& b, const char* where) {
@@ -60,11 +64,6 @@ void expect_same_state(const NscdIntegrator& a, const NscdIntegrator& b, const c
 // collapse is judged at a tenth of it (ToleranceSchedule::kCollapseSpeedFraction).
 NscdIntegrator pushed_pile(const NscdIntegrator& settled, double push_m_per_s, double fall_speed_m_per_s,
                            int retry_parts) {
-  ParticleSet set = settled.particles();
-  for (std::size_t i = 0; i < set.size(); ++i)
-    if (set.position[i].y() > 4e-3) set.velocity[i] = Eigen::Vector3d(push_m_per_s, 0.0, 0.0);
-  auto walls = box_walls(kWidth, kWidth, 2);
-  for (std::size_t w = 1; w < walls.size(); ++w) walls[w].material = 1;
   NscdParameters parameters = nlgs_parameters();
   parameters.tolerance = 1e-12;
   parameters.fall_tolerance = 1e-3;
@@ -72,8 +71,7 @@ NscdIntegrator pushed_pile(const NscdIntegrator& settled, double push_m_per_s, d
   parameters.tighten_steps = 1;
   parameters.max_iterations = 3000;
   parameters.retry_parts = retry_parts;
-  return NscdIntegrator(std::move(set), {steel(0.5), steel(0.0)}, walls, Eigen::Vector3d(0, -kG, 0), 2,
-                        parameters);
+  return pushed_from(settled, push_m_per_s, parameters);
 }
 
 }  // namespace retry_test

@@ -51,7 +51,8 @@ std::vector<Section> settings_sections() {
                "`tolerance` while fall_share of the particles move at a tenth of fall_speed or "
                "faster (a laid bed giving way, a pile creeping) is taken again at this "
                "tolerance, the bed then collapsing until its fastest particle is below that "
-               "tenth (needs retry_parts >= 2). 0: no schedule, `tolerance` for "
+               "tenth (needs retry_parts >= 2 and this tolerance looser than `tolerance`). 0: no "
+               "schedule, `tolerance` for "
                "every step. A step counts as converged when it met the tolerance in force"),
         number("fall_speed", "m/s", std::nullopt, Range::greater(0.0),
                "tolerance schedule: the particle speed at or above which a particle "

@@ -44,7 +44,9 @@ StepReport NscdIntegrator::step_with_retries(double h) {
   // The speed a collapse is judged on (ToleranceSchedule::begin_collapse): fall_share's speed at
   // the start, or at the end of the failed try (a laid bed that gives way in its first step
   // starts at rest); only outside a fall (O(n), no allocation).
-  const bool may_collapse = schedule_.enabled() && !schedule_.falling() && parameters_.retry_parts >= 2;
+  // (Not with equal tolerances: thermal_cycling at tolerance = fall_tolerance = 1e-4 retook 4
+  // steps as collapses that repeated their failed tries bit for bit.)
+  const bool may_collapse = schedule_.can_collapse() && !schedule_.falling() && parameters_.retry_parts >= 2;
   double share_speed_m_per_s = may_collapse ? fall_judged_speed() : 0.0;
   bool collapsing = false;
   const auto take_again_from_start = [&] {

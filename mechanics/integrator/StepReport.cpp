@@ -35,6 +35,14 @@ StepReport merged(const StepReport& first, const StepReport& second) {
   m.sweeps = first.sweeps + second.sweeps;
   m.residual = std::max(first.residual, second.residual);
   m.converged = first.converged && second.converged;
+  // The tolerance an unconverged part missed (the tightest, if both did): a step retaken in parts
+  // across the schedule's change (a part at 1e-5, the later ones at the fall's 1e-4) otherwise
+  // reported its failure against the last part's tolerance, its residual below it
+  // (thermal_cycling: "Siconos' residual 9.97e-05, tolerance 0.0001", unconverged).
+  if (!first.converged && !second.converged)
+    m.tolerance = std::min(first.tolerance, second.tolerance);
+  else if (!first.converged)
+    m.tolerance = first.tolerance;
   m.siconos_residual = std::max(first.siconos_residual, second.siconos_residual);
   m.natural_map_residual = std::max(first.natural_map_residual, second.natural_map_residual);
   m.fall = first.fall || second.fall;

@@ -66,7 +66,8 @@ struct StepReport {
 
 // One report for a step taken as two halves (NscdIntegrator::step: a step too long for the
 // periods): sums of the work and energies, the worse of the flags and residuals, the second
-// half's state (tolerance, candidates, contacts).
+// half's state (candidates, contacts), and its tolerance unless only the first half is
+// unconverged: an unconverged report names the tolerance that was missed.
 StepReport merged(const StepReport& first, const StepReport& second);
 
 struct MechanicsStats {

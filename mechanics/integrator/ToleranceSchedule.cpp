@@ -52,7 +52,7 @@ double ToleranceSchedule::tolerance_for_step(double share_speed_m_per_s, double 
 }
 
 bool ToleranceSchedule::begin_collapse(double share_speed_m_per_s) {
-  if (!enabled() || falling() || fall_tolerance_ <= tolerance_) return false;
+  if (!can_collapse() || falling()) return false;
   if (!(share_speed_m_per_s >= collapse_speed_m_per_s())) return false;
   state_.phase = Phase::Collapsing;
   return true;

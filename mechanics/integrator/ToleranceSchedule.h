@@ -68,6 +68,9 @@ class ToleranceSchedule {
                     int tighten_steps = 1);
 
   bool enabled() const { return fall_tolerance_ > 0.0; }
+  // A collapse would loosen the tolerance: a schedule whose fall_tolerance is no looser than
+  // `tolerance` retakes nothing as a collapse (the retake would repeat the failed try).
+  bool can_collapse() const { return enabled() && fall_tolerance_ > tolerance_; }
   double fall_speed_m_per_s() const { return fall_speed_m_per_s_; }
   // The tolerance while falling: fall_tolerance, or `tolerance` if that is looser.
   double fall_tolerance() const { return fall_tolerance_; }

@@ -39,7 +39,9 @@ void expect_same_state(const NscdIntegrator& a, const NscdIntegrator& b, const s
     ASSERT_EQ(a.particles().velocity[i], b.particles().velocity[i]) << when << ", particle " << i;
     ASSERT_EQ(a.particles().angular_velocity[i], b.particles().angular_velocity[i]) << when << ", particle " << i;
   }
-  if (reactions) ASSERT_EQ(a.reactions(), b.reactions()) << when;
+  if (reactions) {
+    ASSERT_EQ(a.reactions(), b.reactions()) << when;
+  }
   EXPECT_EQ(a.stats().steps, b.stats().steps) << when;
   EXPECT_EQ(a.stats().unconverged_steps, b.stats().unconverged_steps) << when;
   EXPECT_EQ(a.stats().unconverged_time_steps, b.stats().unconverged_time_steps) << when;

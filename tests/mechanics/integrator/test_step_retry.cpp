@@ -63,10 +63,10 @@ void expect_same_state(const NscdIntegrator& a, const NscdIntegrator& b, const c
 // (tight 1e-12, fall_tolerance 1e-3, at once: tighten_steps 1) with `fall_speed_m_per_s`: a
 // collapse is judged at a tenth of it (ToleranceSchedule::kCollapseSpeedFraction).
 NscdIntegrator pushed_pile(const NscdIntegrator& settled, double push_m_per_s, double fall_speed_m_per_s,
-                           int retry_parts) {
+                           int retry_parts, double fall_tolerance = 1e-3) {
   NscdParameters parameters = nlgs_parameters();
   parameters.tolerance = 1e-12;
-  parameters.fall_tolerance = 1e-3;
+  parameters.fall_tolerance = fall_tolerance;
   parameters.fall_speed = fall_speed_m_per_s;
   parameters.tighten_steps = 1;
   parameters.max_iterations = 3000;
@@ -291,4 +291,49 @@ TEST(StepRetry, AStalledStepOfASlowBedIsRetakenInParts) {
   EXPECT_EQ(report.tolerance, 1e-12);
   EXPECT_EQ(report.retry_parts, 2);
   EXPECT_EQ(slow.tolerance_schedule().phase(), ToleranceSchedule::Phase::Before);
+}
+
+// With fall_tolerance equal to the tolerance a collapse would repeat the failed try: the stalled
+// step of the same collapsing bed is retaken in parts, as without a schedule.
+TEST(StepRetry, NoCollapseWhereTheFallToleranceIsNoLooser) {
+  const NscdIntegrator settled = settled_disk_pile();
+  const double h = settled.parameters().time_step;
+  NscdIntegrator equal = pushed_pile(settled, 0.02, 0.1, 2, 1e-12);
+  NscdIntegrator tight = pushed_pile(settled, 0.02, 0.1, 1, 1e-12);  // the first try alone
+  const StepReport first_try = tight.step(h);
+  ASSERT_FALSE(first_try.converged);
+  const StepReport report = equal.step(h);
+  EXPECT_FALSE(report.collapse);
+  EXPECT_EQ(report.retry_parts, 2);
+  EXPECT_EQ(report.discarded_sweeps, first_try.sweeps);  // the first try only, taken once
+  EXPECT_EQ(equal.stats().collapse_steps, 0);
+  EXPECT_EQ(equal.tolerance_schedule().phase(), ToleranceSchedule::Phase::Before);
+}
+
+TEST(StepRetry, AStepInPartsNamesTheToleranceItsUnconvergedPartMissed) {
+  // A first part unconverged at 1e-5, the next converged at the fall's 1e-4 (the schedule
+  // changed between them): the step is unconverged against 1e-5, not 1e-4.
+  StepReport tight, loose;
+  tight.converged = false;
+  tight.tolerance = 1e-5;
+  tight.siconos_residual = 9.97e-5;
+  loose.converged = true;
+  loose.tolerance = 1e-4;
+  loose.siconos_residual = 5e-5;
+  const StepReport step = merged(tight, loose);
+  EXPECT_FALSE(step.converged);
+  EXPECT_EQ(step.tolerance, 1e-5);
+  EXPECT_EQ(step.siconos_residual, 9.97e-5);
+  MechanicsStats stats;
+  stats.add(step);
+  EXPECT_EQ(stats.siconos_unconverged_steps, 1);  // above the tolerance it missed
+  // Both unconverged: the tighter; both converged: the last part's, as before.
+  StepReport loose_failed = loose;
+  loose_failed.converged = false;
+  EXPECT_EQ(merged(loose_failed, tight).tolerance, 1e-5);
+  EXPECT_EQ(merged(loose_failed, tight).converged, false);
+  StepReport tight_met = tight;
+  tight_met.converged = true;
+  EXPECT_EQ(merged(tight_met, loose).tolerance, 1e-4);
+  EXPECT_EQ(merged(loose, loose_failed).tolerance, 1e-4);
 }

@@ -52,8 +52,8 @@ std::vector<Section> settings_sections() {
                "faster (a laid bed giving way, a pile creeping) is taken again at this "
                "tolerance, the bed then collapsing until its fastest particle is below that "
                "tenth (needs retry_parts >= 2 and this tolerance looser than `tolerance`). 0: no "
-               "schedule, `tolerance` for "
-               "every step. A step counts as converged when it met the tolerance in force"),
+               "schedule, `tolerance` for every step. A step counts as converged when it met "
+               "the tolerance in force"),
         number("fall_speed", "m/s", std::nullopt, Range::greater(0.0),
                "tolerance schedule: the particle speed at or above which a particle "
                "counts as falling (fall_tolerance applies); absent: a tenth of the smallest "

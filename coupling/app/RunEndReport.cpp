@@ -109,6 +109,9 @@ void print_run_end(const RunSummary& summary, const Scene& scene, const std::str
     if (m.retried_steps > 0)
       out << ", " << m.retried_steps << " unconverged steps retaken in parts (" << m.discarded_sweeps
           << " sweeps thrown away; mechanics.retry_parts, docs/mechanics.md \"Retaking an unconverged step\")";
+    if (m.kept_parts_steps > 0)
+      out << ", " << m.kept_parts_steps << " steps started in the parts a retry before them needed "
+          << "(mechanics.retry_keep_steps)";
     if (m.piston_corrections > 0)
       out << ", " << m.piston_corrections << " corrections moved a piston: particles pinned under it "
           << "(docs/mechanics.md \"Penetration without speed\")";

@@ -61,6 +61,7 @@ mechanics::NscdParameters make_nscd_parameters(const Scene& scene) {
   p.static_balance_rounds = scene.mechanics.static_balance_rounds;
   p.max_iterations = scene.mechanics.max_iterations;
   p.retry_parts = scene.mechanics.retry_parts;
+  p.retry_keep_steps = scene.mechanics.retry_keep_steps;
   p.full_sweep_every = scene.mechanics.full_sweep_every;
   p.siconos_stop = scene.mechanics.stop_test == "siconos";
   p.normal_law = scene.mechanics.normal_law;

@@ -87,6 +87,8 @@ struct MechanicsSummary {
   // sweeps of the tries thrown away (not in mean_iterations)
   std::int64_t retried_steps = 0;
   std::int64_t discarded_sweeps = 0;
+  // extra: steps started in the parts an earlier retry needed (mechanics.retry_keep_steps)
+  std::int64_t kept_parts_steps = 0;
   // extra: corrections in which pistons took their share (particles pinned under a piston)
   std::int64_t piston_corrections = 0;
   double max_step_travel_m = 0.0;    // extra: largest particle displacement in one step, m
@@ -116,6 +118,7 @@ inline constexpr std::tuple kMechanicsSummaryFields{
     SummaryField{"landing_halved_steps", &MechanicsSummary::landing_halved_steps},
     SummaryField{"retried_steps", &MechanicsSummary::retried_steps},
     SummaryField{"discarded_sweeps", &MechanicsSummary::discarded_sweeps},
+    SummaryField{"kept_parts_steps", &MechanicsSummary::kept_parts_steps},
     SummaryField{"piston_corrections", &MechanicsSummary::piston_corrections},
     SummaryField{"max_step_travel_m", &MechanicsSummary::max_step_travel_m},
     SummaryField{"max_siconos_residual", &MechanicsSummary::max_siconos_residual},

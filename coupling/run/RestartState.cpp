@@ -86,6 +86,7 @@ void store_mechanics_stats(const mechanics::MechanicsStats& s, CheckpointState& 
   cs.extra["mechanics_landing_halved_steps"] = double(s.landing_halved_steps);
   cs.extra["mechanics_retried_steps"] = double(s.retried_steps);
   cs.extra["mechanics_discarded_sweeps"] = double(s.discarded_sweeps);
+  cs.extra["mechanics_kept_parts_steps"] = double(s.kept_parts_steps);
   cs.extra["mechanics_unconverged_time_steps"] = double(s.unconverged_time_steps);
   cs.extra["mechanics_piston_corrections"] = double(s.piston_corrections);
   cs.extra["mechanics_last_step_s"] = s.last_step_s;
@@ -115,6 +116,7 @@ mechanics::MechanicsStats mechanics_stats_of(const CheckpointState& cs) {
   s.landing_halved_steps = std::int64_t(extra_or_zero(cs, "mechanics_landing_halved_steps"));
   s.retried_steps = std::int64_t(extra_or_zero(cs, "mechanics_retried_steps"));
   s.discarded_sweeps = std::int64_t(extra_or_zero(cs, "mechanics_discarded_sweeps"));
+  s.kept_parts_steps = std::int64_t(extra_or_zero(cs, "mechanics_kept_parts_steps"));
   s.unconverged_time_steps = std::int64_t(extra_or_zero(cs, "mechanics_unconverged_time_steps"));
   s.piston_corrections = std::int64_t(extra_or_zero(cs, "mechanics_piston_corrections"));
   s.last_step_s = extra_or_zero(cs, "mechanics_last_step_s");
@@ -155,6 +157,8 @@ void store_mechanics_state(const mechanics::MechanicsState& m, CheckpointState& 
   cs.extra["mechanics_tolerance_landed_step"] = double(m.tolerance_schedule.landed_step);
   cs.extra["mechanics_retry_limit"] = double(m.retry_limit);
   cs.extra["mechanics_retry_converged_steps"] = double(m.retry_converged_in_a_row);
+  cs.extra["mechanics_start_parts"] = double(m.start_parts);
+  cs.extra["mechanics_start_parts_converged_steps"] = double(m.start_parts_converged_in_a_row);
 }
 
 mechanics::MechanicsState mechanics_state_of(const CheckpointState& cs) {
@@ -183,6 +187,8 @@ mechanics::MechanicsState mechanics_state_of(const CheckpointState& cs) {
       std::int64_t(extra_or_zero(cs, "mechanics_tolerance_landed_step"));
   m.retry_limit = int(extra_or_zero(cs, "mechanics_retry_limit"));
   m.retry_converged_in_a_row = int(extra_or_zero(cs, "mechanics_retry_converged_steps"));
+  m.start_parts = int(extra_or_zero(cs, "mechanics_start_parts"));
+  m.start_parts_converged_in_a_row = int(extra_or_zero(cs, "mechanics_start_parts_converged_steps"));
   return m;
 }
 

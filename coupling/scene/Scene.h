@@ -198,6 +198,8 @@ struct MechanicsSettings {
   int max_iterations = mechanics::NscdParameters{}.max_iterations;
   // An unconverged step is retaken in 2, 4, ... parts up to this (NscdParameters::retry_parts).
   int retry_parts = mechanics::NscdParameters{}.retry_parts;
+  // Converged steps that halve the parts kept after a retry (NscdParameters::retry_keep_steps).
+  int retry_keep_steps = mechanics::NscdParameters{}.retry_keep_steps;
   int full_sweep_every = mechanics::NscdParameters{}.full_sweep_every;  // Gauss-Seidel active-set sweeps
   // "sweep" or "siconos" (mechanics::NscdParameters::siconos_stop)
   std::string stop_test = mechanics::NscdParameters{}.siconos_stop ? "siconos" : "sweep";

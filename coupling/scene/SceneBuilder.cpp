@@ -187,6 +187,8 @@ void SceneBuilder::read_settings() {
     m.max_iterations = sweeps("max_iterations", m.max_iterations);
     m.retry_parts = static_cast<int>(t.integer("retry_parts", m.retry_parts, 1,
                                                mechanics::NscdParameters::kMaxRetryParts));
+    m.retry_keep_steps = static_cast<int>(t.integer("retry_keep_steps", m.retry_keep_steps, 0,
+                                                    std::numeric_limits<int>::max()));
     m.full_sweep_every = sweeps("full_sweep_every", m.full_sweep_every);
     m.tighten_steps = sweeps("tighten_steps", m.tighten_steps);
     m.settle_time_s = t.number("settle_time");

@@ -112,6 +112,13 @@ std::vector<Section> settings_sections() {
               "configuration of the bed (a piston at the onset of a compaction), and a shorter "
               "step starts nearer its answer (docs/mechanics.md \"Retaking an unconverged "
               "step\"; summary: mechanics.retried_steps, mechanics.discarded_sweeps)"),
+        value("retry_keep_steps", "", std::to_string(kM.retry_keep_steps), "integer >= 0",
+              "a step retaken in P parts that converged makes the steps after it start in P "
+              "parts, and this many converged steps in a row halve P again, down to whole "
+              "steps (0: every step starts whole). A bed's hard spell outlasts one step (a "
+              "re-settle after heating, a piston compacting), and a whole try that stalls "
+              "before its parts converge is thrown away (docs/mechanics.md \"Retaking an "
+              "unconverged step\"; summary: mechanics.kept_parts_steps)"),
         value("full_sweep_every", "", std::to_string(kM.full_sweep_every), "integer >= 1",
               "\"nlgs\", \"nlgs_coloured\": a sweep over every candidate at least every this "
               "many sweeps, the others visit the contacts the last full sweep left closed; "

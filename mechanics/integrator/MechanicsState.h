@@ -53,6 +53,10 @@ struct MechanicsState {
   // a row since it was last changed.
   int retry_limit = 0;
   int retry_converged_in_a_row = 0;
+  // The parts the next step starts in (NscdParameters::retry_keep_steps; 0 or 1: whole), and the
+  // steps converged in a row at those parts.
+  int start_parts = 0;
+  int start_parts_converged_in_a_row = 0;
 
   MechanicsStats stats;
 };

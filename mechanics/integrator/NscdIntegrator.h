@@ -261,6 +261,10 @@ class NscdIntegrator {
   // double them back (up to retry_parts). 0: retry_parts. Both in MechanicsState.
   int retry_limit_ = 0;
   int retry_converged_in_a_row_ = 0;
+  // The parts the next step starts in, after a retry (NscdParameters::retry_keep_steps; 0 or 1:
+  // whole), and the converged steps in a row at them. Both in MechanicsState.
+  int start_parts_ = 0;
+  int start_parts_converged_in_a_row_ = 0;
   double stop_speed_m_per_s_ = 0.0;  // ContactProblem::stop_speed outside the fall
   ContactProblem problem_;
   std::unique_ptr<ContactSolver> solver_;

@@ -62,36 +62,46 @@ StepReport NscdIntegrator::step_with_retries(double h) {
     discarded_solve_s += thrown.solve_s;
     discarded_correction_s += thrown.correction_s;
   };
-  StepReport report = step(h, true);
+  // The parts this step starts in: those the last retry needed, while they are kept
+  // (NscdParameters::retry_keep_steps), within the retry's budget.
+  const int limit = retry_limit_ > 0 ? retry_limit_ : parameters_.retry_parts;
+  const int start = parameters_.retry_parts >= 2 && parameters_.retry_keep_steps > 0
+                        ? std::clamp(start_parts_, 1, limit)
+                        : 1;
+  const auto first_try = [&] {
+    return start > 1 ? step_in_parts(h / double(start), start, true) : step(h, true);
+  };
+  StepReport report = first_try();
   if (step_interrupt_requested()) return given_up(report);
   if (parameters_.retry_parts < 2) return report;
   if (!report.converged && may_collapse) share_speed_m_per_s = std::max(share_speed_m_per_s, fall_judged_speed());
-  // A bed that creeps outside a fall and stalls at `tolerance`: the step taken again whole, at
-  // fall_tolerance, the bed now collapsing (ToleranceSchedule.h).
+  // A bed that creeps outside a fall and stalls at `tolerance`: the step taken again as first
+  // taken (whole, or in its kept parts), at fall_tolerance, the bed now collapsing
+  // (ToleranceSchedule.h).
   // (Not a step the schedule solved as a fall, at fall_tolerance already: one that began a fall.)
   if (!report.converged && may_collapse && !report.fall &&
       share_speed_m_per_s >= schedule_.collapse_speed_m_per_s()) {
     collapsing = true;
     discard(report);
     take_again_from_start();
-    report = step(h, true);
+    report = first_try();
     if (step_interrupt_requested()) return given_up(report);
   }
-  const int limit = retry_limit_ > 0 ? retry_limit_ : parameters_.retry_parts;
   // Parts relative to the first try's own: a landing already taken in parts of h / 8
   // (periodic_2d's piston) retaken in 2 parts of h / 2 repeats, part for part, the very same
   // steps; so the retries go to parts of h / 16, h / 32 and h / 64 there.
-  const int first_parts = int(std::max(1L, std::lround(h / report.time_step_s)));
-  int finer = 1, parts = 1;
+  // The kept parts count towards the limit; a landing's own do not.
+  const int landing_parts = int(std::max(1L, std::lround(h / report.time_step_s / double(start))));
+  int finer = start, parts = start;
   while (!report.converged && 2 * finer <= limit) {
     finer *= 2;
-    parts = first_parts * finer;
+    parts = landing_parts * finer;
     discard(report);
     take_again_from_start();
     report = step_in_parts(h / double(parts), parts, true);
     if (step_interrupt_requested()) return given_up(report);
   }
-  if (finer > 1 || collapsing) {
+  if (finer > start || collapsing) {
     // restore_state put back the counters of the start: the retry's own go on top of the
     // parts' (each part counted as a step), and the discarded tries' time with the rest.
     report.retry_parts = parts;
@@ -117,6 +127,25 @@ StepReport NscdIntegrator::step_with_retries(double h) {
   } else if (++retry_converged_in_a_row_ >= kRetryRecoverSteps) {
     retry_limit_ = std::min(parameters_.retry_parts, 2 * limit);
     retry_converged_in_a_row_ = 0;
+  }
+  // The parts kept for the next steps: a bed's hard spell (thermal_cycling's re-settles, a
+  // piston compacting) outlasts the step, and its whole tries stall before their parts converge.
+  // A step that converged in parts raises them; retry_keep_steps converged in a row halve them.
+  // A step still unconverged keeps them (its parts did not help, its whole step would not either).
+  if (start > 1) {
+    report.start_parts = start;
+    ++stats_.kept_parts_steps;
+  }
+  if (parameters_.retry_keep_steps > 0 && parameters_.retry_parts >= 2) {
+    if (!report.converged) {
+      start_parts_converged_in_a_row_ = 0;
+    } else if (finer > start) {
+      start_parts_ = finer;
+      start_parts_converged_in_a_row_ = 0;
+    } else if (start > 1 && ++start_parts_converged_in_a_row_ >= parameters_.retry_keep_steps) {
+      start_parts_ = start / 2;
+      start_parts_converged_in_a_row_ = 0;
+    }
   }
   return report;
 }

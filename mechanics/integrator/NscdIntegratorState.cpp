@@ -39,6 +39,8 @@ void NscdIntegrator::save_state(MechanicsState& s) const {
   s.tolerance_schedule = schedule_.state();
   s.retry_limit = retry_limit_;
   s.retry_converged_in_a_row = retry_converged_in_a_row_;
+  s.start_parts = start_parts_;
+  s.start_parts_converged_in_a_row = start_parts_converged_in_a_row_;
   s.wall_point_m.clear();
   s.wall_velocity_m_per_s.clear();
   for (const auto& w : walls_) {
@@ -98,6 +100,8 @@ void NscdIntegrator::restore_state(const MechanicsState& s) {
   schedule_.restore(s.tolerance_schedule);
   retry_limit_ = s.retry_limit;
   retry_converged_in_a_row_ = s.retry_converged_in_a_row;
+  start_parts_ = s.start_parts;
+  start_parts_converged_in_a_row_ = s.start_parts_converged_in_a_row;
   solver_->restore_carried_state(s.solver_state);
   stats_ = s.stats;
 }

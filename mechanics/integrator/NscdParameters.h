@@ -85,6 +85,15 @@ struct NscdParameters {
   // piston_cylinder's study (1e3, 1e4, 1e5 Pa), four seeds: 18 unconverged steps with whole
   // steps, 0 with retries up to 8 parts (docs/mechanics.md "Retaking an unconverged step").
   int retry_parts = 8;
+  // A step retaken in P parts that then converged makes the steps after it start in P parts
+  // (the bed's hard spell outlasts one step: a re-settle after heating, a piston compacting),
+  // and this many converged steps in a row halve P again (down to whole steps). 0: every
+  // step starts whole. Why: thermal_cycling on nncg_ipm at 1e-5 threw away 12.9 M sweeps on 958
+  // retakes, each whole try stalling before the parts converged; 4 cut its sweeps to half. Off by
+  // default: on bench/beds/plate_on_deposit, whose whole steps converge again after a retry, 4
+  // cost 2.4 times the run (docs/mechanics.md "Steps that start in the parts the last retry
+  // needed").
+  int retry_keep_steps = 0;
   static constexpr int kMaxRetryParts = 64;
   int max_iterations = 10000; // Gauss-Seidel sweeps per step
   // "nncg" only (the other solvers stop on their own test whatever this says): a step converges

@@ -55,6 +55,9 @@ struct StepReport {
   // times above).
   int retry_parts = 0;
   std::int64_t discarded_sweeps = 0;
+  // The parts the step was first taken in, kept from an earlier retry
+  // (NscdParameters::retry_keep_steps; 0: whole). A retry goes on from them.
+  int start_parts = 0;
   // Retaken at fall_tolerance as a collapse (ToleranceSchedule::begin_collapse; retry_parts is
   // then 1 unless parts followed).
   bool collapse = false;
@@ -102,6 +105,9 @@ struct MechanicsStats {
   // sweeps of the tries thrown away (not in total_sweeps; their time is in the times below).
   std::int64_t retried_steps = 0;
   std::int64_t discarded_sweeps = 0;
+  // Steps started in the parts an earlier retry needed (NscdParameters::retry_keep_steps; each
+  // part counts in `steps`).
+  std::int64_t kept_parts_steps = 0;
   // Steps asked of NscdIntegrator::step(h) (the caller's steps) that ended unconverged: a step
   // taken in parts (landing, periods, retry) counts once here, where unconverged_steps counts
   // each unconverged part. The run's warnings are one per such step.

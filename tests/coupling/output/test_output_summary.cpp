@@ -71,8 +71,9 @@ TEST(RunSummary, JsonHasEveryContractKey) {
   // The contract's 5 mechanics keys plus the extras stalled_steps, correction_sweeps,
   // halved_steps, landing_halved_steps, retried_steps, discarded_sweeps, piston_corrections,
   // max_step_travel_m, max_siconos_residual, siconos_unconverged_steps,
-  // max_natural_map_residual and unconverged_time_steps.
-  EXPECT_EQ(j["mechanics"].size(), 17u);
+  // max_natural_map_residual, unconverged_time_steps and kept_parts_steps.
+  EXPECT_EQ(j["mechanics"].size(), 18u);
+  EXPECT_TRUE(j["mechanics"]["kept_parts_steps"].is_number_integer());
   EXPECT_TRUE(j["mechanics"]["retried_steps"].is_number_integer());
   EXPECT_TRUE(j["mechanics"]["discarded_sweeps"].is_number_integer());
   EXPECT_TRUE(j["mechanics"]["piston_corrections"].is_number_integer());

@@ -339,3 +339,80 @@ TEST(StepRetry, AStepInPartsNamesTheToleranceItsUnconvergedPartMissed) {
   EXPECT_EQ(merged(tight_met, loose).tolerance, 1e-4);
   EXPECT_EQ(merged(loose, loose_failed).tolerance, 1e-4);
 }
+
+namespace retry_test {
+
+// The parts a step of h was taken in at the end: its retry's, else its kept parts, else 1.
+int parts_taken(const StepReport& report) {
+  if (report.retry_parts > 0) return report.retry_parts;
+  return report.start_parts > 0 ? report.start_parts : 1;
+}
+
+}  // namespace retry_test
+
+// retry_keep_steps: after a step that converged only in P parts the next steps start in P parts,
+// and every retry_keep_steps converged steps in a row halve P, down to whole steps. The steps
+// stand as the parts an integrator without retries takes from the same start, bit for bit; the
+// kept parts go through a checkpoint.
+TEST(StepRetry, StepsAfterARetryStartInItsPartsUntilEnoughConvergeInARow) {
+  const NscdIntegrator settled = settled_disk_pile();
+  const double h = settled.parameters().time_step;
+  // The pile's upper half pushed at 0.2 m/s, solved to 1e-5 within 3,000 sweeps: some whole
+  // steps stall and converge in 4 or 8 parts, every step converges in the end.
+  NscdParameters parameters = nlgs_parameters();
+  parameters.tolerance = 1e-5;
+  parameters.max_iterations = 3000;
+  parameters.retry_parts = 8;
+  parameters.retry_keep_steps = 2;
+  NscdIntegrator kept = pushed_from(settled, 0.2, parameters);
+  NscdParameters plain_parameters = parameters;
+  plain_parameters.retry_parts = 1;
+  NscdIntegrator plain = pushed_from(settled, 0.2, plain_parameters);
+
+  constexpr int kSteps = 20, kCheckpointStep = 8;
+  int expected_start = 1, converged_at_start = 0, kept_steps = 0, halvings = 0;
+  MechanicsState checkpoint;
+  std::vector<StepReport> after_checkpoint;
+  for (int step = 0; step < kSteps; ++step) {
+    if (step == kCheckpointStep) checkpoint = kept.save_state();
+    const StepReport report = kept.step(h);
+    ASSERT_TRUE(report.converged) << "step " << step << ": the test needs converged steps";
+    EXPECT_EQ(std::max(1, report.start_parts), expected_start) << "step " << step;
+    if (report.start_parts > 1) ++kept_steps;
+    // A retry goes on from the kept parts: finer than them.
+    if (report.retry_parts > 0) EXPECT_GT(report.retry_parts, expected_start) << "step " << step;
+    const int parts = parts_taken(report);
+    for (int part = 0; part < parts; ++part) plain.step(h / double(parts));
+    expect_same_state(kept, plain, "a step in its kept or retried parts");
+    if (step >= kCheckpointStep) after_checkpoint.push_back(report);
+    // The rule, from the reports alone.
+    if (report.retry_parts > 0) {
+      expected_start = report.retry_parts;
+      converged_at_start = 0;
+    } else if (expected_start > 1 && ++converged_at_start == parameters.retry_keep_steps) {
+      expected_start /= 2;
+      converged_at_start = 0;
+      ++halvings;
+    }
+  }
+  // Not a rule that never acted: steps started in kept parts, and those were halved back.
+  EXPECT_GE(kept_steps, 5);
+  EXPECT_GE(halvings, 3);
+  EXPECT_EQ(kept.stats().kept_parts_steps, kept_steps);
+
+  // From the checkpoint, the same steps in the same parts.
+  NscdIntegrator restarted = pushed_from(settled, 0.2, parameters);
+  restarted.restore_state(checkpoint);
+  for (std::size_t k = 0; k < after_checkpoint.size(); ++k) {
+    const StepReport report = restarted.step(h);
+    EXPECT_EQ(report.start_parts, after_checkpoint[k].start_parts) << "step " << kCheckpointStep + k;
+    EXPECT_EQ(report.retry_parts, after_checkpoint[k].retry_parts) << "step " << kCheckpointStep + k;
+  }
+  expect_same_state(restarted, kept, "restarted from a checkpoint");
+
+  // Off (0): every step starts whole.
+  parameters.retry_keep_steps = 0;
+  NscdIntegrator whole = pushed_from(settled, 0.2, parameters);
+  for (int step = 0; step < 12; ++step) EXPECT_EQ(whole.step(h).start_parts, 0) << "step " << step;
+  EXPECT_EQ(whole.stats().kept_parts_steps, 0);
+}

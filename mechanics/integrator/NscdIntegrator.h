@@ -91,7 +91,8 @@ class NscdIntegrator {
   // landing at metres per second) is taken in 2^k equal parts, the fewest that fit, k at most
   // kMaxHalvings (beyond, each part lists the pairs within the wall's reach). A step that ends
   // unconverged is taken again from its start in 2, 4, ... equal parts, up to
-  // NscdParameters::retry_parts, until all its parts converge; the last try stands.
+  // NscdParameters::retry_parts, until all its parts converge; the last try stands. With
+  // NscdParameters::retry_keep_steps the steps after such a retry start in its parts.
   StepReport step(double h);
   static constexpr int kMaxHalvings = 4;  // a step is halved at most this many times
   // Converged steps in a row that double back the parts a retry may go up to, after a step that

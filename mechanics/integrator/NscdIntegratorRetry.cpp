@@ -137,7 +137,10 @@ StepReport NscdIntegrator::step_with_retries(double h) {
     ++stats_.kept_parts_steps;
   }
   if (parameters_.retry_keep_steps > 0 && parameters_.retry_parts >= 2) {
+    // (start, not start_parts_, where they stay: kept parts the budget cut are dropped, not put
+    // back when the budget recovers many steps on.)
     if (!report.converged) {
+      start_parts_ = start;
       start_parts_converged_in_a_row_ = 0;
     } else if (finer > start) {
       start_parts_ = finer;
@@ -145,6 +148,8 @@ StepReport NscdIntegrator::step_with_retries(double h) {
     } else if (start > 1 && ++start_parts_converged_in_a_row_ >= parameters_.retry_keep_steps) {
       start_parts_ = start / 2;
       start_parts_converged_in_a_row_ = 0;
+    } else {
+      start_parts_ = start;
     }
   }
   return report;

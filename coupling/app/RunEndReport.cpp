@@ -111,7 +111,7 @@ void print_run_end(const RunSummary& summary, const Scene& scene, const std::str
           << " sweeps thrown away; mechanics.retry_parts, docs/mechanics.md \"Retaking an unconverged step\")";
     if (m.kept_parts_steps > 0)
       out << ", " << m.kept_parts_steps << " steps started in the parts a retry before them needed "
-          << "(mechanics.retry_keep_steps)";
+          << "(mechanics.retry_keep_steps, docs/mechanics.md \"Steps that start in the parts the last retry needed\")";
     if (m.piston_corrections > 0)
       out << ", " << m.piston_corrections << " corrections moved a piston: particles pinned under it "
           << "(docs/mechanics.md \"Penetration without speed\")";

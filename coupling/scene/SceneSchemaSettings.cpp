@@ -117,8 +117,12 @@ std::vector<Section> settings_sections() {
               "parts, and this many converged steps in a row halve P again, down to whole "
               "steps (0: every step starts whole). A bed's hard spell outlasts one step (a "
               "re-settle after heating, a piston compacting), and a whole try that stalls "
-              "before its parts converge is thrown away (docs/mechanics.md \"Retaking an "
-              "unconverged step\"; summary: mechanics.kept_parts_steps)"),
+              "before its parts converge is thrown away. Off by default: where a bed's whole "
+              "steps converge again right after a retry, the kept parts cost nearly a whole "
+              "step's sweeps each (a plate landing on a deposit: 2.4 times the run at 4); try "
+              "it where the summary's retried_steps come near its steps (docs/mechanics.md "
+              "\"Steps that start in the parts the last retry needed\"; summary: "
+              "mechanics.kept_parts_steps)"),
         value("full_sweep_every", "", std::to_string(kM.full_sweep_every), "integer >= 1",
               "\"nlgs\", \"nlgs_coloured\": a sweep over every candidate at least every this "
               "many sweeps, the others visit the contacts the last full sweep left closed; "

@@ -65,9 +65,8 @@ StepReport NscdIntegrator::step_with_retries(double h) {
   // The parts this step starts in: those the last retry needed, while they are kept
   // (NscdParameters::retry_keep_steps), within the retry's budget.
   const int limit = retry_limit_ > 0 ? retry_limit_ : parameters_.retry_parts;
-  const int start = parameters_.retry_parts >= 2 && parameters_.retry_keep_steps > 0
-                        ? std::clamp(start_parts_, 1, limit)
-                        : 1;
+  const bool keeps_parts = parameters_.retry_parts >= 2 && parameters_.retry_keep_steps > 0;
+  const int start = keeps_parts ? std::clamp(start_parts_, 1, limit) : 1;
   const auto first_try = [&] {
     return start > 1 ? step_in_parts(h / double(start), start, true) : step(h, true);
   };
@@ -136,7 +135,7 @@ StepReport NscdIntegrator::step_with_retries(double h) {
     report.start_parts = start;
     ++stats_.kept_parts_steps;
   }
-  if (parameters_.retry_keep_steps > 0 && parameters_.retry_parts >= 2) {
+  if (keeps_parts) {
     // (start, not start_parts_, where they stay: kept parts the budget cut are dropped, not put
     // back when the budget recovers many steps on.)
     if (!report.converged) {

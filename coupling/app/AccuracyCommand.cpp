@@ -89,7 +89,7 @@ int run_accuracy_command(const Scene& scene, const AccuracyCommandOptions& optio
   if (options.handle_signals) {
     interruption.emplace(options.quiet,
                          "\ninterrupt received: finishing the current run, then reporting and "
-                         "writing the runs made; a second signal aborts at once\n");
+                         "writing the runs made; a second signal, a second or more later, aborts at once\n");
     study_options.study.stop = &Interruption::requested;
   }
   AccuracyStudyResult result;

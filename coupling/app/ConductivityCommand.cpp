@@ -25,7 +25,7 @@ int run_conductivity_command(const Scene& scene, const ConductivityCommandOption
   if (options.handle_signals && !options.pressures_Pa.empty())
     interruption.emplace(options.quiet,
                          "\ninterrupt received: giving up the current settle step, then reporting "
-                         "and writing the loads finished; a second signal aborts at once\n",
+                         "and writing the loads finished; a second signal, a second or more later, aborts at once\n",
                          true);
   std::vector<ConductivityResult> results;
   const int computed = csv.compute_or_discard<thermal::ThermalSolverError>([&] {

@@ -2,7 +2,8 @@
 // SIGINT / SIGTERM during a run (contract section 1): the first signal only raises a flag; the
 // time loop finishes its current step, writes a last frame and a checkpoint, marks the result
 // "interrupted" and exits 130 / 143. A second signal aborts at once (the default action), for a
-// user who does not want to wait for the step to end. With give_up_mechanics_step, a mechanics
+// user who does not want to wait for the step to end; one within a second of the first is the
+// same request (`timeout` sends SIGTERM to the command, then to its process group). With give_up_mechanics_step, a mechanics
 // step still being solved when the first signal comes is given up instead of finished
 // (mechanics/model/StepInterrupt.h): NscdIntegrator::step returns it `interrupted`, with the
 // state at its start, and the caller stops there (a step can last minutes).

@@ -108,6 +108,24 @@ std::vector<double> rows(const std::vector<double>& values, std::size_t row, std
   return {values.begin() + std::ptrdiff_t(row * width), values.begin() + std::ptrdiff_t((row + 1) * width)};
 }
 
+// A run stopped by timeout(1), as scripts and the gauntlet stop runs: timeout sends its SIGTERM to
+// the command and then to the command's process group, two signals at once. They are one request:
+// the run writes its summary, result and checkpoint as for one signal (it used to abort on the
+// second, leaving none of them).
+TEST(EndToEndInterrupt, TimeoutsTwoSigtermsAtOnceAreOneRequest) {
+  const auto dir = scratch_dir("interrupt_timeout");
+  fs::copy_file(fs::path(TMDEM_SOURCE_DIR) / "examples" / "poured_bed.toml", dir + "/bed.toml");
+  const auto r = run_tmdem("run bed.toml --quiet -o out.h5 --summary s.json --set simulation.duration=500", dir, "",
+                           "timeout -s TERM 6");
+  EXPECT_EQ(r.exit_code, 124) << r.output;  // timeout's own: the time ran out
+  EXPECT_NE(r.output.find("interrupted by SIGTERM"), std::string::npos) << r.output;
+  ASSERT_TRUE(fs::exists(dir + "/s.json")) << r.output;
+  EXPECT_EQ(read_summary(dir + "/s.json")["status"], "interrupted");
+  EXPECT_TRUE(fs::exists(dir + "/out.checkpoint.h5")) << r.output;
+  H5::H5File file(dir + "/out.h5", H5F_ACC_RDONLY);
+  EXPECT_EQ(read_string_attribute(file, "status"), "interrupted");
+}
+
 TEST(EndToEndInterrupt, SigtermThenResumeEndsBitwiseWhereTheUninterruptedRunEnds) {
   const auto dir = scratch_dir("interrupt_resume");
   const auto reference = scratch_dir("interrupt_reference");

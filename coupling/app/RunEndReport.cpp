@@ -116,6 +116,14 @@ void print_run_end(const RunSummary& summary, const Scene& scene, const std::str
       out << ", " << m.piston_corrections << " corrections moved a piston: particles pinned under it "
           << "(docs/mechanics.md \"Penetration without speed\")";
     out << "\n";
+    // The default solver's fallback, where it ran: what it cost and which stage converged.
+    if (const auto& f = m.fallback; f && f->solves > 0) {
+      const std::int64_t converged = f->converged_by_second + f->converged_by_first_again + f->converged_by_sweeps;
+      out << "mechanics: " << f->solves << " solves handed on by the first solver, " << converged
+          << " then converged (" << f->converged_by_second << " by the second solver, " << f->converged_by_first_again
+          << " by the first once more, " << f->converged_by_sweeps << " by plain sweeps); " << f->sweeps
+          << " iterations and " << f->seconds << " s in those stages (docs/summary.md, mechanics.fallback)\n";
+    }
     // Nothing to say of a schedule whose fall never began (on by default: most small scenes).
     if (const auto& ts = m.tolerance_schedule; ts && ts->fall_steps > 0) {
       // A piston's compaction keeps the schedule falling too (mechanics.compaction_speed; the

@@ -83,6 +83,7 @@ nlohmann::json RunSummary::to_json() const {
     block["tightened_step"] = ts->tightened ? nlohmann::json(ts->tightened_step) : nlohmann::json();
     block["tightened_time_s"] = ts->tightened ? nlohmann::json(ts->tightened_time_s) : nlohmann::json();
   }
+  write_summary_block(m, "fallback", mechanics.fallback, kFallbackSummaryFields);
   write_summary_fields(j["thermal"], thermal, kThermalSummaryFields);
   nlohmann::json& e = j["energy"];
   write_summary_fields(e, energy, kEnergySummaryFields);
@@ -124,6 +125,7 @@ RunSummary RunSummary::from_json(const nlohmann::json& j) {
     summary_get(block, "tightened_step", ts->tightened_step);
     summary_get(block, "tightened_time_s", ts->tightened_time_s);
   }
+  read_summary_block(m, "fallback", s.mechanics.fallback, kFallbackSummaryFields);
   read_summary_fields(section(j, "thermal"), s.thermal, kThermalSummaryFields);
   const nlohmann::json& e = section(j, "energy");
   read_summary_fields(e, s.energy, kEnergySummaryFields);

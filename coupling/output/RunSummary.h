@@ -70,6 +70,24 @@ inline constexpr std::tuple kToleranceScheduleFields{
     SummaryField{"tighten_steps", &ToleranceScheduleSummary::tighten_steps},
     SummaryField{"tightened", &ToleranceScheduleSummary::tightened}};
 
+// The default solver's later stages (mechanics::FallbackCounts): written for a solver that has
+// them ("nncg_ipm"), absent for the others.
+struct FallbackSummary {
+  std::int64_t solves = 0;
+  std::int64_t converged_by_second = 0;
+  std::int64_t converged_by_first_again = 0;
+  std::int64_t converged_by_sweeps = 0;
+  std::int64_t sweeps = 0;
+  double seconds = 0.0;
+};
+inline constexpr std::tuple kFallbackSummaryFields{
+    SummaryField{"solves", &FallbackSummary::solves},
+    SummaryField{"converged_by_second", &FallbackSummary::converged_by_second},
+    SummaryField{"converged_by_first_again", &FallbackSummary::converged_by_first_again},
+    SummaryField{"converged_by_sweeps", &FallbackSummary::converged_by_sweeps},
+    SummaryField{"sweeps", &FallbackSummary::sweeps},
+    SummaryField{"seconds", &FallbackSummary::seconds}};
+
 struct MechanicsSummary {
   std::int64_t steps = 0;
   double mean_iterations = 0.0;      // Gauss-Seidel sweeps per step
@@ -105,6 +123,7 @@ struct MechanicsSummary {
   // once (unconverged_steps counts each unconverged part); one warning each, the first 10 shown
   std::int64_t unconverged_time_steps = 0;
   std::optional<ToleranceScheduleSummary> tolerance_schedule{};  // extra: with a fall_tolerance
+  std::optional<FallbackSummary> fallback{};  // extra: with a solver that has later stages
 };
 inline constexpr std::tuple kMechanicsSummaryFields{
     SummaryField{"steps", &MechanicsSummary::steps},

@@ -56,6 +56,11 @@ void CoupledRun::fill_summary() {
     summary_.mechanics.siconos_unconverged_steps = ms.siconos_unconverged_steps;
     summary_.mechanics.max_natural_map_residual = ms.max_natural_map_residual;
     summary_.mechanics.unconverged_time_steps = ms.unconverged_time_steps;
+    if (nscd_->solver().has_fallback()) {
+      const auto& f = ms.fallback;
+      summary_.mechanics.fallback = FallbackSummary{f.solves, f.converged_by_second, f.converged_by_first_again,
+                                                    f.converged_by_sweeps, f.sweeps, f.seconds};
+    }
     if (nscd_->tolerance_schedule().enabled()) {
       ToleranceScheduleSummary ts;
       ts.tolerance = scene_.mechanics.tolerance;

@@ -87,6 +87,11 @@ void store_mechanics_stats(const mechanics::MechanicsStats& s, CheckpointState& 
   cs.extra["mechanics_retried_steps"] = double(s.retried_steps);
   cs.extra["mechanics_discarded_sweeps"] = double(s.discarded_sweeps);
   cs.extra["mechanics_kept_parts_steps"] = double(s.kept_parts_steps);
+  cs.extra["mechanics_fallback_solves"] = double(s.fallback.solves);
+  cs.extra["mechanics_fallback_converged_by_second"] = double(s.fallback.converged_by_second);
+  cs.extra["mechanics_fallback_converged_by_first_again"] = double(s.fallback.converged_by_first_again);
+  cs.extra["mechanics_fallback_converged_by_sweeps"] = double(s.fallback.converged_by_sweeps);
+  cs.extra["mechanics_fallback_sweeps"] = double(s.fallback.sweeps);
   cs.extra["mechanics_unconverged_time_steps"] = double(s.unconverged_time_steps);
   cs.extra["mechanics_piston_corrections"] = double(s.piston_corrections);
   cs.extra["mechanics_last_step_s"] = s.last_step_s;
@@ -117,6 +122,11 @@ mechanics::MechanicsStats mechanics_stats_of(const CheckpointState& cs) {
   s.retried_steps = std::int64_t(extra_or_zero(cs, "mechanics_retried_steps"));
   s.discarded_sweeps = std::int64_t(extra_or_zero(cs, "mechanics_discarded_sweeps"));
   s.kept_parts_steps = std::int64_t(extra_or_zero(cs, "mechanics_kept_parts_steps"));
+  s.fallback.solves = std::int64_t(extra_or_zero(cs, "mechanics_fallback_solves"));
+  s.fallback.converged_by_second = std::int64_t(extra_or_zero(cs, "mechanics_fallback_converged_by_second"));
+  s.fallback.converged_by_first_again = std::int64_t(extra_or_zero(cs, "mechanics_fallback_converged_by_first_again"));
+  s.fallback.converged_by_sweeps = std::int64_t(extra_or_zero(cs, "mechanics_fallback_converged_by_sweeps"));
+  s.fallback.sweeps = std::int64_t(extra_or_zero(cs, "mechanics_fallback_sweeps"));
   s.unconverged_time_steps = std::int64_t(extra_or_zero(cs, "mechanics_unconverged_time_steps"));
   s.piston_corrections = std::int64_t(extra_or_zero(cs, "mechanics_piston_corrections"));
   s.last_step_s = extra_or_zero(cs, "mechanics_last_step_s");

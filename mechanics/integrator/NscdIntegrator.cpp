@@ -358,6 +358,16 @@ StepReport NscdIntegrator::step(double h, bool landing_parts) {
     report.converged = report.siconos_residual <= report.tolerance;
     report.stalled = solved.stalled && !report.converged;
   }
+  if (solved.fallback_stage != SolveReport::kNoFallback) {
+    report.fallback.solves = 1;
+    report.fallback.sweeps = solved.fallback_sweeps;
+    report.fallback.seconds = solved.fallback_s;
+    if (report.converged) {
+      if (solved.fallback_stage == SolveReport::kSecondSolver) report.fallback.converged_by_second = 1;
+      if (solved.fallback_stage == SolveReport::kFirstAgain) report.fallback.converged_by_first_again = 1;
+      if (solved.fallback_stage == SolveReport::kPlainSweeps) report.fallback.converged_by_sweeps = 1;
+    }
+  }
   keep_in_plane();
   // The bodies' view again (keep_in_plane may have trimmed the particles'), for the energy
   // account and the contacts' dissipation below.

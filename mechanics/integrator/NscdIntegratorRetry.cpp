@@ -30,12 +30,15 @@ StepReport NscdIntegrator::step_with_retries(double h) {
   };
   std::int64_t discarded_sweeps = 0;
   double discarded_detection_s = 0.0, discarded_solve_s = 0.0, discarded_correction_s = 0.0;
+  FallbackCounts discarded_fallback;  // the solver's later stages in the tries thrown away
   // Given up: the state and counters of the start, but the time spent stays in the timing.
   const auto given_up = [&](const StepReport& last_try) {
     back_to_start();
     stats_.detection_s += discarded_detection_s + last_try.detection_s;
     stats_.solve_s += discarded_solve_s + last_try.solve_s;
     stats_.correction_s += discarded_correction_s + last_try.correction_s;
+    stats_.fallback += discarded_fallback;
+    stats_.fallback += last_try.fallback;
     StepReport none;
     none.converged = false;
     none.interrupted = true;
@@ -61,6 +64,7 @@ StepReport NscdIntegrator::step_with_retries(double h) {
     discarded_detection_s += thrown.detection_s;
     discarded_solve_s += thrown.solve_s;
     discarded_correction_s += thrown.correction_s;
+    discarded_fallback += thrown.fallback;
   };
   // The parts this step starts in: those the last retry needed, while they are kept
   // (NscdParameters::retry_keep_steps), within the retry's budget.
@@ -115,6 +119,7 @@ StepReport NscdIntegrator::step_with_retries(double h) {
     stats_.detection_s += discarded_detection_s;
     stats_.solve_s += discarded_solve_s;
     stats_.correction_s += discarded_correction_s;
+    stats_.fallback += discarded_fallback;
   }
   // The budget (after the restores above, which put back the start's). Why: where a bed's steps
   // stall one after another (bench/beds/deposit_2d_sizes: 30 of 56 steps, laid and loaded),

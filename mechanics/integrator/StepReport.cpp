@@ -28,6 +28,7 @@ void MechanicsStats::add(const StepReport& report) {
   detection_s += report.detection_s;
   solve_s += report.solve_s;
   correction_s += report.correction_s;
+  fallback += report.fallback;
 }
 
 StepReport merged(const StepReport& first, const StepReport& second) {
@@ -58,6 +59,8 @@ StepReport merged(const StepReport& first, const StepReport& second) {
   m.detection_s = first.detection_s + second.detection_s;
   m.solve_s = first.solve_s + second.solve_s;
   m.correction_s = first.correction_s + second.correction_s;
+  m.fallback = first.fallback;
+  m.fallback += second.fallback;
   return m;
 }
 

@@ -6,6 +6,27 @@
 
 namespace tmdem::mechanics {
 
+// The contact solver's later stages (SolveReport::fallback_stage; FallbackContactSolver.h): the
+// solves its first solver left unconverged and handed on, and of them those the step then counted
+// as converged, by the stage that ended them; the iterations and wall time of those stages.
+struct FallbackCounts {
+  std::int64_t solves = 0;
+  std::int64_t converged_by_second = 0;      // the second solver ("ipm")
+  std::int64_t converged_by_first_again = 0; // the first solver once more, from the better result
+  std::int64_t converged_by_sweeps = 0;      // plain sweeps (the polish)
+  std::int64_t sweeps = 0;                   // iterations of the later stages (in the steps' sweeps)
+  double seconds = 0.0;                      // wall time of the later stages (in solve_s), s
+  FallbackCounts& operator+=(const FallbackCounts& other) {
+    solves += other.solves;
+    converged_by_second += other.converged_by_second;
+    converged_by_first_again += other.converged_by_first_again;
+    converged_by_sweeps += other.converged_by_sweeps;
+    sweeps += other.sweeps;
+    seconds += other.seconds;
+    return *this;
+  }
+};
+
 struct StepReport {
   // s: the length of the step problem() was built for (NscdIntegrator::problem()): h, or the
   // last part of a step taken in halves (`merged` keeps the second half's).
@@ -61,6 +82,9 @@ struct StepReport {
   // Retaken at fall_tolerance as a collapse (ToleranceSchedule::begin_collapse; retry_parts is
   // then 1 unless parts followed).
   bool collapse = false;
+  // The solve's later stages, if its solver has them (a step taken in parts: the parts' sums;
+  // a step retaken: the try that stands, the thrown-away tries' in MechanicsStats::fallback).
+  FallbackCounts fallback;
   // Given up at a request (StepInterrupt.h; only NscdIntegrator::step(double) sets it): the
   // state, the counters and the time are back at the step's start, as if it had not been
   // taken, and the other fields mean nothing.
@@ -126,6 +150,9 @@ struct MechanicsStats {
   double detection_s = 0.0;             // sums of the steps' part times (StepReport), s; since
   double solve_s = 0.0;                 //   this process started stepping (a restart counts
   double correction_s = 0.0;            //   from the restart, as the run's wall time does)
+  // The contact solver's later stages over every try, thrown away or kept (its seconds since
+  // this process started stepping, as the times above).
+  FallbackCounts fallback;
 
   double mean_sweeps() const {         // "mean_iterations" in the run summary
     return steps > 0 ? static_cast<double>(total_sweeps) / static_cast<double>(steps) : 0.0;

@@ -40,6 +40,14 @@ struct SolveReport {
   double residual = 0.0;   // at the last iteration (meaning: see the solver)
   bool converged = false;  // residual <= tolerance within max_iterations
   bool stalled = false;    // stopped early: no progress over stall_sweeps (not converged)
+  // A solver that hands what its first solver left unconverged to later stages
+  // (FallbackContactSolver.h): the last stage that ran (kNoFallback: none; the solve ended by it,
+  // converged or not), the iterations of the stages after the first (in `sweeps` too) and their
+  // wall time, s (where the default solver's time goes: docs/summary.md, mechanics.fallback).
+  static constexpr int kNoFallback = 0, kSecondSolver = 1, kFirstAgain = 2, kPlainSweeps = 3;
+  int fallback_stage = kNoFallback;
+  int fallback_sweeps = 0;
+  double fallback_s = 0.0;
 };
 
 class ContactSolver {
@@ -73,6 +81,8 @@ class ContactSolver {
   // numbers, and putting it back (restart from a checkpoint: MechanicsState.h). Empty for a
   // solver that starts every solve from the warm-start reactions alone.
   virtual std::vector<double> carried_state() const { return {}; }
+  // Whether the solver hands unconverged solves on to later stages (SolveReport::fallback_stage).
+  virtual bool has_fallback() const { return false; }
   virtual void restore_carried_state(const std::vector<double>& /*state*/) {}
 
  private:

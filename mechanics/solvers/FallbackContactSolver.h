@@ -11,6 +11,7 @@
 // written-out warm starts: bed_2d's one unconverged step, 1.24e-5, to 9.1e-6 in 6,209 sweeps;
 // 3 of 8 piston_cylinder steps at 1.0-1.7e-5; 2 of 13 piston_2d steps).
 
+#include <chrono>
 #include <cstddef>
 #include <memory>
 #include <string>
@@ -56,20 +57,31 @@ class FallbackContactSolver final : public ContactSolver {
     if (kept.converged || problem.compliant || unknowns > max_unknowns_) return kept;
     if (step_interrupt_requested()) return kept;  // the step is given up (StepInterrupt.h)
     ++fallbacks_;
+    // The later stages' work, reported (SolveReport::fallback_stage): what the default solver's
+    // fallback costs, and which stage converges the solves, is for the run to tell.
+    const auto started = std::chrono::steady_clock::now();
+    const int first_sweeps = kept.sweeps;
+    const auto ended_by = [&](int stage) {
+      kept.fallback_stage = stage;
+      kept.fallback_sweeps = kept.sweeps - first_sweeps;
+      kept.fallback_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+      return kept;
+    };
     const double q_norm = free_velocity_norm(problem);
     double kept_residual = siconos_residual(problem, r, m, velocity, angular_velocity, q_norm);
     run_from_kept(*second_, problem, r, m, velocity, angular_velocity, q_norm, kept, kept_residual);
-    if (kept.converged || !(kept_residual <= near_miss_residual_)) return kept;
+    if (kept.converged || !(kept_residual <= near_miss_residual_)) return ended_by(SolveReport::kSecondSolver);
     ++near_misses_;
     run_from_kept(*first_, problem, r, m, velocity, angular_velocity, q_norm, kept, kept_residual);
     // Still a near miss: run_from_kept never raises kept_residual. Within the tolerance of
     // Siconos' residual already (the sweep test alone unmet), the step counts as converged by
     // that measure, and plain sweeps, which do not lower it monotonically, could only take it
     // out again.
-    if (kept.converged || !polisher_ || kept_residual <= tolerance_) return kept;
+    if (kept.converged || !polisher_ || kept_residual <= tolerance_) return ended_by(SolveReport::kFirstAgain);
     polish(problem, r, m, velocity, angular_velocity, q_norm, kept, kept_residual);
-    return kept;
+    return ended_by(SolveReport::kPlainSweeps);
   }
+  bool has_fallback() const override { return true; }
   std::vector<double> carried_state() const override { return first_->carried_state(); }
   void restore_carried_state(const std::vector<double>& state) override { first_->restore_carried_state(state); }
 

@@ -78,4 +78,37 @@ TEST(EndToEndRunReport, TimingTableAndWarningCountsMatchTheSummary) {
   EXPECT_EQ(kinds.front().count, m.unconverged_steps - m.stalled_steps);
 }
 
+// The default solver's fallback in the summary and the end-of-run line: the same poured bed with
+// nncg_ipm cut to 100 sweeps of nncg, not retaken, so that each step is one solve. Every solve
+// nncg leaves above the tolerance is handed on; those the later stages do not converge are the
+// run's unconverged steps. A solver without later stages writes no block.
+TEST(EndToEndRunReport, TheFallbacksWorkIsInTheSummaryAndTheLastLines) {
+  const auto dir = scratch_dir("run_report_fallback");
+  const std::string common = "run " + std::string(TMDEM_SOURCE_DIR) +
+                             "/examples/poured_bed.toml -o bed.h5 --overwrite --set simulation.duration=0.2 "
+                             "--set mechanics.max_iterations=100 --set mechanics.retry_parts=1 ";
+  const auto r = run_tmdem(common + "--summary s.json", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto json = read_summary(dir + "/s.json");
+  ASSERT_TRUE(json["mechanics"].contains("fallback")) << json.dump(2);
+  const auto summary = tmdem::coupling::RunSummary::from_json(json);
+  const auto& m = summary.mechanics;
+  const auto& f = *m.fallback;
+  const std::int64_t converged = f.converged_by_second + f.converged_by_first_again + f.converged_by_sweeps;
+  ASSERT_GT(f.solves, 10) << r.output;  // the test acts: nncg at 100 sweeps leaves many
+  EXPECT_GT(converged, 0);
+  EXPECT_EQ(f.solves - converged, m.unconverged_steps) << r.output;
+  EXPECT_GT(f.sweeps, 0);
+  EXPECT_GT(f.seconds, 0.0);
+  EXPECT_LE(f.seconds, summary.wall_time_parts->contact_solve_s);
+  EXPECT_NE(r.output.find("mechanics: " + std::to_string(f.solves) + " solves handed on by the first solver, " +
+                          std::to_string(converged) + " then converged"),
+            std::string::npos) << r.output;
+
+  const auto plain = run_tmdem(common + "--summary p.json --set mechanics.solver=\\\"nncg\\\"", dir);
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  EXPECT_FALSE(read_summary(dir + "/p.json")["mechanics"].contains("fallback"));
+  EXPECT_EQ(plain.output.find("solves handed on"), std::string::npos);
+}
+
 }  // namespace

@@ -134,6 +134,27 @@ TEST(RunSummary, LinearSolverReasonRoundTrips) {
   EXPECT_FALSE(RunSummary::from_json(old).to_json()["thermal"].contains("linear_solver_reason"));
 }
 
+// The default solver's later stages: a block written when set (a solver that has them), read back.
+TEST(RunSummary, FallbackBlockRoundTrips) {
+  RunSummary s = sample_summary();
+  EXPECT_FALSE(s.to_json()["mechanics"].contains("fallback"));
+  s.mechanics.fallback = tmdem::coupling::FallbackSummary{12, 5, 3, 1, 4321, 2.5};
+  const nlohmann::json j = nlohmann::json::parse(s.to_json().dump());
+  const auto& f = j["mechanics"]["fallback"];
+  EXPECT_EQ(f.size(), 6u);
+  EXPECT_EQ(f["solves"], 12);
+  EXPECT_EQ(f["converged_by_second"], 5);
+  EXPECT_EQ(f["converged_by_first_again"], 3);
+  EXPECT_EQ(f["converged_by_sweeps"], 1);
+  EXPECT_EQ(f["sweeps"], 4321);
+  EXPECT_DOUBLE_EQ(f["seconds"].get<double>(), 2.5);
+  EXPECT_EQ(j["mechanics"].size(), 19u);  // the 18 above and the block
+  const RunSummary r = RunSummary::from_json(j);
+  ASSERT_TRUE(r.mechanics.fallback.has_value());
+  EXPECT_EQ(r.mechanics.fallback->converged_by_first_again, 3);
+  EXPECT_EQ(r.to_json(), s.to_json());
+}
+
 TEST(RunSummary, SettleBlockAndStalledStepsRoundTrip) {
   RunSummary s = sample_summary();
   s.mechanics.stalled_steps = 3;

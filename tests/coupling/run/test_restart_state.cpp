@@ -40,5 +40,24 @@ TEST(RestartState, TheMarkOfATableALandingWidenedGoesThroughTheCheckpoint) {
   EXPECT_FALSE(mechanics_state_of(older).margin_widened_by_wall);
 }
 
+// The run's count of the default solver's later stages goes through the checkpoint, so a
+// restarted run's summary counts the whole run; their seconds, like the other times, count from
+// the restart (MechanicsStats).
+TEST(RestartState, TheFallbackCountsGoThroughTheCheckpoint) {
+  mechanics::MechanicsStats stats;
+  stats.fallback = mechanics::FallbackCounts{17, 9, 4, 2, 123456, 3.5};
+  CheckpointState cs;
+  store_mechanics_stats(stats, cs);
+  const mechanics::MechanicsStats back = mechanics_stats_of(cs);
+  EXPECT_EQ(back.fallback.solves, 17);
+  EXPECT_EQ(back.fallback.converged_by_second, 9);
+  EXPECT_EQ(back.fallback.converged_by_first_again, 4);
+  EXPECT_EQ(back.fallback.converged_by_sweeps, 2);
+  EXPECT_EQ(back.fallback.sweeps, 123456);
+  EXPECT_EQ(back.fallback.seconds, 0.0);
+  // A checkpoint written before the counts existed reads as none.
+  EXPECT_EQ(mechanics_stats_of(CheckpointState{}).fallback.solves, 0);
+}
+
 }  // namespace
 }  // namespace tmdem::coupling

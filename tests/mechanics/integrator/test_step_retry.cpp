@@ -173,7 +173,7 @@ TEST(StepRetry, RetriesThatFailAreCutAndComeBackAfterConvergedSteps) {
 
 // 6 steel spheres stacked on the floor and a 5 g piston under 2 N falling 10 R onto them,
 // landing at about 2.5 m/s: the landing step is taken in equal parts (test_piston.cpp).
-NscdIntegrator landing_column(int retry_parts, int max_iterations) {
+NscdIntegrator landing_column(int retry_parts, int max_iterations, double tolerance = 1e-10) {
   ParticleSet set;
   for (int k = 0; k < 6; ++k)
     set.add(Eigen::Vector3d(0, kRadius * (2 * k + 1), 0), kRadius, sphere_mass(kRadius, kDensity), 0);
@@ -181,7 +181,7 @@ NscdIntegrator landing_column(int retry_parts, int max_iterations) {
   piston.make_piston(0.005, 2.0);
   NscdParameters parameters = nlgs_parameters();
   parameters.solver = "nncg_ipm";
-  parameters.tolerance = 1e-10;
+  parameters.tolerance = tolerance;
   parameters.max_iterations = max_iterations;
   parameters.retry_parts = retry_parts;
   return NscdIntegrator(std::move(set), {steel(0.0)},
@@ -189,6 +189,68 @@ NscdIntegrator landing_column(int retry_parts, int max_iterations) {
                          Wall::through({-kRadius, 0, 0}, {1, 0, 0}, 0),
                          Wall::through({kRadius, 0, 0}, {-1, 0, 0}, 0)},
                         Eigen::Vector3d(0, -kG, 0), 3, parameters);
+}
+
+// The default solver's later stages, counted step by step: nncg cut to 10 sweeps hands the
+// landing column's unconverged solves on to the interior point. With no retries, every step's
+// report counts the solves it handed on (at most one per part), their work is the sweeps beyond
+// nncg's 3 per solve, and the run's counts are the sum of the steps'.
+TEST(FallbackCounts, EverySolveHandedOnIsCountedWithTheStageThatEndedIt) {
+  constexpr int kSweeps = 10;
+  constexpr double kTolerance = 1e-6;
+  NscdIntegrator sim = landing_column(1, kSweeps, kTolerance);
+  ASSERT_TRUE(sim.solver().has_fallback());
+  const double h = sim.parameters().time_step;
+  FallbackCounts sum;
+  std::int64_t converged_handed_on = 0;
+  for (int step = 0; step < 60; ++step) {
+    const std::int64_t steps_before = sim.stats().steps, sweeps_before = sim.stats().total_sweeps;
+    const StepReport report = sim.step(h);
+    const std::int64_t parts = sim.stats().steps - steps_before;
+    const FallbackCounts& f = report.fallback;
+    ASSERT_LE(f.solves, parts) << "step " << step;
+    EXPECT_LE(f.converged_by_second + f.converged_by_first_again + f.converged_by_sweeps, f.solves);
+    if (parts == 1 && f.solves == 1) {
+      // nncg ran its 3 sweeps unconverged; the rest of the step's sweeps are the later stages'.
+      EXPECT_EQ(f.sweeps, report.sweeps - kSweeps) << "step " << step;
+      EXPECT_GT(f.seconds, 0.0);
+      // The stage that ended it converged it exactly when the step converged.
+      EXPECT_EQ(f.converged_by_second + f.converged_by_first_again + f.converged_by_sweeps,
+                report.converged ? 1 : 0) << "step " << step;
+    }
+    if (f.solves == 0) {
+      EXPECT_LE(sim.stats().total_sweeps - sweeps_before, kSweeps * parts) << "step " << step;
+      EXPECT_EQ(f.sweeps, 0);
+    }
+    converged_handed_on += f.converged_by_second + f.converged_by_first_again + f.converged_by_sweeps;
+    sum += f;
+  }
+  const FallbackCounts& run = sim.stats().fallback;
+  EXPECT_EQ(run.solves, sum.solves);
+  EXPECT_EQ(run.converged_by_second, sum.converged_by_second);
+  EXPECT_EQ(run.converged_by_first_again, sum.converged_by_first_again);
+  EXPECT_EQ(run.converged_by_sweeps, sum.converged_by_sweeps);
+  EXPECT_EQ(run.sweeps, sum.sweeps);
+  EXPECT_DOUBLE_EQ(run.seconds, sum.seconds);
+  // The test acts: solves were handed on, and most converged there (37 of 40 when written).
+  EXPECT_GE(run.solves, 10);
+  EXPECT_GE(converged_handed_on, run.solves / 2);
+
+  // With retries, the tries thrown away count too: the run's counts are at least the standing
+  // steps' by the thrown tries' (the same column at 1e-10, cut to 3 sweeps, which none of its
+  // landed steps meets, retaken up to 8 parts). A try is thrown away only unconverged, so its
+  // solve was handed on: each retried step adds at least one.
+  NscdIntegrator retried = landing_column(8, 3);
+  FallbackCounts standing;
+  std::int64_t retried_steps = 0;
+  for (int step = 0; step < 60; ++step) {
+    const StepReport report = retried.step(h);
+    standing += report.fallback;
+    if (report.retry_parts > 0) ++retried_steps;
+  }
+  ASSERT_GT(retried_steps, 0) << "the test needs a retried step";
+  EXPECT_GE(retried.stats().fallback.solves, standing.solves + retried_steps);
+  EXPECT_GT(retried.stats().fallback.sweeps, standing.sweeps);
 }
 
 TEST(StepRetry, ALandingTakenInPartsIsRetakenInShorterParts) {

@@ -101,12 +101,20 @@ TEST(FallbackContactSolver, NearMissGetsTheFirstSolverOnceMore) {
   EXPECT_EQ(near->near_misses(), 1);
   EXPECT_EQ(again.report.sweeps, 40);
   EXPECT_LT(siconos_of(problem, again), e1);
+  // Reported: ended by the first solver's second run, whose 20 sweeps (the second solver adds
+  // none) are the later stages' work.
+  EXPECT_EQ(again.report.fallback_stage, SolveReport::kFirstAgain);
+  EXPECT_EQ(again.report.fallback_sweeps, 20);
+  EXPECT_GT(again.report.fallback_s, 0.0);
 
   auto far = cut_nncg(e1 / 3.0);
   const Solved kept = solve_cold(problem, *far);
   EXPECT_EQ(far->fallbacks(), 1);
   EXPECT_EQ(far->near_misses(), 0);
   EXPECT_EQ(kept.report.sweeps, 20);
+  EXPECT_EQ(kept.report.fallback_stage, SolveReport::kSecondSolver);
+  EXPECT_EQ(kept.report.fallback_sweeps, 0);
+  EXPECT_TRUE(far->has_fallback());
   for (std::size_t c = 0; c < problem.size(); ++c) EXPECT_EQ(kept.r[c], first.r[c]) << "contact " << c;
 }
 
@@ -133,6 +141,8 @@ TEST(FallbackContactSolver, NearMissNncgLeavesIsPolishedByPlainSweeps) {
   EXPECT_TRUE(done.report.converged);
   EXPECT_GT(done.report.sweeps, 40);
   EXPECT_EQ((done.report.sweeps - 40) % 500, 0);
+  EXPECT_EQ(done.report.fallback_stage, SolveReport::kPlainSweeps);
+  EXPECT_EQ(done.report.fallback_sweeps, done.report.sweeps - 20);
   EXPECT_LE(siconos_of(problem, done), tolerance);
   EXPECT_LE(done.report.residual, tolerance);
 
@@ -142,6 +152,8 @@ TEST(FallbackContactSolver, NearMissNncgLeavesIsPolishedByPlainSweeps) {
   EXPECT_EQ(worse->polished(), 1);
   EXPECT_FALSE(left.report.converged);
   EXPECT_EQ(left.report.sweeps, 40 + 4 * 50);  // four runs without a 5% gain, then it stops
+  EXPECT_EQ(left.report.fallback_stage, SolveReport::kPlainSweeps);
+  EXPECT_EQ(left.report.fallback_sweeps, 20 + 4 * 50);
   for (std::size_t c = 0; c < problem.size(); ++c) EXPECT_EQ(left.r[c], missed.r[c]) << "contact " << c;
   EXPECT_EQ(siconos_of(problem, left), e2);
 
@@ -153,5 +165,20 @@ TEST(FallbackContactSolver, NearMissNncgLeavesIsPolishedByPlainSweeps) {
   EXPECT_EQ(met->near_misses(), 1);
   EXPECT_EQ(met->polished(), 0);
   EXPECT_EQ(within.report.sweeps, 40);
+  EXPECT_EQ(within.report.fallback_stage, SolveReport::kFirstAgain);
   for (std::size_t c = 0; c < problem.size(); ++c) EXPECT_EQ(within.r[c], missed.r[c]) << "contact " << c;
+}
+
+// A solve the first solver converges is not handed on, and says so.
+TEST(FallbackContactSolver, ASolveTheFirstConvergesReportsNoLaterStage) {
+  const NscdIntegrator sim = heavy_on_light_column();
+  const ContactProblem& problem = sim.problem();
+  auto solver = std::make_unique<FallbackContactSolver>("loose", std::make_unique<NncgSolver>(tight(1e-2)),
+                                                        std::make_unique<NeverConverges>(), 1000000, 1e-2, 2.0);
+  const Solved solved = solve_cold(problem, *solver);
+  ASSERT_TRUE(solved.report.converged);
+  EXPECT_EQ(solver->fallbacks(), 0);
+  EXPECT_EQ(solved.report.fallback_stage, SolveReport::kNoFallback);
+  EXPECT_EQ(solved.report.fallback_sweeps, 0);
+  EXPECT_EQ(solved.report.fallback_s, 0.0);
 }

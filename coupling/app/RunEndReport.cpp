@@ -121,7 +121,8 @@ void print_run_end(const RunSummary& summary, const Scene& scene, const std::str
       const std::int64_t converged = f->converged_by_second + f->converged_by_first_again + f->converged_by_sweeps;
       out << "mechanics: " << f->solves << " solves handed on by the first solver, " << converged
           << " then converged (" << f->converged_by_second << " by the second solver, " << f->converged_by_first_again
-          << " by the first once more, " << f->converged_by_sweeps << " by plain sweeps); " << f->sweeps
+          << " by the first once more, " << f->converged_by_sweeps << " by plain sweeps; "
+          << f->within_when_handed_on << " more were within the tolerance already by Siconos' measure); " << f->sweeps
           << " iterations and " << f->seconds << " s in those stages (docs/summary.md, mechanics.fallback)\n";
     }
     // Nothing to say of a schedule whose fall never began (on by default: most small scenes).

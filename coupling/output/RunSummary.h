@@ -77,6 +77,7 @@ struct FallbackSummary {
   std::int64_t converged_by_second = 0;
   std::int64_t converged_by_first_again = 0;
   std::int64_t converged_by_sweeps = 0;
+  std::int64_t within_when_handed_on = 0;
   std::int64_t sweeps = 0;
   double seconds = 0.0;
 };
@@ -85,6 +86,7 @@ inline constexpr std::tuple kFallbackSummaryFields{
     SummaryField{"converged_by_second", &FallbackSummary::converged_by_second},
     SummaryField{"converged_by_first_again", &FallbackSummary::converged_by_first_again},
     SummaryField{"converged_by_sweeps", &FallbackSummary::converged_by_sweeps},
+    SummaryField{"within_when_handed_on", &FallbackSummary::within_when_handed_on},
     SummaryField{"sweeps", &FallbackSummary::sweeps},
     SummaryField{"seconds", &FallbackSummary::seconds}};
 

@@ -59,7 +59,8 @@ void CoupledRun::fill_summary() {
     if (nscd_->solver().has_fallback()) {
       const auto& f = ms.fallback;
       summary_.mechanics.fallback = FallbackSummary{f.solves, f.converged_by_second, f.converged_by_first_again,
-                                                    f.converged_by_sweeps, f.sweeps, f.seconds};
+                                                    f.converged_by_sweeps, f.within_when_handed_on, f.sweeps,
+                                                    f.seconds};
     }
     if (nscd_->tolerance_schedule().enabled()) {
       ToleranceScheduleSummary ts;

@@ -362,7 +362,9 @@ StepReport NscdIntegrator::step(double h, bool landing_parts) {
     report.fallback.solves = 1;
     report.fallback.sweeps = solved.fallback_sweeps;
     report.fallback.seconds = solved.fallback_s;
-    if (report.converged) {
+    if (solved.fallback_stage == SolveReport::kWithinWhenHandedOn) {
+      report.fallback.within_when_handed_on = 1;
+    } else if (report.converged) {
       if (solved.fallback_stage == SolveReport::kSecondSolver) report.fallback.converged_by_second = 1;
       if (solved.fallback_stage == SolveReport::kFirstAgain) report.fallback.converged_by_first_again = 1;
       if (solved.fallback_stage == SolveReport::kPlainSweeps) report.fallback.converged_by_sweeps = 1;

@@ -14,6 +14,9 @@ struct FallbackCounts {
   std::int64_t converged_by_second = 0;      // the second solver ("ipm")
   std::int64_t converged_by_first_again = 0; // the first solver once more, from the better result
   std::int64_t converged_by_sweeps = 0;      // plain sweeps (the polish)
+  // Handed on within the tolerance by Siconos' measure already (the first's own stop test
+  // unmet), whichever stage ended them: not in the three above, which the stages converged.
+  std::int64_t within_when_handed_on = 0;
   std::int64_t sweeps = 0;                   // iterations of the later stages (in the steps' sweeps)
   double seconds = 0.0;                      // wall time of the later stages (in solve_s), s
   FallbackCounts& operator+=(const FallbackCounts& other) {
@@ -21,6 +24,7 @@ struct FallbackCounts {
     converged_by_second += other.converged_by_second;
     converged_by_first_again += other.converged_by_first_again;
     converged_by_sweeps += other.converged_by_sweeps;
+    within_when_handed_on += other.within_when_handed_on;
     sweeps += other.sweeps;
     seconds += other.seconds;
     return *this;

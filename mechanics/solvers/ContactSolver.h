@@ -42,9 +42,12 @@ struct SolveReport {
   bool stalled = false;    // stopped early: no progress over stall_sweeps (not converged)
   // A solver that hands what its first solver left unconverged to later stages
   // (FallbackContactSolver.h): the last stage that ran (kNoFallback: none; the solve ended by it,
-  // converged or not), the iterations of the stages after the first (in `sweeps` too) and their
-  // wall time, s (where the default solver's time goes: docs/summary.md, mechanics.fallback).
-  static constexpr int kNoFallback = 0, kSecondSolver = 1, kFirstAgain = 2, kPlainSweeps = 3;
+  // converged or not; kWithinWhenHandedOn, whichever stage ended it: the first solver's reactions
+  // were within the tolerance by Siconos' measure already, its own stop test unmet), the
+  // iterations of the stages after the first (in `sweeps` too) and their wall time, s (where the
+  // default solver's time goes: docs/summary.md, mechanics.fallback).
+  static constexpr int kNoFallback = 0, kSecondSolver = 1, kFirstAgain = 2, kPlainSweeps = 3,
+                       kWithinWhenHandedOn = 4;
   int fallback_stage = kNoFallback;
   int fallback_sweeps = 0;
   double fallback_s = 0.0;

@@ -61,14 +61,18 @@ class FallbackContactSolver final : public ContactSolver {
     // fallback costs, and which stage converges the solves, is for the run to tell.
     const auto started = std::chrono::steady_clock::now();
     const int first_sweeps = kept.sweeps;
+    bool within = false;
     const auto ended_by = [&](int stage) {
-      kept.fallback_stage = stage;
+      kept.fallback_stage = within ? SolveReport::kWithinWhenHandedOn : stage;
       kept.fallback_sweeps = kept.sweeps - first_sweeps;
       kept.fallback_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
       return kept;
     };
     const double q_norm = free_velocity_norm(problem);
     double kept_residual = siconos_residual(problem, r, m, velocity, angular_velocity, q_norm);
+    // Within the tolerance already by Siconos' measure (the first's own stop test unmet): the
+    // second solver ("ipm") takes them as they are, at no iteration.
+    within = kept_residual <= tolerance_;
     run_from_kept(*second_, problem, r, m, velocity, angular_velocity, q_norm, kept, kept_residual);
     if (kept.converged || !(kept_residual <= near_miss_residual_)) return ended_by(SolveReport::kSecondSolver);
     ++near_misses_;

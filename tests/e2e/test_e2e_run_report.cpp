@@ -97,7 +97,9 @@ TEST(EndToEndRunReport, TheFallbacksWorkIsInTheSummaryAndTheLastLines) {
   const std::int64_t converged = f.converged_by_second + f.converged_by_first_again + f.converged_by_sweeps;
   ASSERT_GT(f.solves, 10) << r.output;  // the test acts: nncg at 100 sweeps leaves many
   EXPECT_GT(converged, 0);
-  EXPECT_EQ(f.solves - converged, m.unconverged_steps) << r.output;
+  // Handed on within the tolerance already (Siconos' measure, which judges the steps): converged
+  // steps, not by the stages.
+  EXPECT_EQ(f.solves - converged - f.within_when_handed_on, m.unconverged_steps) << r.output;
   EXPECT_GT(f.sweeps, 0);
   EXPECT_GT(f.seconds, 0.0);
   EXPECT_LE(f.seconds, summary.wall_time_parts->contact_solve_s);

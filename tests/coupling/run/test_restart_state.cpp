@@ -45,7 +45,7 @@ TEST(RestartState, TheMarkOfATableALandingWidenedGoesThroughTheCheckpoint) {
 // the restart (MechanicsStats).
 TEST(RestartState, TheFallbackCountsGoThroughTheCheckpoint) {
   mechanics::MechanicsStats stats;
-  stats.fallback = mechanics::FallbackCounts{17, 9, 4, 2, 123456, 3.5};
+  stats.fallback = mechanics::FallbackCounts{17, 9, 4, 2, 1, 123456, 3.5};
   CheckpointState cs;
   store_mechanics_stats(stats, cs);
   const mechanics::MechanicsStats back = mechanics_stats_of(cs);
@@ -53,6 +53,7 @@ TEST(RestartState, TheFallbackCountsGoThroughTheCheckpoint) {
   EXPECT_EQ(back.fallback.converged_by_second, 9);
   EXPECT_EQ(back.fallback.converged_by_first_again, 4);
   EXPECT_EQ(back.fallback.converged_by_sweeps, 2);
+  EXPECT_EQ(back.fallback.within_when_handed_on, 1);
   EXPECT_EQ(back.fallback.sweeps, 123456);
   EXPECT_EQ(back.fallback.seconds, 0.0);
   // A checkpoint written before the counts existed reads as none.

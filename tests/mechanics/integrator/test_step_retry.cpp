@@ -209,14 +209,17 @@ TEST(FallbackCounts, EverySolveHandedOnIsCountedWithTheStageThatEndedIt) {
     const std::int64_t parts = sim.stats().steps - steps_before;
     const FallbackCounts& f = report.fallback;
     ASSERT_LE(f.solves, parts) << "step " << step;
-    EXPECT_LE(f.converged_by_second + f.converged_by_first_again + f.converged_by_sweeps, f.solves);
+    EXPECT_LE(f.converged_by_second + f.converged_by_first_again + f.converged_by_sweeps + f.within_when_handed_on,
+              f.solves);
     if (parts == 1 && f.solves == 1) {
       // nncg ran its 3 sweeps unconverged; the rest of the step's sweeps are the later stages'.
       EXPECT_EQ(f.sweeps, report.sweeps - kSweeps) << "step " << step;
       EXPECT_GT(f.seconds, 0.0);
-      // The stage that ended it converged it exactly when the step converged.
-      EXPECT_EQ(f.converged_by_second + f.converged_by_first_again + f.converged_by_sweeps,
-                report.converged ? 1 : 0) << "step " << step;
+      // The stage that ended it converged it exactly when the step converged (unless it was
+      // within the tolerance by Siconos' measure when handed on, counted apart).
+      if (f.within_when_handed_on == 0)
+        EXPECT_EQ(f.converged_by_second + f.converged_by_first_again + f.converged_by_sweeps,
+                  report.converged ? 1 : 0) << "step " << step;
     }
     if (f.solves == 0) {
       EXPECT_LE(sim.stats().total_sweeps - sweeps_before, kSweeps * parts) << "step " << step;
@@ -230,6 +233,7 @@ TEST(FallbackCounts, EverySolveHandedOnIsCountedWithTheStageThatEndedIt) {
   EXPECT_EQ(run.converged_by_second, sum.converged_by_second);
   EXPECT_EQ(run.converged_by_first_again, sum.converged_by_first_again);
   EXPECT_EQ(run.converged_by_sweeps, sum.converged_by_sweeps);
+  EXPECT_EQ(run.within_when_handed_on, sum.within_when_handed_on);
   EXPECT_EQ(run.sweeps, sum.sweeps);
   EXPECT_DOUBLE_EQ(run.seconds, sum.seconds);
   // The test acts: solves were handed on, and most converged there (37 of 40 when written).

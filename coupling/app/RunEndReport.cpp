@@ -123,7 +123,8 @@ void print_run_end(const RunSummary& summary, const Scene& scene, const std::str
           << " then converged (" << f->converged_by_second << " by the second solver, " << f->converged_by_first_again
           << " by the first once more, " << f->converged_by_sweeps << " by plain sweeps; "
           << f->within_when_handed_on << " more were within the tolerance already by Siconos' measure); " << f->sweeps
-          << " iterations and " << f->seconds << " s in those stages (docs/summary.md, mechanics.fallback)\n";
+          << " iterations and " << f->seconds << " s in those stages, after " << f->first_sweeps << " and "
+          << f->first_seconds << " s of the first solver's on them (docs/summary.md, mechanics.fallback)\n";
     }
     // Nothing to say of a schedule whose fall never began (on by default: most small scenes).
     if (const auto& ts = m.tolerance_schedule; ts && ts->fall_steps > 0) {

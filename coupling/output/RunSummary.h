@@ -80,6 +80,8 @@ struct FallbackSummary {
   std::int64_t within_when_handed_on = 0;
   std::int64_t sweeps = 0;
   double seconds = 0.0;
+  std::int64_t first_sweeps = 0;
+  double first_seconds = 0.0;
 };
 inline constexpr std::tuple kFallbackSummaryFields{
     SummaryField{"solves", &FallbackSummary::solves},
@@ -88,7 +90,9 @@ inline constexpr std::tuple kFallbackSummaryFields{
     SummaryField{"converged_by_sweeps", &FallbackSummary::converged_by_sweeps},
     SummaryField{"within_when_handed_on", &FallbackSummary::within_when_handed_on},
     SummaryField{"sweeps", &FallbackSummary::sweeps},
-    SummaryField{"seconds", &FallbackSummary::seconds}};
+    SummaryField{"seconds", &FallbackSummary::seconds},
+    SummaryField{"first_sweeps", &FallbackSummary::first_sweeps},
+    SummaryField{"first_seconds", &FallbackSummary::first_seconds}};
 
 struct MechanicsSummary {
   std::int64_t steps = 0;

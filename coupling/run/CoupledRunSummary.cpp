@@ -60,7 +60,7 @@ void CoupledRun::fill_summary() {
       const auto& f = ms.fallback;
       summary_.mechanics.fallback = FallbackSummary{f.solves, f.converged_by_second, f.converged_by_first_again,
                                                     f.converged_by_sweeps, f.within_when_handed_on, f.sweeps,
-                                                    f.seconds};
+                                                    f.seconds, f.first_sweeps, f.first_seconds};
     }
     if (nscd_->tolerance_schedule().enabled()) {
       ToleranceScheduleSummary ts;

@@ -93,6 +93,7 @@ void store_mechanics_stats(const mechanics::MechanicsStats& s, CheckpointState& 
   cs.extra["mechanics_fallback_converged_by_sweeps"] = double(s.fallback.converged_by_sweeps);
   cs.extra["mechanics_fallback_within_when_handed_on"] = double(s.fallback.within_when_handed_on);
   cs.extra["mechanics_fallback_sweeps"] = double(s.fallback.sweeps);
+  cs.extra["mechanics_fallback_first_sweeps"] = double(s.fallback.first_sweeps);
   cs.extra["mechanics_unconverged_time_steps"] = double(s.unconverged_time_steps);
   cs.extra["mechanics_piston_corrections"] = double(s.piston_corrections);
   cs.extra["mechanics_last_step_s"] = s.last_step_s;
@@ -129,6 +130,7 @@ mechanics::MechanicsStats mechanics_stats_of(const CheckpointState& cs) {
   s.fallback.converged_by_sweeps = std::int64_t(extra_or_zero(cs, "mechanics_fallback_converged_by_sweeps"));
   s.fallback.within_when_handed_on = std::int64_t(extra_or_zero(cs, "mechanics_fallback_within_when_handed_on"));
   s.fallback.sweeps = std::int64_t(extra_or_zero(cs, "mechanics_fallback_sweeps"));
+  s.fallback.first_sweeps = std::int64_t(extra_or_zero(cs, "mechanics_fallback_first_sweeps"));
   s.unconverged_time_steps = std::int64_t(extra_or_zero(cs, "mechanics_unconverged_time_steps"));
   s.piston_corrections = std::int64_t(extra_or_zero(cs, "mechanics_piston_corrections"));
   s.last_step_s = extra_or_zero(cs, "mechanics_last_step_s");

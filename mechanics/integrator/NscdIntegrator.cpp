@@ -362,6 +362,8 @@ StepReport NscdIntegrator::step(double h, bool landing_parts) {
     report.fallback.solves = 1;
     report.fallback.sweeps = solved.fallback_sweeps;
     report.fallback.seconds = solved.fallback_s;
+    report.fallback.first_sweeps = solved.fallback_first_sweeps;
+    report.fallback.first_seconds = solved.fallback_first_s;
     if (solved.fallback_stage == SolveReport::kWithinWhenHandedOn) {
       report.fallback.within_when_handed_on = 1;
     } else if (report.converged) {

@@ -19,6 +19,10 @@ struct FallbackCounts {
   std::int64_t within_when_handed_on = 0;
   std::int64_t sweeps = 0;                   // iterations of the later stages (in the steps' sweeps)
   double seconds = 0.0;                      // wall time of the later stages (in solve_s), s
+  // The first solver's iterations and wall time, s, on the solves it handed on (in the steps'
+  // sweeps and solve_s): what it spent before handing them on.
+  std::int64_t first_sweeps = 0;
+  double first_seconds = 0.0;
   FallbackCounts& operator+=(const FallbackCounts& other) {
     solves += other.solves;
     converged_by_second += other.converged_by_second;
@@ -27,6 +31,8 @@ struct FallbackCounts {
     within_when_handed_on += other.within_when_handed_on;
     sweeps += other.sweeps;
     seconds += other.seconds;
+    first_sweeps += other.first_sweeps;
+    first_seconds += other.first_seconds;
     return *this;
   }
 };

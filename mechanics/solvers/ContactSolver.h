@@ -51,6 +51,10 @@ struct SolveReport {
   int fallback_stage = kNoFallback;
   int fallback_sweeps = 0;
   double fallback_s = 0.0;
+  // On a solve handed on: the first solver's own iterations and wall time, s, before it handed
+  // it on (what handing on sooner could save).
+  int fallback_first_sweeps = 0;
+  double fallback_first_s = 0.0;
 };
 
 class ContactSolver {

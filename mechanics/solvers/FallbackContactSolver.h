@@ -52,6 +52,7 @@ class FallbackContactSolver final : public ContactSolver {
   SolveReport solve_with_rolling(const ContactProblem& problem, std::vector<Eigen::Vector3d>& r,
                                  std::vector<Eigen::Vector3d>& m, std::vector<Eigen::Vector3d>& velocity,
                                  std::vector<Eigen::Vector3d>& angular_velocity) override {
+    const auto first_started = std::chrono::steady_clock::now();
     SolveReport kept = first_->solve_with_rolling(problem, r, m, velocity, angular_velocity);
     const std::size_t unknowns = problem.particle_count * (problem.dimension == 2 ? 3 : 6);
     if (kept.converged || problem.compliant || unknowns > max_unknowns_) return kept;
@@ -66,6 +67,8 @@ class FallbackContactSolver final : public ContactSolver {
       kept.fallback_stage = within ? SolveReport::kWithinWhenHandedOn : stage;
       kept.fallback_sweeps = kept.sweeps - first_sweeps;
       kept.fallback_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+      kept.fallback_first_sweeps = first_sweeps;
+      kept.fallback_first_s = std::chrono::duration<double>(started - first_started).count();
       return kept;
     };
     const double q_norm = free_velocity_norm(problem);

@@ -103,6 +103,11 @@ TEST(EndToEndRunReport, TheFallbacksWorkIsInTheSummaryAndTheLastLines) {
   EXPECT_GT(f.sweeps, 0);
   EXPECT_GT(f.seconds, 0.0);
   EXPECT_LE(f.seconds, summary.wall_time_parts->contact_solve_s);
+  // nncg ran out of its 100 sweeps on each solve it handed on (or stalled before).
+  EXPECT_GT(f.first_sweeps, 0);
+  EXPECT_LE(f.first_sweeps, 100 * f.solves);
+  EXPECT_GT(f.first_seconds, 0.0);
+  EXPECT_LE(f.seconds + f.first_seconds, summary.wall_time_parts->contact_solve_s);
   EXPECT_NE(r.output.find("mechanics: " + std::to_string(f.solves) + " solves handed on by the first solver, " +
                           std::to_string(converged) + " then converged"),
             std::string::npos) << r.output;

@@ -138,10 +138,12 @@ TEST(RunSummary, LinearSolverReasonRoundTrips) {
 TEST(RunSummary, FallbackBlockRoundTrips) {
   RunSummary s = sample_summary();
   EXPECT_FALSE(s.to_json()["mechanics"].contains("fallback"));
-  s.mechanics.fallback = tmdem::coupling::FallbackSummary{12, 5, 3, 1, 2, 4321, 2.5};
+  s.mechanics.fallback = tmdem::coupling::FallbackSummary{12, 5, 3, 1, 2, 4321, 2.5, 98765, 7.25};
   const nlohmann::json j = nlohmann::json::parse(s.to_json().dump());
   const auto& f = j["mechanics"]["fallback"];
-  EXPECT_EQ(f.size(), 7u);
+  EXPECT_EQ(f.size(), 9u);
+  EXPECT_EQ(f["first_sweeps"], 98765);
+  EXPECT_DOUBLE_EQ(f["first_seconds"].get<double>(), 7.25);
   EXPECT_EQ(f["within_when_handed_on"], 2);
   EXPECT_EQ(f["solves"], 12);
   EXPECT_EQ(f["converged_by_second"], 5);

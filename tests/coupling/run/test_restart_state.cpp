@@ -45,7 +45,7 @@ TEST(RestartState, TheMarkOfATableALandingWidenedGoesThroughTheCheckpoint) {
 // the restart (MechanicsStats).
 TEST(RestartState, TheFallbackCountsGoThroughTheCheckpoint) {
   mechanics::MechanicsStats stats;
-  stats.fallback = mechanics::FallbackCounts{17, 9, 4, 2, 1, 123456, 3.5};
+  stats.fallback = mechanics::FallbackCounts{17, 9, 4, 2, 1, 123456, 3.5, 170000, 8.5};
   CheckpointState cs;
   store_mechanics_stats(stats, cs);
   const mechanics::MechanicsStats back = mechanics_stats_of(cs);
@@ -56,6 +56,8 @@ TEST(RestartState, TheFallbackCountsGoThroughTheCheckpoint) {
   EXPECT_EQ(back.fallback.within_when_handed_on, 1);
   EXPECT_EQ(back.fallback.sweeps, 123456);
   EXPECT_EQ(back.fallback.seconds, 0.0);
+  EXPECT_EQ(back.fallback.first_sweeps, 170000);
+  EXPECT_EQ(back.fallback.first_seconds, 0.0);
   // A checkpoint written before the counts existed reads as none.
   EXPECT_EQ(mechanics_stats_of(CheckpointState{}).fallback.solves, 0);
 }

@@ -214,7 +214,9 @@ TEST(FallbackCounts, EverySolveHandedOnIsCountedWithTheStageThatEndedIt) {
     if (parts == 1 && f.solves == 1) {
       // nncg ran its 3 sweeps unconverged; the rest of the step's sweeps are the later stages'.
       EXPECT_EQ(f.sweeps, report.sweeps - kSweeps) << "step " << step;
+      EXPECT_EQ(f.first_sweeps, kSweeps) << "step " << step;
       EXPECT_GT(f.seconds, 0.0);
+      EXPECT_GT(f.first_seconds, 0.0);
       // The stage that ended it converged it exactly when the step converged (unless it was
       // within the tolerance by Siconos' measure when handed on, counted apart).
       if (f.within_when_handed_on == 0)
@@ -224,6 +226,7 @@ TEST(FallbackCounts, EverySolveHandedOnIsCountedWithTheStageThatEndedIt) {
     if (f.solves == 0) {
       EXPECT_LE(sim.stats().total_sweeps - sweeps_before, kSweeps * parts) << "step " << step;
       EXPECT_EQ(f.sweeps, 0);
+      EXPECT_EQ(f.first_sweeps, 0);
     }
     converged_handed_on += f.converged_by_second + f.converged_by_first_again + f.converged_by_sweeps;
     sum += f;
@@ -236,6 +239,8 @@ TEST(FallbackCounts, EverySolveHandedOnIsCountedWithTheStageThatEndedIt) {
   EXPECT_EQ(run.within_when_handed_on, sum.within_when_handed_on);
   EXPECT_EQ(run.sweeps, sum.sweeps);
   EXPECT_DOUBLE_EQ(run.seconds, sum.seconds);
+  EXPECT_EQ(run.first_sweeps, sum.first_sweeps);
+  EXPECT_DOUBLE_EQ(run.first_seconds, sum.first_seconds);
   // The test acts: solves were handed on, and most converged there (37 of 40 when written).
   EXPECT_GE(run.solves, 10);
   EXPECT_GE(converged_handed_on, run.solves / 2);

@@ -106,6 +106,8 @@ TEST(FallbackContactSolver, NearMissGetsTheFirstSolverOnceMore) {
   EXPECT_EQ(again.report.fallback_stage, SolveReport::kFirstAgain);
   EXPECT_EQ(again.report.fallback_sweeps, 20);
   EXPECT_GT(again.report.fallback_s, 0.0);
+  EXPECT_EQ(again.report.fallback_first_sweeps, 20);  // the first run's, before it handed on
+  EXPECT_GT(again.report.fallback_first_s, 0.0);
 
   auto far = cut_nncg(e1 / 3.0);
   const Solved kept = solve_cold(problem, *far);
@@ -197,4 +199,6 @@ TEST(FallbackContactSolver, ASolveTheFirstConvergesReportsNoLaterStage) {
   EXPECT_EQ(solved.report.fallback_stage, SolveReport::kNoFallback);
   EXPECT_EQ(solved.report.fallback_sweeps, 0);
   EXPECT_EQ(solved.report.fallback_s, 0.0);
+  EXPECT_EQ(solved.report.fallback_first_sweeps, 0);
+  EXPECT_EQ(solved.report.fallback_first_s, 0.0);
 }

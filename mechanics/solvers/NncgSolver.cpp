@@ -168,11 +168,15 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& given,
     // Honest convergence's later runs (below): Siconos' residual (q_norm: ||q||) every
     // Options::siconos_check_every sweeps, the run ending as soon as it is within the tolerance.
     bool check_siconos = false;
-    double q_norm = 0.0;
+    // Before that (the first run and its stall restarts): every Options::
+    // siconos_check_unmet_every sweeps (0: never), q_norm computed at the first check.
+    int unmet_every = 0;
+    mutable double q_norm = -1.0;  // < 0: not computed yet
 
     bool converged_after_sweep(const GaussSeidelSweepState& state, const SolveReport& report) const {
-      const int every = solver.options_.siconos_check_every;
-      if (!check_siconos || every <= 0 || report.sweeps % every != 0) return false;
+      const int every = check_siconos ? solver.options_.siconos_check_every : unmet_every;
+      if (every <= 0 || report.sweeps % every != 0) return false;
+      if (q_norm < 0.0) q_norm = free_velocity_norm(state.problem);
       return siconos_residual(state.problem, state.r, state.m, state.velocity, state.angular_velocity, q_norm) <=
              solver.settings_.tolerance;
     }
@@ -228,6 +232,7 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& given,
     options.parallel = true;
   }
   const GaussSeidelSweepState state{problem, r, m, velocity, angular_velocity};
+  if (settings_.siconos_stop) hooks.unmet_every = options_.siconos_check_unmet_every;
   auto run = [&](const SolverSettings& settings) {
     hooks.max_sweeps = settings.max_iterations;
     return coloured ? sweep_.solve<GaussSeidelSweep::Order::colour>(settings, options, state, hooks)

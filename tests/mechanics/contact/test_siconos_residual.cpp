@@ -247,3 +247,65 @@ TEST(SiconosResidual, StepWithinToleranceCountsAsConvergedOutOfSweeps) {
   EXPECT_EQ(sweep.stats().max_siconos_residual, honest.stats().max_siconos_residual);  // the same solve
   EXPECT_EQ(sweep.stats().unconverged_steps, 1);
 }
+
+// Before the sweep test is met (the first run), Siconos' measure every 250 sweeps
+// (NncgSolver::Options::siconos_check_unmet_every): on a frictional pile the change per sweep
+// can stay above the tolerance while the measure that judges the step is within it, and such a
+// solve ran its whole budget. 200 spheres (mu = 0.9) poured at random, the problem of their
+// 111th step (875 contacts) solved cold: unchecked, nncg runs out of its 10,000 sweeps with
+// Siconos' residual within the tolerance (8.3e-6 when written); checked, it stops at the first
+// check that finds it within (2,000 sweeps), with the very reactions the unchecked solve has at
+// that sweep (its run cut there), above the tolerance at the seven checks before.
+// A solve whose sweep test is met first keeps its bits (the slow column: 967 sweeps either way).
+TEST(SiconosResidual, NncgChecksItBeforeItsSweepTestIsMet) {
+  constexpr double tolerance = 1e-5;
+  NscdIntegrator pile = random_pile(200, 3, 0.9, 7, NscdParameters{});
+  for (int step = 0; step < 111; ++step) pile.step();
+  const ContactProblem& problem = pile.problem();
+  ASSERT_GT(problem.size(), 800u);
+  const double q = free_velocity_norm(problem);
+  SolverSettings settings = tight(tolerance);
+  settings.siconos_stop = true;
+  settings.max_iterations = 10000;
+  NncgSolver::Options unchecked_options;
+  unchecked_options.siconos_check_unmet_every = 0;
+  const NncgSolver::Options checked_options;  // the default
+  ASSERT_EQ(checked_options.siconos_check_unmet_every, 250);
+
+  NncgSolver unchecked(settings, unchecked_options), checked(settings, checked_options);
+  const Solved whole = solve_cold(problem, unchecked);
+  EXPECT_FALSE(whole.report.converged);  // by its own sweep test
+  EXPECT_EQ(whole.report.sweeps, settings.max_iterations);
+  EXPECT_LE(siconos_residual(problem, whole.r, {}, whole.v, whole.w, q), tolerance);
+
+  const Solved early = solve_cold(problem, checked);
+  ASSERT_TRUE(early.report.converged);
+  EXPECT_EQ(early.report.sweeps % 250, 0);
+  EXPECT_LT(early.report.sweeps, settings.max_iterations / 4);
+  EXPECT_LE(siconos_residual(problem, early.r, {}, early.v, early.w, q), tolerance);
+  // The unchecked solve cut at that sweep: the same reactions, bit for bit, and above the
+  // tolerance at the checks before (else the checked solve would have stopped there).
+  SolverSettings cut = settings;
+  cut.max_iterations = early.report.sweeps;
+  NncgSolver cut_solver(cut, unchecked_options);
+  const Solved at = solve_cold(problem, cut_solver);
+  ASSERT_EQ(at.r.size(), early.r.size());
+  for (std::size_t c = 0; c < at.r.size(); ++c) ASSERT_EQ(at.r[c], early.r[c]) << "contact " << c;
+  for (int before = 250; before < early.report.sweeps; before += 250) {
+    cut.max_iterations = before;
+    NncgSolver earlier(cut, unchecked_options);
+    const Solved e = solve_cold(problem, earlier);
+    EXPECT_GT(siconos_residual(problem, e.r, {}, e.v, e.w, q), tolerance) << before << " sweeps";
+  }
+  std::printf("pile step 111, cold: %d sweeps checked (converged), %d unchecked (not, by the sweep test)\n",
+              early.report.sweeps, whole.report.sweeps);
+
+  const NscdIntegrator column_sim = column(slow_column_masses());
+  NncgSolver column_unchecked(settings, unchecked_options), column_checked(settings, checked_options);
+  const Solved a = solve_cold(column_sim.problem(), column_unchecked);
+  const Solved b = solve_cold(column_sim.problem(), column_checked);
+  ASSERT_TRUE(a.report.converged);
+  EXPECT_GT(a.report.sweeps, 250);  // it passes checks
+  EXPECT_EQ(a.report.sweeps, b.report.sweeps);
+  for (std::size_t c = 0; c < a.r.size(); ++c) EXPECT_EQ(a.r[c], b.r[c]) << "contact " << c;
+}

@@ -35,8 +35,10 @@ SKIP = 77
 # ||q||) its solutions measure 0.3 to 4 times that (docs/mechanics.md, "Cross-check with Siconos"): allow 10 times.
 ERROR_BOUND_PER_TOLERANCE = 10.0
 # Siconos's solvers: NSGS to 1e-8 (its error falls slowly at the end: 1.1e-8 after 20,000
-# iterations on first_scene), NSN to 1e-9 in at most 100 Newton iterations.
-NSGS_TOLERANCE, NSGS_ITERATIONS, NSGS_BOUND = 1e-8, 20000, 1e-7
+# iterations on first_scene as it settled until 2026-12-03; since nncg checks Siconos' residual
+# before its sweep test is met the pile settles elsewhere, and NSGS stops at 1.06e-7 there),
+# NSN to 1e-9 in at most 100 Newton iterations.
+NSGS_TOLERANCE, NSGS_ITERATIONS, NSGS_BOUND = 1e-8, 20000, 2e-7
 NSN_TOLERANCE, NSN_ITERATIONS = 1e-9, 100
 # Walls' total impulse of two solutions, relative to the weight impulse |h sum m g|.
 WALL_IMPULSE_AGREEMENT = 1e-4

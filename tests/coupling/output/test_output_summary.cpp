@@ -143,14 +143,14 @@ TEST(RunSummary, FallbackBlockRoundTrips) {
   const auto& f = j["mechanics"]["fallback"];
   EXPECT_EQ(f.size(), 9u);
   EXPECT_EQ(f["first_sweeps"], 98765);
-  EXPECT_DOUBLE_EQ(f["first_seconds"].get<double>(), 7.25);
+  EXPECT_DOUBLE_EQ(f["first_wall_time_s"].get<double>(), 7.25);
   EXPECT_EQ(f["within_when_handed_on"], 2);
   EXPECT_EQ(f["solves"], 12);
   EXPECT_EQ(f["converged_by_second"], 5);
   EXPECT_EQ(f["converged_by_first_again"], 3);
   EXPECT_EQ(f["converged_by_sweeps"], 1);
   EXPECT_EQ(f["sweeps"], 4321);
-  EXPECT_DOUBLE_EQ(f["seconds"].get<double>(), 2.5);
+  EXPECT_DOUBLE_EQ(f["wall_time_s"].get<double>(), 2.5);
   EXPECT_EQ(j["mechanics"].size(), 19u);  // the 18 above and the block
   const RunSummary r = RunSummary::from_json(j);
   ASSERT_TRUE(r.mechanics.fallback.has_value());

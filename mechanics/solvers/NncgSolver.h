@@ -87,8 +87,8 @@ class NncgSolver final : public ContactSolver {
     // tolerance (0: never). Why: on a slowly contracting bed the change per sweep can stay
     // above the tolerance long after Siconos' residual, which judges the step, is within it;
     // such solves ran their whole budget and were handed on to the fallback: 7 of 9 on
-    // bench/beds/plate_on_deposit.toml and 11 of 15 on deposit_2d_plate.toml, 40% of their
-    // contact solve time (mechanics.fallback's first_seconds). Sparse: a check costs about a
+    // bench/beds/plate_on_deposit.toml and 11 of 15 on deposit_2d_plate.toml, 44% of their
+    // contact solve time (mechanics.fallback's first_wall_time_s). Sparse: a check costs about a
     // full sweep, so at most 1/250 more; solves that meet the sweep test sooner keep their bits.
     int siconos_check_unmet_every = 250;
     double drift_ratio = 1.003; // 1 < |d_{k+1}|^2 / |d_k|^2 <= this: beta = 1

@@ -3,7 +3,7 @@
 # build (Release) in build/. Safe to run again: installed packages and a configured build are reused.
 #   scripts/setup.sh [--with-paraview] [--tests-only]
 # --with-paraview also installs Debian's ParaView (paraview, python3-paraview: pvbatch) and xvfb
-# (Debian's pvbatch renders through X; without a display `tmdem render` runs it under xvfb-run).
+# (Debian's pvbatch renders through X; without a display `tmdem render` runs it on an Xvfb of its own).
 # The ctest tests ParaView.* (ParaView's readers on RESULT.xdmf) and ParaViewRender.* (`tmdem
 # render`) need them and are skipped without them. ./test.sh passes --with-paraview; run.sh not.
 # --tests-only builds what ctest runs (target ctest_programs), not the benchmark programs of bench/

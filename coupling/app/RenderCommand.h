@@ -3,12 +3,12 @@
 // result drawn by ParaView (pvbatch running tmdem_render.py, docs/paraview.md): the spheres at
 // their true size coloured by temperature over that frame's range, a colour bar
 // "temperature (K)", optionally cut at the bed's mid-plane and with the force network as tubes.
-// pvbatch is taken from $TMDEM_PVBATCH or PATH; without an X display it runs under xvfb-run,
-// one render at a time (a lock file in the temporary folder), a failure tried twice more.
+// pvbatch is taken from $TMDEM_PVBATCH or PATH; without an X display it renders on a virtual
+// one, an Xvfb of its own (-displayfd -noreset), a failure tried twice more on new ones.
 // The script is $TMDEM_RENDER_SCRIPT, else tmdem_render.py next to the tmdem program (CMake
 // copies it there), else the source checkout's coupling/app/tmdem_render.py.
 // Exit codes: 0; 2 for a frame the file does not hold, an output that is not .png or a bad
-// --cut; 4 for a result (or its .xdmf) that cannot be read, pvbatch, xvfb-run or the script
+// --cut; 4 for a result (or its .xdmf) that cannot be read, pvbatch, Xvfb or the script
 // missing, or pvbatch failing or writing no image.
 #include <ostream>
 #include <string>

@@ -2,10 +2,13 @@
 temperature over the range of that frame, with a colour bar "temperature (K)".
 
 `tmdem render RESULT.h5 -o bed.png [--frame K] [--cut x|y|z] [--forces]` runs this script
-through ParaView's pvbatch (under xvfb-run when there is no X display). Run it yourself with
+through ParaView's pvbatch (on an Xvfb of its own when there is no X display). Run it
+yourself with
   pvbatch tmdem_render.py RESULT.xdmf bed.png [--frame K] [--cut x|y|z] [--forces]
           [--size W H] [--colormap NAME]
-(Debian 12: paraview + python3-paraview; pvbatch needs an X display: `xvfb-run -a pvbatch ...`).
+(Debian 12: paraview + python3-paraview; pvbatch needs an X display:
+`xvfb-run -a -s "-noreset" pvbatch ...`; without -noreset the server resets when pvbatch's
+first connection closes and may drop its second).
 Copy it and change what you like: it is plain paraview.simple.
 
 - RESULT.xdmf: the file `tmdem run` writes next to RESULT.h5 (keep the two together).

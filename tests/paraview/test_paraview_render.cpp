@@ -4,7 +4,7 @@
 // bed_colours.py reads the PNG's hues). Had the range been t = 0's (every sphere at 293.15 K),
 // the top spheres would sit mid-map (green) and everything warmer would be clamped to red.
 // The rendering tests are skipped when pvbatch is absent (scripts/setup.sh --with-paraview) or
-// there is neither an X display nor xvfb-run; the argument checks run without ParaView.
+// there is neither an X display nor Xvfb; the argument checks run without ParaView.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -65,8 +65,8 @@ class ParaViewRender : public ::testing::Test {
   void SetUp() override {
     if (!have("pvbatch")) GTEST_SKIP() << "pvbatch not found (scripts/setup.sh --with-paraview)";
     const char* display = std::getenv("DISPLAY");
-    if ((!display || !*display) && !have("xvfb-run"))
-      GTEST_SKIP() << "no X display and no xvfb-run (scripts/setup.sh --with-paraview installs xvfb)";
+    if ((!display || !*display) && !have("Xvfb"))
+      GTEST_SKIP() << "no X display and no Xvfb (scripts/setup.sh --with-paraview installs xvfb)";
   }
 };
 

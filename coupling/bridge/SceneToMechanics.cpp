@@ -62,6 +62,7 @@ mechanics::NscdParameters make_nscd_parameters(const Scene& scene) {
   p.max_iterations = scene.mechanics.max_iterations;
   p.retry_parts = scene.mechanics.retry_parts;
   p.retry_keep_steps = scene.mechanics.retry_keep_steps;
+  p.fallback_on_last_try = scene.mechanics.fallback_on_last_try;
   p.full_sweep_every = scene.mechanics.full_sweep_every;
   p.siconos_stop = scene.mechanics.stop_test == "siconos";
   p.normal_law = scene.mechanics.normal_law;

@@ -200,6 +200,8 @@ struct MechanicsSettings {
   int retry_parts = mechanics::NscdParameters{}.retry_parts;
   // Converged steps that halve the parts kept after a retry (NscdParameters::retry_keep_steps).
   int retry_keep_steps = mechanics::NscdParameters{}.retry_keep_steps;
+  // The solver's later stages only on a step's last try (NscdParameters::fallback_on_last_try).
+  bool fallback_on_last_try = mechanics::NscdParameters{}.fallback_on_last_try;
   int full_sweep_every = mechanics::NscdParameters{}.full_sweep_every;  // Gauss-Seidel active-set sweeps
   // "sweep" or "siconos" (mechanics::NscdParameters::siconos_stop)
   std::string stop_test = mechanics::NscdParameters{}.siconos_stop ? "siconos" : "sweep";

@@ -189,6 +189,7 @@ void SceneBuilder::read_settings() {
                                                mechanics::NscdParameters::kMaxRetryParts));
     m.retry_keep_steps = static_cast<int>(t.integer("retry_keep_steps", m.retry_keep_steps, 0,
                                                     std::numeric_limits<int>::max()));
+    m.fallback_on_last_try = t.boolean("fallback_on_last_try", m.fallback_on_last_try);
     m.full_sweep_every = sweeps("full_sweep_every", m.full_sweep_every);
     m.tighten_steps = sweeps("tighten_steps", m.tighten_steps);
     m.settle_time_s = t.number("settle_time");

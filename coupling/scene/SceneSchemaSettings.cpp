@@ -123,6 +123,14 @@ std::vector<Section> settings_sections() {
               "it where the summary's retried_steps come near its steps (docs/mechanics.md "
               "\"Steps that start in the parts the last retry needed\"; summary: "
               "mechanics.kept_parts_steps)"),
+        boolean("fallback_on_last_try", bool_text(kM.fallback_on_last_try),
+                "a solver with later stages (nncg_ipm, the default: the interior point, nncg "
+                "once more, plain sweeps) runs them only on a step's last try, where no retry "
+                "in shorter parts (retry_parts) would follow; a try that turned out to be the "
+                "last without them is taken once more with them. A retry in parts converged "
+                "the steps the stages left unconverged on a plate landing on a deposit, in a "
+                "quarter of the time; off by default until measured on more beds "
+                "(docs/mechanics.md \"The fallback on the last try\")"),
         value("full_sweep_every", "", std::to_string(kM.full_sweep_every), "integer >= 1",
               "\"nlgs\", \"nlgs_coloured\": a sweep over every candidate at least every this "
               "many sweeps, the others visit the contacts the last full sweep left closed; "

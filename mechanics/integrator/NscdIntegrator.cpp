@@ -540,6 +540,12 @@ void NscdIntegrator::use_tolerance(double tolerance) {
   solver_settings_.tolerance = tolerance;
   solver_ = make_contact_solver(parameters_.solver, solver_settings_);
   solver_->restore_carried_state(carried);
+  solver_->set_hand_on(hand_on_);
+}
+
+void NscdIntegrator::set_hand_on(bool allowed) {
+  hand_on_ = allowed;
+  solver_->set_hand_on(allowed);
 }
 
 SolveReport NscdIntegrator::solve_contacts() {

@@ -222,6 +222,9 @@ class NscdIntegrator {
   SolveReport solve_contacts();
   // The solver at this tolerance from now on (a no-op when it already is).
   void use_tolerance(double tolerance);
+  // Whether the solver may hand this try's unconverged solves on to its later stages
+  // (NscdParameters::fallback_on_last_try); kept across use_tolerance's new solvers.
+  void set_hand_on(bool allowed);
   // The axis across which a solver may cut the contacts into slabs: the horizontal one (not
   // along gravity) along which the particles spread widest.
   int split_axis() const;
@@ -261,6 +264,7 @@ class NscdIntegrator {
   // retries may go up to (down to 1: none), and kRetryRecoverSteps converged steps in a row
   // double them back (up to retry_parts). 0: retry_parts. Both in MechanicsState.
   int retry_limit_ = 0;
+  bool hand_on_ = true;  // set_hand_on()
   int retry_converged_in_a_row_ = 0;
   // The parts the next step starts in, after a retry (NscdParameters::retry_keep_steps; 0 or 1:
   // whole), and the converged steps in a row at them. Both in MechanicsState.

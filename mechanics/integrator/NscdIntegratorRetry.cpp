@@ -74,6 +74,17 @@ StepReport NscdIntegrator::step_with_retries(double h) {
   const auto first_try = [&] {
     return start > 1 ? step_in_parts(h / double(start), start, true) : step(h, true);
   };
+  // The solver's later stages (NscdParameters::fallback_on_last_try) only on a try that no
+  // retry would follow; `last`: whether the try about to be taken is known to be such a one.
+  // (A first try that may be retaken as a collapse is not known to be: that depends on how it
+  // ends.) The guard hands on again whatever way the step ends.
+  const bool withhold = parameters_.fallback_on_last_try && parameters_.retry_parts >= 2 && solver_->has_fallback();
+  const auto hand_on_if = [&](bool last) { set_hand_on(!withhold || last); };
+  struct HandOnAgain {
+    NscdIntegrator& integrator;
+    ~HandOnAgain() { integrator.set_hand_on(true); }
+  } hand_on_again{*this};
+  hand_on_if(2 * start > limit && !may_collapse);
   StepReport report = first_try();
   if (step_interrupt_requested()) return given_up(report);
   if (parameters_.retry_parts < 2) return report;
@@ -87,6 +98,7 @@ StepReport NscdIntegrator::step_with_retries(double h) {
     collapsing = true;
     discard(report);
     take_again_from_start();
+    hand_on_if(2 * start > limit);
     report = first_try();
     if (step_interrupt_requested()) return given_up(report);
   }
@@ -101,10 +113,22 @@ StepReport NscdIntegrator::step_with_retries(double h) {
     parts = landing_parts * finer;
     discard(report);
     take_again_from_start();
+    hand_on_if(2 * finer > limit);
     report = step_in_parts(h / double(parts), parts, true);
     if (step_interrupt_requested()) return given_up(report);
   }
-  if (finer > start || collapsing) {
+  // The last try, unconverged, was taken without the later stages: once more with them, as it
+  // was taken (a first try that was not retaken as a collapse, where the budget allows no parts).
+  bool again_handed_on = false;
+  if (!report.converged && !hand_on_) {
+    again_handed_on = true;
+    discard(report);
+    take_again_from_start();
+    hand_on_if(true);
+    report = finer > start ? step_in_parts(h / double(parts), parts, true) : first_try();
+    if (step_interrupt_requested()) return given_up(report);
+  }
+  if (finer > start || collapsing || again_handed_on) {
     // restore_state put back the counters of the start: the retry's own go on top of the
     // parts' (each part counted as a step), and the discarded tries' time with the rest.
     report.retry_parts = parts;

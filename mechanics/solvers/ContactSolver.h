@@ -90,6 +90,10 @@ class ContactSolver {
   virtual std::vector<double> carried_state() const { return {}; }
   // Whether the solver hands unconverged solves on to later stages (SolveReport::fallback_stage).
   virtual bool has_fallback() const { return false; }
+  // Whether the solves that follow may be handed on (default: yes). The integrator withholds the
+  // later stages on a try of a step that a retry in shorter parts would follow
+  // (NscdParameters::fallback_on_last_try).
+  virtual void set_hand_on(bool /*allowed*/) {}
   virtual void restore_carried_state(const std::vector<double>& /*state*/) {}
 
  private:

@@ -55,14 +55,18 @@ class FallbackContactSolver final : public ContactSolver {
     const auto first_started = std::chrono::steady_clock::now();
     SolveReport kept = first_->solve_with_rolling(problem, r, m, velocity, angular_velocity);
     const std::size_t unknowns = problem.particle_count * (problem.dimension == 2 ? 3 : 6);
-    if (kept.converged || problem.compliant || unknowns > max_unknowns_) return kept;
+    if (kept.converged || problem.compliant || unknowns > max_unknowns_ || !hand_on_) return kept;
     if (step_interrupt_requested()) return kept;  // the step is given up (StepInterrupt.h)
     ++fallbacks_;
     // The later stages' work, reported (SolveReport::fallback_stage): what the default solver's
     // fallback costs, and which stage converges the solves, is for the run to tell.
     const auto started = std::chrono::steady_clock::now();
     const int first_sweeps = kept.sweeps;
-    bool within = false;
+    const double q_norm = free_velocity_norm(problem);
+    double kept_residual = siconos_residual(problem, r, m, velocity, angular_velocity, q_norm);
+    // Within the tolerance already by Siconos' measure (the first's own stop test unmet): the
+    // second solver ("ipm") takes them as they are, at no iteration.
+    const bool within = kept_residual <= tolerance_;
     const auto ended_by = [&](int stage) {
       kept.fallback_stage = within ? SolveReport::kWithinWhenHandedOn : stage;
       kept.fallback_sweeps = kept.sweeps - first_sweeps;
@@ -71,11 +75,6 @@ class FallbackContactSolver final : public ContactSolver {
       kept.fallback_first_s = std::chrono::duration<double>(started - first_started).count();
       return kept;
     };
-    const double q_norm = free_velocity_norm(problem);
-    double kept_residual = siconos_residual(problem, r, m, velocity, angular_velocity, q_norm);
-    // Within the tolerance already by Siconos' measure (the first's own stop test unmet): the
-    // second solver ("ipm") takes them as they are, at no iteration.
-    within = kept_residual <= tolerance_;
     run_from_kept(*second_, problem, r, m, velocity, angular_velocity, q_norm, kept, kept_residual);
     if (kept.converged || !(kept_residual <= near_miss_residual_)) return ended_by(SolveReport::kSecondSolver);
     ++near_misses_;
@@ -89,6 +88,7 @@ class FallbackContactSolver final : public ContactSolver {
     return ended_by(SolveReport::kPlainSweeps);
   }
   bool has_fallback() const override { return true; }
+  void set_hand_on(bool allowed) override { hand_on_ = allowed; }
   std::vector<double> carried_state() const override { return first_->carried_state(); }
   void restore_carried_state(const std::vector<double>& state) override { first_->restore_carried_state(state); }
 
@@ -175,6 +175,7 @@ class FallbackContactSolver final : public ContactSolver {
   std::vector<Eigen::Vector3d> r_, m_;  // the result kept while another solver runs
   std::vector<Eigen::Vector3d> v_, w_;  // polish(): the best velocities seen
   long fallbacks_ = 0, near_misses_ = 0, polished_ = 0;
+  bool hand_on_ = true;  // set_hand_on()
 };
 
 }  // namespace tmdem::mechanics

@@ -258,7 +258,7 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& given,
   // goes on with the sweep test tightened by the factor it missed by (halved), from the
   // reactions it reached, until Siconos' residual is within the tolerance too.
   if (settings_.siconos_stop && report.converged) {
-    const double q_norm = free_velocity_norm(problem);
+    const double q_norm = hooks.q_norm >= 0.0 ? hooks.q_norm : free_velocity_norm(problem);  // the checks' when they ran
     double sweep_tolerance = settings_.tolerance;
     hooks.check_siconos = true;
     hooks.q_norm = q_norm;

@@ -173,7 +173,8 @@ TEST(StepRetry, RetriesThatFailAreCutAndComeBackAfterConvergedSteps) {
 
 // 6 steel spheres stacked on the floor and a 5 g piston under 2 N falling 10 R onto them,
 // landing at about 2.5 m/s: the landing step is taken in equal parts (test_piston.cpp).
-NscdIntegrator landing_column(int retry_parts, int max_iterations, double tolerance = 1e-10) {
+NscdIntegrator landing_column(int retry_parts, int max_iterations, double tolerance = 1e-10,
+                              bool fallback_on_last_try = false) {
   ParticleSet set;
   for (int k = 0; k < 6; ++k)
     set.add(Eigen::Vector3d(0, kRadius * (2 * k + 1), 0), kRadius, sphere_mass(kRadius, kDensity), 0);
@@ -184,6 +185,7 @@ NscdIntegrator landing_column(int retry_parts, int max_iterations, double tolera
   parameters.tolerance = tolerance;
   parameters.max_iterations = max_iterations;
   parameters.retry_parts = retry_parts;
+  parameters.fallback_on_last_try = fallback_on_last_try;
   return NscdIntegrator(std::move(set), {steel(0.0)},
                         {Wall::through({0, 0, 0}, {0, 1, 0}, 0), piston,
                          Wall::through({-kRadius, 0, 0}, {1, 0, 0}, 0),
@@ -260,6 +262,36 @@ TEST(FallbackCounts, EverySolveHandedOnIsCountedWithTheStageThatEndedIt) {
   ASSERT_GT(retried_steps, 0) << "the test needs a retried step";
   EXPECT_GE(retried.stats().fallback.solves, standing.solves + retried_steps);
   EXPECT_GT(retried.stats().fallback.sweeps, standing.sweeps);
+}
+
+// fallback_on_last_try: the later stages run only on a try no retry follows. The landing column
+// at 1e-10, nncg cut to 3 sweeps, retaken up to 8 parts: every solve handed on is in a try that
+// stands (the run's counts equal the standing steps'), where without the option the thrown
+// tries hand on too; the retried steps' standing tries hand on, and a step that converged as
+// first taken handed nothing on (its try was not the last possible).
+TEST(StepRetry, TheFallbackRunsOnlyOnAStepsLastTry) {
+  for (const bool last_only : {true, false}) {
+    SCOPED_TRACE(last_only ? "fallback_on_last_try" : "every try");
+    NscdIntegrator sim = landing_column(8, 3, 1e-10, last_only);
+    const double h = sim.parameters().time_step;
+    FallbackCounts standing;
+    std::int64_t retried_steps = 0;
+    for (int step = 0; step < 60; ++step) {
+      const StepReport report = sim.step(h);
+      standing += report.fallback;
+      if (report.retry_parts > 0) ++retried_steps;
+      if (last_only && report.retry_parts == 0 && report.converged)
+        EXPECT_EQ(report.fallback.solves, 0) << "step " << step;
+    }
+    ASSERT_GT(retried_steps, 0) << "the test needs a retried step";
+    ASSERT_GT(standing.solves, 0) << "the test needs solves handed on";
+    if (last_only) {
+      EXPECT_EQ(sim.stats().fallback.solves, standing.solves);
+      EXPECT_EQ(sim.stats().fallback.sweeps, standing.sweeps);
+    } else {
+      EXPECT_GE(sim.stats().fallback.solves, standing.solves + retried_steps);
+    }
+  }
 }
 
 TEST(StepRetry, ALandingTakenInPartsIsRetakenInShorterParts) {

@@ -129,7 +129,9 @@ std::vector<Section> settings_sections() {
                 "in shorter parts (retry_parts) would follow; a try that turned out to be the "
                 "last without them is taken once more with them. A retry in parts converged "
                 "the steps the stages left unconverged on a plate landing on a deposit, in a "
-                "quarter of the time; off by default until measured on more beds "
+                "quarter of the time; off by default: on beds whose hard steps follow one "
+                "another (2D deposits loaded, a periodic piston) the stages are cheaper than "
+                "the retries, and one such bed kept an unconverged step with it "
                 "(docs/mechanics.md \"The fallback on the last try\")"),
         value("full_sweep_every", "", std::to_string(kM.full_sweep_every), "integer >= 1",
               "\"nlgs\", \"nlgs_coloured\": a sweep over every candidate at least every this "

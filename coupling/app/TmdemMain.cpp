@@ -16,6 +16,7 @@
 #include "coupling/studies/CouplingStudy.h"
 #include "coupling/scene/DefaultScene.h"
 #include "coupling/scene/ParticleImport.h"
+#include "coupling/run/MechanicsStepLog.h"
 #include "coupling/output/OutputError.h"
 #include "coupling/app/RunEndReport.h"
 #include "coupling/app/SceneCheck.h"
@@ -51,7 +52,7 @@ int tmdem_main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("tmdem ") + TMDEM_VERSION);
   app.require_subcommand(1);
 
-  std::string scene_path, output, summary, restart;
+  std::string scene_path, output, summary, restart, step_log;
   std::vector<std::string> sets;
   bool quiet = false, overwrite = false;
   auto* run = app.add_subcommand("run", "run a scene (default: the built-in paper bed)");
@@ -62,6 +63,9 @@ int tmdem_main(int argc, char** argv) {
       ->take_all()->allow_extra_args(false);
   run->add_option("--summary", summary, "write the run summary (JSON) here");
   run->add_option("--restart", restart, "continue from a checkpoint file");
+  run->add_option("--step-log", step_log,
+                  "write one CSV line per mechanics step here: sweeps, residuals, retries, times "
+                  "(docs/step-log.md)");
   run->add_flag("--overwrite", overwrite, "replace an existing result file");
   run->add_flag("--quiet", quiet, "no progress on stderr");
 
@@ -178,6 +182,8 @@ int tmdem_main(int argc, char** argv) {
   auto* docs = app.add_subcommand("docs", "print generated reference documentation");
   auto* docs_scene = docs->add_subcommand(
       "scene", "the scene file reference (Markdown): every key with unit, default, range");
+  auto* docs_step_log = docs->add_subcommand(
+      "step-log", "the step log's columns (Markdown; tmdem run --step-log)");
   docs->require_subcommand(1);
 
   try {
@@ -231,7 +237,9 @@ int tmdem_main(int argc, char** argv) {
       options.resume_command = "tmdem run" + (scene_path.empty() ? "" : " " + shell_quoted(scene_path));
       for (const auto& set : sets) options.resume_command += " --set " + shell_quoted(set);
       options.resume_command += " -o " + shell_quoted(options.output_path);
+      if (!step_log.empty()) options.resume_command += " --step-log " + shell_quoted(step_log);
       options.summary_path = summary;
+      options.step_log_path = step_log;
       options.restart_path = restart;
       options.quiet = quiet || !speaks;
       options.terminal = isatty(STDERR_FILENO);
@@ -249,6 +257,10 @@ int tmdem_main(int argc, char** argv) {
                                          std::cout, std::cerr);
     if (*docs_scene) {
       std::cout << scene_reference_markdown();
+      return kExitOk;
+    }
+    if (*docs_step_log) {
+      std::cout << MechanicsStepLog::reference_markdown();
       return kExitOk;
     }
     if (*check) {

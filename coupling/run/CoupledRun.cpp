@@ -100,6 +100,7 @@ RunOutcome CoupledRun::run() {
   paths.scene = options_.scene_path;
   paths.result = options_.output_path;
   paths.summary = options_.summary_path;
+  paths.step_log = options_.step_log_path;
   paths.checkpoint = checkpoint_path_for(options_.output_path);
   paths.checkpoints = true;  // an interruption writes one even without checkpoint_interval
   paths.overwrite = options_.overwrite;
@@ -127,6 +128,9 @@ RunOutcome CoupledRun::run() {
   std::optional<Interruption> interruption;
   if (options_.handle_signals) interruption.emplace(options_.quiet, nullptr, true);
   try {
+    // Before the settle, whose steps it logs; a restart appends (MechanicsStepLog.h).
+    if (writes_files_ && !options_.step_log_path.empty())
+      step_log_.emplace(options_.step_log_path, !options_.restart_path.empty());
     restore_checkpoint();
     prepare_mechanics();
     prepare_thermal();

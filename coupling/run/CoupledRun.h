@@ -20,6 +20,7 @@ namespace tmdem::coupling {
 struct RunOptions {
   std::string output_path;      // result file (scene's output.file unless -o)
   std::string summary_path;     // empty: no summary file
+  std::string step_log_path;    // --step-log: one CSV line per mechanics step; empty: none
   std::string restart_path;     // empty: start at t = 0
   std::string scene_path;       // the scene file read (empty: built-in); never an output
   bool overwrite = false;       // --overwrite: an existing result file may be replaced

@@ -18,6 +18,7 @@
 #include "coupling/bridge/CouplingStrategy.h"
 #include "coupling/bridge/DynamicNetwork.h"
 #include "coupling/output/Checkpoint.h"
+#include "coupling/run/MechanicsStepLog.h"
 #include "coupling/output/ProgressReporter.h"
 #include "coupling/output/ResultWriter.h"
 #include "coupling/output/RunSummary.h"
@@ -107,6 +108,8 @@ class CoupledRun {
   // centres, 3 per particle, in place of particles_ and contacts_, which stay empty.
   std::vector<double> centre_m_;
   std::unique_ptr<mechanics::NscdIntegrator> nscd_;   // settle and dynamic
+  // --step-log: a CSV line per mechanics step (rank 0), opened with the other outputs' checks.
+  std::optional<MechanicsStepLog> step_log_;
   bool frozen_ = true;                                // positions no longer change
   std::vector<double> zero_velocity_;
   ContactList contacts_;

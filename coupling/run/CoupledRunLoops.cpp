@@ -55,6 +55,7 @@ void CoupledRun::run_dynamic() {
   bool frame_at_t = !restart_;
   for (const double frame_s : times) frame_at_t = frame_at_t || std::abs(frame_s - t0_) < 0.5 * h;
   long k = std::lround(t0_ / h);
+  if (step_log_) step_log_->begin_phase("run", t0_);
   while (t < scene_.duration_s - 1e-9 * h) {
     ++k;
     const double t_next = std::min(double(k) * h, scene_.duration_s);

@@ -49,6 +49,10 @@ void CoupledRun::prepare_mechanics() {
     return;
   }
   nscd_ = make_nscd_integrator(scene_, particles_);
+  if (step_log_)
+    nscd_->set_step_observer([this](double h_s, const mechanics::StepReport& report) {
+      step_log_->write(h_s, report, nscd_->max_speed());
+    });
   if (settle_resume_) {
     // A settle resumed where its checkpoint stopped it: the integrator's whole state and the
     // settle's own (its rest test's window and counters), then settle() as in any run.
@@ -131,6 +135,7 @@ void CoupledRun::settle() {
       }};
   // A mechanics error within the settle (a period too short for a particle kicked by a landing
   // piston) says when it came: it is not a scene refused at set-up.
+  if (step_log_) step_log_->begin_phase("settle", settle_progress_.time_s);
   try {
     summary_.settle = settle_packing(*nscd_, scene_, progress_,
                                      &Interruption::requested, &settle_progress_,

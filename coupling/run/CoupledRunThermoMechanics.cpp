@@ -77,6 +77,7 @@ void CoupledRun::recouple() {
     std::copy(radius_m_.begin(), radius_m_.end(), particles.radius.begin());
     nscd_->invalidate_contacts();  // candidates and gaps follow the radii
   }
+  if (step_log_) step_log_->begin_phase("resettle", 0.0);
   const SettleSummary settled =
       settle_packing(*nscd_, scene_, progress_, &Interruption::requested);
   mechanics_seconds_ += seconds_since(mechanics_start);

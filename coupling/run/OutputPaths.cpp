@@ -49,6 +49,10 @@ OutputPathProblem check_output_paths(const OutputPaths& p) {
   if (p.checkpoints && (same_file(p.checkpoint, p.scene) || same_file(p.checkpoint, p.result))) {
     return refuse("checkpoint file '" + p.checkpoint + "' is the scene or the result file");
   }
+  if (same_file(p.step_log, p.scene) || same_file(p.step_log, p.result) ||
+      same_file(p.step_log, p.summary) || (p.checkpoints && same_file(p.step_log, p.checkpoint))) {
+    return refuse("step log '" + p.step_log + "' is the scene, the result, the summary or the checkpoint file");
+  }
   std::error_code error;
   if (!p.restart && !p.overwrite && fs::exists(p.result, error)) {
     return refuse("result file '" + p.result +
@@ -60,6 +64,11 @@ OutputPathProblem check_output_paths(const OutputPaths& p) {
   if (!p.summary.empty()) {
     if (const std::string why = unwritable(p.summary); !why.empty()) {
       return {kExitIo, "cannot write summary file '" + p.summary + "': " + why};
+    }
+  }
+  if (!p.step_log.empty()) {
+    if (const std::string why = unwritable(p.step_log); !why.empty()) {
+      return {kExitIo, "cannot write step log '" + p.step_log + "': " + why};
     }
   }
   if (p.checkpoints) {

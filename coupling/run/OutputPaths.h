@@ -17,6 +17,7 @@ struct OutputPaths {
   std::string result;
   std::string summary;     // empty: none
   std::string checkpoint;  // where checkpoints would go
+  std::string step_log;    // --step-log: empty: none
   bool checkpoints = false;
   bool overwrite = false;  // --overwrite
   bool restart = false;    // --restart: the result must exist and is continued

@@ -54,6 +54,8 @@
 // Fixed particles have infinite mass and inertia: they never move and keep zero velocity.
 
 #include <Eigen/Core>
+#include <functional>
+#include <utility>
 #include <vector>
 
 #include <memory>
@@ -109,6 +111,12 @@ class NscdIntegrator {
   const std::vector<ContactForce>& contacts() const { return contacts_; }
   const MechanicsStats& stats() const { return stats_; }
   void restore_stats(const MechanicsStats& stats) { stats_ = stats; }  // after a restart
+
+  // Called at the end of every step(h) that was not given up, with h (s) and the step's report
+  // (its parts' sums when taken in parts; the try that stands when retaken): a per-step log
+  // (the coupling's MechanicsStepLog). Nothing about the step depends on it. Empty: none.
+  using StepObserver = std::function<void(double h_s, const StepReport& report)>;
+  void set_step_observer(StepObserver observer) { step_observer_ = std::move(observer); }
 
   // What the next step reads (MechanicsState.h), and putting it back into an integrator built
   // from the same scene: the steps after restore_state(save_state()) are bitwise those of the
@@ -291,6 +299,7 @@ class NscdIntegrator {
   std::vector<Eigen::Vector3d> torque_, old_torque_;
   std::vector<ContactForce> contacts_;
   MechanicsStats stats_;
+  StepObserver step_observer_;
 };
 
 }  // namespace tmdem::mechanics

@@ -12,6 +12,7 @@ namespace tmdem::mechanics {
 StepReport NscdIntegrator::step(double h) {
   StepReport report = step_with_retries(h);
   if (!report.converged && !report.interrupted) ++stats_.unconverged_time_steps;
+  if (step_observer_ && !report.interrupted) step_observer_(h, report);
   return report;
 }
 

@@ -131,6 +131,22 @@ inline SceneBuilder copper_drop_scene(double duration_s) {
       .add("material", copper());
 }
 
+// One steel sphere 9 mm above the floor, settled for 10 steps of 1 ms: free fall all along, so
+// after k steps its speed is k h g exactly (the Moreau-Jean velocity update).
+inline std::string falling_sphere_scene() {
+  return steel_scene()
+      .set({{"simulation.duration", 1.0},
+            {"simulation.dimension", 3},
+            {"simulation.gravity", {0.0, -9.81, 0.0}},
+            {"effects.mechanics", "settle"},
+            {"mechanics.time_step", 1.0e-3},
+            {"mechanics.settle_time", 0.01}})
+      .add("particle", particle({0.0, 0.01, 0.0}))
+      .add("wall", floor_wall())
+      .set(output("out.h5", 0.5))
+      .str();
+}
+
 inline nlohmann::json read_summary(const std::string& path) {
   std::ifstream in(path);
   return nlohmann::json::parse(in);

@@ -47,20 +47,8 @@ std::string resting_column(const std::string& solver) {
 
 TEST(EndToEndSettleReport, FallingSphereIsFrozenNotAtRestAndSaysSoInItsLastLines) {
   const auto dir = scratch_dir("settle_not_at_rest");
-  // One sphere 9 mm above the floor, settle_time 10 steps: free fall all along, so after
-  // n = 10 steps of h = 1 ms its speed is n h g exactly (the Moreau-Jean velocity update).
-  write_file(dir + "/s.toml",
-             steel_scene()
-                 .set({{"simulation.duration", 1.0},
-                       {"simulation.dimension", 3},
-                       {"simulation.gravity", {0.0, -9.81, 0.0}},
-                       {"effects.mechanics", "settle"},
-                       {"mechanics.time_step", 1.0e-3},
-                       {"mechanics.settle_time", 0.01}})
-                 .add("particle", particle({0.0, 0.01, 0.0}))
-                 .add("wall", floor_wall())
-                 .set(output("out.h5", 0.5))
-                 .str());
+  // Free fall all along: after n = 10 steps of h = 1 ms the speed is n h g exactly.
+  write_file(dir + "/s.toml", falling_sphere_scene());
   for (const std::string quiet : {"", " --quiet"}) {
     const auto r = run_tmdem("run s.toml --overwrite --summary s.json" + quiet, dir);
     ASSERT_EQ(r.exit_code, 0) << r.output;

@@ -8,7 +8,9 @@
 #include "coupling/app/StudyCsvFile.h"
 #include "coupling/common/ExitCode.h"
 #include "coupling/common/ShortestNumber.h"
+#include "coupling/output/OutputError.h"
 #include "coupling/output/ProgressReporter.h"
+#include "coupling/run/MechanicsStepLog.h"
 #include "coupling/run/Interruption.h"
 #include "coupling/studies/ConductivityReport.h"
 #include "thermal/integrators/ThermalSolverError.h"
@@ -17,8 +19,21 @@ namespace tmdem::coupling {
 
 int run_conductivity_command(const Scene& scene, const ConductivityCommandOptions& options,
                              std::ostream& out, std::ostream& log) {
+  if (!options.step_log_path.empty() && options.step_log_path == options.csv_path) {
+    log << "error: step log '" << options.step_log_path << "' is the CSV file; choose another --step-log" << std::endl;
+    return kExitInvalid;
+  }
   StudyCsvFile csv(options.csv_path);
   if (!csv.open(log)) return kExitIo;
+  std::optional<MechanicsStepLog> step_log;
+  try {
+    if (!options.step_log_path.empty()) step_log.emplace(options.step_log_path, false);
+  } catch (const OutputError& e) {
+    log << "error: " << e.what() << std::endl;
+    csv.discard();
+    return kExitIo;
+  }
+  MechanicsStepLog* const steps = step_log ? &*step_log : nullptr;
 
   // A study of one load has nothing to keep: a signal ends it at once, as by default.
   std::optional<Interruption> interruption;
@@ -31,9 +46,10 @@ int run_conductivity_command(const Scene& scene, const ConductivityCommandOption
   const int computed = csv.compute_or_discard<thermal::ThermalSolverError>([&] {
     ProgressReporter progress(log, options.quiet, options.terminal);
     if (options.pressures_Pa.empty())
-      results.push_back(run_conductivity_study(scene, progress));
+      results.push_back(run_conductivity_study(scene, progress, steps));
     else
-      results = run_conductivity_pressure_study(scene, options.pressures_Pa, progress, &Interruption::requested);
+      results = run_conductivity_pressure_study(scene, options.pressures_Pa, progress,
+                                                &Interruption::requested, steps);
     return kExitOk;
   }, log);
   if (computed != kExitOk) return computed;

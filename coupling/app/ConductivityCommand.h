@@ -12,6 +12,7 @@ namespace tmdem::coupling {
 
 struct ConductivityCommandOptions {
   std::string csv_path;
+  std::string step_log_path;  // --step-log: a CSV line per settle step (MechanicsStepLog.h); empty: none
   std::vector<double> pressures_Pa;  // empty: the bed as the scene gives it
   bool quiet = false;
   bool terminal = false;

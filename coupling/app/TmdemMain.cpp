@@ -122,6 +122,8 @@ int tmdem_main(int argc, char** argv) {
                            "piston pressures, Pa (needs a piston)")
       ->delimiter(',');
   conductivity->add_option("--csv", conductivity_options.csv_path, "write the table as CSV here");
+  conductivity->add_option("--step-log", conductivity_options.step_log_path,
+                           "write one CSV line per settle step here (docs/step-log.md)");
   conductivity->add_option("--set", sets, "override one scene value, KEY=VALUE (TOML value)")
       ->take_all()->allow_extra_args(false);
   conductivity->add_flag("--quiet", conductivity_options.quiet, "no progress on stderr");

@@ -49,10 +49,7 @@ void CoupledRun::prepare_mechanics() {
     return;
   }
   nscd_ = make_nscd_integrator(scene_, particles_);
-  if (step_log_)
-    nscd_->set_step_observer([this](double h_s, const mechanics::StepReport& report) {
-      step_log_->write(h_s, report, nscd_->max_speed());
-    });
+  if (step_log_) step_log_->attach(*nscd_);
   if (settle_resume_) {
     // A settle resumed where its checkpoint stopped it: the integrator's whole state and the
     // settle's own (its rest test's window and counters), then settle() as in any run.

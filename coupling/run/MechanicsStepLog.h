@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "mechanics/integrator/NscdIntegrator.h"
 #include "mechanics/integrator/StepReport.h"
 
 namespace tmdem::coupling {
@@ -32,12 +33,15 @@ class MechanicsStepLog {
   // header is written only into an empty file). Throws OutputError naming the file.
   MechanicsStepLog(std::string path, bool append);
 
-  // The steps that follow belong to `phase` ("settle", "run", "resettle"), whose clock stands at
+  // The steps that follow belong to `phase` ("settle", "run", "resettle", "settle at P Pa"), whose clock stands at
   // t_s (s): settle time within a settle, the run's simulated time in a run.
   void begin_phase(std::string phase, double t_s);
   // One line for a step of h_s seconds that ended with `report`, the fastest particle then at
   // max_speed_m_s. Throws OutputError when the line cannot be written.
   void write(double h_s, const mechanics::StepReport& report, double max_speed_m_s);
+
+  // Every step of `nscd` from now on writes a line (NscdIntegrator::set_step_observer).
+  void attach(mechanics::NscdIntegrator& nscd);
 
   const std::string& path() const { return path_; }
 

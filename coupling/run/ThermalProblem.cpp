@@ -219,7 +219,8 @@ void freeze_packing(const Scene& scene, const mechanics::NscdIntegrator& nscd,
   for (const auto& p : scene.particles) problem.T0_K.push_back(p.temperature_K);
 }
 
-FrozenThermalProblem build_frozen_thermal_problem(const Scene& scene, ProgressReporter& progress) {
+FrozenThermalProblem build_frozen_thermal_problem(const Scene& scene, ProgressReporter& progress,
+                                                  MechanicsStepLog* step_log) {
   FrozenThermalProblem problem;
   switch (scene.effects.mechanics) {
     case MechanicsMode::Off: {
@@ -233,6 +234,10 @@ FrozenThermalProblem build_frozen_thermal_problem(const Scene& scene, ProgressRe
     }
     case MechanicsMode::Settle: {
       auto nscd = make_nscd_integrator(scene, make_particle_set(scene));
+      if (step_log) {
+        step_log->attach(*nscd);
+        step_log->begin_phase("settle", 0.0);
+      }
       problem.settle = settle_packing(*nscd, scene, progress);
       freeze_packing(scene, *nscd, problem);
       break;

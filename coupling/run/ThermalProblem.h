@@ -11,6 +11,7 @@
 #include "coupling/bridge/ContactList.h"
 #include "coupling/output/ProgressReporter.h"
 #include "coupling/output/RunSummary.h"
+#include "coupling/run/MechanicsStepLog.h"
 #include "coupling/run/SettleProgress.h"
 #include "coupling/scene/Scene.h"
 #include "coupling/bridge/ThermalNetworkBuilder.h"
@@ -83,7 +84,9 @@ struct FrozenThermalProblem {
   std::vector<Vec3> positions_m;  // particle centres of the frozen packing (after settling)
   std::vector<Vec3> wall_points_m;  // walls' points (a piston's after settling)
 };
-FrozenThermalProblem build_frozen_thermal_problem(const Scene& scene, ProgressReporter& progress);
+// With `step_log`, the settle's steps are logged (phase "settle").
+FrozenThermalProblem build_frozen_thermal_problem(const Scene& scene, ProgressReporter& progress,
+                                                  MechanicsStepLog* step_log = nullptr);
 
 // The frozen thermal problem of the packing `nscd` holds now (after settle_packing): its
 // contacts and positions, and the thermal system built with the walls where the mechanics has

@@ -1,5 +1,7 @@
 #include "coupling/studies/ConductivityStudy.h"
 
+#include "coupling/common/ShortestNumber.h"
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -353,12 +355,13 @@ std::size_t study_piston(const Scene& scene) {
 
 }  // namespace
 
-ConductivityResult run_conductivity_study(const Scene& input, ProgressReporter& progress) {
+ConductivityResult run_conductivity_study(const Scene& input, ProgressReporter& progress,
+                                          MechanicsStepLog* step_log) {
   const auto [hot, cold] = conductivity_walls(input);
   Scene scene = input;
   if (scene.effects.mechanics == MechanicsMode::Dynamic || scene.effects.mechanics == MechanicsMode::Coupled)
     scene.effects.mechanics = MechanicsMode::Settle;
-  const auto problem = build_frozen_thermal_problem(scene, progress);
+  const auto problem = build_frozen_thermal_problem(scene, progress, step_log);
   auto r = measure_conductivity(with_walls_of(scene, problem), problem, hot, cold);
   const auto& piston = std::find_if(scene.walls.begin(), scene.walls.end(), [](const Wall& w) { return w.piston; });
   if (piston != scene.walls.end() && piston->piston_pressure_Pa && scene.effects.mechanics != MechanicsMode::Off)
@@ -377,7 +380,7 @@ double piston_area_m2(const Scene& scene) {
 
 std::vector<ConductivityResult> run_conductivity_pressure_study(
     const Scene& input, const std::vector<double>& pressures_Pa, ProgressReporter& progress,
-    const std::function<bool()>& stop) {
+    const std::function<bool()>& stop, MechanicsStepLog* step_log) {
   const auto [hot, cold] = conductivity_walls(input);
   Scene scene = input;
   if (scene.effects.mechanics == MechanicsMode::Dynamic || scene.effects.mechanics == MechanicsMode::Coupled)
@@ -389,12 +392,14 @@ std::vector<ConductivityResult> run_conductivity_pressure_study(
       throw SceneError("study conductivity --pressures: every pressure must be a finite number "
                        ">= 0 Pa (got " + std::to_string(p) + ")");
   auto nscd = make_nscd_integrator(scene, make_particle_set(scene));
+  if (step_log) step_log->attach(*nscd);
   std::vector<ConductivityResult> results;
   for (double p : pressures_Pa) {
     // Each load re-settles the bed left by the previous one (the piston keeps its place and
     // the contacts their forces as the warm start).
     nscd->set_piston_load(piston, p * area);
     FrozenThermalProblem problem;
+    if (step_log) step_log->begin_phase("settle at " + shortest_number(p) + " Pa", 0.0);
     problem.settle = settle_packing(*nscd, scene, progress, stop);
     if (problem.settle->ended_by == "interrupted") break;  // this load's packing is not settled
     freeze_packing(scene, *nscd, problem);

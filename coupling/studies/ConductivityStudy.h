@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "coupling/output/ProgressReporter.h"
+#include "coupling/run/MechanicsStepLog.h"
 #include "coupling/scene/Scene.h"
 #include "thermal/integrators/IntegratorKind.h"
 
@@ -88,7 +89,9 @@ std::pair<std::size_t, std::size_t> conductivity_walls(const Scene& scene);
 
 // Runs the study on the scene (settling first if it asks for mechanics). Throws SceneError for
 // an unsuitable scene, thermal::ThermalSolverError when the steady state fails.
-ConductivityResult run_conductivity_study(const Scene& scene, ProgressReporter& progress);
+// With `step_log`, the settle's steps are logged (MechanicsStepLog.h).
+ConductivityResult run_conductivity_study(const Scene& scene, ProgressReporter& progress,
+                                          MechanicsStepLog* step_log = nullptr);
 
 // The area a --pressures pressure acts over, m^2: the piston's pressure_area, else the study's
 // cross-section (side walls, else the particles' extent as the scene places them).
@@ -104,6 +107,6 @@ double piston_area_m2(const Scene& scene);
 // left out.
 std::vector<ConductivityResult> run_conductivity_pressure_study(
     const Scene& scene, const std::vector<double>& pressures_Pa, ProgressReporter& progress,
-    const std::function<bool()>& stop = nullptr);
+    const std::function<bool()>& stop = nullptr, MechanicsStepLog* step_log = nullptr);
 
 }  // namespace tmdem::coupling

@@ -161,3 +161,38 @@ TEST(StepLogReference, DocsStepLogMdIsTheGeneratedReference) {
       << "docs/step-log.md differs from the columns the log writes; regenerate it with:\n"
          "  build/tmdem docs step-log > docs/step-log.md";
 }
+
+// `tmdem study conductivity --pressures` logs each load's settle as its own phase, its clock
+// from 0; a step log that is the study's CSV is refused.
+TEST(EndToEndStepLog, APressureStudyLogsEachLoadsSettle) {
+  const auto dir = scratch_dir("step_log_study");
+  write_file(dir + "/bed.toml",
+             SceneBuilder()
+                 .set("simulation.duration", 1.0)
+                 .add("material", steel({{"friction", 0.0}}))
+                 .set({{"effects.mechanics", "settle"}, {"mechanics.tolerance", 1e-10}})
+                 .add("generate", lattice({2, 3, 2}))
+                 .add("wall", floor_wall({{"temperature", 310.0}}))
+                 .add("wall", plane_wall({0.0, 0.006, 0.0}, {0.0, -1.0, 0.0},
+                                         {{"temperature", 290.0}, {"piston", true}, {"mass", 1e-3}}))
+                 .add("wall", plane_wall({0.0, 0.0, 0.0}, {1.0, 0.0, 0.0}))
+                 .add("wall", plane_wall({0.004, 0.0, 0.0}, {-1.0, 0.0, 0.0}))
+                 .str());
+  auto r = run_tmdem("study conductivity bed.toml --pressures 1e3,1e4 --quiet --step-log steps.csv", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto log = read_step_log(dir + "/steps.csv");
+  EXPECT_EQ(log.header, documented_columns());
+  ASSERT_FALSE(log.rows.empty());
+  std::vector<std::string> phases;
+  for (std::size_t k = 0; k < log.rows.size(); ++k) {
+    const std::string& phase = log.rows[k].at("phase");
+    if (phases.empty() || phases.back() != phase) {
+      phases.push_back(phase);
+      EXPECT_NEAR(log.number(k, "t_s"), log.number(k, "h_s"), 1e-15) << phase << ": its clock starts at 0";
+    }
+  }
+  EXPECT_EQ(phases, (std::vector<std::string>{"settle at 1000 Pa", "settle at 10000 Pa"}));
+  r = run_tmdem("study conductivity bed.toml --pressures 1e3 --quiet --csv k.csv --step-log k.csv", dir);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("step log 'k.csv' is the CSV file"), std::string::npos) << r.output;
+}

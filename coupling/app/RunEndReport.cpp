@@ -112,6 +112,9 @@ void print_run_end(const RunSummary& summary, const Scene& scene, const std::str
     if (m.kept_parts_steps > 0)
       out << ", " << m.kept_parts_steps << " steps started in the parts a retry before them needed "
           << "(mechanics.retry_keep_steps, docs/mechanics.md \"Steps that start in the parts the last retry needed\")";
+    if (m.relisted_steps > 0)
+      out << ", " << m.relisted_steps << " steps listed again: the travel under a loaded piston "
+          << "left the table its likely reach had listed (docs/mechanics.md \"A loaded piston's reach\")";
     if (m.piston_corrections > 0)
       out << ", " << m.piston_corrections << " corrections moved a piston: particles pinned under it "
           << "(docs/mechanics.md \"Penetration without speed\")";

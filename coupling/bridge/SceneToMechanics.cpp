@@ -57,6 +57,7 @@ mechanics::NscdParameters make_nscd_parameters(const Scene& scene) {
   p.tighten_steps = scene.mechanics.tighten_steps;
   p.stop_travel_fraction = scene.mechanics.stop_travel;
   p.skip_out_of_reach = scene.mechanics.skip_out_of_reach;
+  p.estimate_wall_reach = scene.mechanics.estimate_piston_reach;
   p.static_warm_start = scene.mechanics.static_warm_start;
   p.static_balance_rounds = scene.mechanics.static_balance_rounds;
   p.max_iterations = scene.mechanics.max_iterations;

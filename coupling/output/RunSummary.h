@@ -115,6 +115,9 @@ struct MechanicsSummary {
   std::int64_t discarded_sweeps = 0;
   // extra: steps started in the parts an earlier retry needed (mechanics.retry_keep_steps)
   std::int64_t kept_parts_steps = 0;
+  // extra: steps listed with a piston's likely reach whose travel left the table: listed again
+  // with the bound and solved again (mechanics estimate_wall_reach)
+  std::int64_t relisted_steps = 0;
   // extra: corrections in which pistons took their share (particles pinned under a piston)
   std::int64_t piston_corrections = 0;
   double max_step_travel_m = 0.0;    // extra: largest particle displacement in one step, m
@@ -146,6 +149,7 @@ inline constexpr std::tuple kMechanicsSummaryFields{
     SummaryField{"retried_steps", &MechanicsSummary::retried_steps},
     SummaryField{"discarded_sweeps", &MechanicsSummary::discarded_sweeps},
     SummaryField{"kept_parts_steps", &MechanicsSummary::kept_parts_steps},
+    SummaryField{"relisted_steps", &MechanicsSummary::relisted_steps},
     SummaryField{"piston_corrections", &MechanicsSummary::piston_corrections},
     SummaryField{"max_step_travel_m", &MechanicsSummary::max_step_travel_m},
     SummaryField{"max_siconos_residual", &MechanicsSummary::max_siconos_residual},

@@ -50,6 +50,7 @@ void CoupledRun::fill_summary() {
     summary_.mechanics.retried_steps = ms.retried_steps;
     summary_.mechanics.discarded_sweeps = ms.discarded_sweeps;
     summary_.mechanics.kept_parts_steps = ms.kept_parts_steps;
+    summary_.mechanics.relisted_steps = ms.relisted_steps;
     summary_.mechanics.piston_corrections = ms.piston_corrections;
     summary_.mechanics.max_step_travel_m = ms.max_travel_m;
     summary_.mechanics.max_siconos_residual = ms.max_siconos_residual;

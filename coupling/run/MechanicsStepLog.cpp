@@ -34,6 +34,7 @@ const std::vector<MechanicsStepLog::Column>& MechanicsStepLog::columns() {
       {"collapse", "-", "1 when it was retaken at `mechanics.fall_tolerance` as a bed giving way"},
       {"start_parts", "-", "the parts it was first taken in, kept from an earlier retry (`mechanics.retry_keep_steps`); 0: whole"},
       {"discarded_sweeps", "-", "the sweeps of the tries its retries threw away"},
+      {"relisted", "-", "1 when its table, listed with a loaded piston's likely reach, did not hold its travel and the step was listed again and solved again (both solves in `sweeps`)"},
       {"fallback_solves", "-", "solves the default solver's first stage (`nncg`) left unconverged and handed to its later stages (`nncg_ipm`), in the try that stands"},
       {"fallback_sweeps", "-", "the later stages' iterations in those solves (part of `sweeps`)"},
       {"candidates", "-", "contacts handed to the solver (the look-ahead's candidates, most of them open)"},
@@ -105,7 +106,7 @@ void MechanicsStepLog::write(double h_s, const mechanics::StepReport& r, double 
        << int(r.converged) << ',' << std::setprecision(4) << r.tolerance << ','
        << r.siconos_residual << ',' << r.residual << ',' << r.natural_map_residual << ','
        << int(r.fall) << ',' << int(r.stalled) << ',' << r.retry_parts << ',' << int(r.collapse)
-       << ',' << r.start_parts << ',' << r.discarded_sweeps << ',' << r.fallback.solves << ','
+       << ',' << r.start_parts << ',' << r.discarded_sweeps << ',' << int(r.relisted) << ',' << r.fallback.solves << ','
        << r.fallback.sweeps << ',' << r.candidates << ',' << r.active_contacts << ','
        << r.max_penetration_m << ',' << r.max_travel_m << ',' << max_speed_m_s << ','
        << r.correction_sweeps << ',' << r.detection_s << ',' << r.solve_s << ',' << r.correction_s

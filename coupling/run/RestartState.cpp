@@ -87,6 +87,7 @@ void store_mechanics_stats(const mechanics::MechanicsStats& s, CheckpointState& 
   cs.extra["mechanics_retried_steps"] = double(s.retried_steps);
   cs.extra["mechanics_discarded_sweeps"] = double(s.discarded_sweeps);
   cs.extra["mechanics_kept_parts_steps"] = double(s.kept_parts_steps);
+  cs.extra["mechanics_relisted_steps"] = double(s.relisted_steps);
   cs.extra["mechanics_fallback_solves"] = double(s.fallback.solves);
   cs.extra["mechanics_fallback_converged_by_second"] = double(s.fallback.converged_by_second);
   cs.extra["mechanics_fallback_converged_by_first_again"] = double(s.fallback.converged_by_first_again);
@@ -124,6 +125,7 @@ mechanics::MechanicsStats mechanics_stats_of(const CheckpointState& cs) {
   s.retried_steps = std::int64_t(extra_or_zero(cs, "mechanics_retried_steps"));
   s.discarded_sweeps = std::int64_t(extra_or_zero(cs, "mechanics_discarded_sweeps"));
   s.kept_parts_steps = std::int64_t(extra_or_zero(cs, "mechanics_kept_parts_steps"));
+  s.relisted_steps = std::int64_t(extra_or_zero(cs, "mechanics_relisted_steps"));
   s.fallback.solves = std::int64_t(extra_or_zero(cs, "mechanics_fallback_solves"));
   s.fallback.converged_by_second = std::int64_t(extra_or_zero(cs, "mechanics_fallback_converged_by_second"));
   s.fallback.converged_by_first_again = std::int64_t(extra_or_zero(cs, "mechanics_fallback_converged_by_first_again"));

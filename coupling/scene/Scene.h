@@ -192,6 +192,7 @@ struct MechanicsSettings {
   std::optional<double> compaction_speed_m_per_s = mechanics::NscdParameters{}.compaction_speed;
   double stop_travel = mechanics::NscdParameters{}.stop_travel_fraction;  // of r_min per step
   bool skip_out_of_reach = mechanics::NscdParameters{}.skip_out_of_reach;
+  bool estimate_piston_reach = mechanics::NscdParameters{}.estimate_wall_reach;
   bool static_warm_start = mechanics::NscdParameters{}.static_warm_start;
   int static_balance_rounds = mechanics::NscdParameters{}.static_balance_rounds;
   int tighten_steps = mechanics::NscdParameters{}.tighten_steps;  // fall_tolerance -> tolerance over this many steps

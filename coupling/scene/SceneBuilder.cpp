@@ -175,6 +175,7 @@ void SceneBuilder::read_settings() {
     m.fall_share = t.number("fall_share");
     m.stop_travel = t.number("stop_travel");
     m.skip_out_of_reach = t.boolean("skip_out_of_reach", m.skip_out_of_reach);
+    m.estimate_piston_reach = t.boolean("estimate_piston_reach", m.estimate_piston_reach);
     m.static_warm_start = t.boolean("static_warm_start", m.static_warm_start);
     m.static_balance_rounds = static_cast<int>(t.integer("static_balance_rounds", m.static_balance_rounds, 0,
                                                                mechanics::NscdParameters::kMaxBalanceRounds));

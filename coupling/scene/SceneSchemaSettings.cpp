@@ -79,6 +79,13 @@ std::vector<Section> settings_sections() {
                "its bodies by this fraction of the smallest radius per time_step, so that "
                "contacts under a load far above their weight are solved to the same speed "
                "error as the rest (docs/mechanics.md \"The defaults\"); 0: off"),
+        boolean("estimate_piston_reach", bool_text(kM.estimate_piston_reach),
+                "where a piston's bound reach (its load and weight as if nothing held it) is "
+                "beyond 8 largest radii (a light piston under a large load), list its candidate "
+                "pairs within its likely reach instead (its speed and twice the acceleration the "
+                "bed's last push leaves it), each step's travel checked against that table after the solve and "
+                "the step listed again with the bound where it does not fit "
+                "(summary mechanics.relisted_steps; docs/mechanics.md \"A loaded piston's reach\")"),
         boolean("skip_out_of_reach", bool_text(kM.skip_out_of_reach),
                 "leave out of each step's contact problem the candidates farther apart than "
                 "their two look-aheads (the bound on the step's motion the detector trusts): "

@@ -142,6 +142,27 @@ bool ContactDetector::update(const ParticleSet& particles, const std::vector<Wal
   return true;
 }
 
+bool ContactDetector::covers(const ParticleSet& particles, const std::vector<Eigen::Vector3d>& travel_m,
+                             const std::vector<Wall>& walls, const std::vector<double>& wall_travel_m) const {
+  const std::size_t n = particles.size();
+  if (!valid_ || reference_position_.size() != n || travel_m.size() < n) return false;
+  const PeriodicBox& box = particles.box;
+  LargestTwo across;
+  for (std::size_t i = 0; i < n; ++i) {
+    Eigen::Vector3d moved = particles.position[i] + travel_m[i] - reference_position_[i];
+    if (box.any()) moved = box.minimum_image(moved);
+    if (moved.norm() > 0.5 * margin_) return false;
+    if (box.any()) across.add(box.norm_across(moved));
+  }
+  if (box.any() && across.sum() > fitted_margin_m(particles)) return false;
+  if (reference_wall_point_.size() != walls.size()) return false;
+  for (std::size_t w = 0; w < walls.size() && w < wall_travel_m.size(); ++w) {
+    const Eigen::Vector3d moved = walls[w].point + wall_travel_m[w] * walls[w].normal - reference_wall_point_[w];
+    if (moved.norm() > 0.5 * wall_margin_) return false;
+  }
+  return true;
+}
+
 double ContactDetector::engaged_wall_lookahead(const ParticleSet& particles, const std::vector<Wall>& walls,
                                                const std::vector<double>& lookahead_m,
                                                const std::vector<double>& wall_lookahead_m) const {

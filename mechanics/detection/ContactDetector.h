@@ -95,6 +95,15 @@ class ContactDetector {
   // Forces a rebuild at the next update (after particles were moved by hand).
   void invalidate() { valid_ = false; }
 
+  // Whether the table still holds every pair that can touch once each particle has moved on by
+  // travel_m[i] and each wall w by wall_travel_m[w] along its normal (m) from where they stand:
+  // the tests of update() on the positions after that travel, with no look-ahead. A step's
+  // actual travel, checked after its solve, where the table was listed with a reach that is an
+  // estimate rather than a bound (NscdIntegrator: a piston the bed holds). False for a table
+  // that is not valid.
+  bool covers(const ParticleSet& particles, const std::vector<Eigen::Vector3d>& travel_m,
+              const std::vector<Wall>& walls, const std::vector<double>& wall_travel_m) const;
+
   // Candidates sorted by (i, j) with j as a signed number (walls first for each i).
   const std::vector<CandidatePair>& pairs() const { return pairs_; }
   // After a rebuild: index in the previous table of each new pair, or -1 if it is new.
@@ -102,6 +111,7 @@ class ContactDetector {
 
   std::size_t rebuild_count() const { return rebuilds_; }
   double margin() const { return margin_; }
+  double max_margin() const { return max_margin_; }  // m, the widest the look-aheads may ask
   double wall_margin() const { return wall_margin_; }  // particle-wall pairs, m (>= margin())
   // Whether the last rebuild's margin was set by an engaged moving wall rather than by the
   // particles' own look-aheads (such a table is rebuilt once the wall has stopped).

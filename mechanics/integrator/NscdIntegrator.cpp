@@ -186,7 +186,12 @@ NscdIntegrator::NscdIntegrator(ParticleSet particles, std::vector<Material> mate
   body_velocity_.assign(bodies, Eigen::Vector3d::Zero());
   body_angular_velocity_.assign(bodies, Eigen::Vector3d::Zero());
   lookahead_.resize(n);
-  if (has_piston_) wall_lookahead_.assign(walls_.size(), 0.0);
+  if (has_piston_) {
+    wall_lookahead_.assign(walls_.size(), 0.0);
+    wall_listing_lookahead_.assign(walls_.size(), 0.0);
+    wall_carried_N_.assign(walls_.size(), 0.0);
+    wall_travel_m_.assign(walls_.size(), 0.0);
+  }
 }
 
 void NscdIntegrator::set_piston_load(std::size_t wall, double load_N) {
@@ -335,8 +340,23 @@ StepReport NscdIntegrator::step(double h, bool landing_parts) {
   }
   report.detection_s += lap();
   report.candidates = problem_.size();
-  const SolveReport solved = solve_contacts();
-  report.solve_s = lap();
+  SolveReport solved = solve_contacts();
+  // A table listed with a piston's likely reach (estimate_wall_reach) must hold every pair the
+  // step's travel could close; where it does not (the bed gave way under the load), the step is
+  // listed again with the bound and solved again, from the same warm start.
+  if (listing_estimated_ && !listing_covers_travel(h)) {
+    const int first_sweeps = solved.sweeps;
+    report.relisted = true;  // counted by MechanicsStats::add
+    report.solve_s = lap();
+    relist_with_bound(h);
+    setup_contacts(h);
+    if (compliant()) set_hertz_laws(h);
+    report.detection_s += lap();
+    report.candidates = problem_.size();
+    solved = solve_contacts();
+    solved.sweeps += first_sweeps;
+  }
+  report.solve_s += lap();
   std::copy_n(body_velocity_.begin(), n, particles_.velocity.begin());
   std::copy_n(body_angular_velocity_.begin(), n, particles_.angular_velocity.begin());
   report.sweeps = solved.sweeps;

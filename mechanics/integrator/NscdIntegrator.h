@@ -97,6 +97,9 @@ class NscdIntegrator {
   // NscdParameters::retry_keep_steps the steps after such a retry start in its parts.
   StepReport step(double h);
   static constexpr int kMaxHalvings = 4;  // a step is halved at most this many times
+  // A moving wall's bound reach, in the detector's widest margins, beyond which its candidates
+  // are listed with its likely reach (NscdParameters::estimate_wall_reach).
+  static constexpr double kEstimatedReachFrom = 2.0;
   // Converged steps in a row that double back the parts a retry may go up to, after a step that
   // stayed unconverged through its retries halved them (step(double); NscdParameters::retry_parts).
   static constexpr int kRetryRecoverSteps = 10;
@@ -193,6 +196,14 @@ class NscdIntegrator {
     return piston.load_N / piston.mass_kg + gravity_.dot(piston.normal);
   }
   void refresh_candidates(double h);
+  // With NscdParameters::estimate_wall_reach: the reach each moving wall's pairs (and, once it
+  // is engaged, the particles') are listed with, from the net push the bed left it last step
+  // (wall_listing_lookahead_); listing_estimated_ when any is below the bound wall_lookahead_.
+  void estimate_wall_reach(double h);
+  // Whether the table covers the step's travel (the velocities just solved), and the step's
+  // problem listed again with the bound when it did not (estimate_wall_reach).
+  bool listing_covers_travel(double h);
+  void relist_with_bound(double h);
   // periodic_lookahead_ for a step of h (periodic scenes; step() fills it before
   // refresh_candidates reads it).
   void fill_periodic_lookahead(double h);
@@ -253,6 +264,11 @@ class NscdIntegrator {
   std::vector<double> lookahead_;
   std::vector<double> periodic_lookahead_;  // m, along the periodic axes; empty without them
   std::vector<double> wall_lookahead_;  // m; empty when no wall moves
+  std::vector<double> wall_listing_lookahead_;  // m; the estimate (estimate_wall_reach)
+  std::vector<double> wall_carried_N_;          // N; the bed's push on each wall last step
+  bool listing_estimated_ = false;
+  std::vector<Eigen::Vector3d> travel_m_;       // the step's travel per particle (the check)
+  std::vector<double> wall_travel_m_;           // and per wall, along its normal
   mutable std::vector<double> speed_;   // fall_judged_speed's work space, m/s
   bool has_piston_ = false;
   bool static_start_pending_ = true;  // the next step is the first, and knows no forces

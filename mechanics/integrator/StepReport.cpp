@@ -11,6 +11,7 @@ void MechanicsStats::add(const StepReport& report) {
   max_sweeps = std::max(max_sweeps, report.sweeps);
   if (!report.converged) ++unconverged_steps;
   if (report.stalled) ++stalled_steps;
+  if (report.relisted) ++relisted_steps;
   if (report.fall) {
     ++fall_steps;
     if (!report.converged) ++fall_unconverged_steps;
@@ -53,6 +54,7 @@ StepReport merged(const StepReport& first, const StepReport& second) {
   m.max_penetration_m = std::max(first.max_penetration_m, second.max_penetration_m);
   m.max_travel_m = first.max_travel_m + second.max_travel_m;  // a bound on the whole step's
   m.rebuilt_candidates = first.rebuilt_candidates || second.rebuilt_candidates;
+  m.relisted = first.relisted || second.relisted;
   m.energy_change_J = first.energy_change_J + second.energy_change_J;
   m.contact_dissipation_J = first.contact_dissipation_J + second.contact_dissipation_J;
   m.numerical_dissipation_J = first.numerical_dissipation_J + second.numerical_dissipation_J;

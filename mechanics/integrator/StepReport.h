@@ -69,6 +69,10 @@ struct StepReport {
   std::size_t candidates = 0;      // contacts handed to the solver
   std::size_t active_contacts = 0; // contacts with r_n > 0
   bool rebuilt_candidates = false; // the candidate table was rebuilt this step
+  // The step's table, listed with a piston's likely reach (NscdParameters::estimate_wall_reach),
+  // did not hold the travel its solve gave: listed again with the bound and solved again (both
+  // solves' sweeps in `sweeps`).
+  bool relisted = false;
   // Energy account of the step (NscdIntegrator.h): energy_change + contact_dissipation +
   // numerical_dissipation = 0 up to round-off, all in J.
   double energy_change_J = 0.0;        // kinetic + gravitational potential, after - before
@@ -142,6 +146,9 @@ struct MechanicsStats {
   // Steps started in the parts an earlier retry needed (NscdParameters::retry_keep_steps; each
   // part counts in `steps`).
   std::int64_t kept_parts_steps = 0;
+  // Steps whose table, listed with a piston's likely reach, was listed again with the bound
+  // after the solve (StepReport::relisted; each part counts).
+  std::int64_t relisted_steps = 0;
   // Steps asked of NscdIntegrator::step(h) (the caller's steps) that ended unconverged: a step
   // taken in parts (landing, periods, retry) counts once here, where unconverged_steps counts
   // each unconverged part. The run's warnings are one per such step.

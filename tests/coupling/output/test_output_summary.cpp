@@ -71,9 +71,10 @@ TEST(RunSummary, JsonHasEveryContractKey) {
   // The contract's 5 mechanics keys plus the extras stalled_steps, correction_sweeps,
   // halved_steps, landing_halved_steps, retried_steps, discarded_sweeps, piston_corrections,
   // max_step_travel_m, max_siconos_residual, siconos_unconverged_steps,
-  // max_natural_map_residual, unconverged_time_steps and kept_parts_steps.
-  EXPECT_EQ(j["mechanics"].size(), 18u);
+  // max_natural_map_residual, unconverged_time_steps, kept_parts_steps and relisted_steps.
+  EXPECT_EQ(j["mechanics"].size(), 19u);
   EXPECT_TRUE(j["mechanics"]["kept_parts_steps"].is_number_integer());
+  EXPECT_TRUE(j["mechanics"]["relisted_steps"].is_number_integer());
   EXPECT_TRUE(j["mechanics"]["retried_steps"].is_number_integer());
   EXPECT_TRUE(j["mechanics"]["discarded_sweeps"].is_number_integer());
   EXPECT_TRUE(j["mechanics"]["piston_corrections"].is_number_integer());
@@ -151,7 +152,7 @@ TEST(RunSummary, FallbackBlockRoundTrips) {
   EXPECT_EQ(f["converged_by_sweeps"], 1);
   EXPECT_EQ(f["sweeps"], 4321);
   EXPECT_DOUBLE_EQ(f["wall_time_s"].get<double>(), 2.5);
-  EXPECT_EQ(j["mechanics"].size(), 19u);  // the 18 above and the block
+  EXPECT_EQ(j["mechanics"].size(), 20u);  // the 19 above and the block
   const RunSummary r = RunSummary::from_json(j);
   ASSERT_TRUE(r.mechanics.fallback.has_value());
   EXPECT_EQ(r.mechanics.fallback->converged_by_first_again, 3);

@@ -81,7 +81,7 @@ std::vector<Section> settings_sections() {
                "error as the rest (docs/mechanics.md \"The defaults\"); 0: off"),
         boolean("estimate_piston_reach", bool_text(kM.estimate_piston_reach),
                 "where a piston's bound reach (its load and weight as if nothing held it) is "
-                "beyond 8 largest radii (a light piston under a large load), list its candidate "
+                "beyond 4 largest radii (a light piston under a large load), list its candidate "
                 "pairs within its likely reach instead (its speed and twice the acceleration the "
                 "bed's last push leaves it), each step's travel checked against that table after the solve and "
                 "the step listed again with the bound where it does not fit "

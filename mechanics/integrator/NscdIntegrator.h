@@ -97,8 +97,8 @@ class NscdIntegrator {
   // NscdParameters::retry_keep_steps the steps after such a retry start in its parts.
   StepReport step(double h);
   static constexpr int kMaxHalvings = 4;  // a step is halved at most this many times
-  // A moving wall's bound reach, in the detector's widest margins, beyond which its candidates
-  // are listed with its likely reach (NscdParameters::estimate_wall_reach).
+  // A moving wall's load reach 2 h^2 |a|, in the detector's widest margins, beyond which its
+  // candidates are listed with its likely reach (NscdParameters::estimate_wall_reach).
   static constexpr double kEstimatedReachFrom = 2.0;
   // Converged steps in a row that double back the parts a retry may go up to, after a step that
   // stayed unconverged through its retries halved them (step(double); NscdParameters::retry_parts).

@@ -110,11 +110,11 @@ void NscdIntegrator::estimate_wall_reach(double h) {
     // share 2 h^2 |a| beyond kEstimatedReachFrom widest margins, 4 largest radii; a fast piston's
     // own speed, which it may hand to the bed, stays in the bound): a smaller table also holds
     // fewer open candidates, whose gaps make most of the scale ||q|| of Siconos' residual, so the
-    // same steps are judged more strictly and take more sweeps. Estimated from half a widest
+    // same steps are judged more strictly and take more sweeps: estimated from half a widest
     // margin on, the 40-layer shaft at 1e4 Pa (load reach 1.28 mm, 2.6 radii) took 314 s
-    // instead of 75 s (682 mean sweeps against 256); piston_cylinder at 1e5 Pa (4.5 mm, 5 radii)
-    // 129 s instead of 276 s, none unconverged either way (docs/mechanics.md "A loaded piston's
-    // reach").
+    // instead of 75 s (682 mean sweeps against 256). Above the threshold, piston_cylinder's
+    // 1e5 Pa load (4.5 mm, 5 radii) took 41 s instead of 276 s, none unconverged either way
+    // (docs/mechanics.md "A loaded piston's reach").
     wall_listing_lookahead_[w] = wall_lookahead_[w];
     const double load_reach_m = 2.0 * h * h * std::abs(piston_acceleration_m_per_s2(wall));
     if (load_reach_m <= kEstimatedReachFrom * detector_.max_margin()) continue;

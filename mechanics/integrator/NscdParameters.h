@@ -156,8 +156,8 @@ struct NscdParameters {
   // listed. A light piston under a large load makes that reach many diameters: 1 g pressed
   // with 6.4 N (1e5 Pa on an 8 x 8 mm shaft of 1 mm spheres) reaches 12.8 mm, and its 2,920
   // spheres' table held 3.6 million candidates (7,600 contacts), 13 s a step at 250 sweeps.
-  // With the key, a piston whose bound is beyond NscdIntegrator::kEstimatedReachFrom widest
-  // margins is listed with its speed and twice the acceleration the bed's last push leaves it,
+  // With the key, a piston whose load alone reaches beyond NscdIntegrator::kEstimatedReachFrom
+  // widest margins (2 h^2 |a|) is listed with its speed and twice the acceleration the bed's last push leaves it,
   // and after the solve the step's travel is checked against the table: where it does not fit
   // (the bed gave way), the step is listed with the bound and solved again (summary
   // mechanics.relisted_steps). That bed came to rest in 110 steps, 396 s. Never on a run's first

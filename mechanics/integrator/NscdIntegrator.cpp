@@ -205,20 +205,6 @@ void NscdIntegrator::set_piston_load(std::size_t wall, double load_N) {
   walls_[wall].load_N = load_N;
 }
 
-void NscdIntegrator::refresh_wall_bodies(double h) {
-  // Wall bodies: start-of-step and free velocities along the normal (fixed walls stay at 0),
-  // and how far a piston may move in the coming step (as for particles in refresh_candidates).
-  const std::size_t n = particles_.size();
-  for (std::size_t w = 0; w < walls_.size(); ++w) {
-    const Wall& wall = walls_[w];
-    if (!wall.moves()) continue;
-    const double acceleration = piston_acceleration_m_per_s2(wall);
-    old_velocity_[n + w] = wall.velocity_m_per_s * wall.normal;
-    problem_.free_velocity[n + w] = (wall.velocity_m_per_s + h * acceleration) * wall.normal;
-    wall_lookahead_[w] = 2.0 * h * (std::abs(wall.velocity_m_per_s) + h * std::abs(acceleration));
-  }
-}
-
 void NscdIntegrator::invalidate_contacts() { detector_.invalidate(); }
 
 void NscdIntegrator::keep_in_plane() {

@@ -195,7 +195,8 @@ class NscdIntegrator {
   double piston_acceleration_m_per_s2(const Wall& piston) const {
     return piston.load_N / piston.mass_kg + gravity_.dot(piston.normal);
   }
-  void refresh_candidates(double h);
+  // bound_only: every moving wall listed with its bound (relist_with_bound).
+  void refresh_candidates(double h, bool bound_only = false);
   // With NscdParameters::estimate_wall_reach: the reach each moving wall's pairs (and, once it
   // is engaged, the particles') are listed with, from the net push the bed left it last step
   // (wall_listing_lookahead_); listing_estimated_ when any is below the bound wall_lookahead_.

@@ -66,6 +66,7 @@ mechanics::NscdParameters make_nscd_parameters(const Scene& scene) {
   p.fallback_on_last_try = scene.mechanics.fallback_on_last_try;
   p.full_sweep_every = scene.mechanics.full_sweep_every;
   p.siconos_stop = scene.mechanics.stop_test == "siconos";
+  p.residual_check_every = scene.mechanics.residual_check_every;
   p.normal_law = scene.mechanics.normal_law;
   p.penetration_slop_fraction = scene.mechanics.penetration_slop;
   p.recovery_speed = scene.mechanics.recovery_speed_m_per_s;

@@ -194,6 +194,8 @@ struct MechanicsSettings {
   bool skip_out_of_reach = mechanics::NscdParameters{}.skip_out_of_reach;
   bool estimate_piston_reach = mechanics::NscdParameters{}.estimate_wall_reach;
   bool static_warm_start = mechanics::NscdParameters{}.static_warm_start;
+  // Sweeps between checks of Siconos' residual before nncg's sweep test is met (0: never).
+  int residual_check_every = mechanics::NscdParameters{}.residual_check_every;
   int static_balance_rounds = mechanics::NscdParameters{}.static_balance_rounds;
   int tighten_steps = mechanics::NscdParameters{}.tighten_steps;  // fall_tolerance -> tolerance over this many steps
   int max_iterations = mechanics::NscdParameters{}.max_iterations;

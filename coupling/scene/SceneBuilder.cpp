@@ -177,6 +177,8 @@ void SceneBuilder::read_settings() {
     m.skip_out_of_reach = t.boolean("skip_out_of_reach", m.skip_out_of_reach);
     m.estimate_piston_reach = t.boolean("estimate_piston_reach", m.estimate_piston_reach);
     m.static_warm_start = t.boolean("static_warm_start", m.static_warm_start);
+    m.residual_check_every = static_cast<int>(t.integer("residual_check_every", m.residual_check_every, 0,
+                                                        std::numeric_limits<int>::max()));
     m.static_balance_rounds = static_cast<int>(t.integer("static_balance_rounds", m.static_balance_rounds, 0,
                                                                mechanics::NscdParameters::kMaxBalanceRounds));
     // Sweep counts: integers >= 1 (checked only when mechanics is on).

@@ -104,6 +104,12 @@ std::vector<Section> settings_sections() {
               "shaft's first step finds the side walls' friction (Janssen) in far fewer sweeps, "
               "but a bed that still has to move may take more in its later steps; 0: the "
               "vertical start alone (docs/mechanics.md \"The first step\")"),
+        value("residual_check_every", "", std::to_string(kM.residual_check_every), "integer >= 0",
+              "solvers nncg and nncg_ipm with stop_test \"siconos\": until a solve's sweep test "
+              "is met, Siconos' residual is checked every this many sweeps and the solve ends "
+              "once it is within the tolerance (a check costs about one full sweep; 0: never). "
+              "Fewer sweeps between checks end a pour's steps sooner, with deeper overlaps left "
+              "in its impact steps (docs/mechanics.md \"Checked before the sweep test is met\")"),
         value("tighten_steps", "", std::to_string(kM.tighten_steps), "integer >= 1",
               "tolerance schedule: once the fall has ended, the tolerance goes from "
               "fall_tolerance to tolerance geometrically over this many steps (1: at once)"),

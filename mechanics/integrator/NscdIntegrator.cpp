@@ -145,6 +145,7 @@ NscdIntegrator::NscdIntegrator(ParticleSet particles, std::vector<Material> mate
   settings.stall_sweeps = parameters_.stall_sweeps;
   settings.full_sweep_every = parameters_.full_sweep_every;
   settings.siconos_stop = parameters_.siconos_stop && (parameters_.solver == "nncg" || parameters_.solver == "nncg_ipm");
+  settings.residual_check_every = parameters_.residual_check_every;
   settings.parallel_from = parameters_.parallel_from;
   solver_ = make_contact_solver(parameters_.solver, settings);
   if (compliant()) {

@@ -30,6 +30,10 @@ struct SolverSettings {
   // (SiconosResidual.h) is within `tolerance` too (scene mechanics.stop_test = "siconos", the
   // default; NscdIntegrator sets it for "nncg" only).
   bool siconos_stop = false;
+  // "nncg" with siconos_stop: Siconos' residual every this many sweeps before its sweep test is
+  // met, the solve ending once it is within `tolerance` (0: never; -1: the solver's own default,
+  // NncgSolver::Options::siconos_check_unmet_every).
+  int residual_check_every = -1;
   // Contacts from which the solvers use OpenMP threads, and "nlgs" and "nncg" sweep slab by slab
   // (ContactSlabs::update_if_large): NscdParameters::parallel_from.
   std::ptrdiff_t parallel_from = kDefaultParallelFrom;

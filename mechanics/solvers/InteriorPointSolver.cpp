@@ -28,6 +28,7 @@ InteriorPointSolver::InteriorPointSolver(const SolverSettings& settings, const O
     // Within the solve's own budget (mechanics.max_iterations).
     polishing.max_iterations = std::min(options_.polish_sweeps, settings_.max_iterations);
     polishing.siconos_stop = true;
+    polishing.residual_check_every = options_.polish_residual_check_every;
     polisher_ = std::make_unique<NncgSolver>(polishing);
   }
 }

@@ -232,7 +232,9 @@ SolveReport NncgSolver::solve_with_rolling(const ContactProblem& given,
     options.parallel = true;
   }
   const GaussSeidelSweepState state{problem, r, m, velocity, angular_velocity};
-  if (settings_.siconos_stop) hooks.unmet_every = options_.siconos_check_unmet_every;
+  if (settings_.siconos_stop)
+    hooks.unmet_every = settings_.residual_check_every >= 0 ? settings_.residual_check_every
+                                                             : options_.siconos_check_unmet_every;
   auto run = [&](const SolverSettings& settings) {
     hooks.max_sweeps = settings.max_iterations;
     return coloured ? sweep_.solve<GaussSeidelSweep::Order::colour>(settings, options, state, hooks)

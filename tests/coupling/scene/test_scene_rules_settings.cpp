@@ -155,6 +155,22 @@ TEST(SceneRules, FullSweepEveryAtLeastOne) {
   EXPECT_EQ(make_nscd_parameters(scene).full_sweep_every, 8);  // what the solvers are given
 }
 
+// The sweeps between checks of Siconos' residual before nncg's sweep test is met
+// (mechanics::NscdParameters::residual_check_every): an integer >= 0 (0: never), handed to the
+// solver's settings.
+TEST(SceneRules, ResidualCheckEveryAtLeastZero) {
+  expect_scene_error(kBaseScene, {"mechanics.residual_check_every=-1"},
+                     {"mechanics.residual_check_every", ">= 0"});
+  expect_scene_error(kBaseScene, {"mechanics.residual_check_every=2.5"}, {"mechanics.residual_check_every"});
+  EXPECT_EQ(load_scene_text(kBaseScene, "t").mechanics.residual_check_every,
+            mechanics::NscdParameters{}.residual_check_every);
+  const Scene scene = load_scene_text(kBaseScene, "t", {"mechanics.residual_check_every=0"});
+  EXPECT_EQ(make_nscd_parameters(scene).residual_check_every, 0);
+  EXPECT_EQ(make_nscd_parameters(load_scene_text(kBaseScene, "t", {"mechanics.residual_check_every=50"}))
+                .residual_check_every,
+            50);
+}
+
 TEST(SceneRules, MechanicsOffWithHertzConductance) {
   expect_scene_error(kBaseScene, {"effects.mechanics=off", "thermal.conductance=hertz"},
                      {"thermal.conductance", "\"hertz\"", "effects.mechanics = \"off\""});

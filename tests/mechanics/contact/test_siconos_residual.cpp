@@ -248,18 +248,23 @@ TEST(SiconosResidual, StepWithinToleranceCountsAsConvergedOutOfSweeps) {
   EXPECT_EQ(sweep.stats().unconverged_steps, 1);
 }
 
-// Before the sweep test is met (the first run), Siconos' measure every 250 sweeps
+// Before the sweep test is met (the first run), Siconos' measure every 100 sweeps
 // (NncgSolver::Options::siconos_check_unmet_every): on a frictional pile the change per sweep
 // can stay above the tolerance while the measure that judges the step is within it, and such a
 // solve ran its whole budget. 200 spheres (mu = 0.9) poured at random, the problem of their
 // 111th step (875 contacts) solved cold: unchecked, nncg runs out of its 10,000 sweeps with
 // Siconos' residual within the tolerance (8.3e-6 when written); checked, it stops at the first
-// check that finds it within (2,000 sweeps), with the very reactions the unchecked solve has at
-// that sweep (its run cut there), above the tolerance at the seven checks before.
+// check that finds it within (700 sweeps; 2,000 when it checked every 250), with the very
+// reactions the unchecked solve has at that sweep (its run cut there), above the tolerance at the
+// checks before. The run's setting (mechanics.residual_check_every) overrides the options.
 // A solve whose sweep test is met first keeps its bits (the slow column: 967 sweeps either way).
 TEST(SiconosResidual, NncgChecksItBeforeItsSweepTestIsMet) {
   constexpr double tolerance = 1e-5;
-  NscdIntegrator pile = random_pile(200, 3, 0.9, 7, NscdParameters{});
+  // The pile's steps as when the problem was chosen (checks every 250 sweeps before the sweep
+  // test is met): its 111th step is one the sweep test alone does not end.
+  NscdParameters pile_parameters;
+  pile_parameters.residual_check_every = 250;
+  NscdIntegrator pile = random_pile(200, 3, 0.9, 7, pile_parameters);
   for (int step = 0; step < 111; ++step) pile.step();
   const ContactProblem& problem = pile.problem();
   ASSERT_GT(problem.size(), 800u);
@@ -270,7 +275,10 @@ TEST(SiconosResidual, NncgChecksItBeforeItsSweepTestIsMet) {
   NncgSolver::Options unchecked_options;
   unchecked_options.siconos_check_unmet_every = 0;
   const NncgSolver::Options checked_options;  // the default
-  ASSERT_EQ(checked_options.siconos_check_unmet_every, 250);
+  const int every = checked_options.siconos_check_unmet_every;
+  ASSERT_GT(every, 0);
+  // A run's default (mechanics.residual_check_every) is the solver's own.
+  ASSERT_EQ(NscdParameters{}.residual_check_every, every);
 
   NncgSolver unchecked(settings, unchecked_options), checked(settings, checked_options);
   const Solved whole = solve_cold(problem, unchecked);
@@ -280,7 +288,7 @@ TEST(SiconosResidual, NncgChecksItBeforeItsSweepTestIsMet) {
 
   const Solved early = solve_cold(problem, checked);
   ASSERT_TRUE(early.report.converged);
-  EXPECT_EQ(early.report.sweeps % 250, 0);
+  EXPECT_EQ(early.report.sweeps % every, 0);
   EXPECT_LT(early.report.sweeps, settings.max_iterations / 4);
   EXPECT_LE(siconos_residual(problem, early.r, {}, early.v, early.w, q), tolerance);
   // The unchecked solve cut at that sweep: the same reactions, bit for bit, and above the
@@ -291,7 +299,7 @@ TEST(SiconosResidual, NncgChecksItBeforeItsSweepTestIsMet) {
   const Solved at = solve_cold(problem, cut_solver);
   ASSERT_EQ(at.r.size(), early.r.size());
   for (std::size_t c = 0; c < at.r.size(); ++c) ASSERT_EQ(at.r[c], early.r[c]) << "contact " << c;
-  for (int before = 250; before < early.report.sweeps; before += 250) {
+  for (int before = every; before < early.report.sweeps; before += every) {
     cut.max_iterations = before;
     NncgSolver earlier(cut, unchecked_options);
     const Solved e = solve_cold(problem, earlier);
@@ -300,12 +308,30 @@ TEST(SiconosResidual, NncgChecksItBeforeItsSweepTestIsMet) {
   std::printf("pile step 111, cold: %d sweeps checked (converged), %d unchecked (not, by the sweep test)\n",
               early.report.sweeps, whole.report.sweeps);
 
+  // The run's setting (SolverSettings::residual_check_every) stands for the solver's own: at 0
+  // the options' checks are off, the unchecked solve to the bit; at a fifth of the default the
+  // solve stops at the first of its checks within the tolerance, no later than the default's.
+  SolverSettings never = settings;
+  never.residual_check_every = 0;
+  NncgSolver never_solver(never, checked_options);
+  const Solved off = solve_cold(problem, never_solver);
+  ASSERT_EQ(off.report.sweeps, whole.report.sweeps);
+  for (std::size_t c = 0; c < off.r.size(); ++c) ASSERT_EQ(off.r[c], whole.r[c]) << "contact " << c;
+  SolverSettings denser = settings;
+  denser.residual_check_every = every / 5;
+  NncgSolver denser_solver(denser, unchecked_options);
+  const Solved dense = solve_cold(problem, denser_solver);
+  ASSERT_TRUE(dense.report.converged);
+  EXPECT_EQ(dense.report.sweeps % (every / 5), 0);
+  EXPECT_LE(dense.report.sweeps, early.report.sweeps);
+  EXPECT_LE(siconos_residual(problem, dense.r, {}, dense.v, dense.w, q), tolerance);
+
   const NscdIntegrator column_sim = column(slow_column_masses());
   NncgSolver column_unchecked(settings, unchecked_options), column_checked(settings, checked_options);
   const Solved a = solve_cold(column_sim.problem(), column_unchecked);
   const Solved b = solve_cold(column_sim.problem(), column_checked);
   ASSERT_TRUE(a.report.converged);
-  EXPECT_GT(a.report.sweeps, 250);  // it passes checks
+  EXPECT_GT(a.report.sweeps, every);  // it passes checks
   EXPECT_EQ(a.report.sweeps, b.report.sweeps);
   for (std::size_t c = 0; c < a.r.size(); ++c) EXPECT_EQ(a.r[c], b.r[c]) << "contact " << c;
 }
